@@ -1,0 +1,356 @@
+//! The registry of diagnostic codes: each with its severity, a title and the
+//! long explanation `graftal explain CODE` prints.
+//!
+//! Codes are stable: a code is never reused for another problem. `E` codes
+//! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
+//! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
+//! evaluation; `W00xx` warnings.
+
+use super::Severity;
+use std::fmt;
+
+/// A diagnostic code, e.g. `E0004`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Code(pub &'static str);
+
+impl fmt::Display for Code {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
+impl Code {
+    pub fn severity(self) -> Severity {
+        if self.0.starts_with('W') {
+            Severity::Warning
+        } else {
+            Severity::Error
+        }
+    }
+
+    /// The registry entry for this code.
+    pub fn info(self) -> &'static CodeInfo {
+        lookup(self.0).expect("every code used is registered")
+    }
+}
+
+/// One entry of the registry.
+pub struct CodeInfo {
+    pub code: Code,
+    pub title: &'static str,
+    pub explanation: &'static str,
+}
+
+macro_rules! codes {
+    ($($name:ident = $code:literal, $title:literal, $expl:literal;)*) => {
+        $(pub const $name: Code = Code($code);)*
+        /// Every registered code, in order.
+        pub static ALL: &[CodeInfo] = &[
+            $(CodeInfo { code: $name, title: $title, explanation: $expl },)*
+        ];
+    };
+}
+
+codes! {
+    INVALID_CHARACTER = "E0001", "invalid character",
+"The file contains a control character (or another character that cannot be
+an L-system symbol). Symbols are printable characters; tabs, spaces and line
+breaks separate items.
+
+Example:
+    axiom: F\u{7}F      <- a BEL character hidden between the F's
+
+Remove the character; most editors can show invisible characters.";
+
+    UNTERMINATED_COMMENT = "E0002", "unterminated comment",
+"A comment opened with /* is never closed with */, so the rest of the file
+is swallowed by it.
+
+Example:
+    /* Koch island
+    axiom: F+F+F+F
+
+Close the comment:
+    /* Koch island */";
+
+    SYNTAX = "E0003", "unexpected token",
+"The parser met something that does not fit where it stands. The message
+says what was found and what could come instead. A pfg line is either a
+header (`axiom: F+F`) or a production (`lc < pred > rc --> succ`).
+
+Example:
+    F --> F+F : : 0.5
+
+The parser skips to the end of the line and keeps reading, so every error in
+the file is reported in one run.";
+
+    MISSING_ARROW = "E0004", "missing `-->`",
+"A line that is not a header must be a production, and a production needs
+the arrow `-->` between its predecessor (with contexts) and its successor.
+
+Example:
+    F   F+F-F      <- no arrow
+
+Write:
+    F --> F+F-F";
+
+    MALFORMED_ARROW = "E0005", "malformed arrow",
+"pfg writes the production arrow as `-->` (two hyphens and a greater-than
+sign). `->`, `=>` and `→` are not accepted, because `-` and `>` are
+themselves symbols in pfg.
+
+Example:
+    F -> F+F
+
+Write:
+    F --> F+F";
+
+    MISPLACED_CONTEXT = "E0006", "misplaced `<` or `>`",
+"A production has at most one `<` (ending the left context) and one `>`
+(starting the right context), in that order, both before the arrow and with
+something on each side (`*` stands for an empty context).
+
+Example:
+    a > b < c --> d      <- `>` before `<`
+    < a --> b            <- nothing before `<`
+
+Write:
+    b < a > c --> d
+    * < a --> b";
+
+    UNEXPECTED_EOF = "E0007", "unexpected end of file",
+"The file ends in the middle of an item, for example a production whose
+successor is missing on the last line, or a header with no value.
+
+Example (last line of the file):
+    F -->
+
+Write the successor, or `*` for the empty successor:
+    F --> *";
+
+    MISSING_SUCCESSOR = "E0008", "missing successor",
+"Nothing follows the arrow. An empty successor is written `*` (the
+listing's convention), so that a missing one is not taken for an empty one.
+
+Example:
+    X -->
+
+Write:
+    X --> *";
+
+    MISSING_PREDECESSOR = "E0009", "missing predecessor",
+"A production needs a strict predecessor: the symbols it replaces. `*`
+stands for an empty context or successor, never for an empty predecessor.
+
+Example:
+    --> F
+    a < * --> b
+
+Write:
+    F --> FF";
+
+    UNKNOWN_HEADER = "E0101", "unknown header",
+"pfg files start with the headers of the Appendix A listing:
+    derivation length: N
+    angle factor: N
+    scale factor: N
+    axiom: STRING
+    ignore: SYMBOLS
+Any other `name:` line is not understood. Misspellings get a suggestion.
+
+Example:
+    derivation lenght: 5
+
+Write:
+    derivation length: 5";
+
+    BAD_HEADER_VALUE = "E0102", "malformed header value",
+"The value of a header is not of the expected kind: `derivation length`,
+`angle factor` and `scale factor` take whole numbers; `axiom` takes a
+non-empty string of symbols.
+
+Example:
+    derivation length: five
+
+Write:
+    derivation length: 5";
+
+    BAD_ANGLE_FACTOR = "E0103", "angle factor not a positive integer",
+"The angle factor n gives the angle increment δ = 360°/n, so it must be a
+whole number greater than zero. For δ = 22.5° write 16, for 60° write 6,
+for 25.7° (≈ 360/14) write 14.
+
+Example:
+    angle factor: 0
+
+Write:
+    angle factor: 4      (δ = 90°)";
+
+    NEGATIVE_STEPS = "E0104", "negative derivation length",
+"The derivation length counts rewriting steps, so it cannot be negative.
+
+Example:
+    derivation length: -3
+
+Write:
+    derivation length: 3";
+
+    MISSING_AXIOM = "E0105", "missing axiom",
+"Every L-system needs an axiom, the word derivation starts from.
+
+Example: a file with productions but no `axiom:` line.
+
+Add one, after the angle and scale factors as in the listing:
+    axiom: F+F+F+F";
+
+    BRACKET_IN_PREDECESSOR = "E0201", "bracket in a predecessor or context",
+"In pfg, brackets may appear only in successors and in the axiom (the
+listing: \"Brackets can appear only in the production successor\"). Context
+matching already skips whole branches, so a context never needs them.
+
+Example:
+    A < [B] --> C
+
+Write:
+    A < B --> C";
+
+    UNBALANCED_SUCCESSOR = "E0202", "unbalanced brackets in a successor",
+"Every `[` in a successor needs a matching `]` after it, and no `]` may close
+a branch the successor did not open; otherwise the derived word would pop
+the turtle's stack when it is empty.
+
+Example:
+    F --> F[+F
+
+Write:
+    F --> F[+F]";
+
+    UNBALANCED_AXIOM = "E0203", "unbalanced brackets in the axiom",
+"Every `[` in the axiom needs a matching `]` after it, and every `]` a `[`
+before it.
+
+Example:
+    axiom: F[+F]]
+
+Write:
+    axiom: F[+F]";
+
+    BAD_PROBABILITY = "E0204", "probability not positive",
+"The weight after `:` in a stochastic production must be a number greater
+than zero. The weights of productions with the same predecessor and contexts
+are normalised, so 1 : 1 : 2 means 25%, 25%, 50%.
+
+Example:
+    F --> F[+F]F : 0
+
+Write:
+    F --> F[+F]F : 0.33";
+
+    MISSING_WEIGHT = "E0205", "stochastic production without a weight",
+"Productions with the same predecessor and contexts form one stochastic
+choice when they carry weights (`: 0.33`). If some of them have a weight
+and others do not, the choice is ambiguous.
+
+Example:
+    F --> F[+F]F : 0.5
+    F --> F[-F]F
+
+Give every alternative a weight:
+    F --> F[-F]F : 0.5";
+
+    TOO_MANY_SYMBOLS = "E0301", "derivation exceeds the symbol limit",
+"The derived word would be longer than `--max-symbols` allows. L-systems
+grow exponentially, and a few more steps can take more memory than the
+machine has, so graftal stops with this error instead.
+
+Use fewer steps (`-n`), or raise the limit with `--max-symbols N` if the
+machine has the memory (each symbol takes 4 bytes, twice over).";
+
+    TOO_MUCH_WORK = "E0302", "derivation takes too long",
+"The derivation would rewrite more symbols, over all its steps, than the
+work limit allows (20 times `--max-symbols`). This happens with a very
+large derivation length on a word that keeps changing without growing,
+e.g. `a --> b`, `b --> a` for a billion steps.
+
+Use fewer steps (`-n`). A word that stops changing ends the derivation
+early by itself.";
+
+    HEADER_ORDER = "W0001", "header out of the listing's order",
+"The Appendix A program reads its headers in a fixed order: derivation
+length, angle factor, scale factor, axiom, ignore. graftal accepts them in
+any order, but the original program (and files meant for it) would not.
+
+Example:
+    axiom: F
+    derivation length: 3
+
+Write:
+    derivation length: 3
+    axiom: F";
+
+    DUPLICATE_HEADER = "W0002", "header given twice",
+"The same header appears more than once; the later value is used.
+
+Example:
+    angle factor: 4
+    angle factor: 6";
+
+    NOTHING_DRAWN = "W0003", "nothing is drawn",
+"The derived word contains no symbol that draws (in pfg, `F` or a polygon),
+so the picture is empty. This is not an error: a system can be meant only
+for `derive`. Check the derivation length and the symbols the turtle
+understands (F f + - | [ ] & ^ \\ / { } ! ').";
+
+    SCALE_RANGE = "W0004", "scale factor out of range",
+"The scale factor is the share of the picture the figure fills, from 0 to
+100. Values outside are clamped.
+
+Example:
+    scale factor: 150";
+
+    MISSING_HEADER = "W0005", "header missing, default used",
+"A header the listing expects is missing, so its default is used:
+derivation length 0, angle factor 4 (δ = 90°), scale factor 100.
+
+Example: a file without `angle factor:` draws with δ = 90°.";
+
+    SHADOWED_PRODUCTION = "W0006", "production can never apply",
+"An earlier production with the same predecessor and contexts always
+matches first (the first production in file order wins), so this one is
+never used.
+
+Example:
+    F --> FF
+    F --> F+F      <- never applies";
+}
+
+/// Finds a code by name (case-insensitive).
+pub fn lookup(code: &str) -> Option<&'static CodeInfo> {
+    ALL.iter().find(|c| c.code.0.eq_ignore_ascii_case(code))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_are_unique_well_formed_and_explained() {
+        let mut seen = std::collections::HashSet::new();
+        for info in ALL {
+            assert!(seen.insert(info.code.0), "duplicate {}", info.code);
+            let c = info.code.0;
+            assert!(c.len() == 5 && (c.starts_with('E') || c.starts_with('W')));
+            assert!(c[1..].chars().all(|d| d.is_ascii_digit()));
+            assert!(!info.title.is_empty());
+            assert!(info.explanation.len() > 60, "{c} explanation too short");
+        }
+    }
+
+    #[test]
+    fn severity_follows_the_prefix() {
+        assert_eq!(MISSING_ARROW.severity(), Severity::Error);
+        assert_eq!(HEADER_ORDER.severity(), Severity::Warning);
+        assert_eq!(lookup("e0004").unwrap().code, MISSING_ARROW);
+        assert!(lookup("E9999").is_none());
+    }
+}

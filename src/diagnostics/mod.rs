@@ -1,0 +1,197 @@
+//! Diagnostics: what every stage reports, and the one place that renders them.
+//!
+//! A [`Diagnostic`] has a stable [`Code`] (see [`codes`]), a severity, a
+//! one-line message, a primary span, secondary labels, notes and a help line.
+//! Stages collect them in a [`Diagnostics`] list and keep going (a parser that
+//! never fails); the CLI renders them with ariadne ([`render`]) or as JSON.
+
+pub mod codes;
+mod render;
+
+pub use codes::Code;
+pub use render::{render_human, render_json, to_json};
+
+use crate::ir::Span;
+use crate::source::SourceFile;
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// A secondary place in the source, with a message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    pub span: Span,
+    pub message: String,
+}
+
+/// One problem found in one source file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub code: Code,
+    pub severity: Severity,
+    pub message: String,
+    /// The primary span; `None` for problems with no place in a file (e.g. a
+    /// derivation too large for `--max-symbols` given on the command line).
+    pub span: Option<Span>,
+    /// The message shown at the primary span.
+    pub label: Option<String>,
+    pub labels: Vec<Label>,
+    pub notes: Vec<String>,
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    fn new(code: Code, message: impl Into<String>) -> Self {
+        Diagnostic {
+            code,
+            severity: code.severity(),
+            message: message.into(),
+            span: None,
+            label: None,
+            labels: Vec::new(),
+            notes: Vec::new(),
+            help: None,
+        }
+    }
+
+    /// A diagnostic with code `code` (its severity comes from the code).
+    pub fn at(code: Code, span: Span, message: impl Into<String>) -> Self {
+        let mut d = Diagnostic::new(code, message);
+        d.span = Some(span);
+        d
+    }
+
+    /// A diagnostic with no place in a file.
+    pub fn global(code: Code, message: impl Into<String>) -> Self {
+        Diagnostic::new(code, message)
+    }
+
+    pub fn with_label(mut self, message: impl Into<String>) -> Self {
+        self.label = Some(message.into());
+        self
+    }
+
+    pub fn with_secondary(mut self, span: Span, message: impl Into<String>) -> Self {
+        self.labels.push(Label {
+            span,
+            message: message.into(),
+        });
+        self
+    }
+
+    pub fn with_note(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
+    }
+
+    pub fn with_help(mut self, help: impl Into<String>) -> Self {
+        self.help = Some(help.into());
+        self
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+/// Diagnostics collected by a stage, in the order found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Diagnostics(pub Vec<Diagnostic>);
+
+impl Diagnostics {
+    pub fn push(&mut self, d: Diagnostic) {
+        self.0.push(d);
+    }
+    pub fn extend(&mut self, other: Diagnostics) {
+        self.0.extend(other.0);
+    }
+    pub fn has_errors(&self) -> bool {
+        self.0.iter().any(Diagnostic::is_error)
+    }
+    pub fn iter(&self) -> impl Iterator<Item = &Diagnostic> {
+        self.0.iter()
+    }
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    /// Sorts by position (stable, so diagnostics at one place keep their
+    /// order); global diagnostics come last.
+    pub fn sort(&mut self) {
+        self.0
+            .sort_by_key(|d| d.span.as_ref().map_or(usize::MAX, |s| s.start));
+    }
+    /// Renders all for people (see [`render_human`]).
+    pub fn render(&self, file: &SourceFile, colour: bool) -> String {
+        self.0
+            .iter()
+            .map(|d| render_human(d, file, colour))
+            .collect()
+    }
+}
+
+/// The Levenshtein distance between two strings (by characters).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut cur = vec![0; b.len() + 1];
+    for (i, ca) in a.chars().enumerate() {
+        cur[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let cost = usize::from(ca != cb);
+            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    prev[b.len()]
+}
+
+/// The candidates nearest to `name` (case-insensitive), best first, if any is
+/// close enough to be a likely misspelling.
+pub fn nearest<'a>(name: &str, candidates: &[&'a str]) -> Vec<&'a str> {
+    let lower = name.to_lowercase();
+    let limit = (lower.chars().count() / 3).max(2);
+    let mut scored: Vec<(usize, &str)> = candidates
+        .iter()
+        .map(|c| (edit_distance(&lower, &c.to_lowercase()), *c))
+        .filter(|(d, _)| *d <= limit)
+        .collect();
+    scored.sort();
+    let best = scored.first().map(|(d, _)| *d);
+    scored
+        .into_iter()
+        .take_while(|(d, _)| Some(*d) == best)
+        .map(|(_, c)| c)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distance_counts_single_edits() {
+        assert_eq!(edit_distance("axiom", "axiom"), 0);
+        assert_eq!(edit_distance("axiim", "axiom"), 1);
+        assert_eq!(edit_distance("angel factor", "angle factor"), 2);
+        assert_eq!(edit_distance("", "abc"), 3);
+    }
+
+    #[test]
+    fn nearest_suggests_close_keywords_only() {
+        let keys = ["derivation length", "angle factor", "axiom"];
+        assert_eq!(
+            nearest("derivaton length", &keys),
+            vec!["derivation length"]
+        );
+        assert_eq!(nearest("Axiom", &keys), vec!["axiom"]);
+        assert!(nearest("colour table", &keys).is_empty());
+    }
+}

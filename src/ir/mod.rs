@@ -1,0 +1,572 @@
+//! # The graftal IR: one representation for every notation
+//!
+//! This module is the specification of graftal's semantics. Every front end
+//! (pfg `.l` today; LinF `.linf`, STL `.stl`, the cpfg and Fractint dialects
+//! later) *lowers* its AST into a [`System`]; everything downstream —
+//! validation, derivation ([`crate::eval`]), turtle interpretation
+//! ([`crate::turtle`]), rendering and the emitters — reads only this type.
+//! Nothing notation-specific survives lowering except spans, and those live in
+//! a side table ([`SpanTable`]) that takes no part in equality or output.
+//!
+//! ## Data model
+//!
+//! * **Symbols** are interned names ([`SymbolId`] into [`SymbolTable`]). A name
+//!   may be several characters long (`+t` in LinF, `R1` in STL); pfg symbols
+//!   are single characters. Ids 0 and 1 are always `[` and `]`, the branch
+//!   delimiters that context matching and the turtle both understand.
+//! * **Words** ([`Word`]) are sequences of symbols. The working string of a
+//!   derivation is a `Word`. Parametric modules (cpfg) will add a parallel
+//!   parameter array to `Word`; a word without parameters stays a plain
+//!   `Vec<SymbolId>`, so the common case pays nothing.
+//! * **What a symbol does** is a separate table ([`System::interpretation`]):
+//!   for each symbol an optional [`TurtleOp`]. pfg `+`, LinF `+t` and STL `L`
+//!   lower to the same kind of operation (a rotation of the turtle frame), so
+//!   one turtle draws every notation.
+//! * **Productions** ([`Production`]) have a strict predecessor (one or more
+//!   symbols), optional left and right contexts, an optional condition (for
+//!   parametric dialects), and one or more weighted [`Alternative`]
+//!   successors. Which production applies is decided by [`RulePolicy`] and
+//!   contexts are matched modulo the [`ContextFilter`].
+//! * **Settings** ([`Settings`]): derivation length, angle increment, step
+//!   length, scale; the seed is given at run time.
+//!
+//! ## Rewriting semantics ([`crate::eval`])
+//!
+//! One derivation step rewrites the whole word in parallel, scanning left to
+//! right. At each position the productions are tried in file order
+//! ([`RulePolicy::FirstMatch`], the Appendix A listing's `FindProd`): a
+//! production applies when its predecessor equals the symbols at this position
+//! and both contexts match. The first that applies is used; its predecessor's
+//! symbols are consumed and one of its alternatives is appended (chosen by
+//! weight with the seeded generator when there are several). When none
+//! applies, the one symbol is copied. Branch delimiters are never rewritten
+//! unless a production names them.
+//!
+//! Context matching in bracketed words (the listing's `lcondiff` and
+//! `rcondiff`): symbols in the filter's ignore set are skipped. Going left,
+//! `[` is skipped (the parent branch is the left context of a child) and a
+//! whole branch `[...]` met from its right is skipped. Going right, a whole
+//! branch `[...]` in the way is skipped and a `]` ends the search (nothing to
+//! the right inside this branch). The start and end of the word match only an
+//! empty context.
+//!
+//! ## How each notation lands here
+//!
+//! **pfg context-sensitive production** `0 < 1 > 1 --> 1[+F1F1]` with
+//! `ignore: +-F`: one [`Production`] with `left = [0]`, `predecessor = [1]`,
+//! `right = [1]`, one alternative of weight 1 whose successor is the word
+//! `1 [ + F 1 F 1 ]`; the system's [`ContextFilter::Ignore`] holds `+ - F`.
+//! Multi-character predecessors (`AB < CDE > FG`) are simply longer vectors.
+//! cpfg-style stochastic productions with the same predecessor and contexts
+//! (`F --> F[+F]F : 0.33`, …) are grouped into one `Production` with several
+//! alternatives whose weights are normalised.
+//!
+//! **LinF rotation pair with an interval**, `w = (0, [0 2*pi])`: the `angles`
+//! block becomes entries of [`System::rotations`]: `Rotation { name: "w",
+//! torsion: Angle::Radians(0), curvature: Angle::Uniform { lo: 0, hi: 2π } }`.
+//! An occurrence `+w` in a successor is the symbol `+w`, interpreted as
+//! [`TurtleOp::Frenet`] `{ rotation: w, negate: false }`; `--w` is two symbols
+//! `-w -w` (one rotation per sign), each `negate: true`. The uniform draw
+//! happens each time the turtle applies the rotation, from the turtle's own
+//! seeded stream. The LinF frame {t, n, b} is the turtle frame {H, L, U}
+//! (t = heading, n = left, b = up): a torsion θ is [`Axis::Heading`] by −θ, a
+//! curvature θ is [`Axis::Up`] by −θ (see [`TurtleOp::Rotate`] for the sign
+//! conventions); `!` is [`TurtleOp::SwapTurns`]; `x@` is the symbol `x@`
+//! interpreted as [`TurtleOp::ScaleLength`]`(x)`; `{`/`}` step through
+//! [`System::colours`].
+//!
+//! **LinF `0.5?j`** in a successor: the symbol `0.5?j` (interned as its own
+//! symbol) carrying [`SymbolInfo::guard`] `= Some(Guard { probability: 0.5,
+//! base: j })`. In each derivation step an occurrence of a guarded symbol is
+//! rewritten by `j`'s production with probability 0.5 and otherwise stays as
+//! it is (still guarded) for the next step. The turtle draws it as `j`.
+//!
+//! **STL branching term** `R1{R1,,R2}` with `LAYOUT … GROWTH BFS`: STL
+//! structure is kept as structure in [`Structure`]: the growth rules are
+//! [`StlRule`]s (name, body word, self-resemblance count), the seed is a list
+//! of [`SeedItem`]s where `R1{R1,,R2}` is a [`BranchTerm`] `{ rule: R1,
+//! entries: [Rule(R1{}), Empty, Rule(R2{})] }`, the layout is a list of
+//! [`Shape`]s and the strategy is [`Growth::BreadthFirst`]. A file with
+//! explicit branching (a BED) is expanded into the axiom word when lowered;
+//! a file with a layout (an OD) is grown by the STL growth evaluator into a
+//! BED, which then expands to a word like any other. Drawing components `F`,
+//! `L`/`+`, `R`/`-` are symbols interpreted as `Forward`, and rotations about
+//! [`Axis::Up`] by ∓δ.
+
+use serde::Serialize;
+use std::collections::HashMap;
+use std::ops::Range;
+
+/// An interned symbol: an index into [`SymbolTable`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct SymbolId(pub u32);
+
+impl SymbolId {
+    /// `[`: push the turtle state; opens a branch for context matching.
+    pub const OPEN: SymbolId = SymbolId(0);
+    /// `]`: pop the turtle state; closes a branch.
+    pub const CLOSE: SymbolId = SymbolId(1);
+
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// What the table knows about one symbol besides its name.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SymbolInfo {
+    pub name: String,
+    /// LinF `p?s`: this symbol is an occurrence of `base` expanded with
+    /// `probability` at each step.
+    pub guard: Option<Guard>,
+}
+
+/// Per-occurrence expansion probability (LinF `p?s`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Guard {
+    pub probability: f64,
+    pub base: SymbolId,
+}
+
+/// Interned symbol names.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SymbolTable {
+    symbols: Vec<SymbolInfo>,
+    #[serde(skip)]
+    index: HashMap<String, SymbolId>,
+}
+
+impl SymbolTable {
+    /// A table that already holds `[` and `]` as ids 0 and 1.
+    pub fn new() -> Self {
+        let mut t = SymbolTable::default();
+        t.intern("[");
+        t.intern("]");
+        t
+    }
+
+    pub fn intern(&mut self, name: &str) -> SymbolId {
+        if let Some(&id) = self.index.get(name) {
+            return id;
+        }
+        let id = SymbolId(self.symbols.len() as u32);
+        self.symbols.push(SymbolInfo {
+            name: name.to_string(),
+            guard: None,
+        });
+        self.index.insert(name.to_string(), id);
+        id
+    }
+
+    /// Interns a guarded occurrence (`p?base`) of `base`.
+    pub fn intern_guarded(&mut self, probability: f64, base: SymbolId) -> SymbolId {
+        let name = format!("{probability}?{}", self.name(base));
+        let id = self.intern(&name);
+        self.symbols[id.index()].guard = Some(Guard { probability, base });
+        id
+    }
+
+    pub fn get(&self, name: &str) -> Option<SymbolId> {
+        self.index.get(name).copied()
+    }
+
+    pub fn name(&self, id: SymbolId) -> &str {
+        &self.symbols[id.index()].name
+    }
+
+    pub fn info(&self, id: SymbolId) -> &SymbolInfo {
+        &self.symbols[id.index()]
+    }
+
+    pub fn len(&self) -> usize {
+        self.symbols.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.symbols.is_empty()
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = (SymbolId, &SymbolInfo)> {
+        self.symbols
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (SymbolId(i as u32), s))
+    }
+}
+
+/// A string of symbols.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Word(pub Vec<SymbolId>);
+
+impl Word {
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    pub fn symbols(&self) -> &[SymbolId] {
+        &self.0
+    }
+    /// The word written with the symbols' names, nothing between them (the
+    /// way pfg and the goldens print derived strings).
+    pub fn display(&self, table: &SymbolTable) -> String {
+        let mut s = String::with_capacity(self.0.len());
+        for &id in &self.0 {
+            s.push_str(table.name(id));
+        }
+        s
+    }
+}
+
+/// An angle as written in the source; resolved to radians by the turtle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum Angle {
+    /// `factor` times the system's angle increment δ ([`Settings::angle`]).
+    Delta(f64),
+    /// A fixed angle in radians.
+    Radians(f64),
+    /// Drawn uniformly from `[lo, hi]` (radians) each time it is applied.
+    Uniform { lo: f64, hi: f64 },
+}
+
+/// The axes of the turtle frame {H, L, U} (heading, left, up), which is the
+/// LinF Frenet frame {t, n, b}.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Axis {
+    Heading,
+    Left,
+    Up,
+}
+
+/// A named LinF rotation: a (torsion, curvature) pair.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Rotation {
+    pub name: String,
+    pub torsion: Angle,
+    pub curvature: Angle,
+}
+
+/// Index into [`System::rotations`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct RotationId(pub u32);
+
+/// An RGB colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Rgb(pub u8, pub u8, pub u8);
+
+/// What the turtle does for one symbol.
+///
+/// Rotations follow the book's matrices (Prusinkiewicz & Hanan §2, Fig.
+/// 2.12): `[H' L' U'] = [H L U] R`, where for an angle α
+/// `R_U(α)` turns the heading towards −L (to the right, clockwise seen from
+/// +z), `R_L(α)` pitches the heading towards +U... as printed:
+/// `H' = H cos α + U sin α` for `R_L`, and `R_H(α)` rolls
+/// `L' = L cos α + U sin α`. pfg `+` is `Rotate{Up, +δ}`; a LinF curvature θ
+/// is `Rotate{Up, −θ}`; a LinF torsion θ is `Rotate{Heading, −θ}`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum TurtleOp {
+    /// Move one step (times the current length); draw a segment if `draw`.
+    Forward { draw: bool },
+    /// Rotate the frame about `axis` by `angle` (negated when turns are
+    /// swapped, see [`TurtleOp::SwapTurns`]).
+    Rotate { axis: Axis, angle: Angle },
+    /// Apply a named LinF rotation: torsion first, then curvature; `negate`
+    /// for `-`.
+    Frenet { rotation: RotationId, negate: bool },
+    /// Turn around: rotate about U by 180°.
+    TurnAround,
+    /// `[`: push the turtle state.
+    Push,
+    /// `]`: pop the turtle state.
+    Pop,
+    /// `{` in pfg: start a filled polygon.
+    PolygonBegin,
+    /// `}` in pfg: close and fill the polygon.
+    PolygonEnd,
+    /// `!` in pfg: decrement the line width.
+    DecrementWidth,
+    /// `'` in pfg, `{` in LinF: the next colour.
+    NextColour,
+    /// `}` in LinF: back to the previous colour.
+    PreviousColour,
+    /// `!` in LinF: exchange the meaning of positive and negative turns.
+    SwapTurns,
+    /// LinF `x@`: multiply the step length by `x`.
+    ScaleLength(f64),
+}
+
+/// A successor with its weight.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Alternative {
+    /// Relative weight (normalised over the production's alternatives).
+    pub weight: f64,
+    pub successor: Word,
+}
+
+/// A condition on a production (reserved for parametric dialects; pfg has
+/// none).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Condition {
+    Always,
+}
+
+/// A rewriting rule: `left < predecessor > right : condition --> alternatives`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Production {
+    pub left: Vec<SymbolId>,
+    pub predecessor: Vec<SymbolId>,
+    pub right: Vec<SymbolId>,
+    pub condition: Condition,
+    pub alternatives: Vec<Alternative>,
+}
+
+impl Production {
+    pub fn is_context_sensitive(&self) -> bool {
+        !self.left.is_empty() || !self.right.is_empty()
+    }
+    pub fn is_stochastic(&self) -> bool {
+        self.alternatives.len() > 1
+    }
+}
+
+/// Index into [`System::productions`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub struct ProductionId(pub u32);
+
+/// How a production is chosen at a position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum RulePolicy {
+    /// The first production in file order that matches (pfg, cpfg, LinF).
+    FirstMatch,
+}
+
+/// Which symbols context matching sees.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum ContextFilter {
+    /// Skip these symbols (pfg `ignore:`, cpfg `#ignore`).
+    Ignore(Vec<SymbolId>),
+    /// See only these symbols (cpfg `#consider`).
+    Consider(Vec<SymbolId>),
+}
+
+/// Derivation and drawing settings.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Settings {
+    /// Derivation length from the file (`derivation length:`), if given.
+    pub steps: Option<u64>,
+    /// Angle increment δ in degrees.
+    pub angle: f64,
+    /// Initial step length, in turtle units.
+    pub step: f64,
+    /// Share of the picture the figure fills, 0..=100 (pfg `scale factor`).
+    pub scale: f64,
+    /// Initial line width (turtle units scaled to the picture's stroke).
+    pub width: f64,
+    /// Factor applied to the width by [`TurtleOp::DecrementWidth`].
+    pub width_factor: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            steps: None,
+            angle: 90.0,
+            step: 1.0,
+            scale: 100.0,
+            width: 1.0,
+            width_factor: 0.8,
+        }
+    }
+}
+
+/// The notation a system was read from (for printing derived words and for
+/// choosing a default emitter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Notation {
+    Pfg,
+    Linf,
+    Stl,
+}
+
+/// STL structural syntax, kept as structure (see the module docs).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Structure {
+    pub rules: Vec<StlRule>,
+    pub seed: Vec<SeedItem>,
+    pub layout: Vec<Shape>,
+    pub growth: Growth,
+    /// Levels for rules without a self-resemblance count (`LEVELS n`).
+    pub levels: u32,
+    /// Stem broadness and its decrement per level (`B = 8 (1)`).
+    pub broadness: (f64, f64),
+    /// Stem length and its decrement per level (`L = 40 (4)`).
+    pub length: (f64, f64),
+}
+
+/// A named STL growth rule.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StlRule {
+    pub name: String,
+    pub body: Word,
+    /// `[I n X]`: the self-resemblance count, if given.
+    pub resemblance: Option<u32>,
+}
+
+/// Index into [`Structure::rules`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct StlRuleId(pub u32);
+
+/// One item of an STL seed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum SeedItem {
+    Word(Word),
+    Term(BranchTerm),
+}
+
+/// `R{e1, …, em}`: entry k extends the k-th top-level branch of R.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchTerm {
+    pub rule: StlRuleId,
+    pub entries: Vec<BranchEntry>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum BranchEntry {
+    /// Keep the branch, append nothing.
+    Empty,
+    /// `~`: the branch failed and is not drawn.
+    Failed,
+    /// Apply this term at the end of the branch.
+    Term(BranchTerm),
+}
+
+/// STL growth strategy for outline descriptions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub enum Growth {
+    #[default]
+    BreadthFirst,
+    DepthFirst,
+}
+
+/// An STL layout shape (stem units, origin at the root, y up).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Shape {
+    Rectangle {
+        colour: Rgb,
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+    },
+    RoundRect {
+        colour: Rgb,
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+        corner: f64,
+    },
+    Ellipse {
+        colour: Rgb,
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+    },
+    Polygon {
+        colour: Rgb,
+        points: Vec<(f64, f64)>,
+    },
+}
+
+/// A byte range in one source file.
+pub type Span = Range<usize>;
+
+/// Where the parts of a [`System`] came from. A side table: it never takes
+/// part in equality or serialised output.
+#[derive(Clone, Debug, Default)]
+pub struct SpanTable {
+    /// One span per production (the whole line).
+    pub productions: Vec<Span>,
+    /// Spans of each successor symbol, per production and alternative.
+    pub successors: Vec<Vec<Vec<Span>>>,
+    /// Span of each axiom symbol.
+    pub axiom: Vec<Span>,
+    /// First place each symbol is written.
+    pub symbols: HashMap<SymbolId, Span>,
+}
+
+/// An L-system in graftal's IR: what every front end produces.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct System {
+    pub notation: Notation,
+    pub symbols: SymbolTable,
+    /// `interpretation[s]` is what the turtle does for symbol `s`.
+    pub interpretation: Vec<Option<TurtleOp>>,
+    pub axiom: Word,
+    pub productions: Vec<Production>,
+    pub policy: RulePolicy,
+    pub context: ContextFilter,
+    pub settings: Settings,
+    pub rotations: Vec<Rotation>,
+    pub colours: Vec<Rgb>,
+    pub structure: Option<Structure>,
+}
+
+impl System {
+    /// An empty system of `notation` with `[` and `]` already interpreted.
+    pub fn new(notation: Notation) -> Self {
+        let mut sys = System {
+            notation,
+            symbols: SymbolTable::new(),
+            interpretation: Vec::new(),
+            axiom: Word::default(),
+            productions: Vec::new(),
+            policy: RulePolicy::FirstMatch,
+            context: ContextFilter::Ignore(Vec::new()),
+            settings: Settings::default(),
+            rotations: Vec::new(),
+            colours: Vec::new(),
+            structure: None,
+        };
+        sys.set_interpretation(SymbolId::OPEN, TurtleOp::Push);
+        sys.set_interpretation(SymbolId::CLOSE, TurtleOp::Pop);
+        sys
+    }
+
+    /// Interns `name`, growing the interpretation table to match.
+    pub fn intern(&mut self, name: &str) -> SymbolId {
+        let id = self.symbols.intern(name);
+        if self.interpretation.len() < self.symbols.len() {
+            self.interpretation.resize(self.symbols.len(), None);
+        }
+        id
+    }
+
+    pub fn set_interpretation(&mut self, id: SymbolId, op: TurtleOp) {
+        if self.interpretation.len() <= id.index() {
+            self.interpretation.resize(id.index() + 1, None);
+        }
+        self.interpretation[id.index()] = Some(op);
+    }
+
+    /// What the turtle does for `id` (a guarded symbol acts as its base).
+    pub fn op(&self, id: SymbolId) -> Option<TurtleOp> {
+        let id = match self.symbols.info(id).guard {
+            Some(g) => g.base,
+            None => id,
+        };
+        self.interpretation.get(id.index()).copied().flatten()
+    }
+
+    /// Whether context matching skips `id`.
+    pub fn is_ignored(&self, id: SymbolId) -> bool {
+        match &self.context {
+            ContextFilter::Ignore(set) => set.contains(&id),
+            ContextFilter::Consider(set) => {
+                id != SymbolId::OPEN && id != SymbolId::CLOSE && !set.contains(&id)
+            }
+        }
+    }
+}

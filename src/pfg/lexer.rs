@@ -1,0 +1,183 @@
+//! The pfg lexer (logos).
+//!
+//! pfg symbols are single characters, and almost every character can be a
+//! symbol, so the lexer is fine-grained: letters and digits come in runs
+//! (header keywords, numbers), the structural marks `<`, `>`, `:`, `*`, `-->`
+//! are tokens of their own, and any other character is a one-character
+//! [`Token::Char`]. The parser decides, by position, whether a `<` or a digit
+//! run is structure or symbols. Spaces and `/* … */` comments are skipped;
+//! line breaks are tokens, since pfg is line-oriented.
+
+use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::ir::Span;
+use logos::Logos;
+use std::fmt;
+
+/// What went wrong while lexing.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum LexError {
+    #[default]
+    InvalidCharacter,
+    UnterminatedComment,
+}
+
+#[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
+#[logos(error = LexError)]
+#[logos(skip r"[ \t\f\r\u{feff}]+")]
+pub enum Token<'src> {
+    #[regex(r"\n")]
+    Newline,
+    #[token("/*", block_comment)]
+    Comment,
+    #[token("-->")]
+    Arrow,
+    /// `->`, `=>`, `==>`, `→`, `—>`: arrows people write for `-->`.
+    #[token("->")]
+    #[token("=>")]
+    #[token("==>")]
+    #[token("→")]
+    #[token("—>")]
+    #[token("--->")]
+    BadArrow(&'src str),
+    #[token("<")]
+    Lt,
+    #[token(">")]
+    Gt,
+    #[token(":")]
+    Colon,
+    #[token("*")]
+    Star,
+    #[regex(r"[A-Za-z_]+")]
+    Word(&'src str),
+    #[regex(r"[0-9]+(\.[0-9]+)?")]
+    Number(&'src str),
+    /// Any other printable character: a symbol.
+    #[regex(r"[^\s\x00-\x1f\x7f]", priority = 0)]
+    Char(&'src str),
+}
+
+fn block_comment<'s>(lex: &mut logos::Lexer<'s, Token<'s>>) -> Result<(), LexError> {
+    match lex.remainder().find("*/") {
+        Some(end) => {
+            lex.bump(end + 2);
+            Ok(())
+        }
+        None => {
+            lex.bump(lex.remainder().len());
+            Err(LexError::UnterminatedComment)
+        }
+    }
+}
+
+impl fmt::Display for Token<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Token::Newline => f.write_str("end of line"),
+            Token::Comment => f.write_str("comment"),
+            Token::Arrow => f.write_str("`-->`"),
+            Token::BadArrow(s) | Token::Word(s) | Token::Number(s) | Token::Char(s) => {
+                write!(f, "`{s}`")
+            }
+            Token::Lt => f.write_str("`<`"),
+            Token::Gt => f.write_str("`>`"),
+            Token::Colon => f.write_str("`:`"),
+            Token::Star => f.write_str("`*`"),
+        }
+    }
+}
+
+/// Lexes `src` into tokens with their byte spans. Comments are dropped;
+/// lexing errors become diagnostics and their characters are dropped, so
+/// the parser sees only valid tokens.
+pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, Span)> {
+    let mut out = Vec::new();
+    let mut lexer = Token::lexer(src);
+    while let Some(result) = lexer.next() {
+        let span = lexer.span();
+        match result {
+            Ok(Token::Comment) => {}
+            Ok(tok) => out.push((tok, span)),
+            Err(LexError::UnterminatedComment) => diags.push(
+                Diagnostic::at(
+                    codes::UNTERMINATED_COMMENT,
+                    span.start..span.start + 2,
+                    "unterminated comment",
+                )
+                .with_label("this comment is never closed")
+                .with_secondary(src.len()..src.len(), "the file ends here")
+                .with_help("close the comment with `*/`"),
+            ),
+            Err(LexError::InvalidCharacter) => {
+                let ch = src[span.clone()].chars().next().unwrap_or('\0');
+                diags.push(
+                    Diagnostic::at(
+                        codes::INVALID_CHARACTER,
+                        span,
+                        format!("invalid character U+{:04X}", ch as u32),
+                    )
+                    .with_label("not a symbol")
+                    .with_help("remove this control character"),
+                )
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kinds(src: &str) -> Vec<Token<'_>> {
+        let mut d = Diagnostics::default();
+        let toks = lex(src, &mut d);
+        assert!(d.is_empty(), "{d:?}");
+        toks.into_iter().map(|(t, _)| t).collect()
+    }
+
+    #[test]
+    fn arrow_wins_over_minus_and_greater() {
+        assert_eq!(
+            kinds("F-->F-F"),
+            vec![
+                Token::Word("F"),
+                Token::Arrow,
+                Token::Word("F"),
+                Token::Char("-"),
+                Token::Word("F")
+            ]
+        );
+    }
+
+    #[test]
+    fn comments_and_carriage_returns_are_skipped() {
+        assert_eq!(
+            kinds("axiom: /* x\ny */ F1\r\n"),
+            vec![
+                Token::Word("axiom"),
+                Token::Colon,
+                Token::Word("F"),
+                Token::Number("1"),
+                Token::Newline
+            ]
+        );
+    }
+
+    #[test]
+    fn hash_and_unicode_are_symbols() {
+        assert_eq!(kinds("#é"), vec![Token::Char("#"), Token::Char("é")]);
+    }
+
+    #[test]
+    fn bad_input_is_reported_not_fatal() {
+        let mut d = Diagnostics::default();
+        let toks = lex("F\u{7}F /* open", &mut d);
+        assert_eq!(toks.len(), 2);
+        let codes: Vec<_> = d.iter().map(|d| d.code).collect();
+        assert_eq!(
+            codes,
+            vec![codes::INVALID_CHARACTER, codes::UNTERMINATED_COMMENT]
+        );
+        assert_eq!(d.0[0].span, Some(1..2));
+    }
+}
