@@ -6,8 +6,16 @@
 //! SVG). Every stage reports [`diagnostics`]. [`driver`] strings the stages
 //! together for the CLI and for tests.
 
+// Diagnostics are returned by value on cold error paths; boxing them buys nothing.
+#![allow(clippy::result_large_err)]
+
+pub mod cli;
 pub mod diagnostics;
+pub mod driver;
 pub mod eval;
 pub mod ir;
 pub mod pfg;
+pub mod render;
 pub mod source;
+pub mod stdlib;
+pub mod turtle;

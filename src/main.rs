@@ -1,1 +1,5 @@
-fn main() {}
+//! The `graftal` binary: see [`graftal::cli`].
+
+fn main() {
+    std::process::exit(graftal::cli::main());
+}

@@ -52,6 +52,13 @@ macro_rules! codes {
 }
 
 codes! {
+    UNSUPPORTED_NOTATION = "E0010", "notation not supported",
+"The file's extension names a notation whose front end this version of
+graftal does not have. `.l` files are read as pfg.
+
+Example:
+    graftal check tree.stl";
+
     INVALID_CHARACTER = "E0001", "invalid character",
 "The file contains a control character (or another character that cannot be
 an L-system symbol). Symbols are printable characters; tabs, spaces and line

@@ -338,15 +338,13 @@ fn check_brackets(
     for (c, span) in &s.chars {
         match c.as_str() {
             "[" => open.push(span),
-            "]" => {
-                if open.pop().is_none() {
-                    cx.diags.push(
-                        Diagnostic::at(code, span.clone(), format!("unbalanced `]` in the {what}"))
-                            .with_label("this `]` closes no branch")
-                            .with_help("remove it, or add the `[` that opens its branch"),
-                    );
-                    return false;
-                }
+            "]" if open.pop().is_none() => {
+                cx.diags.push(
+                    Diagnostic::at(code, span.clone(), format!("unbalanced `]` in the {what}"))
+                        .with_label("this `]` closes no branch")
+                        .with_help("remove it, or add the `[` that opens its branch"),
+                );
+                return false;
             }
             _ => {}
         }
@@ -363,10 +361,13 @@ fn check_brackets(
     true
 }
 
+/// (left, predecessor, right, weighted, span) of a lowered production.
+type ProductionKey = (Vec<SymbolId>, Vec<SymbolId>, Vec<SymbolId>, bool, Span);
+
 fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
     // (left, predecessor, right) of each production lowered so far, and
     // whether it carried a weight; for grouping stochastic alternatives.
-    let mut keys: Vec<(Vec<SymbolId>, Vec<SymbolId>, Vec<SymbolId>, bool, Span)> = Vec::new();
+    let mut keys: Vec<ProductionKey> = Vec::new();
     for p in prods {
         let mut ok = true;
         for part in [p.left.as_ref(), Some(&p.predecessor), p.right.as_ref()]

@@ -1,0 +1,359 @@
+//! The `graftal` command line (clap). Thin: every command is a few
+//! [`crate::driver`] calls and printing. `run` takes its output streams as
+//! arguments so tests can drive it.
+//!
+//! Exit status: 0 success (warnings allowed), 1 the input has errors, 2 a
+//! usage or I/O problem.
+
+use crate::diagnostics::{self, codes, render_human, render_json, Diagnostic};
+use crate::driver::{self, Compiled, Format, RunOptions};
+use crate::eval::DEFAULT_MAX_SYMBOLS;
+use crate::render::{RenderOptions, View};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::io::{IsTerminal, Write};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "graftal",
+    version,
+    about = "Read, check, derive, draw and explain L-systems (pfg .l files)"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+enum OutputFormat {
+    #[default]
+    Human,
+    Json,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+struct DeriveArgs {
+    /// A path, or std:NAME for a standard-library system.
+    file: String,
+    /// Derivation steps (default: the file's derivation length, else 0).
+    #[arg(short = 'n', long = "steps")]
+    steps: Option<u64>,
+    /// Seed for stochastic productions and random angles.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Stop with an error when the word would grow past this many symbols.
+    #[arg(long, default_value_t = DEFAULT_MAX_SYMBOLS)]
+    max_symbols: usize,
+    /// How diagnostics are printed.
+    #[arg(long, value_enum, default_value_t)]
+    format: OutputFormat,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Parse and validate files; diagnostics on stderr.
+    Check {
+        #[arg(required = true)]
+        files: Vec<String>,
+        #[arg(long, value_enum, default_value_t)]
+        format: OutputFormat,
+    },
+    /// Print the derived word after N steps.
+    Derive(DeriveArgs),
+    /// Draw the system to a PNG or SVG file (by the output's extension).
+    Render {
+        #[command(flatten)]
+        args: DeriveArgs,
+        /// Output file: .png or .svg.
+        #[arg(short = 'o', long = "output")]
+        output: String,
+        /// Picture size in pixels.
+        #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
+        size: (u32, u32),
+        /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees.
+        #[arg(long, default_value = "0,0", value_parser = parse_view, allow_hyphen_values = true)]
+        view: (f64, f64),
+    },
+    /// Count symbols, segments, polygons; bounding box and branch depth.
+    Stats(DeriveArgs),
+    /// Explain a diagnostic code, e.g. `graftal explain E0004`.
+    Explain { code: String },
+    /// List the standard library (`std:NAME`).
+    List,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT"))?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err("width and height must be 1..=16384".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_view(s: &str) -> Result<(f64, f64), String> {
+    let (a, e) = s
+        .split_once(',')
+        .ok_or_else(|| format!("`{s}` is not AZIMUTH,ELEVATION"))?;
+    let a: f64 = a.trim().parse().map_err(|_| format!("bad azimuth `{a}`"))?;
+    let e: f64 = e
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad elevation `{e}`"))?;
+    if !a.is_finite() || !e.is_finite() {
+        return Err("angles must be finite".into());
+    }
+    Ok((a, e))
+}
+
+/// Where output goes, and whether stderr is a terminal (colour, progress).
+pub struct Io<'a> {
+    pub stdout: &'a mut dyn Write,
+    pub stderr: &'a mut dyn Write,
+    pub terminal: bool,
+}
+
+/// Runs the command line `args` (with the program name first); returns the
+/// exit status.
+pub fn run<I, T>(args: I, io: &mut Io<'_>) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let text = if io.terminal {
+                e.render().ansi().to_string()
+            } else {
+                e.render().to_string()
+            };
+            let out: &mut dyn Write = if e.use_stderr() { io.stderr } else { io.stdout };
+            let _ = write!(out, "{text}");
+            return code;
+        }
+    };
+    match cli.command {
+        Command::Check { files, format } => {
+            let mut status = 0;
+            for f in files {
+                match driver::load(&f) {
+                    Ok(file) => {
+                        let c = driver::compile(file);
+                        report(io, &c, c.diagnostics.0.iter(), format);
+                        if c.system.is_none() {
+                            status = status.max(1);
+                        }
+                    }
+                    Err(e) => {
+                        let _ = writeln!(io.stderr, "error: {e}");
+                        status = 2;
+                    }
+                }
+            }
+            status
+        }
+        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts| {
+            let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+            let text = word.display(&sys.symbols);
+            let _ = writeln!(io.stdout, "{text}");
+            let _ = c;
+            Ok(0)
+        }),
+        Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts| {
+            let s = driver::stats(sys, opts).map_err(|d| vec![d])?;
+            match a.format {
+                OutputFormat::Json => {
+                    let _ = writeln!(
+                        io.stdout,
+                        "{}",
+                        serde_json::to_string(&s).expect("stats serialise")
+                    );
+                }
+                OutputFormat::Human => {
+                    let b = s.bbox;
+                    let _ = writeln!(
+                        io.stdout,
+                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\ntime       derive {:.6}s, interpret {:.6}s",
+                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.time.derive, s.time.interpret
+                    );
+                }
+            }
+            Ok(0)
+        }),
+        Command::Render {
+            args,
+            output,
+            size,
+            view,
+        } => {
+            let Some(format) = Format::from_path(&output) else {
+                let _ = writeln!(
+                    io.stderr,
+                    "error: cannot tell the picture format of `{output}`: use .png or .svg"
+                );
+                return 2;
+            };
+            with_system(io, &args, |io, c, sys, opts| {
+                let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+                let g = crate::turtle::interpret(sys, &word.0, opts.seed);
+                if g.is_empty() {
+                    report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
+                }
+                let ropts = RenderOptions {
+                    width: size.0,
+                    height: size.1,
+                    view: View {
+                        azimuth: view.0,
+                        elevation: view.1,
+                    },
+                    ..RenderOptions::default()
+                };
+                let bytes = match driver::render_bytes(sys, &g, format, ropts) {
+                    Ok(b) => b,
+                    Err(e) => {
+                        let _ = writeln!(io.stderr, "error: {e}");
+                        return Ok(2);
+                    }
+                };
+                if let Err(e) = std::fs::write(&output, bytes) {
+                    let _ = writeln!(io.stderr, "error: cannot write `{output}`: {e}");
+                    return Ok(2);
+                }
+                Ok(0)
+            })
+        }
+        Command::Explain { code } => match diagnostics::codes::lookup(&code) {
+            Some(info) => {
+                let _ = writeln!(
+                    io.stdout,
+                    "{} ({}): {}\n\n{}",
+                    info.code,
+                    match info.code.severity() {
+                        diagnostics::Severity::Error => "error",
+                        diagnostics::Severity::Warning => "warning",
+                    },
+                    info.title,
+                    info.explanation
+                );
+                0
+            }
+            None => {
+                let _ = writeln!(
+                    io.stderr,
+                    "error: no diagnostic code `{code}` (codes look like E0004 or W0001)"
+                );
+                2
+            }
+        },
+        Command::List => {
+            for e in crate::stdlib::ENTRIES {
+                let _ = writeln!(io.stdout, "std:{}", e.name);
+            }
+            0
+        }
+    }
+}
+
+/// Loads and compiles `a.file`, prints its diagnostics, and runs `f` on the
+/// system when there are no errors. `f`'s diagnostics (evaluation errors)
+/// are printed too, and mean exit status 1.
+fn with_system(
+    io: &mut Io<'_>,
+    a: &DeriveArgs,
+    f: impl FnOnce(
+        &mut Io<'_>,
+        &Compiled,
+        &crate::ir::System,
+        &RunOptions,
+    ) -> Result<i32, Vec<Diagnostic>>,
+) -> i32 {
+    let file = match driver::load(&a.file) {
+        Ok(f) => f,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            return 2;
+        }
+    };
+    let c = driver::compile(file);
+    report(io, &c, c.diagnostics.0.iter(), a.format);
+    let Some(sys) = &c.system else {
+        return 1;
+    };
+    let opts = RunOptions {
+        steps: a.steps,
+        seed: a.seed,
+        max_symbols: a.max_symbols,
+    };
+    match f(io, &c, sys, &opts) {
+        Ok(code) => code,
+        Err(ds) => {
+            report(io, &c, ds.iter(), a.format);
+            1
+        }
+    }
+}
+
+/// Derives with a progress bar on a terminal (never in pipes or CI).
+fn derive_reporting(
+    io: &Io<'_>,
+    sys: &crate::ir::System,
+    opts: &RunOptions,
+) -> Result<crate::ir::Word, Diagnostic> {
+    let steps = opts.derive_options(sys).steps;
+    let show = io.terminal && std::env::var_os("CI").is_none() && steps > 0;
+    if !show {
+        return driver::derive(sys, opts);
+    }
+    let bar = indicatif::ProgressBar::new(steps);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("deriving {bar:30} step {pos}/{len} {msg}")
+            .expect("valid template"),
+    );
+    bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
+    let r = driver::derive_with_progress(sys, opts, |step, len| {
+        bar.set_position(step);
+        bar.set_message(format!("{len} symbols"));
+    });
+    bar.finish_and_clear();
+    r
+}
+
+fn report<'d>(
+    io: &mut Io<'_>,
+    c: &Compiled,
+    ds: impl Iterator<Item = &'d Diagnostic>,
+    format: OutputFormat,
+) {
+    let ds: Vec<&Diagnostic> = ds.collect();
+    let text = match format {
+        OutputFormat::Json => {
+            let owned: Vec<Diagnostic> = ds.into_iter().cloned().collect();
+            render_json(&owned, &c.file)
+        }
+        OutputFormat::Human => ds
+            .into_iter()
+            .map(|d| render_human(d, &c.file, io.terminal))
+            .collect(),
+    };
+    let _ = write!(io.stderr, "{text}");
+}
+
+/// The binary's entry point.
+pub fn main() -> i32 {
+    let stdout = std::io::stdout();
+    let stderr = std::io::stderr();
+    let terminal = stderr.is_terminal();
+    let mut out = stdout.lock();
+    let mut err = stderr.lock();
+    let mut io = Io {
+        stdout: &mut out,
+        stderr: &mut err,
+        terminal,
+    };
+    let _ = codes::ALL;
+    run(std::env::args_os(), &mut io)
+}

@@ -1,0 +1,217 @@
+//! The pipeline as library calls: load a file (a path or `std:NAME`),
+//! compile it to the IR with its diagnostics, derive, interpret, render,
+//! measure. The CLI is a thin layer over these; tests call them directly.
+
+use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
+use crate::ir::{SpanTable, System, Word};
+use crate::render::{self, RenderOptions};
+use crate::source::SourceFile;
+use crate::turtle::{self, Geometry};
+use crate::{pfg, stdlib};
+use serde::Serialize;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// Why a file could not be read (a usage or I/O problem: exit status 2).
+#[derive(Debug)]
+pub struct LoadError(pub String);
+
+impl std::fmt::Display for LoadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// Reads `spec`: a path, or `std:NAME` for a stdlib entry.
+pub fn load(spec: &str) -> Result<SourceFile, LoadError> {
+    if let Some(name) = spec.strip_prefix("std:") {
+        return match stdlib::get(name) {
+            Some(e) => Ok(SourceFile::new(e.file, e.text)),
+            None => {
+                let names: Vec<&str> = stdlib::names().collect();
+                let near = crate::diagnostics::nearest(name, &names);
+                let hint = match near.first() {
+                    Some(n) => format!(" (did you mean `std:{n}`?)"),
+                    None => String::new(),
+                };
+                Err(LoadError(format!("no stdlib entry `{name}`{hint}")))
+            }
+        };
+    }
+    SourceFile::read(Path::new(spec)).map_err(|e| LoadError(format!("cannot read `{spec}`: {e}")))
+}
+
+/// A file compiled to the IR. `system` is `None` when the file has errors.
+pub struct Compiled {
+    pub file: SourceFile,
+    pub system: Option<System>,
+    pub spans: SpanTable,
+    pub diagnostics: Diagnostics,
+}
+
+/// Parses, lowers and validates `file`, collecting every diagnostic.
+pub fn compile(file: SourceFile) -> Compiled {
+    let mut diags = Diagnostics::default();
+    let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
+    let (system, spans) = match ext.as_str() {
+        "linf" | "stl" => {
+            diags.push(Diagnostic::global(
+                codes::UNSUPPORTED_NOTATION,
+                format!("the `.{ext}` front end is not available in this version"),
+            ));
+            (None, SpanTable::default())
+        }
+        _ => {
+            let ast = pfg::parse(&file.text, &mut diags);
+            let lowered = pfg::lower(&ast, &mut diags);
+            (Some(lowered.system), lowered.spans)
+        }
+    };
+    diags.sort();
+    let system = if diags.has_errors() { None } else { system };
+    Compiled {
+        file,
+        system,
+        spans,
+        diagnostics: diags,
+    }
+}
+
+/// Settings given on the command line.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Steps; `None` means the file's own derivation length, else 0.
+    pub steps: Option<u64>,
+    pub seed: u64,
+    pub max_symbols: usize,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            steps: None,
+            seed: 0,
+            max_symbols: DEFAULT_MAX_SYMBOLS,
+        }
+    }
+}
+
+impl RunOptions {
+    pub fn derive_options(&self, sys: &System) -> DeriveOptions {
+        DeriveOptions::new(self.steps.or(sys.settings.steps).unwrap_or(0))
+            .seed(self.seed)
+            .max_symbols(self.max_symbols)
+    }
+}
+
+/// Derives the word, reporting progress after each step.
+pub fn derive_with_progress(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<Word, Diagnostic> {
+    Deriver::new(sys).derive(&opts.derive_options(sys), progress)
+}
+
+/// Derives the word.
+pub fn derive(sys: &System, opts: &RunOptions) -> Result<Word, Diagnostic> {
+    derive_with_progress(sys, opts, |_, _| {})
+}
+
+/// Derives and interprets: the geometry of the system.
+pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
+    let word = derive(sys, opts)?;
+    let g = turtle::interpret(sys, &word.0, opts.seed);
+    Ok((word, g))
+}
+
+/// The warning for a picture with nothing in it.
+pub fn nothing_drawn(word: &Word) -> Diagnostic {
+    Diagnostic::global(
+        codes::NOTHING_DRAWN,
+        "nothing is drawn: the picture is empty",
+    )
+    .with_note(format!(
+        "the derived word has {} symbols and none of them draws",
+        word.len()
+    ))
+}
+
+/// Output formats of [`render`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Png,
+    Svg,
+}
+
+impl Format {
+    /// The format for an output path, by its extension.
+    pub fn from_path(path: &str) -> Option<Format> {
+        let ext = Path::new(path).extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(Format::Png),
+            "svg" => Some(Format::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// Renders a geometry to bytes of `format`.
+pub fn render_bytes(
+    sys: &System,
+    g: &Geometry,
+    format: Format,
+    mut opts: RenderOptions,
+) -> Result<Vec<u8>, LoadError> {
+    opts.scale = sys.settings.scale;
+    let pic = render::layout(g, &opts);
+    match format {
+        Format::Svg => Ok(render::svg::write(&pic).into_bytes()),
+        Format::Png => render::png::encode(&pic)
+            .ok_or_else(|| LoadError(format!("cannot make a {}x{} PNG", opts.width, opts.height))),
+    }
+}
+
+/// What `graftal stats` reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stats {
+    pub steps: u64,
+    pub symbols: usize,
+    pub segments: usize,
+    pub polygons: usize,
+    /// `[minx, miny, minz, maxx, maxy, maxz]`, turtle units (zeros when
+    /// nothing is drawn).
+    pub bbox: [f64; 6],
+    pub max_depth: usize,
+    /// Seconds per stage.
+    pub time: StageTimes,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct StageTimes {
+    pub derive: f64,
+    pub interpret: f64,
+}
+
+/// Derives and interprets without drawing, and measures.
+pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
+    let t0 = Instant::now();
+    let word = derive(sys, opts)?;
+    let t1 = Instant::now();
+    let g = turtle::interpret(sys, &word.0, opts.seed);
+    let t2 = Instant::now();
+    let secs = |d: Duration| d.as_secs_f64();
+    Ok(Stats {
+        steps: opts.derive_options(sys).steps,
+        symbols: word.len(),
+        segments: g.segments.len(),
+        polygons: g.polygons.len(),
+        bbox: g.bbox().unwrap_or([0.0; 6]),
+        max_depth: g.max_depth,
+        time: StageTimes {
+            derive: secs(t1 - t0),
+            interpret: secs(t2 - t1),
+        },
+    })
+}

@@ -1,0 +1,79 @@
+//! PNG output through tiny-skia: white background, anti-aliased strokes with
+//! round caps and joins, filled polygons.
+
+use super::Picture;
+use crate::ir::Rgb;
+use tiny_skia::{
+    Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform,
+};
+
+/// Segments per stroked path: long runs are split so the stroker's memory
+/// stays bounded.
+const CHUNK: usize = 20_000;
+
+fn paint(c: Rgb) -> Paint<'static> {
+    let mut p = Paint::default();
+    p.set_color_rgba8(c.0, c.1, c.2, 255);
+    p.anti_alias = true;
+    p
+}
+
+/// Draws the picture; `None` only if the size is zero or too large for
+/// tiny-skia.
+pub fn draw(pic: &Picture) -> Option<Pixmap> {
+    let mut pixmap = Pixmap::new(pic.width, pic.height)?;
+    pixmap.fill(Color::WHITE);
+    for (colour, pts) in &pic.polygons {
+        let mut pb = PathBuilder::new();
+        let mut it = pts.iter();
+        if let Some(p) = it.next() {
+            pb.move_to(p[0] as f32, p[1] as f32);
+        }
+        for p in it {
+            pb.line_to(p[0] as f32, p[1] as f32);
+        }
+        pb.close();
+        if let Some(path) = pb.finish() {
+            pixmap.fill_path(
+                &path,
+                &paint(*colour),
+                FillRule::EvenOdd,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+    for run in &pic.runs {
+        let stroke = Stroke {
+            width: run.width as f32,
+            line_cap: LineCap::Round,
+            line_join: LineJoin::Round,
+            ..Stroke::default()
+        };
+        let p = paint(run.colour);
+        let mut pb = PathBuilder::new();
+        let mut count = 0;
+        for line in &run.lines {
+            pb.move_to(line[0][0] as f32, line[0][1] as f32);
+            for q in &line[1..] {
+                pb.line_to(q[0] as f32, q[1] as f32);
+                count += 1;
+            }
+            if count >= CHUNK {
+                if let Some(path) = std::mem::take(&mut pb).finish() {
+                    pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+                }
+                count = 0;
+            }
+        }
+        if let Some(path) = pb.finish() {
+            pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+        }
+    }
+    Some(pixmap)
+}
+
+/// The picture as PNG bytes.
+pub fn encode(pic: &Picture) -> Option<Vec<u8>> {
+    draw(pic)?.encode_png().ok()
+}

@@ -1,0 +1,305 @@
+//! Turtle interpretation: a derived word -> [`Geometry`] (segments and
+//! filled polygons in 3D turtle units).
+//!
+//! The turtle starts at the origin with step length 1, heading H = +y, left
+//! L = −x and up U = H × L = +z, so a 2D system drawn in 3D lies in the
+//! xy-plane and looks, from the default view (down −z), as in the papers.
+//! Rotations are the book's matrices (see [`crate::ir::TurtleOp`]).
+
+use crate::eval::Rng;
+use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
+use serde::Serialize;
+
+pub type Vec3 = [f64; 3];
+
+/// A drawn line segment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Segment {
+    pub a: Vec3,
+    pub b: Vec3,
+    pub width: f64,
+    pub colour: Rgb,
+}
+
+/// A filled polygon.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Polygon {
+    pub points: Vec<Vec3>,
+    pub colour: Rgb,
+}
+
+/// What the turtle drew.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Geometry {
+    pub segments: Vec<Segment>,
+    pub polygons: Vec<Polygon>,
+    /// The deepest branch nesting reached.
+    pub max_depth: usize,
+}
+
+impl Geometry {
+    /// `[minx, miny, minz, maxx, maxy, maxz]` of everything drawn, or `None`
+    /// when nothing was drawn.
+    pub fn bbox(&self) -> Option<[f64; 6]> {
+        let pts = self
+            .segments
+            .iter()
+            .flat_map(|s| [s.a, s.b])
+            .chain(self.polygons.iter().flat_map(|p| p.points.iter().copied()));
+        let mut b: Option<[f64; 6]> = None;
+        for p in pts {
+            let bb = b.get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
+            for k in 0..3 {
+                bb[k] = bb[k].min(p[k]);
+                bb[k + 3] = bb[k + 3].max(p[k]);
+            }
+        }
+        b
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.segments.is_empty() && self.polygons.is_empty()
+    }
+}
+
+/// The colours `'` steps through when a system gives none: black first, then
+/// plant colours.
+pub const DEFAULT_PALETTE: [Rgb; 8] = [
+    Rgb(0, 0, 0),
+    Rgb(34, 139, 34),
+    Rgb(139, 69, 19),
+    Rgb(218, 165, 32),
+    Rgb(178, 34, 34),
+    Rgb(65, 105, 225),
+    Rgb(128, 0, 128),
+    Rgb(0, 128, 128),
+];
+
+#[derive(Clone, Debug)]
+struct State {
+    pos: Vec3,
+    h: Vec3,
+    l: Vec3,
+    u: Vec3,
+    length: f64,
+    width: f64,
+    colour: usize,
+    colour_history: Vec<usize>,
+    swapped: bool,
+}
+
+fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
+    // (a', b') = (a cos − b sin, a sin + b cos)
+    let a2 = [
+        a[0] * c - b[0] * s,
+        a[1] * c - b[1] * s,
+        a[2] * c - b[2] * s,
+    ];
+    let b2 = [
+        a[0] * s + b[0] * c,
+        a[1] * s + b[1] * c,
+        a[2] * s + b[2] * c,
+    ];
+    (a2, b2)
+}
+
+impl State {
+    fn turn(&mut self, axis: Axis, angle: f64) {
+        let angle = if self.swapped { -angle } else { angle };
+        let (s, c) = angle.sin_cos();
+        match axis {
+            // R_U(α): H' = H cos α − L sin α, L' = H sin α + L cos α
+            Axis::Up => (self.h, self.l) = rotate(self.h, self.l, c, s),
+            // R_L(α): H' = H cos α + U sin α, U' = −H sin α + U cos α
+            Axis::Left => (self.u, self.h) = rotate(self.u, self.h, c, s),
+            // R_H(α): L' = L cos α + U sin α, U' = −L sin α + U cos α
+            Axis::Heading => (self.u, self.l) = rotate(self.u, self.l, c, s),
+        }
+    }
+}
+
+/// Interprets `word` as turtle commands of `sys`. `seed` drives interval
+/// angles (a stream separate from the derivation's).
+pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
+    let palette: Vec<Rgb> = if sys.colours.is_empty() {
+        DEFAULT_PALETTE.to_vec()
+    } else {
+        sys.colours.clone()
+    };
+    let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
+        .map(|i| sys.op(SymbolId(i as u32)))
+        .collect();
+    let delta = sys.settings.angle.to_radians();
+    let mut rng = Rng::for_stream(seed, 1);
+    let mut resolve = |a: Angle| match a {
+        Angle::Delta(f) => f * delta,
+        Angle::Radians(r) => r,
+        Angle::Uniform { lo, hi } => lo + (hi - lo) * rng.next_f64(),
+    };
+    let mut st = State {
+        pos: [0.0; 3],
+        h: [0.0, 1.0, 0.0],
+        l: [-1.0, 0.0, 0.0],
+        u: [0.0, 0.0, 1.0],
+        length: sys.settings.step,
+        width: sys.settings.width,
+        colour: 0,
+        colour_history: Vec::new(),
+        swapped: false,
+    };
+    let mut stack: Vec<State> = Vec::new();
+    let mut polys: Vec<(Vec<Vec3>, usize)> = Vec::new();
+    let mut g = Geometry::default();
+    for &sym in word {
+        let Some(op) = ops.get(sym.index()).copied().flatten() else {
+            continue;
+        };
+        match op {
+            TurtleOp::Forward { draw } => {
+                let a = st.pos;
+                let b = [
+                    a[0] + st.h[0] * st.length,
+                    a[1] + st.h[1] * st.length,
+                    a[2] + st.h[2] * st.length,
+                ];
+                st.pos = b;
+                if let Some((pts, _)) = polys.last_mut() {
+                    pts.push(b);
+                } else if draw {
+                    g.segments.push(Segment {
+                        a,
+                        b,
+                        width: st.width,
+                        colour: palette[st.colour.min(palette.len() - 1)],
+                    });
+                }
+            }
+            TurtleOp::Rotate { axis, angle } => {
+                let a = resolve(angle);
+                st.turn(axis, a);
+            }
+            TurtleOp::Frenet { rotation, negate } => {
+                if let Some(r) = sys.rotations.get(rotation.0 as usize) {
+                    let sign = if negate { -1.0 } else { 1.0 };
+                    let (t, k) = (resolve(r.torsion), resolve(r.curvature));
+                    st.turn(Axis::Heading, -sign * t);
+                    st.turn(Axis::Up, -sign * k);
+                }
+            }
+            TurtleOp::TurnAround => {
+                // Not affected by swapped turns: a half turn either way.
+                let (s, c) = std::f64::consts::PI.sin_cos();
+                (st.h, st.l) = rotate(st.h, st.l, c, s);
+            }
+            TurtleOp::Push => {
+                stack.push(st.clone());
+                g.max_depth = g.max_depth.max(stack.len());
+            }
+            TurtleOp::Pop => {
+                if let Some(s) = stack.pop() {
+                    st = s;
+                }
+            }
+            TurtleOp::PolygonBegin => polys.push((vec![st.pos], st.colour)),
+            TurtleOp::PolygonEnd => {
+                if let Some((pts, colour)) = polys.pop() {
+                    if pts.len() >= 3 {
+                        g.polygons.push(Polygon {
+                            points: pts,
+                            colour: palette[colour.min(palette.len() - 1)],
+                        });
+                    }
+                }
+            }
+            TurtleOp::DecrementWidth => st.width *= sys.settings.width_factor,
+            TurtleOp::NextColour => {
+                st.colour_history.push(st.colour);
+                if sys.colours.is_empty() {
+                    st.colour = (st.colour + 1) % palette.len();
+                } else {
+                    st.colour = (st.colour + 1).min(palette.len() - 1);
+                }
+            }
+            TurtleOp::PreviousColour => {
+                if let Some(c) = st.colour_history.pop() {
+                    st.colour = c;
+                }
+            }
+            TurtleOp::SwapTurns => st.swapped = !st.swapped,
+            TurtleOp::ScaleLength(f) => st.length *= f,
+        }
+    }
+    g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Diagnostics;
+
+    fn draw(src: &str) -> Geometry {
+        let mut d = Diagnostics::default();
+        let ast = crate::pfg::parse(src, &mut d);
+        let l = crate::pfg::lower(&ast, &mut d);
+        assert!(!d.has_errors(), "{d:#?}");
+        interpret(&l.system, &l.system.axiom.0, 0)
+    }
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
+    }
+
+    #[test]
+    fn starts_at_origin_facing_up_and_plus_turns_right() {
+        let g = draw("angle factor: 4\naxiom: F+F-F\n");
+        assert!(close(g.segments[0].a, [0.0, 0.0, 0.0]));
+        assert!(close(g.segments[0].b, [0.0, 1.0, 0.0]));
+        assert!(
+            close(g.segments[1].b, [1.0, 1.0, 0.0]),
+            "{:?}",
+            g.segments[1]
+        );
+        assert!(close(g.segments[2].b, [1.0, 2.0, 0.0]));
+    }
+
+    #[test]
+    fn three_d_symbols_follow_the_book_matrices() {
+        // & pitches: H' = H cos + U sin, so with δ=90° the heading becomes +z.
+        let g = draw("angle factor: 4\naxiom: &F\n");
+        assert!(close(g.segments[0].b, [0.0, 0.0, 1.0]));
+        // \ rolls: then + (about the new U) turns right in the rolled plane.
+        let g = draw("angle factor: 4\naxiom: \\+F\n");
+        // Rolling by 90° makes L = +z, so a right turn heads to −L = −z.
+        assert!(
+            close(g.segments[0].b, [0.0, 0.0, -1.0]),
+            "{:?}",
+            g.segments[0]
+        );
+        // | turns around.
+        let g = draw("angle factor: 4\naxiom: |F\n");
+        assert!(close(g.segments[0].b, [0.0, -1.0, 0.0]));
+    }
+
+    #[test]
+    fn branches_restore_state_and_count_depth() {
+        let g = draw("angle factor: 4\naxiom: F[+F[-F]]F\n");
+        assert_eq!(g.max_depth, 2);
+        assert!(close(g.segments[3].a, [0.0, 1.0, 0.0]));
+        assert!(close(g.segments[3].b, [0.0, 2.0, 0.0]));
+    }
+
+    #[test]
+    fn polygons_collect_vertices_instead_of_lines() {
+        let g = draw("angle factor: 4\naxiom: {f+f+f+f}F\n");
+        assert_eq!(g.polygons.len(), 1);
+        assert_eq!(g.polygons[0].points.len(), 5);
+        assert_eq!(g.segments.len(), 1);
+    }
+
+    #[test]
+    fn width_and_colour_change() {
+        let g = draw("axiom: F!'F\n");
+        assert!(g.segments[1].width < g.segments[0].width);
+        assert_ne!(g.segments[1].colour, g.segments[0].colour);
+    }
+}
