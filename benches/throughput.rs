@@ -1,1 +1,541 @@
-fn main() {}
+//! Throughput and peak-memory benchmarks (SPEC "Performance").
+//!
+//! On growing inputs of three stdlib systems:
+//!
+//! * `derive/<system>`: derivation throughput in symbols/s (throughput is the
+//!   length of the final word), graftal (`driver::derive`) against a simple
+//!   string-rewriting baseline written here:
+//!   - context-free `koch-island`: a `HashMap<char, String>` expansion on
+//!     `String`s;
+//!   - context-sensitive bracketed `hogeweg-hesper-a`: a naive scan of a
+//!     `String` that looks for the left/right context by walking over the
+//!     bytes (skipping ignored symbols and whole branches, entering parents),
+//!     with the file's eight rules written out as a `match`;
+//!   - stochastic `stochastic-bush`: a `HashMap<char, Vec<(weight, String)>>`
+//!     expansion drawing from graftal's own `eval::Rng`, in word order, so it
+//!     makes the very same word as graftal for the same seed.
+//!
+//!   Before timing, every baseline's word is checked to be identical to
+//!   graftal's, so both sides do the same work.
+//! * `interpret`: `turtle::interpret` on the derived words, in segments/s.
+//! * `render-png` / `render-svg`: `render::layout` + `render::png::encode` /
+//!   `render::svg::write` at 1024x1024, in segments/s.
+//!
+//! Peak memory: a counting global allocator wraps `std::alloc::System`;
+//! outside criterion's timing loop each input is run once and the peak of
+//! live heap bytes above what was live before is printed, e.g.
+//! `peak memory: derive koch-island n=5: 2.1 MiB (graftal) vs 1.0 MiB (baseline)`.
+//! The counter costs every allocation a few relaxed atomic operations, in
+//! graftal and the baselines alike.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use graftal::driver::{self, RunOptions};
+use graftal::eval::Rng;
+use graftal::ir::{System, Word};
+use graftal::render::{self, RenderOptions};
+use graftal::turtle::{self, Geometry};
+use std::alloc::{GlobalAlloc, Layout, System as SystemAlloc};
+use std::collections::HashMap;
+use std::hint::black_box;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::OnceLock;
+use std::time::Duration;
+
+// ---------------------------------------------------------------------------
+// Counting allocator
+
+/// Live heap bytes, and the most live at once since the last reset.
+static CURRENT: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+struct Counting;
+
+fn grew(bytes: usize) {
+    let now = CURRENT.fetch_add(bytes, Relaxed) + bytes;
+    PEAK.fetch_max(now, Relaxed);
+}
+
+fn shrank(bytes: usize) {
+    CURRENT.fetch_sub(bytes, Relaxed);
+}
+
+// SAFETY: every call is forwarded unchanged to `System`; only counters are
+// updated besides.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { SystemAlloc.alloc(layout) };
+        if !p.is_null() {
+            grew(layout.size());
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { SystemAlloc.alloc_zeroed(layout) };
+        if !p.is_null() {
+            grew(layout.size());
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { SystemAlloc.dealloc(ptr, layout) };
+        shrank(layout.size());
+    }
+
+    // Forwarded (not alloc + copy + dealloc) so growing a buffer in place is
+    // not counted twice; a moving realloc's brief overlap is not counted.
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = unsafe { SystemAlloc.realloc(ptr, layout, new_size) };
+        if !p.is_null() {
+            if new_size >= layout.size() {
+                grew(new_size - layout.size());
+            } else {
+                shrank(layout.size() - new_size);
+            }
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
+
+/// Runs `f` once; returns its result and the peak of live heap bytes during
+/// the call above those live before it (the result itself included).
+fn peak_during<T>(f: impl FnOnce() -> T) -> (T, usize) {
+    let base = CURRENT.load(Relaxed);
+    PEAK.store(base, Relaxed);
+    let out = f();
+    let peak = PEAK.load(Relaxed).saturating_sub(base);
+    (out, peak)
+}
+
+fn mib(bytes: usize) -> String {
+    let m = bytes as f64 / (1024.0 * 1024.0);
+    if m >= 0.1 {
+        format!("{m:.1} MiB")
+    } else {
+        format!("{:.1} KiB", bytes as f64 / 1024.0)
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Baselines
+
+/// Context-free: each step rebuilds the string, expanding through the map.
+fn baseline_context_free(axiom: &str, rules: &HashMap<char, String>, steps: u64) -> String {
+    let mut cur = axiom.to_string();
+    for _ in 0..steps {
+        let mut next = String::new();
+        for c in cur.chars() {
+            match rules.get(&c) {
+                Some(s) => next.push_str(s),
+                None => next.push(c),
+            }
+        }
+        cur = next;
+    }
+    cur
+}
+
+/// Stochastic: one draw from graftal's generator per rewritten symbol with
+/// several alternatives, in word order, alternatives chosen by cumulative
+/// weight (the same scheme as graftal, so the same word for the same seed).
+fn baseline_stochastic(
+    axiom: &str,
+    rules: &HashMap<char, Vec<(f64, String)>>,
+    steps: u64,
+    seed: u64,
+) -> String {
+    let mut rng = Rng::new(seed);
+    let mut cur = axiom.to_string();
+    for _ in 0..steps {
+        let mut next = String::new();
+        for c in cur.chars() {
+            match rules.get(&c) {
+                Some(alts) if alts.len() == 1 => next.push_str(&alts[0].1),
+                Some(alts) => {
+                    let r = rng.next_f64();
+                    let mut acc = 0.0;
+                    let mut chosen = &alts[alts.len() - 1].1;
+                    for (w, s) in alts {
+                        acc += w;
+                        if r < acc {
+                            chosen = s;
+                            break;
+                        }
+                    }
+                    next.push_str(chosen);
+                }
+                None => next.push(c),
+            }
+        }
+        cur = next;
+    }
+    cur
+}
+
+/// `ignore: +-F` of hogeweg-hesper-a.
+fn hh_ignored(c: u8) -> bool {
+    matches!(c, b'+' | b'-' | b'F')
+}
+
+/// The left context of position `i`: walk left over ignored symbols and `[`
+/// (into the parent branch), skipping whole branches `[...]` that end there.
+fn hh_left(w: &[u8], i: usize) -> Option<u8> {
+    let mut j = i;
+    while j > 0 {
+        let c = w[j - 1];
+        if c == b'[' || hh_ignored(c) {
+            j -= 1;
+        } else if c == b']' {
+            // Scan back to the matching `[`, then go on left of it.
+            let mut k = j - 1;
+            let mut depth = 0usize;
+            loop {
+                match w[k] {
+                    b']' => depth += 1,
+                    b'[' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+                if k == 0 {
+                    return None;
+                }
+                k -= 1;
+            }
+            j = k;
+        } else {
+            return Some(c);
+        }
+    }
+    None
+}
+
+/// The right context after position `i`: walk right over ignored symbols,
+/// skipping whole branches; the end of the current branch has none.
+fn hh_right(w: &[u8], i: usize) -> Option<u8> {
+    let mut j = i + 1;
+    while j < w.len() {
+        let c = w[j];
+        if c == b'[' {
+            // Scan forward to the matching `]`, then go on right of it.
+            let mut depth = 0usize;
+            loop {
+                match w.get(j) {
+                    None => return None,
+                    Some(b'[') => depth += 1,
+                    Some(b']') => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    Some(_) => {}
+                }
+                j += 1;
+            }
+            j += 1;
+        } else if c == b']' {
+            return None;
+        } else if hh_ignored(c) {
+            j += 1;
+        } else {
+            return Some(c);
+        }
+    }
+    None
+}
+
+/// The rules of hogeweg-hesper-a, `left < pred > right --> successor`.
+fn hh_rule(left: u8, pred: u8, right: u8) -> Option<&'static str> {
+    Some(match (left, pred, right) {
+        (b'0', b'0', b'0') => "0",
+        (b'0', b'0', b'1') => "1[+F1F1]",
+        (b'0', b'1', b'0') => "1",
+        (b'0', b'1', b'1') => "1",
+        (b'1', b'0', b'0') => "0",
+        (b'1', b'0', b'1') => "1F1",
+        (b'1', b'1', b'0') => "0",
+        (b'1', b'1', b'1') => "0",
+        _ => return None,
+    })
+}
+
+/// Context-sensitive, bracketed: a naive scan of the string for each
+/// symbol's contexts (no bracket table, no symbol interning).
+fn baseline_hogeweg(axiom: &str, steps: u64) -> String {
+    let mut cur = axiom.to_string();
+    for _ in 0..steps {
+        let w = cur.as_bytes();
+        let mut next = String::new();
+        for (i, &c) in w.iter().enumerate() {
+            match c {
+                b'0' | b'1' => {
+                    let succ = match (hh_left(w, i), hh_right(w, i)) {
+                        (Some(l), Some(r)) => hh_rule(l, c, r),
+                        _ => None,
+                    };
+                    match succ {
+                        Some(s) => next.push_str(s),
+                        None => next.push(c as char),
+                    }
+                }
+                b'+' => next.push('-'),
+                b'-' => next.push('+'),
+                _ => next.push(c as char),
+            }
+        }
+        cur = next;
+    }
+    cur
+}
+
+enum Baseline {
+    ContextFree {
+        axiom: &'static str,
+        rules: HashMap<char, String>,
+    },
+    Stochastic {
+        axiom: &'static str,
+        rules: HashMap<char, Vec<(f64, String)>>,
+    },
+    Hogeweg {
+        axiom: &'static str,
+    },
+}
+
+impl Baseline {
+    fn derive(&self, steps: u64) -> String {
+        match self {
+            Baseline::ContextFree { axiom, rules } => baseline_context_free(axiom, rules, steps),
+            Baseline::Stochastic { axiom, rules } => baseline_stochastic(axiom, rules, steps, SEED),
+            Baseline::Hogeweg { axiom } => baseline_hogeweg(axiom, steps),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Inputs
+
+const SEED: u64 = 0;
+
+struct Family {
+    name: &'static str,
+    steps: &'static [u64],
+    sys: System,
+    baseline: Baseline,
+}
+
+fn load(name: &str) -> System {
+    let file = driver::load(&format!("std:{name}")).expect("stdlib entry");
+    driver::compile(file)
+        .system
+        .unwrap_or_else(|| panic!("std:{name} does not compile"))
+}
+
+fn families() -> &'static [Family] {
+    static FAMILIES: OnceLock<Vec<Family>> = OnceLock::new();
+    FAMILIES.get_or_init(|| {
+        vec![
+            Family {
+                name: "koch-island",
+                steps: &[3, 4, 5],
+                sys: load("koch-island"),
+                baseline: Baseline::ContextFree {
+                    axiom: "F+F+F+F",
+                    rules: HashMap::from([('F', "F+F-F-FF+F+F-F".to_string())]),
+                },
+            },
+            Family {
+                name: "hogeweg-hesper-a",
+                steps: &[20, 30, 40],
+                sys: load("hogeweg-hesper-a"),
+                baseline: Baseline::Hogeweg { axiom: "F1F1F1" },
+            },
+            Family {
+                name: "stochastic-bush",
+                steps: &[4, 5, 6],
+                sys: load("stochastic-bush"),
+                baseline: Baseline::Stochastic {
+                    axiom: "F",
+                    rules: HashMap::from([(
+                        'F',
+                        vec![
+                            (0.33, "F[+F]F[-F]F".to_string()),
+                            (0.33, "F[+F]F".to_string()),
+                            (0.34, "F[-F]F".to_string()),
+                        ],
+                    )]),
+                },
+            },
+        ]
+    })
+}
+
+fn run_options(steps: u64) -> RunOptions {
+    RunOptions {
+        steps: Some(steps),
+        seed: SEED,
+        ..Default::default()
+    }
+}
+
+fn graftal_derive(sys: &System, steps: u64) -> Word {
+    driver::derive(sys, &run_options(steps)).expect("derivation succeeds")
+}
+
+/// One input: a family at `steps`, derived and interpreted.
+struct Case {
+    family: &'static Family,
+    steps: u64,
+    word: Word,
+    geometry: Geometry,
+}
+
+impl Case {
+    fn label(&self) -> String {
+        format!("{} n={}", self.family.name, self.steps)
+    }
+}
+
+fn cases() -> Vec<Case> {
+    families()
+        .iter()
+        .flat_map(|family| {
+            family.steps.iter().map(move |&steps| {
+                let word = graftal_derive(&family.sys, steps);
+                let geometry = turtle::interpret(&family.sys, &word.0, SEED);
+                Case {
+                    family,
+                    steps,
+                    word,
+                    geometry,
+                }
+            })
+        })
+        .collect()
+}
+
+fn render_options(sys: &System) -> RenderOptions {
+    RenderOptions {
+        width: 1024,
+        height: 1024,
+        scale: sys.settings.scale,
+        ..Default::default()
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Benchmarks
+
+fn bench_derive(c: &mut Criterion) {
+    for family in families() {
+        let mut group = c.benchmark_group(format!("derive/{}", family.name));
+        for &steps in family.steps {
+            // Outside the timing loop: check the baseline against graftal and
+            // measure peak memory of one run of each.
+            let (word, graftal_peak) = peak_during(|| graftal_derive(&family.sys, steps));
+            let (text, baseline_peak) = peak_during(|| family.baseline.derive(steps));
+            assert_eq!(
+                word.display(&family.sys.symbols),
+                text,
+                "baseline and graftal differ on {} n={steps}",
+                family.name
+            );
+            println!(
+                "peak memory: derive {} n={steps}: {} (graftal) vs {} (baseline), {} symbols",
+                family.name,
+                mib(graftal_peak),
+                mib(baseline_peak),
+                word.len()
+            );
+            drop((word, text));
+
+            let symbols = graftal_derive(&family.sys, steps).len() as u64;
+            group.throughput(Throughput::Elements(symbols));
+            let opts = run_options(steps);
+            group.bench_with_input(BenchmarkId::new("graftal", steps), &opts, |b, opts| {
+                b.iter(|| driver::derive(black_box(&family.sys), black_box(opts)).unwrap())
+            });
+            group.bench_with_input(BenchmarkId::new("baseline", steps), &steps, |b, &steps| {
+                b.iter(|| family.baseline.derive(black_box(steps)))
+            });
+        }
+        group.finish();
+    }
+}
+
+fn bench_interpret(c: &mut Criterion) {
+    let cases = cases();
+    let mut group = c.benchmark_group("interpret");
+    for case in &cases {
+        let sys = &case.family.sys;
+        let (g, peak) = peak_during(|| turtle::interpret(sys, &case.word.0, SEED));
+        println!(
+            "peak memory: interpret {}: {}, {} segments",
+            case.label(),
+            mib(peak),
+            g.segments.len()
+        );
+        drop(g);
+        group.throughput(Throughput::Elements(case.geometry.segments.len() as u64));
+        group.bench_with_input(
+            BenchmarkId::new(case.family.name, case.steps),
+            &case.word,
+            |b, word| b.iter(|| turtle::interpret(sys, black_box(&word.0), SEED)),
+        );
+    }
+    group.finish();
+}
+
+fn bench_render(c: &mut Criterion) {
+    let cases = cases();
+    for format in ["png", "svg"] {
+        let mut group = c.benchmark_group(format!("render-{format}"));
+        for case in &cases {
+            let opts = render_options(&case.family.sys);
+            let render = |g: &Geometry| -> usize {
+                let pic = render::layout(g, &opts);
+                match format {
+                    "png" => render::png::encode(&pic).expect("png").len(),
+                    _ => render::svg::write(&pic).len(),
+                }
+            };
+            let (bytes, peak) = peak_during(|| render(&case.geometry));
+            println!(
+                "peak memory: render-{format} {} 1024x1024: {}, {} segments, {} bytes of output",
+                case.label(),
+                mib(peak),
+                case.geometry.segments.len(),
+                bytes
+            );
+            group.throughput(Throughput::Elements(case.geometry.segments.len() as u64));
+            group.bench_with_input(
+                BenchmarkId::new(case.family.name, case.steps),
+                &case.geometry,
+                |b, g| b.iter(|| render(black_box(g))),
+            );
+        }
+        group.finish();
+    }
+}
+
+fn config() -> Criterion {
+    Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_millis(1000))
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = bench_derive, bench_interpret, bench_render
+}
+criterion_main!(benches);

@@ -161,7 +161,7 @@ fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
     let span = err.span().into_range();
     let expected: Vec<String> = err
         .expected()
-        .map(|e| e.to_string())
+        .map(|e| e.to_string().trim_matches('\'').to_string())
         .filter(|e| e != "something else")
         .collect();
     let expected = match expected.len() {

@@ -1,0 +1,219 @@
+//! The command-line contract: commands, exit statuses, output formats,
+//! `std:NAME`, seeds and byte-identical output.
+
+use graftal::cli::{run, Io};
+
+struct Out {
+    status: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn graftal(args: &[&str]) -> Out {
+    let mut stdout = Vec::new();
+    let mut stderr = Vec::new();
+    let mut io = Io {
+        stdout: &mut stdout,
+        stderr: &mut stderr,
+        terminal: false,
+    };
+    let mut argv = vec!["graftal"];
+    argv.extend_from_slice(args);
+    let status = run(argv, &mut io);
+    Out {
+        status,
+        stdout: String::from_utf8(stdout).unwrap(),
+        stderr: String::from_utf8(stderr).unwrap(),
+    }
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("graftal-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn derive_prints_the_word() {
+    let o = graftal(&["derive", "std:algae", "-n", "5"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert_eq!(o.stdout, "abaababa\n");
+    // Default: the file's own derivation length (anabaena: 4).
+    assert_eq!(graftal(&["derive", "std:anabaena"]).stdout, "bAbAAbAA\n");
+}
+
+#[test]
+fn exit_statuses() {
+    let bad = temp("bad.l");
+    std::fs::write(&bad, "axiom: F\nF -> F\n").unwrap();
+    let o = graftal(&["check", bad.to_str().unwrap()]);
+    assert_eq!(o.status, 1);
+    assert!(o.stderr.contains("E0005"), "{}", o.stderr);
+    assert_eq!(graftal(&["check", "std:koch-island"]).status, 0);
+    assert_eq!(graftal(&["check", "/no/such/file.l"]).status, 2);
+    assert_eq!(graftal(&["check", "std:no-such-thing"]).status, 2);
+    assert_eq!(graftal(&["derive"]).status, 2);
+    assert_eq!(
+        graftal(&["render", "std:koch-island", "-o", "x.gif"]).status,
+        2
+    );
+    // Warnings alone do not fail.
+    let warn = temp("warn.l");
+    std::fs::write(&warn, "axiom: F\nderivation length: 1\n").unwrap();
+    let o = graftal(&["derive", warn.to_str().unwrap()]);
+    assert_eq!(o.status, 0);
+    assert!(o.stderr.contains("W0001"));
+}
+
+#[test]
+fn too_many_symbols_is_an_error_with_status_1() {
+    let o = graftal(&[
+        "derive",
+        "std:koch-island",
+        "-n",
+        "12",
+        "--max-symbols",
+        "100000",
+    ]);
+    assert_eq!(o.status, 1);
+    assert!(o.stderr.contains("E0301"), "{}", o.stderr);
+    assert!(o.stdout.is_empty());
+}
+
+#[test]
+fn check_json_gives_one_object_per_diagnostic() {
+    let bad = temp("two.l");
+    std::fs::write(&bad, "angle factor: 0\naxiom: F[\n").unwrap();
+    let o = graftal(&["check", bad.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(o.status, 1);
+    let objs: Vec<serde_json::Value> = o
+        .stderr
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let codes: Vec<&str> = objs.iter().map(|v| v["code"].as_str().unwrap()).collect();
+    assert_eq!(codes, ["E0103", "E0203"]);
+    assert_eq!(objs[1]["line"], 2);
+    assert_eq!(objs[1]["column"], 9);
+}
+
+#[test]
+fn stats_json_has_the_contract_fields() {
+    let o = graftal(&["stats", "std:koch-island", "-n", "2", "--format", "json"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(o.stdout.trim()).unwrap();
+    assert_eq!(v["segments"], 256);
+    assert_eq!(v["polygons"], 0);
+    assert_eq!(v["max_depth"], 0);
+    assert!(v["symbols"].as_u64().unwrap() > 256);
+    let bbox: Vec<f64> = v["bbox"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(bbox.len(), 6);
+    assert_eq!(bbox[2], 0.0);
+    assert!(
+        (bbox[3] - bbox[0] - (bbox[4] - bbox[1])).abs() < 1e-9,
+        "an island is square"
+    );
+    let o = graftal(&["stats", "std:fibonacci-bush", "-n", "3", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(o.stdout.trim()).unwrap();
+    assert!(v["polygons"].as_u64().unwrap() > 0);
+    assert!(v["max_depth"].as_u64().unwrap() >= 2);
+    assert!(
+        v["bbox"][5].as_f64().unwrap() > v["bbox"][2].as_f64().unwrap(),
+        "3D"
+    );
+}
+
+#[test]
+fn render_writes_png_and_svg_and_same_seed_same_bytes() {
+    let a = temp("a.png");
+    let b = temp("b.png");
+    let c = temp("c.png");
+    for (out, seed) in [(&a, "7"), (&b, "7"), (&c, "8")] {
+        let o = graftal(&[
+            "render",
+            "std:stochastic-bush",
+            "-o",
+            out.to_str().unwrap(),
+            "--seed",
+            seed,
+            "--size",
+            "200x150",
+        ]);
+        assert_eq!(o.status, 0, "{}", o.stderr);
+    }
+    let (a, b, c) = (
+        std::fs::read(a).unwrap(),
+        std::fs::read(b).unwrap(),
+        std::fs::read(c).unwrap(),
+    );
+    assert_eq!(&a[..8], b"\x89PNG\r\n\x1a\n");
+    // Width and height in the IHDR chunk.
+    assert_eq!(u32::from_be_bytes(a[16..20].try_into().unwrap()), 200);
+    assert_eq!(u32::from_be_bytes(a[20..24].try_into().unwrap()), 150);
+    assert_eq!(a, b, "same seed, same picture");
+    assert_ne!(a, c, "another seed, another plant");
+    let svg = temp("k.svg");
+    let o = graftal(&[
+        "render",
+        "std:paper-tape",
+        "-o",
+        svg.to_str().unwrap(),
+        "--view",
+        "30,-20",
+    ]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(std::fs::read_to_string(svg).unwrap().starts_with("<svg"));
+}
+
+#[test]
+fn derive_is_identical_across_runs_for_a_seed() {
+    let one = graftal(&["derive", "std:stochastic-bush", "-n", "4", "--seed", "123"]);
+    let two = graftal(&["derive", "std:stochastic-bush", "-n", "4", "--seed", "123"]);
+    let other = graftal(&["derive", "std:stochastic-bush", "-n", "4", "--seed", "124"]);
+    assert_eq!(one.stdout, two.stdout);
+    assert_ne!(one.stdout, other.stdout);
+}
+
+#[test]
+fn explain_every_code() {
+    for info in graftal::diagnostics::codes::ALL {
+        let o = graftal(&["explain", info.code.0]);
+        assert_eq!(o.status, 0);
+        assert!(o.stdout.starts_with(info.code.0));
+        assert!(o.stdout.contains(info.explanation));
+    }
+    assert_eq!(graftal(&["explain", "E9999"]).status, 2);
+    assert_eq!(graftal(&["explain", "e0004"]).status, 0);
+}
+
+#[test]
+fn empty_picture_is_a_warning_not_an_error() {
+    let out = temp("empty.svg");
+    let o = graftal(&["render", "std:algae", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status, 0);
+    assert!(o.stderr.contains("W0003"), "{}", o.stderr);
+}
+
+#[test]
+fn every_stdlib_entry_renders() {
+    for e in graftal::stdlib::ENTRIES {
+        let out = temp(&format!("std-{}.png", e.name));
+        let o = graftal(&[
+            "render",
+            &format!("std:{}", e.name),
+            "-o",
+            out.to_str().unwrap(),
+            "--size",
+            "128x128",
+        ]);
+        assert_eq!(o.status, 0, "{}: {}", e.name, o.stderr);
+        let png = std::fs::read(&out).unwrap();
+        assert_eq!(&png[..4], b"\x89PNG");
+        assert!(!o.stderr.contains("Error"), "{}: {}", e.name, o.stderr);
+    }
+}

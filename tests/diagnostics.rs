@@ -1,0 +1,153 @@
+//! Rendered diagnostics, snapshot-tested as plain text (colour off) and as
+//! JSON: tests/diagnostics/NAME.l -> NAME.txt and NAME.json, compared byte
+//! for byte. Regenerate on purpose with `GRAFTAL_BLESS=1 cargo test`.
+
+use graftal::diagnostics::{codes, render_json};
+use graftal::driver::compile;
+use graftal::source::SourceFile;
+use std::path::{Path, PathBuf};
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/diagnostics")
+}
+
+fn inputs() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "l"))
+        .collect();
+    v.sort();
+    v
+}
+
+fn check_snapshot(path: &Path, actual: &str, failures: &mut Vec<String>) {
+    if std::env::var_os("GRAFTAL_BLESS").is_some() {
+        std::fs::write(path, actual).unwrap();
+        return;
+    }
+    match std::fs::read_to_string(path) {
+        Ok(expected) if expected == actual => {}
+        Ok(expected) => failures.push(format!(
+            "{} differs:\n--- expected\n{expected}\n--- actual\n{actual}",
+            path.display()
+        )),
+        Err(_) => failures.push(format!(
+            "{} is missing (GRAFTAL_BLESS=1 writes it)",
+            path.display()
+        )),
+    }
+}
+
+#[test]
+fn diagnostics_match_their_snapshots() {
+    let mut failures = Vec::new();
+    let files = inputs();
+    assert!(files.len() >= 19);
+    for path in files {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let c = compile(SourceFile::new(name.clone(), text));
+        assert!(!c.diagnostics.is_empty(), "{name} should have diagnostics");
+        let human = c.diagnostics.render(&c.file, false);
+        assert!(!human.contains('\u{1b}'), "no colour codes off a terminal");
+        check_snapshot(&path.with_extension("txt"), &human, &mut failures);
+        let json = render_json(&c.diagnostics.0, &c.file);
+        check_snapshot(&path.with_extension("json"), &json, &mut failures);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+fn codes_of(name: &str) -> Vec<&'static str> {
+    let path = dir().join(name);
+    let c = compile(SourceFile::new(
+        name,
+        std::fs::read_to_string(path).unwrap(),
+    ));
+    c.diagnostics.iter().map(|d| d.code.0).collect()
+}
+
+#[test]
+fn each_problem_has_its_code() {
+    let cases = [
+        ("unknown-header.l", codes::UNKNOWN_HEADER),
+        ("header-order.l", codes::HEADER_ORDER),
+        ("missing-arrow.l", codes::MISSING_ARROW),
+        ("malformed-arrow.l", codes::MALFORMED_ARROW),
+        ("context-misuse.l", codes::MISPLACED_CONTEXT),
+        ("bracket-in-predecessor.l", codes::BRACKET_IN_PREDECESSOR),
+        ("unbalanced-successor.l", codes::UNBALANCED_SUCCESSOR),
+        ("unbalanced-axiom.l", codes::UNBALANCED_AXIOM),
+        ("angle-factor-fraction.l", codes::BAD_ANGLE_FACTOR),
+        ("angle-factor-zero.l", codes::BAD_ANGLE_FACTOR),
+        ("negative-steps.l", codes::NEGATIVE_STEPS),
+        ("missing-axiom.l", codes::MISSING_AXIOM),
+        ("bad-probability.l", codes::BAD_PROBABILITY),
+        ("missing-weight.l", codes::MISSING_WEIGHT),
+        ("unexpected-eof.l", codes::UNEXPECTED_EOF),
+        ("unterminated-comment.l", codes::UNTERMINATED_COMMENT),
+        ("shadowed.l", codes::SHADOWED_PRODUCTION),
+        ("invalid-character.l", codes::INVALID_CHARACTER),
+    ];
+    for (file, code) in cases {
+        assert!(
+            codes_of(file).contains(&code.0),
+            "{file}: {:?}",
+            codes_of(file)
+        );
+    }
+}
+
+#[test]
+fn all_errors_of_a_file_in_one_run() {
+    // Seven broken lines, seven errors, and the good last line still lowers.
+    let codes = codes_of("many-errors.l");
+    for c in [
+        "E0101", "E0004", "E0005", "E0006", "E0202", "E0103", "E0003",
+    ] {
+        assert!(codes.contains(&c), "{c} missing from {codes:?}");
+    }
+}
+
+#[test]
+fn spans_point_at_the_exact_characters() {
+    let c = compile(SourceFile::new(
+        "x.l",
+        "axiom: F\nF --> F[+F]F : 0\n".to_string(),
+    ));
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == codes::BAD_PROBABILITY)
+        .unwrap();
+    assert_eq!(&c.file.text[d.span.clone().unwrap()], "0");
+    assert_eq!(c.file.line_col(d.span.clone().unwrap().start), (2, 16));
+    let c = compile(SourceFile::new(
+        "y.l",
+        "derivaton length: 3\naxiom: F\n".to_string(),
+    ));
+    let d = &c.diagnostics.0[0];
+    assert_eq!(&c.file.text[d.span.clone().unwrap()], "derivaton length");
+    assert_eq!(d.help.as_deref(), Some("did you mean `derivation length`?"));
+}
+
+#[test]
+fn json_objects_carry_the_contract_fields() {
+    let c = compile(SourceFile::new("j.l", "axiom: F\nF -> G\n".to_string()));
+    let out = render_json(&c.diagnostics.0, &c.file);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), c.diagnostics.len());
+    let v: serde_json::Value = serde_json::from_str(lines[0]).unwrap();
+    for key in [
+        "code", "severity", "message", "file", "line", "column", "start", "end", "labels", "notes",
+        "help",
+    ] {
+        assert!(v.get(key).is_some(), "{key} missing: {v}");
+    }
+    assert_eq!(v["code"], "E0005");
+    assert_eq!(v["line"], 2);
+    assert_eq!(v["column"], 3);
+    assert_eq!(v["start"], 11);
+    assert_eq!(v["end"], 13);
+    assert_eq!(v["severity"], "error");
+}

@@ -1,0 +1,987 @@
+//! Robustness: thousands of mutated, random and generated pfg inputs go
+//! through check, derive and render, and none may panic, hang, or produce a
+//! diagnostic that points outside its file.
+//!
+//! Inputs:
+//! 1. every stdlib file mutated by byte- and character-level edits (delete,
+//!    duplicate, insert pfg-flavoured fragments, swap lines, truncate,
+//!    splice in part of another file, flip a byte);
+//! 2. random strings over the pfg alphabet plus arbitrary unicode and
+//!    control characters;
+//! 3. structured random pfg files (headers with huge, negative and malformed
+//!    numbers; productions with random contexts, successors and weights).
+//!
+//! For each input: compile; every diagnostic has a registered code, spans
+//! inside the text on character boundaries, and renders (human and JSON)
+//! without panicking; when the file compiles, derive with `-n k` (k < 8) and
+//! with the file's own length (`max_symbols` 20 000), lay out, write SVG and
+//! encode PNG. Each stage runs under `catch_unwind`, so a failure names the
+//! stage that panicked; each input runs on its own thread with a deadline, so
+//! a hang fails the test instead of stalling it.
+//!
+//! Runs are reproducible: fixed proptest seeds, no failure persistence.
+
+use graftal::diagnostics::{codes, render_human, to_json, Diagnostic};
+use graftal::driver::{self, RunOptions};
+use graftal::render::{self, RenderOptions, View};
+use graftal::source::SourceFile;
+use graftal::stdlib::ENTRIES;
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+/// The most one input may take (compile + both derivations + rendering).
+const TIME_LIMIT: Duration = Duration::from_secs(2);
+/// `--max-symbols` for every derivation here.
+const MAX_SYMBOLS: usize = 20_000;
+
+// ---------------------------------------------------------------------------
+// The pipeline under test
+// ---------------------------------------------------------------------------
+
+/// One input and the settings to run it with.
+#[derive(Clone, Debug)]
+struct Case {
+    text: String,
+    /// Steps for the first derivation (`-n k`); the second uses the file's
+    /// own derivation length.
+    k: u64,
+    seed: u64,
+    view: (f64, f64),
+    size: (u32, u32),
+}
+
+/// What a run produced, for determinism checks: per derivation, the derived
+/// word (or the error code) and the SVG.
+#[derive(Clone, Debug, PartialEq)]
+struct Outcome {
+    runs: Vec<(String, String)>,
+}
+
+fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = p.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = p.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "<non-string panic payload>".to_string()
+    }
+}
+
+/// Runs `f`, turning a panic into an error that names `stage`.
+fn stage<T>(name: &str, f: impl FnOnce() -> T) -> Result<T, String> {
+    catch_unwind(AssertUnwindSafe(f))
+        .map_err(|p| format!("{name} panicked: {}", panic_message(&*p)))
+}
+
+fn check_span(what: &str, s: &std::ops::Range<usize>, text: &str) -> Result<(), String> {
+    if s.start > s.end || s.end > text.len() {
+        return Err(format!(
+            "{what} span {s:?} is outside the text (length {})",
+            text.len()
+        ));
+    }
+    if !text.is_char_boundary(s.start) || !text.is_char_boundary(s.end) {
+        return Err(format!("{what} span {s:?} is not on character boundaries"));
+    }
+    Ok(())
+}
+
+/// The properties every diagnostic must have, and rendering it both ways.
+fn check_diagnostic(d: &Diagnostic, file: &SourceFile) -> Result<(), String> {
+    let ctx = |e: String| format!("{e}\n  diagnostic: {d:?}");
+    if !codes::ALL.iter().any(|c| c.code == d.code) {
+        return Err(ctx(format!("code {} is not registered", d.code)));
+    }
+    if d.severity != d.code.severity() {
+        return Err(ctx(format!(
+            "severity {:?} does not match its code",
+            d.severity
+        )));
+    }
+    if let Some(s) = &d.span {
+        check_span("primary", s, &file.text).map_err(ctx)?;
+    }
+    for l in &d.labels {
+        check_span("secondary label", &l.span, &file.text).map_err(ctx)?;
+    }
+    let human = stage("diagnostics::render_human", || render_human(d, file, false)).map_err(ctx)?;
+    if !human.contains(d.code.0) {
+        return Err(ctx(format!("human rendering lacks the code:\n{human}")));
+    }
+    let json = stage("diagnostics::to_json", || to_json(d, file)).map_err(ctx)?;
+    let line = stage("serde_json::to_string(to_json)", || json.to_string()).map_err(ctx)?;
+    if json["code"] != d.code.0 {
+        return Err(ctx(format!("JSON has the wrong code: {line}")));
+    }
+    if let Some(s) = &d.span {
+        let ok = json["start"] == s.start
+            && json["end"] == s.end
+            && json["line"].as_u64().is_some_and(|l| l >= 1)
+            && json["column"].as_u64().is_some_and(|c| c >= 1);
+        if !ok {
+            return Err(ctx(format!("JSON place does not match the span: {line}")));
+        }
+    }
+    Ok(())
+}
+
+/// Compile, check diagnostics, derive (twice), lay out, SVG, PNG.
+fn pipeline(case: &Case) -> Result<Outcome, String> {
+    let compiled = stage("driver::compile", || {
+        driver::compile(SourceFile::new("fuzz.l", case.text.clone()))
+    })?;
+    for d in compiled.diagnostics.iter() {
+        check_diagnostic(d, &compiled.file)?;
+    }
+    let has_errors = compiled.diagnostics.iter().any(Diagnostic::is_error);
+    let mut out = Outcome { runs: Vec::new() };
+    let Some(sys) = &compiled.system else {
+        if !has_errors {
+            return Err("no system, but no error diagnostic either".into());
+        }
+        return Ok(out);
+    };
+    if has_errors {
+        return Err("a system was produced despite error diagnostics".into());
+    }
+    for steps in [Some(case.k), None] {
+        let opts = RunOptions {
+            steps,
+            seed: case.seed,
+            max_symbols: MAX_SYMBOLS,
+        };
+        let which = format!("(steps {steps:?}, seed {})", case.seed);
+        let result = stage(&format!("driver::geometry {which}"), || {
+            driver::geometry(sys, &opts)
+        })?;
+        let (word, g) = match result {
+            Ok(x) => x,
+            Err(d) => {
+                check_diagnostic(&d, &compiled.file)?;
+                out.runs.push((format!("error {}", d.code), String::new()));
+                continue;
+            }
+        };
+        if word.len() > MAX_SYMBOLS {
+            return Err(format!(
+                "derived word has {} symbols, over the limit {MAX_SYMBOLS} {which}",
+                word.len()
+            ));
+        }
+        let text = stage(&format!("Word::display {which}"), || {
+            word.display(&sys.symbols)
+        })?;
+        let ropts = RenderOptions {
+            width: case.size.0,
+            height: case.size.1,
+            view: View {
+                azimuth: case.view.0,
+                elevation: case.view.1,
+            },
+            scale: sys.settings.scale,
+        };
+        let pic = stage(&format!("render::layout {which}"), || {
+            render::layout(&g, &ropts)
+        })?;
+        let svg = stage(&format!("render::svg::write {which}"), || {
+            render::svg::write(&pic)
+        })?;
+        if !svg.starts_with("<svg") || !svg.ends_with("</svg>\n") {
+            return Err(format!("SVG is not a document {which}:\n{svg}"));
+        }
+        if svg.contains("NaN") || svg.contains("inf") {
+            return Err(format!("SVG has non-finite numbers {which}:\n{svg}"));
+        }
+        let png = stage(&format!("render::png::encode {which}"), || {
+            render::png::encode(&pic)
+        })?;
+        if let Some(bytes) = png {
+            if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+                return Err(format!("PNG output lacks the PNG signature {which}"));
+            }
+        }
+        out.runs.push((text, svg));
+    }
+    Ok(out)
+}
+
+/// Runs `f` on its own thread; an error if it does not finish within
+/// [`TIME_LIMIT`] (a hang: the thread is left behind) or took longer.
+fn with_deadline<T: Send + 'static>(
+    what: impl std::fmt::Display,
+    f: impl FnOnce() -> T + Send + 'static,
+) -> Result<T, String> {
+    let (tx, rx) = mpsc::channel();
+    std::thread::Builder::new()
+        .name("robustness-case".into())
+        .spawn(move || {
+            let t = Instant::now();
+            let r = f();
+            let _ = tx.send((r, t.elapsed()));
+        })
+        .map_err(|e| format!("cannot spawn a thread: {e}"))?;
+    match rx.recv_timeout(TIME_LIMIT) {
+        Ok((_, took)) if took > TIME_LIMIT => Err(format!(
+            "{what} took {took:?}, over the limit of {TIME_LIMIT:?}"
+        )),
+        Ok((r, _)) => Ok(r),
+        Err(mpsc::RecvTimeoutError::Timeout) => Err(format!(
+            "{what} did not finish within {TIME_LIMIT:?} (a hang?)"
+        )),
+        Err(mpsc::RecvTimeoutError::Disconnected) => Err(format!("{what}: the worker thread died")),
+    }
+}
+
+/// The whole check for one case: the pipeline under a deadline, and on a
+/// sample, a second run that must give the same words and SVGs.
+fn check_case(case: &Case) -> Result<(), String> {
+    let c = case.clone();
+    let first = with_deadline("compile+derive+render", move || pipeline(&c))??;
+    if case.seed % 4 == 0 {
+        let c = case.clone();
+        let second = with_deadline("second run", move || pipeline(&c))??;
+        if first != second {
+            return Err(format!(
+                "not deterministic: two runs with seed {} differ\n first: {:?}\nsecond: {:?}",
+                case.seed, first.runs, second.runs
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn run_case(case: &Case) -> Result<(), TestCaseError> {
+    check_case(case).map_err(|e| TestCaseError::fail(format!("{e}\n  input: {:?}", case.text)))
+}
+
+// ---------------------------------------------------------------------------
+// Inputs
+// ---------------------------------------------------------------------------
+
+/// Pieces of pfg text that mutations insert and random strings are made of.
+const FRAGMENTS: &[&str] = &[
+    "F",
+    "f",
+    "+",
+    "-",
+    "[",
+    "]",
+    "{",
+    "}",
+    "<",
+    ">",
+    "*",
+    ":",
+    "/",
+    "\\",
+    "&",
+    "^",
+    "|",
+    "!",
+    "'",
+    "0",
+    "1",
+    "2",
+    "3",
+    "4",
+    "5",
+    "6",
+    "7",
+    "8",
+    "9",
+    ".",
+    "\n",
+    "\r",
+    "\t",
+    " ",
+    "\r\n",
+    "a",
+    "b",
+    "X",
+    "Y",
+    "A",
+    "B",
+    "z",
+    "-->",
+    "->",
+    "=>",
+    "==>",
+    "--->",
+    "→",
+    "—>",
+    "/*",
+    "*/",
+    "#",
+    "axiom:",
+    "axiom: F",
+    "derivation length:",
+    "derivation length: 99999999999",
+    "derivation length: -1",
+    "angle factor: 0",
+    "angle factor:",
+    "angle factor: 4",
+    "scale factor: 1e300",
+    "scale factor:",
+    "ignore:",
+    "ignore: +-F",
+    ": 0.5",
+    ": 0",
+    ": -1",
+    ": 1e999",
+    "99999999999999999999",
+    "é",
+    "\u{0}",
+    "\u{7}",
+    "\u{7f}",
+    "\u{feff}",
+    "\u{200b}",
+    "\u{1F331}",
+    "\u{10FFFF}",
+    "\u{FFFD}",
+];
+
+fn fragment() -> impl Strategy<Value = String> {
+    proptest::sample::select(FRAGMENTS).prop_map(str::to_string)
+}
+
+fn fragments(max: usize) -> impl Strategy<Value = String> {
+    prop::collection::vec(fragment(), 1..max).prop_map(|v| v.concat())
+}
+
+#[derive(Clone, Debug)]
+enum Edit {
+    /// Delete `len` characters at `at`.
+    Delete {
+        at: usize,
+        len: usize,
+    },
+    /// Copy `len` characters at `at` and insert them at `to`.
+    Duplicate {
+        at: usize,
+        len: usize,
+        to: usize,
+    },
+    Insert {
+        at: usize,
+        text: String,
+    },
+    SwapLines {
+        a: usize,
+        b: usize,
+    },
+    Truncate {
+        at: usize,
+    },
+    /// Insert `len` characters of another stdlib file, from `from`.
+    Splice {
+        entry: usize,
+        from: usize,
+        len: usize,
+        at: usize,
+    },
+    /// Overwrite one byte (may break UTF-8: the text is then read lossily,
+    /// as `SourceFile::read` does).
+    FlipByte {
+        at: usize,
+        byte: u8,
+    },
+}
+
+/// `n` reduced to a position in `0..=len`.
+fn pos(n: usize, len: usize) -> usize {
+    n % (len + 1)
+}
+
+fn apply(text: &str, edit: &Edit) -> String {
+    let mut cs: Vec<char> = text.chars().collect();
+    let n = cs.len();
+    match edit {
+        Edit::Delete { at, len } => {
+            let a = pos(*at, n);
+            let b = (a + len).min(n);
+            cs.drain(a..b);
+        }
+        Edit::Duplicate { at, len, to } => {
+            let a = pos(*at, n);
+            let b = (a + len).min(n);
+            let piece: Vec<char> = cs[a..b].to_vec();
+            let t = pos(*to, n);
+            cs.splice(t..t, piece);
+        }
+        Edit::Insert { at, text } => {
+            let a = pos(*at, n);
+            cs.splice(a..a, text.chars());
+        }
+        Edit::SwapLines { a, b } => {
+            let mut lines: Vec<&str> = text.split_inclusive('\n').collect();
+            if !lines.is_empty() {
+                let (i, j) = (a % lines.len(), b % lines.len());
+                lines.swap(i, j);
+            }
+            return lines.concat();
+        }
+        Edit::Truncate { at } => cs.truncate(pos(*at, n)),
+        Edit::Splice {
+            entry,
+            from,
+            len,
+            at,
+        } => {
+            let other: Vec<char> = ENTRIES[entry % ENTRIES.len()].text.chars().collect();
+            let a = pos(*from, other.len());
+            let b = (a + len).min(other.len());
+            let t = pos(*at, n);
+            cs.splice(t..t, other[a..b].iter().copied());
+        }
+        Edit::FlipByte { at, byte } => {
+            let mut bytes = text.as_bytes().to_vec();
+            if !bytes.is_empty() {
+                let i = at % bytes.len();
+                bytes[i] = *byte;
+            }
+            return String::from_utf8_lossy(&bytes).into_owned();
+        }
+    }
+    cs.into_iter().collect()
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    let at = any::<usize>();
+    let len = prop_oneof![4 => 0usize..8, 2 => 0usize..80, 1 => 0usize..2000];
+    prop_oneof![
+        3 => (at.clone(), len.clone()).prop_map(|(at, len)| Edit::Delete { at, len }),
+        2 => (at.clone(), len.clone(), any::<usize>())
+            .prop_map(|(at, len, to)| Edit::Duplicate { at, len, to }),
+        5 => (at.clone(), fragments(6)).prop_map(|(at, text)| Edit::Insert { at, text }),
+        1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::SwapLines { a, b }),
+        1 => at.clone().prop_map(|at| Edit::Truncate { at }),
+        1 => (any::<usize>(), any::<usize>(), len, at.clone())
+            .prop_map(|(entry, from, len, at)| Edit::Splice { entry, from, len, at }),
+        1 => (at, any::<u8>()).prop_map(|(at, byte)| Edit::FlipByte { at, byte }),
+    ]
+}
+
+/// A stdlib file with 1 to 5 edits.
+fn mutated_text() -> impl Strategy<Value = String> {
+    (0..ENTRIES.len(), prop::collection::vec(edit(), 1..6)).prop_map(|(i, edits)| {
+        edits
+            .iter()
+            .fold(ENTRIES[i].text.to_string(), |t, e| apply(&t, e))
+    })
+}
+
+/// Random strings: pfg fragments, arbitrary unicode, control characters.
+fn random_text() -> impl Strategy<Value = String> {
+    let piece = prop_oneof![
+        8 => fragment(),
+        2 => any::<char>().prop_map(String::from),
+        1 => (0u32..0x20).prop_map(|c| char::from_u32(c).unwrap_or('\0').to_string()),
+    ];
+    prop::collection::vec(piece, 0..160).prop_map(|v| v.concat())
+}
+
+/// Symbols that appear in generated productions and axioms.
+const SYMBOLS: &[char] = &[
+    'F', 'F', 'F', 'f', '+', '-', '+', '-', 'X', 'Y', 'A', 'B', '0', '1', '&', '^', '\\', '/', '|',
+    '!', '\'', '{', '}', '#', 'é',
+];
+
+fn symbol() -> impl Strategy<Value = String> {
+    proptest::sample::select(SYMBOLS).prop_map(String::from)
+}
+
+/// A word of symbols, mostly with balanced branches, now and then with a
+/// stray bracket.
+fn word(max: usize) -> impl Strategy<Value = String> {
+    let part = prop_oneof![
+        12 => symbol(),
+        2 => prop::collection::vec(symbol(), 0..6).prop_map(|v| format!("[{}]", v.concat())),
+        1 => prop::collection::vec(symbol(), 0..4)
+            .prop_map(|v| format!("[{}[{}]]", v.concat(), v.concat())),
+        1 => proptest::sample::select(&["[", "]"][..]).prop_map(str::to_string),
+    ];
+    prop::collection::vec(part, 1..max).prop_map(|v| v.concat())
+}
+
+fn number_text(normal: std::ops::Range<i64>) -> impl Strategy<Value = String> {
+    prop_oneof![
+        10 => normal.prop_map(|n| n.to_string()),
+        1 => proptest::sample::select(
+            &[
+                "99999999999",
+                "18446744073709551615",
+                "99999999999999999999999",
+                "-1",
+                "-99999999999",
+                "0",
+                "",
+                "3.5",
+                "1e308",
+                "x",
+                "4 4",
+                "NaN",
+                "inf",
+            ][..]
+        )
+        .prop_map(str::to_string),
+    ]
+}
+
+fn header() -> impl Strategy<Value = (usize, String)> {
+    prop_oneof![
+        (number_text(0..12)).prop_map(|v| (0, format!("derivation length: {v}"))),
+        (number_text(1..32)).prop_map(|v| (1, format!("angle factor: {v}"))),
+        (number_text(0..101)).prop_map(|v| (2, format!("scale factor: {v}"))),
+        word(12).prop_map(|v| (3, format!("axiom: {v}"))),
+        prop::collection::vec(symbol(), 0..4).prop_map(|v| (4, format!("ignore: {}", v.concat()))),
+        Just((5, "colour: 3".to_string())),
+        Just((5, "Axiom  :  F".to_string())),
+    ]
+}
+
+fn context() -> impl Strategy<Value = Option<String>> {
+    prop_oneof![
+        6 => Just(None),
+        1 => Just(Some("*".to_string())),
+        3 => prop::collection::vec(symbol(), 1..4).prop_map(|v| Some(v.concat())),
+    ]
+}
+
+fn production() -> impl Strategy<Value = String> {
+    let pred = prop_oneof![
+        10 => prop::collection::vec(symbol(), 1..3).prop_map(|v| v.concat()),
+        1 => Just("*".to_string()),
+        1 => Just(String::new()),
+    ];
+    let succ = prop_oneof![
+        10 => word(16),
+        1 => Just("*".to_string()),
+        1 => Just(String::new()),
+    ];
+    let arrow = prop_oneof![
+        12 => Just("-->"),
+        1 => Just("->"),
+        1 => Just(""),
+    ];
+    let weight = prop_oneof![
+        6 => Just(None),
+        4 => (1u32..100).prop_map(|w| Some(format!("{}", f64::from(w) / 100.0))),
+        1 => proptest::sample::select(&["0", "-1", "1e308", "1e999", "abc", "", "0.0000001"][..])
+            .prop_map(|w| Some(w.to_string())),
+    ];
+    (context(), pred, context(), arrow, succ, weight).prop_map(|(l, p, r, a, s, w)| {
+        let mut line = String::new();
+        if let Some(l) = l {
+            line += &format!("{l} < ");
+        }
+        line += &p;
+        if let Some(r) = r {
+            line += &format!(" > {r}");
+        }
+        line += &format!(" {a} {s}");
+        if let Some(w) = w {
+            line += &format!(" : {w}");
+        }
+        line
+    })
+}
+
+/// A pfg file assembled from random headers and productions.
+fn structured_text() -> impl Strategy<Value = String> {
+    (
+        prop::collection::vec(header(), 0..7),
+        any::<bool>(),
+        prop::collection::vec(production(), 0..8),
+        // Where to put comments and which line ending to use.
+        any::<u8>(),
+        any::<bool>(),
+    )
+        .prop_map(|(mut headers, sorted, prods, comments, crlf)| {
+            if sorted {
+                headers.sort_by_key(|(i, _)| *i);
+            }
+            let nl = if crlf { "\r\n" } else { "\n" };
+            let mut lines: Vec<String> = Vec::new();
+            if comments & 1 != 0 {
+                lines.push("/* a generated\n   file */".into());
+            }
+            lines.extend(headers.into_iter().map(|(_, h)| h));
+            for (i, p) in prods.into_iter().enumerate() {
+                if comments & 2 != 0 && i == 1 {
+                    lines.push(String::new());
+                }
+                if comments & 4 != 0 && i == 2 {
+                    lines.push(format!("{p} /* trailing */"));
+                    continue;
+                }
+                lines.push(p);
+            }
+            let mut text = lines.join(nl);
+            if comments & 8 != 0 {
+                text += nl;
+            }
+            if comments & 16 != 0 {
+                text += "/* unterminated";
+            }
+            text
+        })
+}
+
+fn case(text: impl Strategy<Value = String>) -> impl Strategy<Value = Case> {
+    let seed = prop_oneof![3 => 0u64..16, 1 => any::<u64>()];
+    let view = prop_oneof![
+        6 => Just((0.0, 0.0)),
+        1 => Just((30.0, 45.0)),
+        1 => Just((90.0, 0.0)),
+        1 => Just((-45.0, 89.9)),
+        1 => Just((1e6, -1e6)),
+    ];
+    let size = prop_oneof![8 => Just((64, 64)), 1 => Just((1, 1)), 1 => Just((64, 17))];
+    (text, 0u64..8, seed, view, size).prop_map(|(text, k, seed, view, size)| Case {
+        text,
+        k,
+        seed,
+        view,
+        size,
+    })
+}
+
+// ---------------------------------------------------------------------------
+// The runs
+// ---------------------------------------------------------------------------
+
+fn runner(cases: u32, seed: u8) -> TestRunner {
+    let config = Config {
+        cases,
+        failure_persistence: None,
+        max_shrink_iters: 512,
+        // Milliseconds: shrinking a hang costs TIME_LIMIT per attempt.
+        max_shrink_time: 60_000,
+        ..Config::default()
+    };
+    TestRunner::new_with_rng(
+        config,
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[seed; 32]),
+    )
+}
+
+fn run_all(name: &str, cases: u32, seed: u8, strategy: impl Strategy<Value = Case>) {
+    let t = Instant::now();
+    let result = runner(cases, seed).run(&strategy, |c| run_case(&c));
+    if let Err(e) = result {
+        panic!("{name}: {e}");
+    }
+    eprintln!("{name}: {cases} inputs in {:?}", t.elapsed());
+}
+
+#[test]
+fn stdlib_files_as_written_pass() {
+    for e in ENTRIES {
+        for seed in [0, 1] {
+            let c = Case {
+                text: e.text.to_string(),
+                k: 3,
+                seed,
+                view: (0.0, 0.0),
+                size: (64, 64),
+            };
+            if let Err(err) = check_case(&c) {
+                panic!("std:{}: {err}", e.name);
+            }
+        }
+    }
+}
+
+#[test]
+fn mutated_stdlib_files_never_panic_or_hang() {
+    run_all("mutated", 2000, 1, case(mutated_text()));
+}
+
+#[test]
+fn random_strings_never_panic_or_hang() {
+    run_all("random", 2000, 2, case(random_text()));
+}
+
+#[test]
+fn structured_random_files_never_panic_or_hang() {
+    run_all("structured", 2000, 3, case(structured_text()));
+}
+
+/// `graftal derive` through `cli::run` on files written to disk: the exit
+/// status follows the contract and agrees with the library.
+#[test]
+fn cli_derive_on_mutated_files() {
+    let t = Instant::now();
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    let dir =
+        std::env::temp_dir().join(format!("graftal-robustness-{}-{nanos}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("create the temp dir");
+    let mut runner = runner(1, 4);
+    let strategy = (
+        prop_oneof![2 => mutated_text(), 1 => structured_text()],
+        prop::option::of(0u64..8),
+        0u64..16,
+        any::<bool>(),
+    );
+    let mut failures = Vec::new();
+    for i in 0..300 {
+        let (text, steps, seed, json) = strategy.new_tree(&mut runner).expect("a value").current();
+        let path = dir.join(format!("case-{i}.l"));
+        std::fs::write(&path, &text).expect("write the input");
+        let path = path.display().to_string();
+        let mut args: Vec<String> = vec![
+            "graftal".into(),
+            "derive".into(),
+            path.clone(),
+            "--max-symbols".into(),
+            MAX_SYMBOLS.to_string(),
+            "--seed".into(),
+            seed.to_string(),
+        ];
+        if let Some(n) = steps {
+            args.extend(["-n".to_string(), n.to_string()]);
+        }
+        if json {
+            args.extend(["--format".to_string(), "json".to_string()]);
+        }
+        let cli_args = args.clone();
+        let ran = with_deadline("graftal derive", move || {
+            stage("cli::run", || {
+                let (mut stdout, mut stderr) = (Vec::new(), Vec::new());
+                let status = graftal::cli::run(
+                    cli_args,
+                    &mut graftal::cli::Io {
+                        stdout: &mut stdout,
+                        stderr: &mut stderr,
+                        terminal: false,
+                    },
+                );
+                (status, stdout, stderr)
+            })
+        });
+        let check = ran.and_then(|r| r).and_then(|(status, stdout, stderr)| {
+            if !(0..=2).contains(&status) {
+                return Err(format!("exit status {status}"));
+            }
+            // The library's view of the same run.
+            let compiled = driver::compile(SourceFile::new(path.clone(), text.clone()));
+            let expected = match &compiled.system {
+                None => Err(()),
+                Some(sys) => driver::derive(
+                    sys,
+                    &RunOptions {
+                        steps,
+                        seed,
+                        max_symbols: MAX_SYMBOLS,
+                    },
+                )
+                .map(|w| w.display(&sys.symbols))
+                .map_err(|_| ()),
+            };
+            let stdout = String::from_utf8_lossy(&stdout);
+            match (&expected, status) {
+                (Ok(word), 0) if stdout == format!("{word}\n") => {}
+                (Ok(_), 0) => return Err("stdout is not the derived word".into()),
+                (Err(()), 1) if stdout.is_empty() => {}
+                _ => {
+                    return Err(format!(
+                        "exit status {status}, but the library says {}",
+                        if expected.is_ok() {
+                            "success"
+                        } else {
+                            "errors"
+                        }
+                    ))
+                }
+            }
+            if json {
+                for line in String::from_utf8_lossy(&stderr).lines() {
+                    if serde_json::from_str::<serde_json::Value>(line).is_err() {
+                        return Err(format!("stderr line is not JSON: {line:?}"));
+                    }
+                }
+            }
+            Ok(())
+        });
+        if let Err(e) = check {
+            failures.push(format!("{e}\n  args: {args:?}\n  input: {text:?}"));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    eprintln!("cli: 300 inputs in {:?}", t.elapsed());
+}
+
+/// Inputs picked by hand for the corners of the lexer, parser and lowering.
+const EDGE_CASES: &[&str] = &[
+    "",
+    "\n",
+    "\r\n\r\n",
+    ":",
+    "::",
+    "a:",
+    "axiom:",
+    "axiom: ",
+    "axiom:\n",
+    "axiom: [",
+    "axiom: ]",
+    "axiom: ][",
+    "axiom: F\n:",
+    "axiom: F\n: 0.5",
+    "axiom: F\nF --> G :",
+    "axiom: F\nF --> G : ",
+    "axiom: F\nF --> G : :",
+    "axiom: F\nF --> : 0.5",
+    "axiom: F\nF -->",
+    "axiom: F\nF --> *",
+    "axiom: F\n* --> F",
+    "axiom: F\n* < * > * --> *",
+    "axiom: F\n<",
+    "axiom: F\n>",
+    "axiom: F\n< >",
+    "axiom: F\n< > -->",
+    "axiom: F\n> <",
+    "axiom: F\na < b < c --> d",
+    "axiom: F\na > b > c --> d",
+    "axiom: F\n< F --> G",
+    "axiom: F\nF > --> G",
+    "axiom: F\n-->",
+    "axiom: F\n--> -->",
+    "axiom: F\nF --> G --> H",
+    "axiom: F\nF -> G",
+    "axiom: F\nF → G",
+    "axiom: F\nF —> G",
+    "axiom: F\nF ---> G",
+    "axiom: F\nF =>",
+    "axiom: F\nF ==> G : 1 : 2",
+    "axiom: F\n[ --> F",
+    "axiom: F\nF < [ --> F",
+    "axiom: F\nF --> [[[[",
+    "axiom: F\nF --> ]]]]",
+    "/*",
+    "/*/",
+    "/**/",
+    "*/",
+    "axiom: F /* x",
+    "axiom: F /* \u{e9} */ F",
+    "\u{feff}axiom: F",
+    "axiom: F\u{0}",
+    "axiom: \u{7f}",
+    "axiom: \u{1F331}\u{1F331}",
+    "axiom: F\n\u{1F331} --> \u{1F331}\u{1F331}",
+    "axiom: F\u{2028}F",
+    "axiom: F\u{a0}F\u{85}\u{3000}",
+    "\u{FFFD}\u{FFFD}",
+    "derivation length: 99999999999\naxiom: F\nF --> FF",
+    "derivation length: 18446744073709551615\naxiom: F\nF --> F",
+    "derivation length: 18446744073709551616\naxiom: F",
+    "derivation length: -9223372036854775808\naxiom: F",
+    "derivation length: 99999999999\naxiom: a\na --> b\nb --> a",
+    "derivation length: 99999999999\naxiom: F\nF --> F : 1\nF --> f : 1",
+    "derivation length: 99999999999\naxiom: F\nF --> *",
+    "derivation length: 99999999999\naxiom: F\nF --> [F]F[F]",
+    "angle factor: 0\naxiom: F+F",
+    "angle factor: -4\naxiom: F+F",
+    "angle factor: 9223372036854775807\naxiom: F+F",
+    "angle factor: 99999999999999999999999\naxiom: F+F",
+    "angle factor: 2.5\naxiom: F+F",
+    "angle factor: 0.0001\naxiom: F+F",
+    "angle factor: 1e308\naxiom: F+F",
+    "scale factor: NaN\naxiom: F+F",
+    "scale factor: inf\naxiom: F+F",
+    "scale factor: -inf\naxiom: F+F",
+    "scale factor: 0\naxiom: F+F",
+    "scale factor: 1e-300\naxiom: F+F",
+    "scale factor: -0\naxiom: F",
+    "ignore:\naxiom: F",
+    "ignore: [ ]\naxiom: F\nF < F --> FF",
+    "axiom: F\nF --> G : 1e999",
+    "axiom: F\nF --> G : NaN",
+    "axiom: F\nF --> G : inf",
+    "axiom: F\nF --> G : 1e-320\nF --> H : 1e-320",
+    "axiom: F\nF --> G : 1e308\nF --> H : 1e308",
+    "axiom: F\nF --> G : 0.5\nF --> H",
+    "axiom: F\nF --> G\nF --> H : 0.5",
+    "axiom: {{{{F}}}}",
+    "axiom: }}}}{{{{",
+    "axiom: {f+f+f}",
+    "axiom: !!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!F",
+    "axiom: F",
+    "axiom: ||||F&^\\/F",
+    "axiom: F
+F --> F!F!",
+    "derivation length: 7
+axiom: F
+F --> {F+F}[F]!'",
+    "AXIOM: F",
+    "Axiom  :  F",
+    "derivation   length : 3
+axiom: F",
+    "axiom axiom: F",
+    "axiom: F
+axiom: G",
+    "axiom: F
+derivation length: 2",
+];
+
+#[test]
+fn hand_written_edge_cases_never_panic_or_hang() {
+    let mut failures = Vec::new();
+    for text in EDGE_CASES {
+        for (k, seed) in [(0, 0), (3, 4), (7, 8)] {
+            let c = Case {
+                text: text.to_string(),
+                k,
+                seed,
+                view: (0.0, 0.0),
+                size: (64, 64),
+            };
+            if let Err(e) = check_case(&c) {
+                failures.push(format!("{text:?} (k {k}, seed {seed}): {e}"));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{}",
+        failures.join(
+            "
+"
+        )
+    );
+}
+
+#[test]
+fn probe_tmp() {
+    let text = std::fs::read_to_string(std::env::var("PROBE").unwrap()).unwrap();
+    let k: u64 = std::env::var("K").map_or(0, |k| k.parse().unwrap());
+    let t = Instant::now();
+    let c = Case {
+        text,
+        k,
+        seed: 0,
+        view: (0.0, 0.0),
+        size: (64, 64),
+    };
+    let r = pipeline(&c);
+    println!(
+        "PROBE {:?} in {:?}",
+        r.map(|o| o
+            .runs
+            .into_iter()
+            .map(|(w, s)| (w.len(), s.len()))
+            .collect::<Vec<_>>()),
+        t.elapsed()
+    );
+}
