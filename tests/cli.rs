@@ -217,3 +217,33 @@ fn every_stdlib_entry_renders() {
         assert!(!o.stderr.contains("Error"), "{}: {}", e.name, o.stderr);
     }
 }
+
+#[test]
+fn kolams_are_drawn_as_splines_through_the_turtle_positions() {
+    for name in ["kolam-snake", "kolam-anklets", "kolam-bag-of-candies"] {
+        let plain = temp(&format!("{name}.svg"));
+        let o = graftal(&[
+            "render",
+            &format!("std:{name}"),
+            "-o",
+            plain.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status, 0);
+        assert!(
+            o.stderr.contains("W0003"),
+            "only f moves: nothing drawn without --spline"
+        );
+        let curved = temp(&format!("{name}-spline.svg"));
+        let o = graftal(&[
+            "render",
+            &format!("std:{name}"),
+            "-o",
+            curved.to_str().unwrap(),
+            "--spline",
+        ]);
+        assert_eq!(o.status, 0, "{}", o.stderr);
+        assert!(!o.stderr.contains("W0003"), "{}", o.stderr);
+        let svg = std::fs::read_to_string(curved).unwrap();
+        assert!(svg.matches('L').count() > 100, "{name}: a long curve");
+    }
+}

@@ -72,6 +72,10 @@ enum Command {
         /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees.
         #[arg(long, default_value = "0,0", value_parser = parse_view, allow_hyphen_values = true)]
         view: (f64, f64),
+        /// Draw each branch as a B-spline through the turtle's positions
+        /// (as the book draws kolams and Fig. 2.11).
+        #[arg(long)]
+        spline: bool,
     },
     /// Count symbols, segments, polygons; bounding box and branch depth.
     Stats(DeriveArgs),
@@ -189,6 +193,7 @@ where
             output,
             size,
             view,
+            spline,
         } => {
             let Some(format) = Format::from_path(&output) else {
                 let _ = writeln!(
@@ -199,7 +204,12 @@ where
             };
             with_system(io, &args, |io, c, sys, opts| {
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let g = crate::turtle::interpret(sys, &word.0, opts.seed);
+                let g = crate::turtle::interpret_with(
+                    sys,
+                    &word.0,
+                    opts.seed,
+                    crate::turtle::TurtleOptions { paths: spline },
+                );
                 if g.is_empty() {
                     report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
                 }
@@ -210,6 +220,7 @@ where
                         azimuth: view.0,
                         elevation: view.1,
                     },
+                    spline,
                     ..RenderOptions::default()
                 };
                 let bytes = match driver::render_bytes(sys, &g, format, ropts) {

@@ -257,13 +257,18 @@ pub struct Rgb(pub u8, pub u8, pub u8);
 
 /// What the turtle does for one symbol.
 ///
-/// Rotations follow the book's matrices (Prusinkiewicz & Hanan §2, Fig.
-/// 2.12): `[H' L' U'] = [H L U] R`, where for an angle α
-/// `R_U(α)` turns the heading towards −L (to the right, clockwise seen from
-/// +z), `R_L(α)` pitches the heading towards +U... as printed:
-/// `H' = H cos α + U sin α` for `R_L`, and `R_H(α)` rolls
-/// `L' = L cos α + U sin α`. pfg `+` is `Rotate{Up, +δ}`; a LinF curvature θ
-/// is `Rotate{Up, −θ}`; a LinF torsion θ is `Rotate{Heading, −θ}`.
+/// Rotations follow the book's matrices (Prusinkiewicz & Hanan §2.3, Fig.
+/// 2.12): `[H' L' U'] = [H L U] R(α)`, so for an angle α
+///
+/// * about U: `H' = H cos α − L sin α`, `L' = H sin α + L cos α` — positive
+///   α turns the heading away from L, i.e. to the right (clockwise seen
+///   from +z, the default view);
+/// * about L: `H' = H cos α + U sin α`, `U' = −H sin α + U cos α`;
+/// * about H: `L' = L cos α + U sin α`, `U' = −L sin α + U cos α`.
+///
+/// pfg `+` is `Rotate { Up, Delta(1) }` and `-` is `Delta(−1)`; `&`/`^` are
+/// about L, `\`/`/` about H. A LinF curvature θ is a rotation about U by −θ
+/// (it turns t towards n, counter-clockwise) and a torsion θ about H by −θ.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub enum TurtleOp {
     /// Move one step (times the current length); draw a segment if `draw`.

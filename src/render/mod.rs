@@ -24,6 +24,10 @@ pub struct RenderOptions {
     pub view: View,
     /// Share of the picture the figure fills, 0..=100 (pfg scale factor).
     pub scale: f64,
+    /// Draw each turtle path ([`Geometry::paths`]) as a uniform cubic
+    /// B-spline with the turtle positions as control points (the book's
+    /// Fig. 2.10, 2.11 and kolams), instead of the segments.
+    pub spline: bool,
 }
 
 impl Default for RenderOptions {
@@ -33,6 +37,7 @@ impl Default for RenderOptions {
             height: 1024,
             view: View::default(),
             scale: 100.0,
+            spline: false,
         }
     }
 }
@@ -65,14 +70,76 @@ fn project(p: Vec3, view: View) -> [f64; 2] {
     [x, y]
 }
 
+/// Samples per control-point span of a spline.
+const SPLINE_SAMPLES: usize = 8;
+
+/// The uniform cubic B-spline with control points `ctrl`, sampled; the end
+/// points are tripled so the curve starts and ends at them, and a closed
+/// path (last point = first) is closed smoothly.
+pub fn bspline(ctrl: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    if ctrl.len() < 3 {
+        return ctrl.to_vec();
+    }
+    let (first, last) = (ctrl[0], ctrl[ctrl.len() - 1]);
+    let extent = ctrl
+        .iter()
+        .map(|p| (p[0] - first[0]).abs().max((p[1] - first[1]).abs()))
+        .fold(0.0, f64::max);
+    let closed = (first[0] - last[0]).abs().max((first[1] - last[1]).abs()) <= 1e-9 * extent;
+    let pts: Vec<[f64; 2]> = if closed {
+        let body = &ctrl[..ctrl.len() - 1];
+        let n = body.len();
+        (0..n + 3).map(|i| body[i % n]).collect()
+    } else {
+        [first, first]
+            .into_iter()
+            .chain(ctrl.iter().copied())
+            .chain([last, last])
+            .collect()
+    };
+    let mut out = Vec::with_capacity((pts.len() - 3) * SPLINE_SAMPLES + 1);
+    for w in pts.windows(4) {
+        for k in 0..SPLINE_SAMPLES {
+            let t = k as f64 / SPLINE_SAMPLES as f64;
+            let (t2, t3) = (t * t, t * t * t);
+            let b0 = (1.0 - t).powi(3) / 6.0;
+            let b1 = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+            let b2 = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
+            let b3 = t3 / 6.0;
+            out.push([
+                b0 * w[0][0] + b1 * w[1][0] + b2 * w[2][0] + b3 * w[3][0],
+                b0 * w[0][1] + b1 * w[1][1] + b2 * w[2][1] + b3 * w[3][1],
+            ]);
+        }
+    }
+    let w = &pts[pts.len() - 4..];
+    out.push([
+        (w[1][0] + 4.0 * w[2][0] + w[3][0]) / 6.0,
+        (w[1][1] + 4.0 * w[2][1] + w[3][1]) / 6.0,
+    ]);
+    out
+}
+
 /// Projects and fits `g` into a `width` × `height` picture.
 pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
     let view = opts.view;
-    let segs: Vec<([f64; 2], [f64; 2])> = g
-        .segments
-        .iter()
-        .map(|s| (project(s.a, view), project(s.b, view)))
-        .collect();
+    let mut segs: Vec<([f64; 2], [f64; 2])> = Vec::new();
+    let mut seg_style: Vec<(Rgb, f64)> = Vec::new();
+    if opts.spline {
+        for path in &g.paths {
+            let ctrl: Vec<[f64; 2]> = path.points.iter().map(|&p| project(p, view)).collect();
+            let curve = bspline(&ctrl);
+            for w in curve.windows(2) {
+                segs.push((w[0], w[1]));
+                seg_style.push((path.colour, path.width));
+            }
+        }
+    } else {
+        for s in &g.segments {
+            segs.push((project(s.a, view), project(s.b, view)));
+            seg_style.push((s.colour, s.width));
+        }
+    }
     let polys: Vec<Vec<[f64; 2]>> = g
         .polygons
         .iter()
@@ -113,15 +180,15 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
 
     let mut runs: Vec<Run> = Vec::new();
     let mut last_end: Option<[f64; 2]> = None;
-    for (seg, (a, b)) in g.segments.iter().zip(&segs) {
+    for (&(colour, seg_width), (a, b)) in seg_style.iter().zip(&segs) {
         let (pa, pb) = (to_px(*a), to_px(*b));
-        let width = base * seg.width;
+        let width = base * seg_width;
         let same = runs
             .last()
-            .is_some_and(|r| r.colour == seg.colour && r.width == width);
+            .is_some_and(|r| r.colour == colour && r.width == width);
         if !same {
             runs.push(Run {
-                colour: seg.colour,
+                colour,
                 width,
                 lines: Vec::new(),
             });
@@ -145,5 +212,35 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         height: opts.height,
         runs,
         polygons,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn open_spline_starts_and_ends_at_the_end_points() {
+        let ctrl = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let c = bspline(&ctrl);
+        assert_eq!(c.len(), 5 * SPLINE_SAMPLES + 1);
+        let near =
+            |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12;
+        assert!(near(c[0], ctrl[0]));
+        assert!(near(*c.last().unwrap(), ctrl[3]));
+        // The curve stays inside the control polygon's hull.
+        assert!(c
+            .iter()
+            .all(|p| (0.0..=1.0).contains(&p[0]) && (0.0..=1.0).contains(&p[1])));
+    }
+
+    #[test]
+    fn closed_spline_is_closed_and_smooth() {
+        let ctrl = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0]];
+        let c = bspline(&ctrl);
+        let (a, b) = (c[0], *c.last().unwrap());
+        assert!((a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12);
+        // A B-spline of a square's corners cuts the corners: no sample is a corner.
+        assert!(!c.iter().any(|p| p == &[0.0, 0.0] || p == &[2.0, 2.0]));
     }
 }

@@ -28,13 +28,32 @@ pub struct Polygon {
     pub colour: Rgb,
 }
 
+/// The sequence of turtle positions along one branch (every move, drawn or
+/// not), for spline rendering: the book draws kolams (§6.2) and Fig. 2.11
+/// by using consecutive turtle positions as B-spline control points.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TurtlePath {
+    pub points: Vec<Vec3>,
+    pub width: f64,
+    pub colour: Rgb,
+}
+
 /// What the turtle drew.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Geometry {
     pub segments: Vec<Segment>,
     pub polygons: Vec<Polygon>,
+    /// Turtle paths, when asked for ([`TurtleOptions::paths`]).
+    pub paths: Vec<TurtlePath>,
     /// The deepest branch nesting reached.
     pub max_depth: usize,
+}
+
+/// What [`interpret_with`] records besides segments and polygons.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TurtleOptions {
+    /// Record the turtle's positions per branch in [`Geometry::paths`].
+    pub paths: bool,
 }
 
 impl Geometry {
@@ -57,8 +76,11 @@ impl Geometry {
         b
     }
 
+    /// Nothing drawn: no segment, no polygon, and no path with a move.
     pub fn is_empty(&self) -> bool {
-        self.segments.is_empty() && self.polygons.is_empty()
+        self.segments.is_empty()
+            && self.polygons.is_empty()
+            && self.paths.iter().all(|p| p.points.len() < 2)
     }
 }
 
@@ -121,6 +143,16 @@ impl State {
 /// Interprets `word` as turtle commands of `sys`. `seed` drives interval
 /// angles (a stream separate from the derivation's).
 pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
+    interpret_with(sys, word, seed, TurtleOptions::default())
+}
+
+/// [`interpret`], recording what `options` asks for.
+pub fn interpret_with(
+    sys: &System,
+    word: &[SymbolId],
+    seed: u64,
+    options: TurtleOptions,
+) -> Geometry {
     let palette: Vec<Rgb> = if sys.colours.is_empty() {
         DEFAULT_PALETTE.to_vec()
     } else {
@@ -150,6 +182,22 @@ pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
     let mut stack: Vec<State> = Vec::new();
     let mut polys: Vec<(Vec<Vec3>, usize)> = Vec::new();
     let mut g = Geometry::default();
+    // Index into g.paths of the current branch's path, and of the enclosing
+    // branches' paths.
+    let mut path_stack: Vec<usize> = Vec::new();
+    let new_path = |g: &mut Geometry, st: &State| {
+        g.paths.push(TurtlePath {
+            points: vec![st.pos],
+            width: st.width,
+            colour: palette[st.colour.min(palette.len() - 1)],
+        });
+        g.paths.len() - 1
+    };
+    let mut path = if options.paths {
+        new_path(&mut g, &st)
+    } else {
+        usize::MAX
+    };
     for &sym in word {
         let Some(op) = ops.get(sym.index()).copied().flatten() else {
             continue;
@@ -163,6 +211,9 @@ pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
                     a[2] + st.h[2] * st.length,
                 ];
                 st.pos = b;
+                if options.paths {
+                    g.paths[path].points.push(b);
+                }
                 if let Some((pts, _)) = polys.last_mut() {
                     pts.push(b);
                 } else if draw {
@@ -194,10 +245,17 @@ pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
             TurtleOp::Push => {
                 stack.push(st.clone());
                 g.max_depth = g.max_depth.max(stack.len());
+                if options.paths {
+                    path_stack.push(path);
+                    path = new_path(&mut g, &st);
+                }
             }
             TurtleOp::Pop => {
                 if let Some(s) = stack.pop() {
                     st = s;
+                    if let Some(p) = path_stack.pop() {
+                        path = p;
+                    }
                 }
             }
             TurtleOp::PolygonBegin => polys.push((vec![st.pos], st.colour)),
@@ -229,6 +287,7 @@ pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
             TurtleOp::ScaleLength(f) => st.length *= f,
         }
     }
+    g.paths.retain(|p| p.points.len() >= 2);
     g
 }
 
@@ -294,6 +353,28 @@ mod tests {
         assert_eq!(g.polygons.len(), 1);
         assert_eq!(g.polygons[0].points.len(), 5);
         assert_eq!(g.segments.len(), 1);
+    }
+
+    #[test]
+    fn paths_follow_every_move_per_branch() {
+        let mut d = Diagnostics::default();
+        let ast = crate::pfg::parse("angle factor: 4\naxiom: f+f[-fF]f\n", &mut d);
+        let l = crate::pfg::lower(&ast, &mut d);
+        let g = interpret_with(
+            &l.system,
+            &l.system.axiom.0,
+            0,
+            TurtleOptions { paths: true },
+        );
+        assert_eq!(g.paths.len(), 2);
+        // The main axis: origin, two moves, then (after the branch) one more.
+        assert_eq!(g.paths[0].points.len(), 4);
+        assert!(close(g.paths[0].points[3], [2.0, 1.0, 0.0]));
+        // The branch starts where it was pushed.
+        assert!(close(g.paths[1].points[0], [1.0, 1.0, 0.0]));
+        assert!(close(g.paths[1].points[2], [1.0, 3.0, 0.0]));
+        // Without the option nothing is recorded.
+        assert!(interpret(&l.system, &l.system.axiom.0, 0).paths.is_empty());
     }
 
     #[test]
