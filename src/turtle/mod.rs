@@ -84,17 +84,19 @@ impl Geometry {
     }
 }
 
-/// The colours `'` steps through when a system gives none: black first, then
-/// plant colours.
+/// The colour table `'` steps through when a system gives none (it wraps
+/// around): black for index 0, as the listing draws, then bark browns and
+/// leaf greens, so that the book's plants, which step the index once per
+/// branch order and twice for leaves, shade from stem to foliage.
 pub const DEFAULT_PALETTE: [Rgb; 8] = [
     Rgb(0, 0, 0),
+    Rgb(92, 64, 51),
+    Rgb(110, 90, 40),
+    Rgb(85, 107, 47),
     Rgb(34, 139, 34),
-    Rgb(139, 69, 19),
-    Rgb(218, 165, 32),
-    Rgb(178, 34, 34),
-    Rgb(65, 105, 225),
-    Rgb(128, 0, 128),
-    Rgb(0, 128, 128),
+    Rgb(60, 160, 60),
+    Rgb(107, 142, 35),
+    Rgb(154, 205, 50),
 ];
 
 #[derive(Clone, Debug)]
