@@ -28,7 +28,9 @@
 //! The counter costs every allocation a few relaxed atomic operations, in
 //! graftal and the baselines alike.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{
+    criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
+};
 use graftal::driver::{self, RunOptions};
 use graftal::eval::Rng;
 use graftal::ir::{System, Word};
@@ -498,6 +500,8 @@ fn bench_render(c: &mut Criterion) {
     let cases = cases();
     for format in ["png", "svg"] {
         let mut group = c.benchmark_group(format!("render-{format}"));
+        // A PNG of a large input takes ~0.5 s: one iteration per sample.
+        group.sampling_mode(SamplingMode::Flat);
         for case in &cases {
             let opts = render_options(&case.family.sys);
             let render = |g: &Geometry| -> usize {

@@ -63,8 +63,7 @@ pub fn compile(file: SourceFile) -> Compiled {
             (None, SpanTable::default())
         }
         _ => {
-            let ast = pfg::parse(&file.text, &mut diags);
-            let lowered = pfg::lower(&ast, &mut diags);
+            let lowered = pfg::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
     };

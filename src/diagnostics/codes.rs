@@ -126,8 +126,8 @@ Write:
     * < a --> b";
 
     UNEXPECTED_EOF = "E0007", "unexpected end of file",
-"The file ends in the middle of an item, for example a production whose
-successor is missing on the last line, or a header with no value.
+"The file ends in the middle of an item: a production whose successor is
+missing on the last line, or a comment or rule cut off by the end.
 
 Example (last line of the file):
     F -->

@@ -298,15 +298,7 @@ pub fn derive(sys: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnostics::Diagnostics;
-
-    fn sys(src: &str) -> System {
-        let mut d = Diagnostics::default();
-        let ast = crate::pfg::parse(src, &mut d);
-        let l = crate::pfg::lower(&ast, &mut d);
-        assert!(!d.has_errors(), "{d:#?}");
-        l.system
-    }
+    use crate::pfg::read_ok as sys;
 
     fn run(src: &str, n: u64) -> String {
         let s = sys(src);

@@ -23,9 +23,10 @@ pub enum LexError {
 
 #[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
 #[logos(error = LexError)]
-#[logos(skip r"[ \t\f\r\u{feff}]+")]
+#[logos(skip r"[ \t\f\x0b\u{a0}\u{1680}\u{2000}-\u{200b}\u{202f}\u{205f}\u{3000}\u{feff}]+")]
 pub enum Token<'src> {
-    #[regex(r"\n")]
+    /// LF, CR LF, or a lone CR (old Mac files).
+    #[regex(r"\r\n|\n|\r")]
     Newline,
     #[token("/*", block_comment)]
     Comment,
@@ -52,7 +53,7 @@ pub enum Token<'src> {
     #[regex(r"[0-9]+(\.[0-9]+)?")]
     Number(&'src str),
     /// Any other printable character: a symbol.
-    #[regex(r"[^\s\x00-\x1f\x7f]", priority = 0)]
+    #[regex(r"[^\s\x00-\x1f\x7f-\u{9f}\u{200b}\u{feff}]", priority = 0)]
     Char(&'src str),
 }
 
@@ -116,7 +117,7 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
                         format!("invalid character U+{:04X}", ch as u32),
                     )
                     .with_label("not a symbol")
-                    .with_help("remove this control character"),
+                    .with_help("remove this character; symbols are printable characters"),
                 )
             }
         }
@@ -161,6 +162,13 @@ mod tests {
                 Token::Newline
             ]
         );
+    }
+
+    #[test]
+    fn every_line_ending_and_unicode_space_separates() {
+        let newlines = |src: &str| kinds(src).iter().filter(|t| **t == Token::Newline).count();
+        assert_eq!(newlines("a\nb\r\nc\rd"), 3);
+        assert_eq!(kinds("F\u{a0}F\u{3000}F").len(), 3);
     }
 
     #[test]

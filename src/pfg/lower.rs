@@ -279,7 +279,7 @@ fn lower_header(cx: &mut Ctx<'_>, idx: usize, h: &Header) {
         },
         2 => match text.parse::<f64>() {
             Ok(s) if (0.0..=100.0).contains(&s) => cx.sys.settings.scale = s,
-            Ok(s) => {
+            Ok(s) if !s.is_nan() => {
                 cx.sys.settings.scale = s.clamp(0.0, 100.0);
                 cx.diags.push(
                     Diagnostic::at(
@@ -290,7 +290,7 @@ fn lower_header(cx: &mut Ctx<'_>, idx: usize, h: &Header) {
                     .with_label(format!("used as {}", cx.sys.settings.scale)),
                 );
             }
-            Err(_) => cx
+            _ => cx
                 .diags
                 .push(bad_value(span, &text, "a number from 0 to 100")),
         },

@@ -431,7 +431,7 @@ fn build_rule(
             };
             match text.parse::<f64>() {
                 Ok(w) if w > 0.0 && w.is_finite() => Some((w, wspan)),
-                Ok(_) => {
+                Ok(w) if w <= 0.0 => {
                     diags.push(
                         Diagnostic::at(
                             codes::BAD_PROBABILITY,
@@ -443,13 +443,15 @@ fn build_rule(
                     );
                     None
                 }
-                Err(_) => {
+                _ => {
                     diags.push(
                         Diagnostic::at(
                             codes::BAD_PROBABILITY,
                             wspan,
                             if text.is_empty() {
                                 "missing probability after `:`".to_string()
+                            } else if text.parse::<f64>().is_ok() {
+                                format!("probability `{text}` is not a finite number")
                             } else {
                                 format!("probability `{text}` is not a number")
                             },
@@ -554,6 +556,8 @@ mod tests {
         assert_eq!(codes_of("F -->\nG --> H\n"), vec!["E0008"]);
         assert_eq!(codes_of("F -->"), vec!["E0007"]);
         assert_eq!(codes_of("F --> G : 0\n"), vec!["E0204"]);
+        assert_eq!(codes_of("F --> G : inf\n"), vec!["E0204"]);
+        assert_eq!(codes_of("F --> G : nan\n"), vec!["E0204"]);
         assert_eq!(codes_of("F --> G --> H\n"), vec!["E0003"]);
     }
 

@@ -20,6 +20,14 @@ fn hex(c: Rgb) -> String {
     format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
 }
 
+/// Appends `M x y L x y …` for the points to a path's `d`.
+fn polyline(d: &mut String, pts: &[[f64; 2]]) {
+    for (i, p) in pts.iter().enumerate() {
+        let op = if i == 0 { 'M' } else { 'L' };
+        let _ = write!(d, "{op}{} {}", num(p[0]), num(p[1]));
+    }
+}
+
 /// The picture as an SVG document.
 pub fn write(pic: &Picture) -> String {
     let mut out = String::new();
@@ -31,15 +39,7 @@ pub fn write(pic: &Picture) -> String {
     let _ = writeln!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
     for (colour, pts) in &pic.polygons {
         let mut d = String::new();
-        for (i, p) in pts.iter().enumerate() {
-            let _ = write!(
-                d,
-                "{}{} {}",
-                if i == 0 { "M" } else { "L" },
-                num(p[0]),
-                num(p[1])
-            );
-        }
+        polyline(&mut d, pts);
         d.push('Z');
         let _ = writeln!(
             out,
@@ -50,15 +50,7 @@ pub fn write(pic: &Picture) -> String {
     for run in &pic.runs {
         let mut d = String::new();
         for line in &run.lines {
-            for (i, p) in line.iter().enumerate() {
-                let _ = write!(
-                    d,
-                    "{}{} {}",
-                    if i == 0 { "M" } else { "L" },
-                    num(p[0]),
-                    num(p[1])
-                );
-            }
+            polyline(&mut d, line);
         }
         let _ = writeln!(
             out,

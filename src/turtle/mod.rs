@@ -296,14 +296,11 @@ pub fn interpret_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnostics::Diagnostics;
+    use crate::pfg::read_ok;
 
     fn draw(src: &str) -> Geometry {
-        let mut d = Diagnostics::default();
-        let ast = crate::pfg::parse(src, &mut d);
-        let l = crate::pfg::lower(&ast, &mut d);
-        assert!(!d.has_errors(), "{d:#?}");
-        interpret(&l.system, &l.system.axiom.0, 0)
+        let sys = read_ok(src);
+        interpret(&sys, &sys.axiom.0, 0)
     }
 
     fn close(a: Vec3, b: Vec3) -> bool {
@@ -359,15 +356,8 @@ mod tests {
 
     #[test]
     fn paths_follow_every_move_per_branch() {
-        let mut d = Diagnostics::default();
-        let ast = crate::pfg::parse("angle factor: 4\naxiom: f+f[-fF]f\n", &mut d);
-        let l = crate::pfg::lower(&ast, &mut d);
-        let g = interpret_with(
-            &l.system,
-            &l.system.axiom.0,
-            0,
-            TurtleOptions { paths: true },
-        );
+        let sys = read_ok("angle factor: 4\naxiom: f+f[-fF]f\n");
+        let g = interpret_with(&sys, &sys.axiom.0, 0, TurtleOptions { paths: true });
         assert_eq!(g.paths.len(), 2);
         // The main axis: origin, two moves, then (after the branch) one more.
         assert_eq!(g.paths[0].points.len(), 4);
@@ -376,7 +366,7 @@ mod tests {
         assert!(close(g.paths[1].points[0], [1.0, 1.0, 0.0]));
         assert!(close(g.paths[1].points[2], [1.0, 3.0, 0.0]));
         // Without the option nothing is recorded.
-        assert!(interpret(&l.system, &l.system.axiom.0, 0).paths.is_empty());
+        assert!(interpret(&sys, &sys.axiom.0, 0).paths.is_empty());
     }
 
     #[test]
