@@ -17,7 +17,7 @@ mod rng;
 pub use rng::Rng;
 
 use crate::diagnostics::{codes, Diagnostic};
-use crate::ir::{SymbolId, System, Word};
+use crate::ir::{Guard, SymbolId, System, Word};
 
 /// Default for [`DeriveOptions::max_symbols`]: 200 million symbols (800 MB
 /// per word buffer).
@@ -62,9 +62,26 @@ pub struct Deriver<'a> {
     /// `by_first[s]`: productions whose predecessor starts with `s`, in file
     /// order.
     by_first: Vec<Vec<u32>>,
+    /// `guards[s]`: the guard of a guarded symbol (LinF `p?s`).
+    guards: Vec<Option<Guard>>,
     ignored: Vec<bool>,
     contexts: bool,
     stochastic: bool,
+    /// The longest left and right contexts of any production.
+    max_left: usize,
+    max_right: usize,
+}
+
+/// The visible neighbours of the position being rewritten, found once and
+/// shared by all productions tried there.
+#[derive(Default)]
+struct Around {
+    /// Up to `max_left` symbols to the left, nearest first.
+    left: Vec<SymbolId>,
+    left_ready: bool,
+    /// Up to `max_right` symbols from `right_at` on.
+    right: Vec<SymbolId>,
+    right_at: usize,
 }
 
 impl<'a> Deriver<'a> {
@@ -77,15 +94,29 @@ impl<'a> Deriver<'a> {
             }
         }
         let ignored = (0..n).map(|i| sys.is_ignored(SymbolId(i as u32))).collect();
+        let guards: Vec<Option<Guard>> = sys.symbols.iter().map(|(_, info)| info.guard).collect();
         let contexts = sys.productions.iter().any(|p| p.is_context_sensitive());
-        let stochastic = sys.productions.iter().any(|p| p.is_stochastic())
-            || sys.symbols.iter().any(|(_, info)| info.guard.is_some());
+        let stochastic =
+            sys.productions.iter().any(|p| p.is_stochastic()) || guards.iter().any(Option::is_some);
         Deriver {
             sys,
             by_first,
+            guards,
             ignored,
             contexts,
             stochastic,
+            max_left: sys
+                .productions
+                .iter()
+                .map(|p| p.left.len())
+                .max()
+                .unwrap_or(0),
+            max_right: sys
+                .productions
+                .iter()
+                .map(|p| p.right.len())
+                .max()
+                .unwrap_or(0),
         }
     }
 
@@ -138,10 +169,11 @@ impl<'a> Deriver<'a> {
         rng: &mut Rng,
         max: usize,
     ) -> Result<(), ()> {
+        let mut around = Around::default();
         let mut i = 0;
         while i < cur.len() {
             let mut sym = cur[i];
-            if let Some(g) = self.sys.symbols.info(sym).guard {
+            if let Some(g) = self.guards[sym.index()] {
                 if rng.next_f64() >= g.probability {
                     out.push(sym);
                     i += 1;
@@ -149,7 +181,7 @@ impl<'a> Deriver<'a> {
                 }
                 sym = g.base;
             }
-            match self.find(cur, i, sym, matching) {
+            match self.find(cur, i, sym, matching, &mut around) {
                 Some(pi) => {
                     let p = &self.sys.productions[pi as usize];
                     let alt = if p.alternatives.len() == 1 {
@@ -187,76 +219,96 @@ impl<'a> Deriver<'a> {
 
     /// The first production (file order) that applies at position `i`, where
     /// the symbol is `sym` (the base of a guarded symbol).
-    fn find(&self, w: &[SymbolId], i: usize, sym: SymbolId, matching: &[usize]) -> Option<u32> {
-        self.by_first[sym.index()].iter().copied().find(|&pi| {
+    fn find(
+        &self,
+        w: &[SymbolId],
+        i: usize,
+        sym: SymbolId,
+        matching: &[usize],
+        around: &mut Around,
+    ) -> Option<u32> {
+        around.left_ready = false;
+        around.right_at = usize::MAX;
+        'productions: for &pi in &self.by_first[sym.index()] {
             let p = &self.sys.productions[pi as usize];
             let n = p.predecessor.len();
-            (n == 1 || (i + n <= w.len() && w[i + 1..i + n] == p.predecessor[1..]))
-                && self.left_matches(w, i, &p.left, matching)
-                && self.right_matches(w, i + n, &p.right, matching)
-        })
+            if n > 1 && (i + n > w.len() || w[i + 1..i + n] != p.predecessor[1..]) {
+                continue;
+            }
+            if !p.left.is_empty() {
+                if !around.left_ready {
+                    self.walk_left(w, i, matching, &mut around.left);
+                    around.left_ready = true;
+                }
+                // `left` is nearest first; the context is written left to right.
+                if around.left.len() < p.left.len()
+                    || p.left.iter().rev().zip(&around.left).any(|(a, b)| a != b)
+                {
+                    continue 'productions;
+                }
+            }
+            if !p.right.is_empty() {
+                if around.right_at != i + n {
+                    self.walk_right(w, i + n, matching, &mut around.right);
+                    around.right_at = i + n;
+                }
+                if around.right.len() < p.right.len()
+                    || p.right.iter().zip(&around.right).any(|(a, b)| a != b)
+                {
+                    continue 'productions;
+                }
+            }
+            return Some(pi);
+        }
+        None
     }
 
-    /// Left context: walk left from `i - 1` (the listing's `lcondiff`).
-    fn left_matches(&self, w: &[SymbolId], i: usize, ctx: &[SymbolId], matching: &[usize]) -> bool {
-        let mut k = ctx.len();
+    /// The visible symbols left of `i`, nearest first, up to the longest
+    /// left context (the listing's `lcondiff`): ignored symbols and `[` are
+    /// skipped (the parent branch is the left context of a child), and a
+    /// whole branch `[...]` met from its right is skipped.
+    fn walk_left(&self, w: &[SymbolId], i: usize, matching: &[usize], out: &mut Vec<SymbolId>) {
+        out.clear();
         let mut j = i;
-        while k > 0 {
-            if j == 0 {
-                return false;
-            }
+        while out.len() < self.max_left && j > 0 {
             let s = w[j - 1];
             if s == SymbolId::OPEN || self.ignored[s.index()] {
                 j -= 1;
             } else if s == SymbolId::CLOSE {
-                // Skip the whole branch `[...]` that ends here.
                 j = match matching.get(j - 1) {
                     Some(&open) if open < j - 1 => open,
                     _ => 0,
                 };
-            } else if s == ctx[k - 1] {
-                k -= 1;
-                j -= 1;
             } else {
-                return false;
+                out.push(s);
+                j -= 1;
             }
         }
-        true
     }
 
-    /// Right context: walk right from `i` (the listing's `rcondiff`).
-    fn right_matches(
-        &self,
-        w: &[SymbolId],
-        i: usize,
-        ctx: &[SymbolId],
-        matching: &[usize],
-    ) -> bool {
-        let mut k = 0;
+    /// The visible symbols from `i` on, up to the longest right context (the
+    /// listing's `rcondiff`): ignored symbols and whole branches `[...]` are
+    /// skipped, and a `]` ends the search (nothing to the right inside this
+    /// branch).
+    fn walk_right(&self, w: &[SymbolId], i: usize, matching: &[usize], out: &mut Vec<SymbolId>) {
+        out.clear();
         let mut j = i;
-        while k < ctx.len() {
-            if j >= w.len() {
-                return false;
-            }
+        while out.len() < self.max_right && j < w.len() {
             let s = w[j];
             if s == SymbolId::OPEN {
-                // Skip the whole branch `[...]` that starts here.
                 j = match matching.get(j) {
-                    Some(&close) if close > j => close + 1,
+                    Some(&close) if close > j && close != usize::MAX => close + 1,
                     _ => w.len(),
                 };
             } else if s == SymbolId::CLOSE {
-                return false;
+                break;
             } else if self.ignored[s.index()] {
                 j += 1;
-            } else if s == ctx[k] {
-                k += 1;
-                j += 1;
             } else {
-                return false;
+                out.push(s);
+                j += 1;
             }
         }
-        true
     }
 }
 
