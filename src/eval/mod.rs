@@ -18,6 +18,7 @@ pub use rng::Rng;
 
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::{Guard, SymbolId, System, Word};
+use std::collections::HashMap;
 
 /// Default for [`DeriveOptions::max_symbols`]: 200 million symbols (800 MB
 /// per word buffer).
@@ -122,49 +123,124 @@ impl<'a> Deriver<'a> {
 
     /// Derives `opts.steps` steps from the axiom. `progress` is called after
     /// each step with the step number and the word's length.
+    ///
+    /// A deterministic system whose word comes back to an earlier word is in
+    /// a cycle: once the cycle is confirmed (by deriving one more period and
+    /// comparing words, so a hash collision cannot mislead), the remaining
+    /// steps are skipped modulo the period. The result is exactly the word
+    /// of step `opts.steps`, at a cost bounded by the cycle's length.
     pub fn derive(
         &self,
         opts: &DeriveOptions,
         mut progress: impl FnMut(u64, usize),
     ) -> Result<Word, Diagnostic> {
-        let mut rng = Rng::new(opts.seed);
-        let mut cur = self.sys.axiom.0.clone();
-        let mut next = Vec::with_capacity(cur.len() * 2);
-        let mut matching = Vec::new();
-        let mut work: u64 = 0;
-        for step in 1..=opts.steps {
-            work += cur.len() as u64;
-            if work > opts.max_work {
-                return Err(Diagnostic::global(
-                    codes::TOO_MUCH_WORK,
-                    format!(
-                        "the derivation would rewrite more than {} symbols in all",
-                        opts.max_work
-                    ),
-                )
-                .with_note(format!("stopped at step {step} of {}", opts.steps))
-                .with_help("derive fewer steps with `-n`, or raise `--max-symbols`"));
+        let mut run = Run {
+            rng: Rng::new(opts.seed),
+            cur: self.sys.axiom.0.clone(),
+            next: Vec::with_capacity(self.sys.axiom.len() * 2),
+            index: ContextIndex::default(),
+            work: 0,
+        };
+        // Hashes of the small words seen so far (deterministic systems only).
+        let mut seen: HashMap<u64, u64> = HashMap::new();
+        let mut step = 0;
+        while step < opts.steps {
+            step += 1;
+            self.advance(&mut run, opts, step)?;
+            progress(step, run.cur.len());
+            if run.cur.is_empty() {
+                // The empty word rewrites to itself.
+                break;
             }
-            if self.contexts {
-                bracket_matches(&cur, &mut matching);
+            if self.stochastic {
+                continue;
             }
-            next.clear();
-            self.step(&cur, &matching, &mut next, &mut rng, opts.max_symbols)
-                .map_err(|_| too_many(step, opts))?;
-            progress(step, next.len());
-            if !self.stochastic && next == cur {
+            if run.cur == run.next {
                 // A fixpoint: every further step gives the same word.
                 break;
             }
-            std::mem::swap(&mut cur, &mut next);
+            if run.cur.len() > CYCLE_WORD_LIMIT || seen.len() >= CYCLE_TABLE_LIMIT {
+                continue;
+            }
+            let h = word_hash(&run.cur);
+            match seen.insert(h, step) {
+                Some(earlier) if step < opts.steps => {
+                    let period = step - earlier;
+                    if self.confirm_cycle(&mut run, opts, step, period)? {
+                        let remaining = (opts.steps - step) % period;
+                        for k in 1..=remaining {
+                            self.advance(&mut run, opts, step + k)?;
+                        }
+                        progress(opts.steps, run.cur.len());
+                        break;
+                    }
+                }
+                _ => {}
+            }
         }
-        Ok(Word(cur))
+        Ok(Word(run.cur))
+    }
+
+    /// Derives `period` steps from a copy of the current word; whether it
+    /// comes back to the current word.
+    fn confirm_cycle(
+        &self,
+        run: &mut Run,
+        opts: &DeriveOptions,
+        step: u64,
+        period: u64,
+    ) -> Result<bool, Diagnostic> {
+        let mut probe = Run {
+            rng: run.rng.clone(),
+            cur: run.cur.clone(),
+            next: Vec::new(),
+            index: ContextIndex::default(),
+            work: run.work,
+        };
+        for k in 1..=period {
+            self.advance(&mut probe, opts, step + k)?;
+        }
+        run.work = probe.work;
+        Ok(probe.cur == run.cur)
+    }
+
+    /// One derivation step: `run.cur` becomes the next word, `run.next` the
+    /// previous one.
+    fn advance(&self, run: &mut Run, opts: &DeriveOptions, step: u64) -> Result<(), Diagnostic> {
+        // Every step costs its word plus a constant, so that even steps on
+        // an empty or tiny word add up to the work limit.
+        run.work += run.cur.len() as u64 + STEP_COST;
+        if run.work > opts.max_work {
+            return Err(Diagnostic::global(
+                codes::TOO_MUCH_WORK,
+                format!(
+                    "the derivation would rewrite more than {} symbols in all",
+                    opts.max_work
+                ),
+            )
+            .with_note(format!("stopped at step {step} of {}", opts.steps))
+            .with_help("derive fewer steps with `-n`, or raise `--max-symbols`"));
+        }
+        if self.contexts {
+            run.index.build(&run.cur, &self.ignored);
+        }
+        run.next.clear();
+        self.step(
+            &run.cur,
+            &run.index,
+            &mut run.next,
+            &mut run.rng,
+            opts.max_symbols,
+        )
+        .map_err(|_| too_many(step, opts))?;
+        std::mem::swap(&mut run.cur, &mut run.next);
+        Ok(())
     }
 
     fn step(
         &self,
         cur: &[SymbolId],
-        matching: &[usize],
+        index: &ContextIndex,
         out: &mut Vec<SymbolId>,
         rng: &mut Rng,
         max: usize,
@@ -181,7 +257,7 @@ impl<'a> Deriver<'a> {
                 }
                 sym = g.base;
             }
-            match self.find(cur, i, sym, matching, &mut around) {
+            match self.find(cur, i, sym, index, &mut around) {
                 Some(pi) => {
                     let p = &self.sys.productions[pi as usize];
                     let alt = if p.alternatives.len() == 1 {
@@ -224,7 +300,7 @@ impl<'a> Deriver<'a> {
         w: &[SymbolId],
         i: usize,
         sym: SymbolId,
-        matching: &[usize],
+        index: &ContextIndex,
         around: &mut Around,
     ) -> Option<u32> {
         around.left_ready = false;
@@ -237,7 +313,7 @@ impl<'a> Deriver<'a> {
             }
             if !p.left.is_empty() {
                 if !around.left_ready {
-                    self.walk_left(w, i, matching, &mut around.left);
+                    index.left_of(i, self.max_left, w, &mut around.left);
                     around.left_ready = true;
                 }
                 // `left` is nearest first; the context is written left to right.
@@ -249,7 +325,7 @@ impl<'a> Deriver<'a> {
             }
             if !p.right.is_empty() {
                 if around.right_at != i + n {
-                    self.walk_right(w, i + n, matching, &mut around.right);
+                    index.right_from(i + n, self.max_right, w, &mut around.right);
                     around.right_at = i + n;
                 }
                 if around.right.len() < p.right.len()
@@ -261,54 +337,6 @@ impl<'a> Deriver<'a> {
             return Some(pi);
         }
         None
-    }
-
-    /// The visible symbols left of `i`, nearest first, up to the longest
-    /// left context (the listing's `lcondiff`): ignored symbols and `[` are
-    /// skipped (the parent branch is the left context of a child), and a
-    /// whole branch `[...]` met from its right is skipped.
-    fn walk_left(&self, w: &[SymbolId], i: usize, matching: &[usize], out: &mut Vec<SymbolId>) {
-        out.clear();
-        let mut j = i;
-        while out.len() < self.max_left && j > 0 {
-            let s = w[j - 1];
-            if s == SymbolId::OPEN || self.ignored[s.index()] {
-                j -= 1;
-            } else if s == SymbolId::CLOSE {
-                j = match matching.get(j - 1) {
-                    Some(&open) if open < j - 1 => open,
-                    _ => 0,
-                };
-            } else {
-                out.push(s);
-                j -= 1;
-            }
-        }
-    }
-
-    /// The visible symbols from `i` on, up to the longest right context (the
-    /// listing's `rcondiff`): ignored symbols and whole branches `[...]` are
-    /// skipped, and a `]` ends the search (nothing to the right inside this
-    /// branch).
-    fn walk_right(&self, w: &[SymbolId], i: usize, matching: &[usize], out: &mut Vec<SymbolId>) {
-        out.clear();
-        let mut j = i;
-        while out.len() < self.max_right && j < w.len() {
-            let s = w[j];
-            if s == SymbolId::OPEN {
-                j = match matching.get(j) {
-                    Some(&close) if close > j && close != usize::MAX => close + 1,
-                    _ => w.len(),
-                };
-            } else if s == SymbolId::CLOSE {
-                break;
-            } else if self.ignored[s.index()] {
-                j += 1;
-            } else {
-                out.push(s);
-                j += 1;
-            }
-        }
     }
 }
 
@@ -324,20 +352,121 @@ fn too_many(step: u64, opts: &DeriveOptions) -> Diagnostic {
     .with_help("derive fewer steps with `-n`, or raise the limit with `--max-symbols`")
 }
 
-/// `matching[i]` is the index of the bracket matching the one at `i` (for
-/// unmatched ones: `usize::MAX`); other entries are unspecified.
-fn bracket_matches(w: &[SymbolId], matching: &mut Vec<usize>) {
-    matching.clear();
-    matching.resize(w.len(), usize::MAX);
-    let mut stack = Vec::new();
-    for (i, &s) in w.iter().enumerate() {
-        if s == SymbolId::OPEN {
-            stack.push(i);
-        } else if s == SymbolId::CLOSE {
-            if let Some(open) = stack.pop() {
-                matching[open] = i;
-                matching[i] = open;
+/// Per-step cost added to the word's length in the work count.
+const STEP_COST: u64 = 64;
+/// Cycle detection looks at words up to this length…
+const CYCLE_WORD_LIMIT: usize = 1 << 16;
+/// …and remembers at most this many of them.
+const CYCLE_TABLE_LIMIT: usize = 1 << 16;
+
+/// The state of a derivation in progress.
+struct Run {
+    rng: Rng,
+    cur: Vec<SymbolId>,
+    next: Vec<SymbolId>,
+    index: ContextIndex,
+    work: u64,
+}
+
+/// FNV-1a over the symbol ids: a fast hash to spot a word seen before.
+fn word_hash(w: &[SymbolId]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for s in w {
+        h ^= u64::from(s.0);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h ^ w.len() as u64
+}
+
+const NONE: u32 = u32::MAX;
+
+/// For context matching in one word, built in linear time per step:
+/// `prev[i]` is the position of the nearest *visible* symbol left of `i` (the
+/// listing's `lcondiff` walk: ignored symbols and `[` are skipped, so the
+/// parent branch is the left context of a child, and a whole branch `[...]`
+/// met from its right is skipped); `next[i]` is the nearest visible symbol
+/// at or after `i` (`rcondiff`: ignored symbols and whole branches are
+/// skipped, and a `]` ends the search). Following these links, a context of
+/// length k is matched in k steps however many symbols are skipped.
+#[derive(Default)]
+struct ContextIndex {
+    prev: Vec<u32>,
+    next: Vec<u32>,
+    open: Vec<u32>,
+}
+
+impl ContextIndex {
+    fn build(&mut self, w: &[SymbolId], ignored: &[bool]) {
+        let n = w.len();
+        // Matching brackets: partner[i] for brackets, NONE if unmatched.
+        let mut partner = std::mem::take(&mut self.open);
+        partner.clear();
+        partner.resize(n, NONE);
+        let mut stack: Vec<u32> = Vec::new();
+        for (i, &s) in w.iter().enumerate() {
+            if s == SymbolId::OPEN {
+                stack.push(i as u32);
+            } else if s == SymbolId::CLOSE {
+                if let Some(o) = stack.pop() {
+                    partner[o as usize] = i as u32;
+                    partner[i] = o;
+                }
             }
+        }
+        let visible =
+            |s: SymbolId| s != SymbolId::OPEN && s != SymbolId::CLOSE && !ignored[s.index()];
+        self.prev.clear();
+        self.prev.resize(n + 1, NONE);
+        for i in 1..=n {
+            let s = w[i - 1];
+            self.prev[i] = if visible(s) {
+                (i - 1) as u32
+            } else if s == SymbolId::CLOSE {
+                match partner[i - 1] {
+                    NONE => NONE,
+                    o => self.prev[o as usize],
+                }
+            } else {
+                self.prev[i - 1]
+            };
+        }
+        self.next.clear();
+        self.next.resize(n + 1, NONE);
+        for i in (0..n).rev() {
+            let s = w[i];
+            self.next[i] = if visible(s) {
+                i as u32
+            } else if s == SymbolId::OPEN {
+                match partner[i] {
+                    NONE => NONE,
+                    c => self.next[c as usize + 1],
+                }
+            } else if s == SymbolId::CLOSE {
+                NONE
+            } else {
+                self.next[i + 1]
+            };
+        }
+        self.open = partner;
+    }
+
+    /// Up to `k` visible symbols left of `i`, nearest first.
+    fn left_of(&self, i: usize, k: usize, w: &[SymbolId], out: &mut Vec<SymbolId>) {
+        out.clear();
+        let mut j = self.prev[i];
+        while out.len() < k && j != NONE {
+            out.push(w[j as usize]);
+            j = self.prev[j as usize];
+        }
+    }
+
+    /// Up to `k` visible symbols from `i` on.
+    fn right_from(&self, i: usize, k: usize, w: &[SymbolId], out: &mut Vec<SymbolId>) {
+        out.clear();
+        let mut j = self.next[i];
+        while out.len() < k && j != NONE {
+            out.push(w[j as usize]);
+            j = self.next[j as usize + 1];
         }
     }
 }
@@ -392,9 +521,74 @@ mod tests {
     }
 
     #[test]
+    fn cycles_are_skipped_exactly() {
+        // Period 3: the word at step n is the word at step n mod 3.
+        let s = sys("axiom: a\na --> b\nb --> c\nc --> a\n");
+        for (n, want) in [
+            (0, "a"),
+            (1, "b"),
+            (2, "c"),
+            (3, "a"),
+            (10, "b"),
+            (1_000_000_000_001, "c"),
+        ] {
+            let w = derive(&s, &DeriveOptions::new(n)).unwrap();
+            assert_eq!(w.display(&s.symbols), want, "n = {n}");
+        }
+        // A cycle that starts late (after a transient) and involves context:
+        // the signal runs down a filament and wraps around in two phases.
+        let src =
+            "axiom: xbaaa\nb < a --> b\nb > a --> a\nx < b --> c\nc --> x\nx > c --> y\ny --> x\n";
+        let s = sys(src);
+        let brute = |n: u64| {
+            let mut w = derive(&s, &DeriveOptions::new(0)).unwrap();
+            for _ in 0..n {
+                let one = System {
+                    axiom: w.clone(),
+                    ..s.clone()
+                };
+                w = derive(&one, &DeriveOptions::new(1)).unwrap();
+            }
+            w
+        };
+        for n in [5u64, 17, 40, 41, 42, 97] {
+            assert_eq!(
+                derive(&s, &DeriveOptions::new(n)).unwrap(),
+                brute(n),
+                "n = {n}"
+            );
+        }
+        let huge = derive(&s, &DeriveOptions::new(10u64.pow(15))).unwrap();
+        assert_eq!(huge.len(), 5);
+    }
+
+    #[test]
+    fn empty_words_and_tiny_stochastic_loops_end() {
+        let s = sys("axiom: F\nF --> * : 1\nF --> * : 1\n");
+        let w = derive(&s, &DeriveOptions::new(99_999_999_999)).unwrap();
+        assert!(w.is_empty());
+        // A stochastic word that never grows: bounded by the work limit.
+        let s = sys("axiom: F\nF --> G : 1\nF --> F : 1\nG --> F\n");
+        let err = derive(&s, &DeriveOptions::new(u64::MAX).max_symbols(1000)).unwrap_err();
+        assert_eq!(err.code, codes::TOO_MUCH_WORK);
+    }
+
+    #[test]
+    fn context_matching_is_linear_in_skipped_symbols() {
+        // 2^14 ignored G's; every one checks a left context that walks over
+        // all the others in a naive matcher.
+        let src = "axiom: a\nignore: GH\na --> bb\nb --> cc\nc --> dd\nd --> ee\ne --> ff\nf --> gg\ng --> hh\nh --> ii\ni --> jj\nj --> kk\nk --> ll\nl --> mm\nm --> nn\nn --> GG\nA < G --> X\nG --> H\nA < H --> X\nH --> G\n";
+        let s = sys(src);
+        let t = std::time::Instant::now();
+        let w = derive(&s, &DeriveOptions::new(200).max_symbols(20_000)).unwrap();
+        assert_eq!(w.len(), 1 << 14);
+        assert!(t.elapsed().as_secs_f64() < 1.0, "{:?}", t.elapsed());
+    }
+
+    #[test]
     fn endless_steps_are_bounded() {
-        // A cycle of period 2 never reaches a fixpoint.
-        let s = sys("axiom: a\na --> b\nb --> a\n");
+        // A stochastic cycle cannot be skipped: the work limit ends it.
+        let s = sys("axiom: a\na --> b : 1\na --> b : 1\nb --> a\n");
         let err = derive(&s, &DeriveOptions::new(u64::MAX).max_symbols(1000)).unwrap_err();
         assert_eq!(err.code, codes::TOO_MUCH_WORK);
         // A fixpoint ends early with the right word.

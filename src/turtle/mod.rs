@@ -85,18 +85,18 @@ impl Geometry {
 }
 
 /// The colour table `'` steps through when a system gives none (it wraps
-/// around): black for index 0, as the listing draws, then bark browns and
-/// leaf greens, so that the book's plants, which step the index once per
-/// branch order and twice for leaves, shade from stem to foliage.
+/// around): black for index 0, as the listing draws, then leaf green and
+/// flower colours, so that the book's plants (Fig. 3.4: leaves one step up
+/// the table, flowers two) come out as plants.
 pub const DEFAULT_PALETTE: [Rgb; 8] = [
     Rgb(0, 0, 0),
-    Rgb(92, 64, 51),
-    Rgb(110, 90, 40),
-    Rgb(85, 107, 47),
     Rgb(34, 139, 34),
-    Rgb(60, 160, 60),
-    Rgb(107, 142, 35),
+    Rgb(218, 165, 32),
+    Rgb(199, 21, 133),
+    Rgb(85, 107, 47),
+    Rgb(139, 69, 19),
     Rgb(154, 205, 50),
+    Rgb(106, 90, 205),
 ];
 
 #[derive(Clone, Debug)]
