@@ -151,3 +151,20 @@ fn json_objects_carry_the_contract_fields() {
     assert_eq!(v["end"], 13);
     assert_eq!(v["severity"], "error");
 }
+
+#[test]
+fn many_diagnostics_are_fast_and_capped() {
+    // 50,000 identical productions: one shadowing warning each, found and
+    // rendered in linear time; people see the first MAX_SHOWN.
+    let text = format!("axiom: F\n{}", "A < B > C --> D\n".repeat(50_001));
+    let t = std::time::Instant::now();
+    let c = compile(SourceFile::new("many.l", text));
+    assert_eq!(c.diagnostics.len(), 50_000);
+    let human = c.diagnostics.render(&c.file, false);
+    assert!(t.elapsed().as_secs_f64() < 5.0, "{:?}", t.elapsed());
+    assert_eq!(
+        human.matches("[W0006]").count(),
+        graftal::diagnostics::MAX_SHOWN
+    );
+    assert!(human.ends_with("`--format json` lists them all\n"));
+}

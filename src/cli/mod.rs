@@ -5,7 +5,7 @@
 //! Exit status: 0 success (warnings allowed), 1 the input has errors, 2 a
 //! usage or I/O problem.
 
-use crate::diagnostics::{self, codes, render_human, render_json, Diagnostic};
+use crate::diagnostics::{self, codes, render_all, render_json, Diagnostic};
 use crate::driver::{self, Compiled, Format, RunOptions};
 use crate::eval::DEFAULT_MAX_SYMBOLS;
 use crate::render::{RenderOptions, View};
@@ -339,16 +339,10 @@ fn report<'d>(
     ds: impl Iterator<Item = &'d Diagnostic>,
     format: OutputFormat,
 ) {
-    let ds: Vec<&Diagnostic> = ds.collect();
+    let ds: Vec<Diagnostic> = ds.cloned().collect();
     let text = match format {
-        OutputFormat::Json => {
-            let owned: Vec<Diagnostic> = ds.into_iter().cloned().collect();
-            render_json(&owned, &c.file)
-        }
-        OutputFormat::Human => ds
-            .into_iter()
-            .map(|d| render_human(d, &c.file, io.terminal))
-            .collect(),
+        OutputFormat::Json => render_json(&ds, &c.file),
+        OutputFormat::Human => render_all(&ds, &c.file, io.terminal),
     };
     let _ = write!(io.stderr, "{text}");
 }

@@ -9,7 +9,7 @@ pub mod codes;
 mod render;
 
 pub use codes::Code;
-pub use render::{render_human, render_json, to_json};
+pub use render::{render_all, render_human, render_json, to_json, MAX_SHOWN};
 
 use crate::ir::Span;
 use crate::source::SourceFile;
@@ -130,10 +130,7 @@ impl Diagnostics {
     }
     /// Renders all for people (see [`render_human`]).
     pub fn render(&self, file: &SourceFile, colour: bool) -> String {
-        self.0
-            .iter()
-            .map(|d| render_human(d, file, colour))
-            .collect()
+        render_all(&self.0, file, colour)
     }
 }
 

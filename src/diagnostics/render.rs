@@ -8,6 +8,32 @@ use serde_json::{json, Value};
 
 /// Renders one diagnostic for a person; `colour` only on a terminal.
 pub fn render_human(d: &Diagnostic, file: &SourceFile, colour: bool) -> String {
+    render_all(std::slice::from_ref(d), file, colour)
+}
+
+/// At most this many diagnostics are rendered for people; the rest are
+/// counted in a last line (JSON output has them all).
+pub const MAX_SHOWN: usize = 200;
+
+/// Renders diagnostics of one file for a person, the file's line index
+/// built once for all of them.
+pub fn render_all(ds: &[Diagnostic], file: &SourceFile, colour: bool) -> String {
+    let source = Source::from(file.text.as_str());
+    let mut out = String::new();
+    for d in ds.iter().take(MAX_SHOWN) {
+        out.push_str(&render_one(d, file, &source, colour));
+    }
+    if ds.len() > MAX_SHOWN {
+        let errors = ds[MAX_SHOWN..].iter().filter(|d| d.is_error()).count();
+        out.push_str(&format!(
+            "... and {} more diagnostics ({errors} errors) not shown; `--format json` lists them all\n",
+            ds.len() - MAX_SHOWN
+        ));
+    }
+    out
+}
+
+fn render_one(d: &Diagnostic, file: &SourceFile, source: &Source<&str>, colour: bool) -> String {
     let kind = match d.severity {
         Severity::Error => ReportKind::Error,
         Severity::Warning => ReportKind::Warning,
@@ -59,7 +85,7 @@ pub fn render_human(d: &Diagnostic, file: &SourceFile, colour: bool) -> String {
     let mut buf = Vec::new();
     report
         .finish()
-        .write((name, Source::from(file.text.as_str())), &mut buf)
+        .write((name, source.clone()), &mut buf)
         .expect("writing to a Vec cannot fail");
     String::from_utf8_lossy(&buf).into_owned()
 }

@@ -7,6 +7,7 @@ use crate::ir::{
     Alternative, Angle, Axis, Condition, ContextFilter, Notation, Production, Span, SpanTable,
     SymbolId, System, TurtleOp, Word,
 };
+use std::collections::HashMap;
 
 /// The pfg turtle: what each reserved character does (Appendix A's `draw`,
 /// the 3D symbols of §2 Fig. 2.12, and `{ } ! '` of §2 and §3.1).
@@ -361,13 +362,15 @@ fn check_brackets(
     true
 }
 
-/// (left, predecessor, right, weighted, span) of a lowered production.
-type ProductionKey = (Vec<SymbolId>, Vec<SymbolId>, Vec<SymbolId>, bool, Span);
+/// (left, predecessor, right) of a production: productions with the same
+/// key are alternatives of one stochastic choice, or shadow each other.
+type ProductionKey = (Vec<SymbolId>, Vec<SymbolId>, Vec<SymbolId>);
 
 fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
-    // (left, predecessor, right) of each production lowered so far, and
-    // whether it carried a weight; for grouping stochastic alternatives.
-    let mut keys: Vec<ProductionKey> = Vec::new();
+    // For each lowered production: whether it carried a weight, its span.
+    let mut keys: Vec<(bool, Span)> = Vec::new();
+    // The index of the first production with each key.
+    let mut first_of: HashMap<ProductionKey, usize> = HashMap::new();
     for p in prods {
         let mut ok = true;
         for part in [p.left.as_ref(), Some(&p.predecessor), p.right.as_ref()]
@@ -402,11 +405,11 @@ fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
         let right = p.right.as_ref().map(|s| cx.word(s).0).unwrap_or_default().0;
         let (succ, succ_spans) = cx.word(&p.successor);
         let weighted = p.weight.is_some();
-        let existing = keys
-            .iter()
-            .position(|(l, pr, r, _, _)| *l == left && *pr == pred.0 && *r == right);
+        let existing = first_of
+            .get(&(left.clone(), pred.0.clone(), right.clone()))
+            .copied();
         if let Some(i) = existing {
-            let (_, _, _, first_weighted, first_span) = keys[i].clone();
+            let (first_weighted, first_span) = keys[i].clone();
             match (first_weighted, weighted) {
                 (true, true) => {
                     let prod = &mut cx.sys.productions[i];
@@ -451,13 +454,10 @@ fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
                 }
             }
         }
-        keys.push((
-            left.clone(),
-            pred.0.clone(),
-            right.clone(),
-            weighted,
-            p.span.clone(),
-        ));
+        first_of
+            .entry((left.clone(), pred.0.clone(), right.clone()))
+            .or_insert(keys.len());
+        keys.push((weighted, p.span.clone()));
         cx.sys.productions.push(Production {
             left,
             predecessor: pred.0,
