@@ -4,7 +4,7 @@
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
-use crate::ir::{SpanTable, System, Word};
+use crate::ir::{SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
 use crate::turtle::{self, Geometry};
@@ -84,6 +84,8 @@ pub struct RunOptions {
     pub steps: Option<u64>,
     pub seed: u64,
     pub max_symbols: usize,
+    /// The most turtle moves interpreted (see [`MAX_MOVES`]).
+    pub max_moves: usize,
 }
 
 impl Default for RunOptions {
@@ -92,6 +94,7 @@ impl Default for RunOptions {
             steps: None,
             seed: 0,
             max_symbols: DEFAULT_MAX_SYMBOLS,
+            max_moves: MAX_MOVES,
         }
     }
 }
@@ -118,10 +121,47 @@ pub fn derive(sys: &System, opts: &RunOptions) -> Result<Word, Diagnostic> {
     derive_with_progress(sys, opts, |_, _| {})
 }
 
+/// The most turtle moves a word may have to be interpreted: each becomes a
+/// segment or a point kept in memory (about 64 bytes, and as much again to
+/// draw it), so 30 million stay within a few GB.
+pub const MAX_MOVES: usize = 30_000_000;
+
+/// Interprets `word`, refusing words whose geometry would not fit in memory
+/// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too.
+pub fn interpret(
+    sys: &System,
+    word: &Word,
+    opts: &RunOptions,
+    paths: bool,
+) -> Result<Geometry, Diagnostic> {
+    let moves = word
+        .0
+        .iter()
+        .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
+        .count();
+    if moves > opts.max_moves {
+        return Err(Diagnostic::global(
+            codes::TOO_MUCH_GEOMETRY,
+            format!(
+                "the word moves the turtle {moves} times, more than can be drawn ({})",
+                opts.max_moves
+            ),
+        )
+        .with_note(format!("the derived word has {} symbols", word.len()))
+        .with_help("draw fewer steps with `-n`; `derive` has no such limit"));
+    }
+    Ok(turtle::interpret_with(
+        sys,
+        &word.0,
+        opts.seed,
+        turtle::TurtleOptions { paths },
+    ))
+}
+
 /// Derives and interprets: the geometry of the system.
 pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
     let word = derive(sys, opts)?;
-    let g = turtle::interpret(sys, &word.0, opts.seed);
+    let g = interpret(sys, &word, opts, false)?;
     Ok((word, g))
 }
 
@@ -198,7 +238,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let t0 = Instant::now();
     let word = derive(sys, opts)?;
     let t1 = Instant::now();
-    let g = turtle::interpret(sys, &word.0, opts.seed);
+    let g = interpret(sys, &word, opts, false)?;
     let t2 = Instant::now();
     let secs = |d: Duration| d.as_secs_f64();
     Ok(Stats {

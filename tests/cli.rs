@@ -247,3 +247,22 @@ fn kolams_are_drawn_as_splines_through_the_turtle_positions() {
         assert!(svg.matches('L').count() > 100, "{name}: a long curve");
     }
 }
+
+#[test]
+fn geometry_too_large_to_draw_is_an_error_not_an_out_of_memory() {
+    use graftal::driver::{compile, geometry, load, RunOptions};
+    let c = compile(load("std:koch-island").unwrap());
+    let sys = c.system.unwrap();
+    let opts = RunOptions {
+        steps: Some(3),
+        max_moves: 1000,
+        ..RunOptions::default()
+    };
+    let err = geometry(&sys, &opts).unwrap_err();
+    assert_eq!(err.code, graftal::diagnostics::codes::TOO_MUCH_GEOMETRY);
+    let opts = RunOptions {
+        max_moves: 2048,
+        ..opts
+    };
+    assert_eq!(geometry(&sys, &opts).unwrap().1.segments.len(), 2048);
+}

@@ -159,6 +159,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
             steps,
             seed: case.seed,
             max_symbols: MAX_SYMBOLS,
+            max_moves: MAX_SYMBOLS,
         };
         let which = format!("(steps {steps:?}, seed {})", case.seed);
         let result = stage(&format!("driver::geometry {which}"), || {
@@ -903,6 +904,7 @@ fn cli_derive_on_mutated_files() {
                         steps,
                         seed,
                         max_symbols: MAX_SYMBOLS,
+                        ..RunOptions::default()
                     },
                 )
                 .map(|w| w.display(&sys.symbols))

@@ -204,12 +204,7 @@ where
             };
             with_system(io, &args, |io, c, sys, opts| {
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let g = crate::turtle::interpret_with(
-                    sys,
-                    &word.0,
-                    opts.seed,
-                    crate::turtle::TurtleOptions { paths: spline },
-                );
+                let g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
                 if g.is_empty() {
                     report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
                 }
@@ -298,6 +293,7 @@ fn with_system(
         steps: a.steps,
         seed: a.seed,
         max_symbols: a.max_symbols,
+        ..RunOptions::default()
     };
     match f(io, &c, sys, &opts) {
         Ok(code) => code,

@@ -282,6 +282,14 @@ e.g. `a --> b`, `b --> a` for a billion steps.
 Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
 
+    TOO_MUCH_GEOMETRY = "E0303", "picture too large to draw",
+"The derived word moves the turtle more times than graftal draws (30
+million): every move becomes a segment or a point held in memory, and
+drawing needs as much again. `derive` is not limited this way.
+
+Draw fewer steps with `-n`. Beyond a few million segments a picture shows
+little more than at a step less.";
+
     HEADER_ORDER = "W0001", "header out of the listing's order",
 "The Appendix A program reads its headers in a fixed order: derivation
 length, angle factor, scale factor, axiom, ignore. graftal accepts them in

@@ -41,7 +41,7 @@ impl DeriveOptions {
             steps,
             seed: 0,
             max_symbols: DEFAULT_MAX_SYMBOLS,
-            max_work: 20 * DEFAULT_MAX_SYMBOLS as u64,
+            max_work: (DEFAULT_MAX_SYMBOLS as u64).saturating_mul(20),
         }
     }
     pub fn seed(mut self, seed: u64) -> Self {
@@ -51,7 +51,7 @@ impl DeriveOptions {
     /// Sets the symbol limit and a work limit proportional to it.
     pub fn max_symbols(mut self, max: usize) -> Self {
         self.max_symbols = max;
-        self.max_work = 20 * max as u64;
+        self.max_work = (max as u64).saturating_mul(20);
         self
     }
 }

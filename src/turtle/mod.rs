@@ -99,7 +99,9 @@ pub const DEFAULT_PALETTE: [Rgb; 8] = [
     Rgb(106, 90, 205),
 ];
 
-#[derive(Clone, Debug)]
+const NO_HISTORY: u32 = u32::MAX;
+
+#[derive(Clone, Copy, Debug)]
 struct State {
     pos: Vec3,
     h: Vec3,
@@ -108,7 +110,10 @@ struct State {
     length: f64,
     width: f64,
     colour: usize,
-    colour_history: Vec<usize>,
+    /// The colours `PreviousColour` goes back to: the head of a list kept
+    /// in an arena shared by all states (so a push copies one index, not
+    /// the history), `NO_HISTORY` when empty.
+    history: u32,
     swapped: bool,
 }
 
@@ -178,10 +183,12 @@ pub fn interpret_with(
         length: sys.settings.step,
         width: sys.settings.width,
         colour: 0,
-        colour_history: Vec::new(),
+        history: NO_HISTORY,
         swapped: false,
     };
     let mut stack: Vec<State> = Vec::new();
+    // Arena of the colour histories: (previous entry, colour).
+    let mut history: Vec<(u32, usize)> = Vec::new();
     let mut polys: Vec<(Vec<Vec3>, usize)> = Vec::new();
     let mut g = Geometry::default();
     // Index into g.paths of the current branch's path, and of the enclosing
@@ -245,7 +252,7 @@ pub fn interpret_with(
                 (st.h, st.l) = rotate(st.h, st.l, c, s);
             }
             TurtleOp::Push => {
-                stack.push(st.clone());
+                stack.push(st);
                 g.max_depth = g.max_depth.max(stack.len());
                 if options.paths {
                     path_stack.push(path);
@@ -273,7 +280,8 @@ pub fn interpret_with(
             }
             TurtleOp::DecrementWidth => st.width *= sys.settings.width_factor,
             TurtleOp::NextColour => {
-                st.colour_history.push(st.colour);
+                history.push((st.history, st.colour));
+                st.history = (history.len() - 1) as u32;
                 if sys.colours.is_empty() {
                     st.colour = (st.colour + 1) % palette.len();
                 } else {
@@ -281,8 +289,10 @@ pub fn interpret_with(
                 }
             }
             TurtleOp::PreviousColour => {
-                if let Some(c) = st.colour_history.pop() {
+                if st.history != NO_HISTORY {
+                    let (previous, c) = history[st.history as usize];
                     st.colour = c;
+                    st.history = previous;
                 }
             }
             TurtleOp::SwapTurns => st.swapped = !st.swapped,
@@ -367,6 +377,34 @@ mod tests {
         assert!(close(g.paths[1].points[2], [1.0, 3.0, 0.0]));
         // Without the option nothing is recorded.
         assert!(interpret(&sys, &sys.axiom.0, 0).paths.is_empty());
+    }
+
+    #[test]
+    fn branching_does_not_copy_the_colour_history() {
+        // 2^16 colour changes before 2^16 branches: a push must not copy them.
+        let sys = read_ok("axiom: 'X\n' --> ''\nX --> X[F]X\n");
+        let word = crate::eval::derive(&sys, &crate::eval::DeriveOptions::new(16)).unwrap();
+        let t = std::time::Instant::now();
+        let g = interpret(&sys, &word.0, 0);
+        assert_eq!(g.segments.len(), (1 << 16) - 1);
+        assert!(t.elapsed().as_secs_f64() < 1.0, "{:?}", t.elapsed());
+    }
+
+    #[test]
+    fn previous_colour_goes_back_through_the_history_per_branch() {
+        let mut sys = read_ok("axiom: F\n");
+        let next = sys.intern("n");
+        let prev = sys.intern("p");
+        sys.set_interpretation(next, TurtleOp::NextColour);
+        sys.set_interpretation(prev, TurtleOp::PreviousColour);
+        sys.colours = vec![Rgb(1, 1, 1), Rgb(2, 2, 2), Rgb(3, 3, 3)];
+        let word: Vec<SymbolId> = "FnFnF[pF]FpFpFpF"
+            .chars()
+            .map(|c| sys.symbols.get(&c.to_string()).unwrap())
+            .collect();
+        let g = interpret(&sys, &word, 0);
+        let colours: Vec<u8> = g.segments.iter().map(|s| s.colour.0).collect();
+        assert_eq!(colours, [1, 2, 3, 2, 3, 2, 1, 1]);
     }
 
     #[test]
