@@ -50,9 +50,34 @@ pub struct Compiled {
     pub diagnostics: Diagnostics,
 }
 
+/// The largest source file read (8 MiB): L-system files are a few KB, and
+/// reading keeps per-character spans (about 150 bytes per input byte).
+pub const MAX_SOURCE_BYTES: usize = 8 << 20;
+
 /// Parses, lowers and validates `file`, collecting every diagnostic.
 pub fn compile(file: SourceFile) -> Compiled {
     let mut diags = Diagnostics::default();
+    if file.text.len() > MAX_SOURCE_BYTES {
+        diags.push(
+            Diagnostic::global(
+                codes::FILE_TOO_LARGE,
+                format!(
+                    "the file has {} bytes, more than the {} graftal reads",
+                    file.text.len(),
+                    MAX_SOURCE_BYTES
+                ),
+            )
+            .with_help(
+                "an L-system file holds rules, not derived words: write the axiom and productions",
+            ),
+        );
+        return Compiled {
+            file,
+            system: None,
+            spans: SpanTable::default(),
+            diagnostics: diags,
+        };
+    }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
     let (system, spans) = match ext.as_str() {
         "linf" | "stl" => {
@@ -229,6 +254,8 @@ pub struct Stats {
 
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct StageTimes {
+    /// Reading and checking the file (filled in by the caller that did it).
+    pub parse: f64,
     pub derive: f64,
     pub interpret: f64,
 }
@@ -249,6 +276,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         bbox: g.bbox().unwrap_or([0.0; 6]),
         max_depth: g.max_depth,
         time: StageTimes {
+            parse: 0.0,
             derive: secs(t1 - t0),
             interpret: secs(t2 - t1),
         },

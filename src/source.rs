@@ -13,8 +13,14 @@ pub struct SourceFile {
 impl SourceFile {
     pub fn new(name: impl Into<String>, text: impl Into<String>) -> Self {
         let text = text.into();
+        // LF, CR LF and a lone CR each end a line, as in the lexer.
+        let bytes = text.as_bytes();
         let mut line_starts = vec![0];
-        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
+        for (i, &b) in bytes.iter().enumerate() {
+            if b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')) {
+                line_starts.push(i + 1);
+            }
+        }
         SourceFile {
             name: name.into(),
             text,
@@ -70,5 +76,8 @@ mod tests {
         assert_eq!(f.line_col(8), (2, 4));
         assert_eq!(f.line_col(10), (3, 1));
         assert_eq!(f.line_col(999), (3, 5));
+        let mac = SourceFile::new("m.l", "ab\rcd\r\nef");
+        assert_eq!(mac.line_col(3), (2, 1));
+        assert_eq!(mac.line_col(7), (3, 1));
     }
 }

@@ -78,6 +78,22 @@ fn too_many_symbols_is_an_error_with_status_1() {
     assert_eq!(o.status, 1);
     assert!(o.stderr.contains("E0301"), "{}", o.stderr);
     assert!(o.stdout.is_empty());
+    // The axiom counts too.
+    let o = graftal(&["derive", "std:koch-island", "-n", "0", "--max-symbols", "5"]);
+    assert_eq!(o.status, 1);
+    assert!(o.stderr.contains("E0301"), "{}", o.stderr);
+    assert_eq!(
+        graftal(&[
+            "render",
+            "std:koch-island",
+            "-o",
+            "x.png",
+            "--size",
+            "9000x10"
+        ])
+        .status,
+        2
+    );
 }
 
 #[test]
@@ -105,6 +121,9 @@ fn stats_json_has_the_contract_fields() {
     assert_eq!(v["segments"], 256);
     assert_eq!(v["polygons"], 0);
     assert_eq!(v["max_depth"], 0);
+    for stage in ["parse", "derive", "interpret"] {
+        assert!(v["time"][stage].as_f64().unwrap() >= 0.0, "{stage}");
+    }
     assert!(v["symbols"].as_u64().unwrap() > 256);
     let bbox: Vec<f64> = v["bbox"]
         .as_array()
@@ -265,4 +284,15 @@ fn geometry_too_large_to_draw_is_an_error_not_an_out_of_memory() {
         ..opts
     };
     assert_eq!(geometry(&sys, &opts).unwrap().1.segments.len(), 2048);
+}
+
+#[test]
+fn a_huge_file_is_refused_with_a_diagnostic() {
+    let big = temp("big.l");
+    let mut text = String::from("axiom: ");
+    text.push_str(&"F".repeat(graftal::driver::MAX_SOURCE_BYTES));
+    std::fs::write(&big, text).unwrap();
+    let o = graftal(&["check", big.to_str().unwrap()]);
+    assert_eq!(o.status, 1);
+    assert!(o.stderr.contains("E0011"), "{}", o.stderr);
 }

@@ -88,6 +88,8 @@ fn each_problem_has_its_code() {
         ("unterminated-comment.l", codes::UNTERMINATED_COMMENT),
         ("shadowed.l", codes::SHADOWED_PRODUCTION),
         ("invalid-character.l", codes::INVALID_CHARACTER),
+        ("star-prefix-and-ignored-bracket.l", codes::TEXT_AFTER_STAR),
+        ("star-prefix-and-ignored-bracket.l", codes::BRACKET_IGNORED),
     ];
     for (file, code) in cases {
         assert!(
@@ -167,4 +169,24 @@ fn many_diagnostics_are_fast_and_capped() {
         graftal::diagnostics::MAX_SHOWN
     );
     assert!(human.ends_with("`--format json` lists them all\n"));
+}
+
+#[test]
+fn a_string_starting_with_star_is_empty_as_in_the_listing() {
+    let path = dir().join("star-prefix-and-ignored-bracket.l");
+    let c = compile(SourceFile::new(
+        "s.l",
+        std::fs::read_to_string(path).unwrap(),
+    ));
+    let sys = c.system.expect("warnings only");
+    // `*A < B` has an empty left context, so B -> C; `A --> *B` erases A.
+    let w = graftal::driver::derive(
+        &sys,
+        &graftal::driver::RunOptions {
+            steps: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(w.display(&sys.symbols), "C");
 }

@@ -85,14 +85,17 @@ enum Command {
     List,
 }
 
+/// The largest picture side: 8192² pixels take 256 MB.
+const MAX_SIDE: u32 = 8192;
+
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT"))?;
     let w: u32 = w.trim().parse().map_err(|_| format!("bad width `{w}`"))?;
     let h: u32 = h.trim().parse().map_err(|_| format!("bad height `{h}`"))?;
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
-        return Err("width and height must be 1..=16384".into());
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(format!("width and height must be 1..={MAX_SIDE}"));
     }
     Ok((w, h))
 }
@@ -160,15 +163,16 @@ where
             }
             status
         }
-        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts| {
+        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts, _| {
             let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
             let text = word.display(&sys.symbols);
             let _ = writeln!(io.stdout, "{text}");
             let _ = c;
             Ok(0)
         }),
-        Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts| {
-            let s = driver::stats(sys, opts).map_err(|d| vec![d])?;
+        Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts, parse| {
+            let mut s = driver::stats(sys, opts).map_err(|d| vec![d])?;
+            s.time.parse = parse;
             match a.format {
                 OutputFormat::Json => {
                     let _ = writeln!(
@@ -181,8 +185,8 @@ where
                     let b = s.bbox;
                     let _ = writeln!(
                         io.stdout,
-                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\ntime       derive {:.6}s, interpret {:.6}s",
-                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.time.derive, s.time.interpret
+                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
+                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.time.parse, s.time.derive, s.time.interpret
                     );
                 }
             }
@@ -202,7 +206,7 @@ where
                 );
                 return 2;
             };
-            with_system(io, &args, |io, c, sys, opts| {
+            with_system(io, &args, |io, c, sys, opts, _| {
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
                 let g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
                 if g.is_empty() {
@@ -275,6 +279,7 @@ fn with_system(
         &Compiled,
         &crate::ir::System,
         &RunOptions,
+        f64,
     ) -> Result<i32, Vec<Diagnostic>>,
 ) -> i32 {
     let file = match driver::load(&a.file) {
@@ -284,7 +289,9 @@ fn with_system(
             return 2;
         }
     };
+    let t = std::time::Instant::now();
     let c = driver::compile(file);
+    let parse_seconds = t.elapsed().as_secs_f64();
     report(io, &c, c.diagnostics.0.iter(), a.format);
     let Some(sys) = &c.system else {
         return 1;
@@ -295,7 +302,7 @@ fn with_system(
         max_symbols: a.max_symbols,
         ..RunOptions::default()
     };
-    match f(io, &c, sys, &opts) {
+    match f(io, &c, sys, &opts, parse_seconds) {
         Ok(code) => code,
         Err(ds) => {
             report(io, &c, ds.iter(), a.format);

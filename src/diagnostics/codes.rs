@@ -59,6 +59,11 @@ graftal does not have. `.l` files are read as pfg.
 Example:
     graftal check tree.stl";
 
+    FILE_TOO_LARGE = "E0011", "file too large",
+"graftal reads source files of up to 8 MiB. L-system files are a few
+kilobytes: a larger one is most likely a derived word or another kind of
+file given by mistake.";
+
     INVALID_CHARACTER = "E0001", "invalid character",
 "The file contains a control character (or another character that cannot be
 an L-system symbol). Symbols are printable characters; tabs, spaces and line
@@ -328,6 +333,29 @@ Example:
 derivation length 0, angle factor 4 (δ = 90°), scale factor 100.
 
 Example: a file without `angle factor:` draws with δ = 90°.";
+
+    BRACKET_IGNORED = "W0007", "bracket in the ignore list",
+"`[` and `]` cannot be ignored: context matching always skips whole
+branches and enters the parent branch (the listing's `lcondiff` and
+`rcondiff`). graftal drops brackets from `ignore:` and says so.
+
+Example:
+    ignore: +-[]
+
+Write:
+    ignore: +-";
+
+    TEXT_AFTER_STAR = "W0008", "text after `*` is ignored",
+"In a production, `*` stands for the empty string, and the Appendix A
+listing reads *any* string that starts with `*` as empty: `*AB` is empty,
+not the symbols `*AB`. graftal does the same and warns, because the text
+after the `*` was probably meant to count.
+
+Example:
+    F --> *F
+
+Write:
+    F --> *      (empty)   or   F --> F";
 
     SHADOWED_PRODUCTION = "W0006", "production can never apply",
 "An earlier production with the same predecessor and contexts always

@@ -141,6 +141,9 @@ impl<'a> Deriver<'a> {
             index: ContextIndex::default(),
             work: 0,
         };
+        if run.cur.len() > opts.max_symbols {
+            return Err(too_many(0, opts));
+        }
         // Hashes of the small words seen so far (deterministic systems only).
         let mut seen: HashMap<u64, u64> = HashMap::new();
         let mut step = 0;

@@ -109,6 +109,17 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
                 .with_help("close the comment with `*/`"),
             ),
             Err(LexError::InvalidCharacter) => {
+                // A run of invalid characters is one problem.
+                if let Some(last) = diags.0.last_mut() {
+                    if last.code == codes::INVALID_CHARACTER
+                        && last.span.as_ref().is_some_and(|s| s.end == span.start)
+                    {
+                        let start = last.span.as_ref().map_or(span.start, |s| s.start);
+                        last.span = Some(start..span.end);
+                        last.message = "invalid characters".to_string();
+                        continue;
+                    }
+                }
                 let ch = src[span.clone()].chars().next().unwrap_or('\0');
                 diags.push(
                     Diagnostic::at(
@@ -174,6 +185,17 @@ mod tests {
     #[test]
     fn hash_and_unicode_are_symbols() {
         assert_eq!(kinds("#é"), vec![Token::Char("#"), Token::Char("é")]);
+    }
+
+    #[test]
+    fn a_run_of_invalid_characters_is_one_diagnostic() {
+        let mut d = Diagnostics::default();
+        let src = format!("F{}F\u{7}", "\u{7}".repeat(1000));
+        let toks = lex(&src, &mut d);
+        assert_eq!(toks.len(), 2);
+        assert_eq!(d.len(), 2);
+        assert_eq!(d.0[0].span, Some(1..1001));
+        assert_eq!(d.0[1].span, Some(1002..1003));
     }
 
     #[test]

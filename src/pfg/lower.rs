@@ -250,6 +250,17 @@ fn lower_header(cx: &mut Ctx<'_>, idx: usize, h: &Header) {
                     .with_label(format!("{text} steps"))
                     .with_help("the derivation length counts steps: use 0 or more"),
             ),
+            Err(e) if *e.kind() == std::num::IntErrorKind::PosOverflow => cx.diags.push(
+                Diagnostic::at(
+                    codes::BAD_HEADER_VALUE,
+                    span,
+                    format!("derivation length {text} is too large"),
+                )
+                .with_label(format!("at most {}", i64::MAX))
+                .with_help(
+                    "no system needs that many steps; `--max-symbols` would stop it long before",
+                ),
+            ),
             Err(_) => cx
                 .diags
                 .push(bad_value(span, &text, "a whole number of steps")),
@@ -310,8 +321,19 @@ fn lower_header(cx: &mut Ctx<'_>, idx: usize, h: &Header) {
             cx.spans.axiom = spans;
         }
         _ => {
+            if let Some((c, bspan)) = h.value.chars.iter().find(|(c, _)| c == "[" || c == "]") {
+                cx.diags.push(
+                    Diagnostic::at(codes::BRACKET_IGNORED, bspan.clone(), format!("`{c}` cannot be ignored"))
+                        .with_label("dropped from the ignore list")
+                        .with_note("context matching always skips branches; the listing's behaviour for ignored brackets enters or leaves branches inconsistently")
+                        .with_help("remove the brackets from `ignore:`"),
+                );
+            }
             let (w, _) = cx.word(&h.value);
-            let mut set = w.0;
+            let mut set: Vec<SymbolId> =
+                w.0.into_iter()
+                    .filter(|&s| s != SymbolId::OPEN && s != SymbolId::CLOSE)
+                    .collect();
             set.sort();
             set.dedup();
             cx.sys.context = ContextFilter::Ignore(set);

@@ -202,7 +202,9 @@ fn range(s: SimpleSpan) -> Span {
 }
 
 /// The characters of the tokens as one-character symbols with their spans.
-fn symbols(toks: &[Tok<'_>], src: &str) -> Symbols {
+/// With `star_empty` (production parts, as the listing's `enter`), a string
+/// starting with `*` is the empty string; header values are read as written.
+fn symbols(toks: &[Tok<'_>], src: &str, star_empty: bool) -> Symbols {
     let mut chars = Vec::new();
     for (_, span) in toks {
         let text = &src[range(*span)];
@@ -215,7 +217,7 @@ fn symbols(toks: &[Tok<'_>], src: &str) -> Symbols {
         (Some(a), Some(b)) => a.1.start..b.1.end,
         _ => 0..0,
     };
-    let star = toks.len() == 1 && toks[0].0 == Token::Star;
+    let star = star_empty && toks.first().is_some_and(|t| t.0 == Token::Star);
     if star {
         chars.clear();
     }
@@ -248,7 +250,7 @@ fn build(line: RawLine<'_>, src: &str, diags: &mut Diagnostics) -> Option<Item> 
                     _ => "",
                 })
                 .collect();
-            let value = symbols(&value, src);
+            let value = symbols(&value, src, false);
             let end = if value.chars.is_empty() {
                 key_span.end + 1
             } else {
@@ -379,7 +381,20 @@ fn build_rule(
             );
         }
     }
-    let pred_sym = symbols(pred, src);
+    // The listing's `enter` reads any string starting with `*` as empty.
+    for part in [left, Some(pred), right, Some(rhs)].into_iter().flatten() {
+        if part.len() > 1 && part[0].0 == Token::Star {
+            let rest = part[1].1.start..part[part.len() - 1].1.end;
+            diags.push(
+                Diagnostic::at(codes::TEXT_AFTER_STAR, rest, "text after `*` is ignored")
+                    .with_label("not read")
+                    .with_secondary(range(part[0].1), "`*` makes this string empty")
+                    .with_note("the Appendix A listing reads any string that starts with `*` as the empty string")
+                    .with_help("write `*` alone for an empty string, or remove the `*`"),
+            );
+        }
+    }
+    let pred_sym = symbols(pred, src, true);
     if pred.is_empty() && seps.is_empty() {
         diags.push(
             Diagnostic::at(
@@ -403,7 +418,7 @@ fn build_rule(
     }
 
     // The successor and its weight.
-    let successor = symbols(rhs, src);
+    let successor = symbols(rhs, src, true);
     if rhs.is_empty() {
         let at = range(arrow.1);
         let at_eof = src[at.end..].trim().is_empty();
@@ -423,7 +438,10 @@ fn build_rule(
     let weight = match weight {
         None => None,
         Some((colon, toks)) => {
-            let text: String = toks.iter().map(|t| &src[range(t.1)]).collect();
+            let text: String = match (toks.first(), toks.last()) {
+                (Some(a), Some(b)) => src[a.1.start..b.1.end].to_string(),
+                _ => String::new(),
+            };
             let wspan = if toks.is_empty() {
                 range(*colon)
             } else {
@@ -470,9 +488,9 @@ fn build_rule(
         return None;
     }
     Some(Production {
-        left: left.map(|l| symbols(l, src)),
+        left: left.map(|l| symbols(l, src, true)),
         predecessor: pred_sym,
-        right: right.map(|r| symbols(r, src)),
+        right: right.map(|r| symbols(r, src, true)),
         successor,
         weight,
         arrow: range(arrow.1),
