@@ -5,6 +5,12 @@
 //! L = −x and up U = H × L = +z, so a 2D system drawn in 3D lies in the
 //! xy-plane and looks, from the default view (down −z), as in the papers.
 //! Rotations are the book's matrices (see [`crate::ir::TurtleOp`]).
+//!
+//! `|` turns by exactly 180°. The Appendix A listing, which keeps the heading
+//! as an integer multiple of δ, turns by `angle factor / 2` steps instead, so
+//! for an odd angle factor its `|` falls short of a half turn; graftal
+//! follows the book's definition (§2.3: `R_U(180°)`), which the listing
+//! meets for every even angle factor.
 
 use crate::eval::Rng;
 use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
