@@ -5,7 +5,7 @@
 //! Exit status: 0 success (warnings allowed), 1 the input has errors, 2 a
 //! usage or I/O problem.
 
-use crate::diagnostics::{self, codes, render_all, render_json, Diagnostic};
+use crate::diagnostics::{self, render_all, render_json, Diagnostic};
 use crate::driver::{self, Compiled, Format, RunOptions};
 use crate::eval::DEFAULT_MAX_SYMBOLS;
 use crate::render::{RenderOptions, View};
@@ -163,11 +163,10 @@ where
             }
             status
         }
-        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts, _| {
+        Command::Derive(a) => with_system(io, &a, |io, _c, sys, opts, _| {
             let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
             let text = word.display(&sys.symbols);
             let _ = writeln!(io.stdout, "{text}");
-            let _ = c;
             Ok(0)
         }),
         Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts, parse| {
@@ -362,6 +361,5 @@ pub fn main() -> i32 {
         stderr: &mut err,
         terminal,
     };
-    let _ = codes::ALL;
     run(std::env::args_os(), &mut io)
 }

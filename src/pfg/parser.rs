@@ -48,10 +48,6 @@ fn line_parser<'tokens, 'src: 'tokens, I>(
 where
     I: ValueInput<'tokens, Token = Token<'src>, Span = SimpleSpan>,
 {
-    let spanned = |p: chumsky::primitive::Any<I, extra::Err<Rich<'tokens, Token<'src>>>>| {
-        p.map_with(|t, e| (t, e.span()))
-    };
-    let _ = spanned;
     let word = select! { Token::Word(w) => Token::Word(w) }.map_with(|t, e| (t, e.span()));
     let colon = just(Token::Colon).map_with(|t, e| (t, e.span()));
     let not_newline = any()
