@@ -1,5 +1,10 @@
 //! The standard library: the classic systems of the seeds, addressable as
-//! `std:NAME`. The files live in `stdlib/` and are compiled into the binary.
+//! `std:NAME`. The files live in `stdlib/<notation>/` and are compiled into
+//! the binary. pfg entries are named by their file name (`std:koch-island`,
+//! also `std:pfg/koch-island`); the other notations' entries carry their
+//! folder (`std:linf/fig03-koch-snowflake`, `std:stl/fig04-plant`), and the
+//! entry's file name ends in the notation's extension, which is what picks
+//! the front end.
 
 /// One stdlib entry: its name, the file name it is shown under, its text.
 pub struct Entry {
@@ -16,9 +21,16 @@ macro_rules! entry {
             text: include_str!(concat!("../stdlib/pfg/", $name, ".l")),
         }
     };
+    ($dir:literal / $name:literal . $ext:literal) => {
+        Entry {
+            name: concat!($dir, "/", $name),
+            file: concat!("std:", $dir, "/", $name, ".", $ext),
+            text: include_str!(concat!("../stdlib/", $dir, "/", $name, ".", $ext)),
+        }
+    };
 }
 
-/// Every entry, sorted by name.
+/// Every entry: pfg's sorted by name, then each other notation's.
 pub static ENTRIES: &[Entry] = &[
     entry!("algae"),
     entry!("anabaena"),
@@ -69,10 +81,16 @@ pub static ENTRIES: &[Entry] = &[
     entry!("stochastic-bush"),
 ];
 
-/// The entry called `name` (with or without the `.l` extension).
+/// The entry called `name` (with or without its extension; pfg entries
+/// also as `pfg/NAME`).
 pub fn get(name: &str) -> Option<&'static Entry> {
-    let name = name.strip_suffix(".l").unwrap_or(name);
-    ENTRIES.iter().find(|e| e.name == name)
+    let name = name.strip_prefix("pfg/").unwrap_or(name);
+    ENTRIES.iter().find(|e| {
+        e.name == name
+            || name
+                .strip_prefix(e.name)
+                .is_some_and(|ext| e.file.ends_with(ext) && ext.starts_with('.'))
+    })
 }
 
 /// Names of all entries.
@@ -86,15 +104,27 @@ mod tests {
 
     #[test]
     fn every_file_in_stdlib_is_an_entry() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/stdlib/pfg");
-        let mut files: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .filter_map(|e| e.ok()?.file_name().into_string().ok())
-            .filter_map(|f| f.strip_suffix(".l").map(str::to_string))
-            .collect();
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/stdlib");
+        let mut files: Vec<String> = Vec::new();
+        for (dir, ext) in [("pfg", ".l"), ("linf", ".linf"), ("stl", ".stl")] {
+            let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {
+                continue;
+            };
+            for e in entries.filter_map(Result::ok) {
+                let f = e.file_name().into_string().unwrap();
+                if let Some(stem) = f.strip_suffix(ext) {
+                    files.push(match dir {
+                        "pfg" => stem.to_string(),
+                        _ => format!("{dir}/{stem}"),
+                    });
+                }
+            }
+        }
         files.sort();
-        let listed: Vec<String> = names().map(str::to_string).collect();
+        let mut listed: Vec<String> = names().map(str::to_string).collect();
+        listed.sort();
         assert_eq!(files, listed);
         assert!(get("koch-island.l").is_some() && get("nope").is_none());
+        assert!(get("pfg/koch-island").is_some() && get("koch-island.linf").is_none());
     }
 }

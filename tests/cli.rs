@@ -200,7 +200,7 @@ fn derive_is_identical_across_runs_for_a_seed() {
 
 #[test]
 fn explain_every_code() {
-    for info in graftal::diagnostics::codes::ALL {
+    for info in graftal::diagnostics::codes::all() {
         let o = graftal(&["explain", info.code.0]);
         assert_eq!(o.status, 0);
         assert!(o.stdout.starts_with(info.code.0));

@@ -99,7 +99,7 @@ fn check_span(what: &str, s: &std::ops::Range<usize>, text: &str) -> Result<(), 
 /// The properties every diagnostic must have, and rendering it both ways.
 fn check_diagnostic(d: &Diagnostic, file: &SourceFile) -> Result<(), String> {
     let ctx = |e: String| format!("{e}\n  diagnostic: {d:?}");
-    if !codes::ALL.iter().any(|c| c.code == d.code) {
+    if !codes::all().any(|c| c.code == d.code) {
         return Err(ctx(format!("code {} is not registered", d.code)));
     }
     if d.severity != d.code.severity() {

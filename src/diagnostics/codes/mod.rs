@@ -4,7 +4,8 @@
 //! Codes are stable: a code is never reused for another problem. `E` codes
 //! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
-//! evaluation; `W00xx` warnings.
+//! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`);
+//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL.
 
 use super::Severity;
 use std::fmt;
@@ -41,17 +42,28 @@ pub struct CodeInfo {
     pub explanation: &'static str,
 }
 
+/// Declares codes: a constant for each and a registry slice `$registry`.
 macro_rules! codes {
-    ($($name:ident = $code:literal, $title:literal, $expl:literal;)*) => {
+    ($registry:ident; $($name:ident = $code:literal, $title:literal, $expl:literal;)*) => {
         $(pub const $name: Code = Code($code);)*
-        /// Every registered code, in order.
-        pub static ALL: &[CodeInfo] = &[
-            $(CodeInfo { code: $name, title: $title, explanation: $expl },)*
+        /// The codes declared in this file, in order.
+        pub static $registry: &[crate::diagnostics::codes::CodeInfo] = &[
+            $(crate::diagnostics::codes::CodeInfo { code: $name, title: $title, explanation: $expl },)*
         ];
     };
 }
 
-codes! {
+mod linf;
+mod stl;
+pub use linf::*;
+pub use stl::*;
+
+/// Every registered code: the general and pfg codes, then each front end's.
+pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
+    GENERAL.iter().chain(linf::LINF).chain(stl::STL)
+}
+
+codes! { GENERAL;
     UNSUPPORTED_NOTATION = "E0010", "notation not supported",
 "The file's extension names a notation whose front end this version of
 graftal does not have. `.l` files are read as pfg.
@@ -369,7 +381,7 @@ Example:
 
 /// Finds a code by name (case-insensitive).
 pub fn lookup(code: &str) -> Option<&'static CodeInfo> {
-    ALL.iter().find(|c| c.code.0.eq_ignore_ascii_case(code))
+    all().find(|c| c.code.0.eq_ignore_ascii_case(code))
 }
 
 #[cfg(test)]
@@ -379,7 +391,7 @@ mod tests {
     #[test]
     fn codes_are_unique_well_formed_and_explained() {
         let mut seen = std::collections::HashSet::new();
-        for info in ALL {
+        for info in all() {
             assert!(seen.insert(info.code.0), "duplicate {}", info.code);
             let c = info.code.0;
             assert!(c.len() == 5 && (c.starts_with('E') || c.starts_with('W')));
