@@ -8,7 +8,7 @@ use crate::ir::{SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
 use crate::turtle::{self, Geometry};
-use crate::{pfg, stdlib};
+use crate::{linf, pfg, stdlib};
 use serde::Serialize;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -80,7 +80,11 @@ pub fn compile(file: SourceFile) -> Compiled {
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
     let (system, spans) = match ext.as_str() {
-        "linf" | "stl" => {
+        "linf" => {
+            let lowered = linf::read(&file.text, &mut diags);
+            (Some(lowered.system), lowered.spans)
+        }
+        "stl" => {
             diags.push(Diagnostic::global(
                 codes::UNSUPPORTED_NOTATION,
                 format!("the `.{ext}` front end is not available in this version"),

@@ -14,6 +14,7 @@ pub mod diagnostics;
 pub mod driver;
 pub mod eval;
 pub mod ir;
+pub mod linf;
 pub mod pfg;
 pub mod render;
 pub mod source;

@@ -110,6 +110,31 @@ impl Diagnostics {
     pub fn extend(&mut self, other: Diagnostics) {
         self.0.extend(other.0);
     }
+    /// Reports the invalid character at `span` of `src` (E0001), merging it
+    /// into the previous report when that one ends where this begins: a run
+    /// of invalid characters is one problem.
+    pub fn push_invalid_character(&mut self, src: &str, span: Span) {
+        if let Some(last) = self.0.last_mut() {
+            if last.code == codes::INVALID_CHARACTER
+                && last.span.as_ref().is_some_and(|s| s.end == span.start)
+            {
+                let start = last.span.as_ref().map_or(span.start, |s| s.start);
+                last.span = Some(start..span.end);
+                last.message = "invalid characters".to_string();
+                return;
+            }
+        }
+        let ch = src[span.clone()].chars().next().unwrap_or('\0');
+        self.push(
+            Diagnostic::at(
+                codes::INVALID_CHARACTER,
+                span,
+                format!("invalid character U+{:04X}", ch as u32),
+            )
+            .with_label("not a symbol")
+            .with_help("remove this character; symbols are printable characters"),
+        )
+    }
     pub fn has_errors(&self) -> bool {
         self.0.iter().any(Diagnostic::is_error)
     }
@@ -131,6 +156,47 @@ impl Diagnostics {
     /// Renders all for people (see [`render_human`]).
     pub fn render(&self, file: &SourceFile, colour: bool) -> String {
         render_all(&self.0, file, colour)
+    }
+}
+
+/// A parser's syntax error as a diagnostic: at the end of input E0007
+/// "unexpected end of file", else E0003 "unexpected TOKEN" labelled with the
+/// tokens that were expected there. `help` may add a hint for the token
+/// found.
+pub fn syntax_error<T: std::fmt::Display>(
+    err: &chumsky::error::Rich<'_, T>,
+    help: impl Fn(&T) -> Option<&'static str>,
+) -> Diagnostic {
+    let span = err.span().into_range();
+    let expected: Vec<String> = err
+        .expected()
+        .map(|e| e.to_string().trim_matches('\'').to_string())
+        .filter(|e| e != "something else")
+        .collect();
+    let expected = match expected.len() {
+        0 => None,
+        _ => Some(expected.join(", ")),
+    };
+    match err.found() {
+        None => {
+            let d = Diagnostic::at(codes::UNEXPECTED_EOF, span, "unexpected end of file")
+                .with_label("the file ends here");
+            match expected {
+                Some(e) => d.with_help(format!("expected {e}")),
+                None => d,
+            }
+        }
+        Some(tok) => {
+            let d = Diagnostic::at(codes::SYNTAX, span, format!("unexpected {tok}"));
+            let d = match &expected {
+                Some(e) => d.with_label(format!("expected {e}")),
+                None => d.with_label("not expected here"),
+            };
+            match help(tok) {
+                Some(h) => d.with_help(h),
+                None => d,
+            }
+        }
     }
 }
 

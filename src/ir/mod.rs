@@ -370,6 +370,9 @@ pub struct Settings {
     pub width: f64,
     /// Factor applied to the width by [`TurtleOp::DecrementWidth`].
     pub width_factor: f64,
+    /// The view the file asks for, `(azimuth, elevation)` in degrees (a
+    /// LinF `#: view` directive, a cpfg view file); `--view` overrides it.
+    pub view: Option<(f64, f64)>,
 }
 
 impl Default for Settings {
@@ -381,6 +384,7 @@ impl Default for Settings {
             scale: 100.0,
             width: 1.0,
             width_factor: 0.8,
+            view: None,
         }
     }
 }

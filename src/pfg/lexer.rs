@@ -108,29 +108,7 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
                 .with_secondary(src.len()..src.len(), "the file ends here")
                 .with_help("close the comment with `*/`"),
             ),
-            Err(LexError::InvalidCharacter) => {
-                // A run of invalid characters is one problem.
-                if let Some(last) = diags.0.last_mut() {
-                    if last.code == codes::INVALID_CHARACTER
-                        && last.span.as_ref().is_some_and(|s| s.end == span.start)
-                    {
-                        let start = last.span.as_ref().map_or(span.start, |s| s.start);
-                        last.span = Some(start..span.end);
-                        last.message = "invalid characters".to_string();
-                        continue;
-                    }
-                }
-                let ch = src[span.clone()].chars().next().unwrap_or('\0');
-                diags.push(
-                    Diagnostic::at(
-                        codes::INVALID_CHARACTER,
-                        span,
-                        format!("invalid character U+{:04X}", ch as u32),
-                    )
-                    .with_label("not a symbol")
-                    .with_help("remove this character; symbols are printable characters"),
-                )
-            }
+            Err(LexError::InvalidCharacter) => diags.push_invalid_character(src, span),
         }
     }
     out

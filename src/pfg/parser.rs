@@ -12,7 +12,7 @@
 
 use super::ast::{File, Header, Item, Production, Symbols};
 use super::lexer::{lex, Token};
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{self, codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -154,43 +154,15 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
 }
 
 fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
-    let span = err.span().into_range();
-    let expected: Vec<String> = err
-        .expected()
-        .map(|e| e.to_string().trim_matches('\'').to_string())
-        .filter(|e| e != "something else")
-        .collect();
-    let expected = match expected.len() {
-        0 => None,
-        _ => Some(expected.join(", ")),
-    };
-    match err.found() {
-        None => {
-            let d = Diagnostic::at(codes::UNEXPECTED_EOF, span, "unexpected end of file")
-                .with_label("the file ends here");
-            match expected {
-                Some(e) => d.with_help(format!("expected {e}")),
-                None => d,
-            }
+    diagnostics::syntax_error(err, |tok| match tok {
+        Token::Arrow => {
+            Some("a production has exactly one `-->`; put each production on its own line")
         }
-        Some(tok) => {
-            let msg = format!("unexpected {tok}");
-            let d = Diagnostic::at(codes::SYNTAX, span, msg);
-            let d = match &expected {
-                Some(e) => d.with_label(format!("expected {e}")),
-                None => d.with_label("not expected here"),
-            };
-            match tok {
-                Token::Arrow => d.with_help(
-                    "a production has exactly one `-->`; put each production on its own line",
-                ),
-                Token::Colon => d.with_help(
-                    "`:` starts a header (`axiom: F`) or, after the successor, a weight (`: 0.5`)",
-                ),
-                _ => d,
-            }
+        Token::Colon => {
+            Some("`:` starts a header (`axiom: F`) or, after the successor, a weight (`: 0.5`)")
         }
-    }
+        _ => None,
+    })
 }
 
 fn range(s: SimpleSpan) -> Span {

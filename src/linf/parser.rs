@@ -1,0 +1,630 @@
+//! The LinF parser (chumsky 0.12 over logos tokens).
+//!
+//! A file is a run of blocks; a block runs from its keyword to the next
+//! keyword. Inside a block the parser reads the block's items (names,
+//! rotations, rules, colours, a string) and, when an item is malformed,
+//! reports it and skips to the next place an item can start, so that every
+//! error of a file is reported in one run and the parser never fails. Checks
+//! that need the whole file (declared names, values of expressions, balance
+//! of brackets) are lowering's ([`super::lower`]).
+
+use super::ast::{
+    BinOp, Block, BlockBody, ColourDecl, Component, Directive, Expr, ExprKind, File, Item, Name,
+    RotationDecl, Rule,
+};
+use super::lexer::{lex, BlockKind, Token};
+use crate::diagnostics::{self, codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::Span;
+use chumsky::input::ValueInput;
+use chumsky::prelude::*;
+
+type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>>>;
+
+/// A rule as the parser meets it: a proper rule, or `+ = …`, a rule for a
+/// reserved symbol (reported by [`parse`]).
+#[derive(Clone, Debug)]
+enum RawRule {
+    Rule(Rule),
+    Reserved { token: String, span: Span },
+}
+
+/// A block's contents before the checks of [`parse`]. `None` items are
+/// malformed ones the parser skipped (and reported).
+#[derive(Clone, Debug)]
+enum RawBody {
+    Names(Vec<Option<Name>>),
+    Angles(Vec<Option<RotationDecl>>),
+    /// The string, then any `name = …` rules written in the axiom block.
+    Axiom(Vec<Option<Item>>, Vec<Rule>),
+    Rules(Vec<Option<RawRule>>),
+    Colors(Vec<Option<ColourDecl>>),
+}
+
+fn range(s: SimpleSpan) -> Span {
+    s.into_range()
+}
+
+fn not_keyword(t: &Token<'_>) -> bool {
+    !matches!(t, Token::Keyword(_))
+}
+
+/// One or more tokens that are not keywords, stopping before `stop` (always
+/// taking the first): what recovery skips after a malformed item.
+fn junk<'t, 's: 't, I>(
+    stop: impl Parser<'t, I, (), Extra<'t, 's>> + Clone,
+) -> impl Parser<'t, I, (), Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let other = any().filter(not_keyword);
+    other
+        .ignored()
+        .then(other.and_is(stop.not()).repeated())
+        .ignored()
+}
+
+/// Arithmetic over `atom`: unary signs, `*` `/`, then `+` `-`. With
+/// `tight_signs`, a sign that looks like a prefix (`[0 -pi]`) is not taken
+/// as a binary operator, so two expressions can stand side by side.
+fn arithmetic<'t, 's: 't, I>(
+    atom: impl Parser<'t, I, Expr, Extra<'t, 's>> + Clone,
+    tight_signs: bool,
+) -> impl Parser<'t, I, Expr, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let unary = select! { Token::Minus(_) => true, Token::Plus(_) => false }
+        .map_with(|minus, e| (minus, range(e.span())))
+        .repeated()
+        .foldr(atom, |(minus, span), rhs: Expr| {
+            let span = span.start..rhs.span.end;
+            if minus {
+                Expr {
+                    kind: ExprKind::Neg(Box::new(rhs)),
+                    span,
+                }
+            } else {
+                Expr { span, ..rhs }
+            }
+        });
+    let binary = |lhs: Expr, (op, rhs): (BinOp, Expr)| Expr {
+        span: lhs.span.start..rhs.span.end,
+        kind: ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)),
+    };
+    let product = unary.clone().foldl(
+        select! { Token::Star => BinOp::Mul, Token::Slash => BinOp::Div }
+            .then(unary)
+            .repeated(),
+        binary,
+    );
+    let sum_op = select! {
+        Token::Plus(prefix) if !(tight_signs && prefix) => BinOp::Add,
+        Token::Minus(prefix) if !(tight_signs && prefix) => BinOp::Sub,
+    };
+    product
+        .clone()
+        .foldl(sum_op.then(product).repeated(), binary)
+        .labelled("an expression")
+}
+
+/// A block as the parser returns it: kind, keyword span, contents, and the
+/// tokens after the contents that no item could take.
+type RawBlock<'s> = (BlockKind, Span, RawBody, Vec<(Token<'s>, SimpleSpan)>);
+
+fn file_parser<'t, 's: 't, I>(
+) -> impl Parser<'t, I, (Vec<(Token<'s>, SimpleSpan)>, Vec<RawBlock<'s>>), Extra<'t, 's>>
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let name = select! { Token::Name(s) => s }.map_with(|s, e| Name {
+        text: s.to_string(),
+        span: range(e.span()),
+    });
+    let number = select! { Token::Number(s) => s }
+        .map_with(|s: &str, e| (s.parse::<f64>().unwrap_or(f64::NAN), s, range(e.span())));
+
+    // Expressions.
+    let expr = recursive(|expr| {
+        let atom = choice((
+            number.map(|(v, _, span)| Expr {
+                kind: ExprKind::Number(v),
+                span,
+            }),
+            name.map(|n| Expr {
+                kind: ExprKind::Name(n.text),
+                span: n.span,
+            }),
+            expr.delimited_by(just(Token::LParen), just(Token::RParen))
+                .map_with(|inner: Expr, e| Expr {
+                    span: range(e.span()),
+                    ..inner
+                }),
+        ))
+        .labelled("a number");
+        arithmetic(atom, false)
+    });
+    let paren_atom = expr
+        .clone()
+        .delimited_by(just(Token::LParen), just(Token::RParen))
+        .map_with(|inner: Expr, e| Expr {
+            span: range(e.span()),
+            ..inner
+        });
+    let low_end = arithmetic(
+        choice((
+            number.map(|(v, _, span)| Expr {
+                kind: ExprKind::Number(v),
+                span,
+            }),
+            name.map(|n| Expr {
+                kind: ExprKind::Name(n.text),
+                span: n.span,
+            }),
+            paren_atom,
+        )),
+        true,
+    );
+    let interval = low_end
+        .then_ignore(just(Token::Comma).or_not())
+        .then(expr.clone())
+        .delimited_by(just(Token::LBracket), just(Token::RBracket))
+        .map_with(|(lo, hi), e| Component::Interval {
+            lo,
+            hi,
+            span: range(e.span()),
+        })
+        .labelled("an interval `[lo hi]`");
+    let component = interval.or(expr.clone().map(Component::Value));
+
+    // lines, blanks
+    let names_body = name
+        .map(Some)
+        .recover_with(via_parser(
+            junk(select! { Token::Name(_) => () }).map(|_| None),
+        ))
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(RawBody::Names);
+
+    // angles
+    let rotation_start = just(Token::LParen)
+        .ignored()
+        .or(name.then(just(Token::Eq)).ignored());
+    let rotation = name
+        .then_ignore(just(Token::Eq))
+        .or_not()
+        .then(
+            component
+                .separated_by(just(Token::Comma))
+                .collect::<Vec<_>>()
+                .delimited_by(just(Token::LParen), just(Token::RParen))
+                .map_with(|c, e| (c, range(e.span())))
+                .labelled("a rotation `(torsion, curvature)`"),
+        )
+        .map(|(name, (components, span))| RotationDecl {
+            name,
+            components,
+            span,
+        });
+    let angles_body = rotation
+        .map(Some)
+        .recover_with(via_parser(junk(rotation_start).map(|_| None)))
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(RawBody::Angles);
+
+    // strings
+    let string_token = any().filter(|t: &Token| {
+        matches!(
+            t,
+            Token::Name(_)
+                | Token::Plus(_)
+                | Token::Minus(_)
+                | Token::Number(_)
+                | Token::Question
+                | Token::At
+                | Token::LBracket
+                | Token::RBracket
+                | Token::LBrace
+                | Token::RBrace
+                | Token::Bang
+        )
+    });
+    // A token followed by `=` starts the next rule.
+    let item = string_token
+        .and_is(any().then(just(Token::Eq)).not())
+        .map_with(|t: Token, e| {
+            let span = range(e.span());
+            match t {
+                Token::Name(s) => Item::Name(Name {
+                    text: s.to_string(),
+                    span,
+                }),
+                Token::Plus(_) => Item::Sign { minus: false, span },
+                Token::Minus(_) => Item::Sign { minus: true, span },
+                Token::Number(s) => Item::Number {
+                    value: s.parse().unwrap_or(f64::NAN),
+                    text: s.to_string(),
+                    span,
+                },
+                Token::Question => Item::Question(span),
+                Token::At => Item::At(span),
+                Token::LBracket => Item::Open(span),
+                Token::RBracket => Item::Close(span),
+                Token::LBrace => Item::NextColour(span),
+                Token::RBrace => Item::PreviousColour(span),
+                _ => Item::Swap(span),
+            }
+        })
+        .labelled("a symbol");
+    let string = item.repeated().collect::<Vec<_>>();
+    let rule =
+        name.then_ignore(just(Token::Eq))
+            .then(string)
+            .map(|(head, body): (Name, Vec<Item>)| {
+                let end = body.last().map_or(head.span.end + 1, |i| i.span().end);
+                Rule {
+                    span: head.span.start..end,
+                    head,
+                    body,
+                }
+            });
+    // A `name = …` in the axiom block is a rule written without the
+    // `rules` keyword: parsed as a rule, reported by `parse`.
+    let axiom_body = rule
+        .map(|r| Some(Err(r)))
+        .or(item.map(|i| Some(Ok(i))))
+        .recover_with(via_parser(
+            junk(
+                string_token
+                    .ignored()
+                    .or(name.then(just(Token::Eq)).ignored()),
+            )
+            .map(|_| None),
+        ))
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(|all| {
+            let (items, rules): (Vec<_>, Vec<_>) =
+                all.into_iter().flatten().partition(Result::is_ok);
+            RawBody::Axiom(
+                items.into_iter().filter_map(Result::ok).map(Some).collect(),
+                rules.into_iter().filter_map(Result::err).collect(),
+            )
+        });
+
+    // rules
+    let reserved_head = any()
+        .filter(|t: &Token| {
+            matches!(
+                t,
+                Token::Plus(_)
+                    | Token::Minus(_)
+                    | Token::LBracket
+                    | Token::RBracket
+                    | Token::LBrace
+                    | Token::RBrace
+                    | Token::Bang
+                    | Token::Question
+                    | Token::At
+            )
+        })
+        .map_with(|t: Token, e| RawRule::Reserved {
+            token: t.to_string(),
+            span: range(e.span()),
+        })
+        .then_ignore(just(Token::Eq))
+        .then(string)
+        .map(|(r, _)| r);
+    let rule_start = any().then(just(Token::Eq)).ignored();
+    let rules_body = rule
+        .map(RawRule::Rule)
+        .or(reserved_head)
+        .map(Some)
+        .recover_with(via_parser(junk(rule_start).map(|_| None)))
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(RawBody::Rules);
+
+    // colors
+    let colour_start = just(Token::LParen)
+        .ignored()
+        .or(number.then(just(Token::Colon)).ignored());
+    let colour = number
+        .then_ignore(just(Token::Colon))
+        .or_not()
+        .then(
+            expr.separated_by(just(Token::Comma))
+                .collect::<Vec<_>>()
+                .delimited_by(just(Token::LParen), just(Token::RParen))
+                .map_with(|c, e| (c, range(e.span())))
+                .labelled("a colour `(r, g, b)`"),
+        )
+        .map(|(label, (components, span))| ColourDecl {
+            label: label.map(|(v, _, s)| (v, s)),
+            components,
+            span,
+        });
+    let colors_body = colour
+        .map(Some)
+        .recover_with(via_parser(junk(colour_start).map(|_| None)))
+        .repeated()
+        .collect::<Vec<_>>()
+        .map(RawBody::Colors);
+
+    let keyword =
+        |kind: BlockKind| just(Token::Keyword(kind)).map_with(move |_, e| (kind, range(e.span())));
+    let block = choice((
+        keyword(BlockKind::Lines).then(names_body.clone()),
+        keyword(BlockKind::Blanks).then(names_body),
+        keyword(BlockKind::Angles).then(angles_body),
+        keyword(BlockKind::Axiom).then(axiom_body),
+        keyword(BlockKind::Rules).then(rules_body),
+        keyword(BlockKind::Colors).then(colors_body),
+    ))
+    .then(
+        // Whatever no item could take (reported by `parse`).
+        any()
+            .filter(not_keyword)
+            .map_with(|t, e| (t, e.span()))
+            .repeated()
+            .collect::<Vec<_>>(),
+    )
+    .map(|(((kind, span), body), leftover)| (kind, span, body, leftover));
+
+    let preamble = any()
+        .filter(not_keyword)
+        .map_with(|t, e| (t, e.span()))
+        .repeated()
+        .collect::<Vec<_>>();
+    preamble
+        .then(block.repeated().collect::<Vec<_>>())
+        .then_ignore(end())
+}
+
+/// Parses LinF source text into an AST. Never fails: problems are pushed to
+/// `diags` and malformed items are left out of the AST.
+pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
+    let lexed = lex(src, diags);
+    let tokens: Vec<(Token<'_>, SimpleSpan)> = lexed
+        .tokens
+        .into_iter()
+        .map(|(t, s)| (t, SimpleSpan::from(s)))
+        .collect();
+    let eoi = SimpleSpan::from(src.len()..src.len());
+    let (out, errors) = file_parser()
+        .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
+        .into_output_errors();
+    let mut seen = std::collections::HashSet::new();
+    for err in errors {
+        // Recovery may meet one mistake twice; report it once.
+        if seen.insert((err.span().start, err.span().end)) {
+            diags.push(syntax_error(&err));
+        }
+    }
+    let mut file = File {
+        blocks: Vec::new(),
+        directives: lexed
+            .directives
+            .into_iter()
+            .map(|d| Directive {
+                text: d.text.to_string(),
+                span: d.span,
+            })
+            .collect(),
+    };
+    let Some((preamble, blocks)) = out else {
+        return file;
+    };
+    if let (Some(first), Some(last)) = (preamble.first(), preamble.last()) {
+        diags.push(text_before_first_block(first.0, first.1.start..last.1.end));
+    }
+    for (kind, keyword, body, leftover) in blocks {
+        if let (Some(first), Some(last)) = (leftover.first(), leftover.last()) {
+            diags.push(
+                Diagnostic::at(
+                    codes::SYNTAX,
+                    first.1.start..last.1.end,
+                    format!("unexpected {} in the `{}` block", first.0, kind.keyword()),
+                )
+                .with_label("not part of any item")
+                .with_help(block_help(kind)),
+            );
+        }
+        let body = match body {
+            RawBody::Names(names) => BlockBody::Names(names.into_iter().flatten().collect()),
+            RawBody::Angles(r) => BlockBody::Angles(r.into_iter().flatten().collect()),
+            RawBody::Colors(c) => BlockBody::Colors(c.into_iter().flatten().collect()),
+            RawBody::Axiom(items, rules) => {
+                for r in &rules {
+                    diags.push(
+                        Diagnostic::at(
+                            codes::LINF_RULE_IN_AXIOM,
+                            r.head.span.start..r.head.span.end,
+                            format!("a rule for `{}` in the axiom block", r.head.text),
+                        )
+                        .with_label("the axiom ends before this rule")
+                        .with_secondary(keyword.clone(), "the axiom block starts here")
+                        .with_help("start the rules with the keyword `rules`"),
+                    );
+                }
+                BlockBody::Axiom(items.into_iter().flatten().collect())
+            }
+            RawBody::Rules(rules) => {
+                let mut out = Vec::new();
+                for r in rules.into_iter().flatten() {
+                    match r {
+                        RawRule::Rule(r) => out.push(r),
+                        RawRule::Reserved { token, span } => diags.push(
+                            Diagnostic::at(
+                                codes::LINF_RESERVED_RULE,
+                                span,
+                                format!("a rule for the reserved symbol {token}"),
+                            )
+                            .with_label("reserved: its meaning is fixed")
+                            .with_help(
+                                "only names can have rules; `[ ] @ ? + - { } !` are LinF's reserved symbols",
+                            ),
+                        ),
+                    }
+                }
+                BlockBody::Rules(out)
+            }
+        };
+        file.blocks.push(Block {
+            kind,
+            keyword,
+            body,
+        });
+    }
+    file
+}
+
+/// What a block holds, for help lines.
+fn block_help(kind: BlockKind) -> &'static str {
+    match kind {
+        BlockKind::Lines | BlockKind::Blanks => "this block holds names separated by spaces",
+        BlockKind::Angles => {
+            "this block holds rotations `(torsion, curvature)`, named `t = (…, …)` or not"
+        }
+        BlockKind::Axiom => "this block holds one string of symbols",
+        BlockKind::Rules => "this block holds rules `name = string`",
+        BlockKind::Colors => "this block holds colours `(r, g, b)`",
+    }
+}
+
+fn text_before_first_block(first: Token<'_>, span: Span) -> Diagnostic {
+    let d = Diagnostic::at(
+        codes::LINF_OUTSIDE_BLOCK,
+        span,
+        "text before the first block",
+    )
+    .with_label("not inside any block");
+    let keywords: Vec<&str> = BlockKind::ALL.iter().map(|k| k.keyword()).collect();
+    match first {
+        Token::Name(n) if !nearest(n, &keywords).is_empty() => d.with_help(format!(
+            "did you mean the block keyword `{}`?",
+            nearest(n, &keywords)[0]
+        )),
+        _ => d.with_help(
+            "a LinF file is made of blocks, each starting with its keyword: lines, blanks, angles, axiom, rules, colors",
+        ),
+    }
+}
+
+fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
+    diagnostics::syntax_error(err, |tok| match tok {
+        Token::Eq => Some("a rule is `name = string`; each rule starts with its name"),
+        Token::Colon => Some("`:` only labels a colour: `0: (0, 0, 0)`"),
+        Token::LParen | Token::RParen => {
+            Some("parentheses belong in rotations `(torsion, curvature)` and colours `(r, g, b)`")
+        }
+        Token::Name(_) => Some("write `*` between a number and a name: `2*pi`"),
+        _ => None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_ok(src: &str) -> File {
+        let mut d = Diagnostics::default();
+        let f = parse(src, &mut d);
+        assert!(d.is_empty(), "{d:#?}");
+        f
+    }
+
+    fn errors(src: &str) -> Vec<(crate::diagnostics::Code, Span)> {
+        let mut d = Diagnostics::default();
+        parse(src, &mut d);
+        d.iter()
+            .map(|d| (d.code, d.span.clone().unwrap_or(0..0)))
+            .collect()
+    }
+
+    #[test]
+    fn the_six_blocks_in_any_order() {
+        let f = parse_ok(
+            "rules f = f+f--f+f i = [0.5?j]\ncolors (0,0,0) 1: (40, 40, 40)\naxiom f\n\
+             angles (0, pi/3) t = (pi/2, pi/6) w = (0, [0 2*pi])\nblanks b\nlines f g\n",
+        );
+        let kinds: Vec<BlockKind> = f.blocks.iter().map(|b| b.kind).collect();
+        use BlockKind::*;
+        assert_eq!(kinds, [Rules, Colors, Axiom, Angles, Blanks, Lines]);
+        let BlockBody::Rules(rules) = &f.blocks[0].body else {
+            panic!()
+        };
+        assert_eq!(rules.len(), 2);
+        assert_eq!(rules[0].body.len(), 8);
+        assert_eq!(rules[1].head.text, "i");
+        let BlockBody::Angles(angles) = &f.blocks[3].body else {
+            panic!()
+        };
+        assert_eq!(angles.len(), 3);
+        assert!(angles[0].name.is_none());
+        assert!(matches!(
+            angles[2].components[1],
+            Component::Interval { .. }
+        ));
+        let BlockBody::Colors(colours) = &f.blocks[1].body else {
+            panic!()
+        };
+        assert_eq!(colours[1].label.as_ref().map(|l| l.0), Some(1.0));
+    }
+
+    #[test]
+    fn intervals_split_side_by_side_expressions() {
+        let f = parse_ok("angles (0, [0 -pi/2]) t = ([0-1 1], [-pi, pi])");
+        let BlockBody::Angles(a) = &f.blocks[0].body else {
+            panic!()
+        };
+        let Component::Interval { lo, hi, .. } = &a[0].components[1] else {
+            panic!()
+        };
+        assert_eq!(lo.kind, ExprKind::Number(0.0));
+        let hi = super::super::lower::eval(hi).unwrap();
+        assert!((hi + std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        let Component::Interval { lo, .. } = &a[1].components[0] else {
+            panic!()
+        };
+        assert!(matches!(lo.kind, ExprKind::Binary(BinOp::Sub, _, _)));
+    }
+
+    #[test]
+    fn every_malformed_item_is_reported_and_the_rest_kept() {
+        let src = "angles t = (pi, ) u = (0, 1)\nrules f = f(f) g = g\ncolors (1, 2, 3) x (4,5,6)";
+        let mut d = Diagnostics::default();
+        let f = parse(src, &mut d);
+        assert_eq!(d.len(), 3, "{d:#?}");
+        let BlockBody::Angles(a) = &f.blocks[0].body else {
+            panic!()
+        };
+        assert_eq!(a.len(), 1, "{a:?}");
+        assert_eq!(a[0].name.as_ref().unwrap().text, "u");
+        let BlockBody::Rules(r) = &f.blocks[1].body else {
+            panic!()
+        };
+        assert_eq!(r.len(), 2);
+        let BlockBody::Colors(c) = &f.blocks[2].body else {
+            panic!()
+        };
+        assert_eq!(c.len(), 2);
+    }
+
+    #[test]
+    fn reserved_heads_rules_in_the_axiom_and_stray_text() {
+        let e = errors("lnes f\nrules + = f\naxiom f g = f");
+        let codes: Vec<_> = e.iter().map(|(c, _)| *c).collect();
+        assert_eq!(
+            codes,
+            [
+                codes::LINF_OUTSIDE_BLOCK,
+                codes::LINF_RESERVED_RULE,
+                codes::LINF_RULE_IN_AXIOM
+            ]
+        );
+        assert_eq!(e[0].1, 0..6);
+        assert_eq!(e[1].1, 13..14);
+    }
+}
