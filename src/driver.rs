@@ -4,7 +4,7 @@
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
-use crate::ir::{SpanTable, System, TurtleOp, Word};
+use crate::ir::{Notation, SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
 use crate::turtle::{self, Geometry};
@@ -103,6 +103,16 @@ pub fn compile(file: SourceFile) -> Compiled {
         system,
         spans,
         diagnostics: diags,
+    }
+}
+
+/// A derived word as text in the notation it was read from: pfg symbols
+/// side by side; LinF names side by side where that reads back the same
+/// (see [`linf::display`]).
+pub fn word_text(sys: &System, word: &Word) -> String {
+    match sys.notation {
+        Notation::Linf => linf::display(sys, word),
+        _ => word.display(&sys.symbols),
     }
 }
 

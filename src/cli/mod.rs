@@ -69,9 +69,10 @@ enum Command {
         /// Picture size in pixels.
         #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
         size: (u32, u32),
-        /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees.
-        #[arg(long, default_value = "0,0", value_parser = parse_view, allow_hyphen_values = true)]
-        view: (f64, f64),
+        /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees
+        /// [default: the file's own view, else 0,0].
+        #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
+        view: Option<(f64, f64)>,
         /// Draw each branch as a B-spline through the turtle's positions
         /// (as the book draws kolams and Fig. 2.11).
         #[arg(long)]
@@ -165,7 +166,7 @@ where
         }
         Command::Derive(a) => with_system(io, &a, |io, _c, sys, opts, _| {
             let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-            let text = word.display(&sys.symbols);
+            let text = driver::word_text(sys, &word);
             let _ = writeln!(io.stdout, "{text}");
             Ok(0)
         }),
@@ -211,6 +212,7 @@ where
                 if g.is_empty() {
                     report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
                 }
+                let view = view.or(sys.settings.view).unwrap_or((0.0, 0.0));
                 let ropts = RenderOptions {
                     width: size.0,
                     height: size.1,

@@ -31,3 +31,32 @@ pub fn read_ok(src: &str) -> crate::ir::System {
     assert!(!d.has_errors(), "{d:#?}");
     l.system
 }
+
+/// A word as LinF text that reads back as the same symbols. Names are
+/// written side by side (`f+f--f+f`) when every name-like symbol of the
+/// system is one character, since the longest-name split then gives them
+/// back; otherwise adjacent names are separated by a space (`stem leaf`).
+/// A space also separates a name from a following number (`f 0.5@`), which
+/// would otherwise lex as one name.
+pub fn display(sys: &crate::ir::System, word: &crate::ir::Word) -> String {
+    let is_name_char = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let starts_name = |n: &str| n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+    let all_short =
+        sys.symbols.iter().all(|(_, info)| {
+            info.guard.is_some() || !starts_name(&info.name) || info.name.len() == 1
+        }) && sys.rotations.iter().all(|r| r.name.len() <= 1);
+    let mut out = String::with_capacity(word.len() * 2);
+    let mut prev_ends_name = false;
+    for &id in &word.0 {
+        let name = sys.symbols.name(id);
+        let first = name.chars().next().unwrap_or(' ');
+        if prev_ends_name
+            && (first.is_ascii_digit() || first == '.' || (!all_short && is_name_char(first)))
+        {
+            out.push(' ');
+        }
+        out.push_str(name);
+        prev_ends_name = name.ends_with(is_name_char);
+    }
+    out
+}

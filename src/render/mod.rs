@@ -61,6 +61,46 @@ pub struct Picture {
     pub polygons: Vec<(Rgb, Vec<[f64; 2]>)>,
 }
 
+/// How near `p` is to the viewer (larger is nearer): the coordinate along
+/// the view direction, towards the eye.
+fn depth(p: Vec3, view: View) -> f64 {
+    let (sa, ca) = view.azimuth.to_radians().sin_cos();
+    let (se, ce) = view.elevation.to_radians().sin_cos();
+    let z = -p[0] * sa + p[2] * ca;
+    p[1] * se + z * ce
+}
+
+/// The order in which to draw `g`'s segments: farther first, so that nearer
+/// segments cover farther ones (the painter's algorithm, by midpoint
+/// depth). A flat picture seen face on keeps the turtle's order.
+fn depth_order(g: &Geometry, view: View) -> Option<Vec<usize>> {
+    let depths: Vec<f64> = g
+        .segments
+        .iter()
+        .map(|s| {
+            depth(
+                [
+                    (s.a[0] + s.b[0]) / 2.0,
+                    (s.a[1] + s.b[1]) / 2.0,
+                    (s.a[2] + s.b[2]) / 2.0,
+                ],
+                view,
+            )
+        })
+        .collect();
+    let (lo, hi) = depths
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &d| {
+            (lo.min(d), hi.max(d))
+        });
+    if depths.is_empty() || hi - lo <= 1e-9 * (1.0 + hi.abs().max(lo.abs())) {
+        return None;
+    }
+    let mut order: Vec<usize> = (0..depths.len()).collect();
+    order.sort_by(|&a, &b| depths[a].total_cmp(&depths[b]));
+    Some(order)
+}
+
 fn project(p: Vec3, view: View) -> [f64; 2] {
     let (sa, ca) = view.azimuth.to_radians().sin_cos();
     let (se, ce) = view.elevation.to_radians().sin_cos();
@@ -135,9 +175,13 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
             }
         }
     } else {
-        for s in &g.segments {
+        let mut push = |s: &crate::turtle::Segment| {
             segs.push((project(s.a, view), project(s.b, view)));
             seg_style.push((s.colour, s.width));
+        };
+        match depth_order(g, view) {
+            Some(order) => order.into_iter().for_each(|i| push(&g.segments[i])),
+            None => g.segments.iter().for_each(push),
         }
     }
     let polys: Vec<Vec<[f64; 2]>> = g
@@ -218,6 +262,51 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::turtle::Segment;
+
+    fn seg(a: Vec3, b: Vec3, c: u8) -> Segment {
+        Segment {
+            a,
+            b,
+            width: 1.0,
+            colour: Rgb(c, c, c),
+        }
+    }
+
+    #[test]
+    fn nearer_segments_are_drawn_last() {
+        // A far segment (z = −1) drawn after a near one (z = +1) by the
+        // turtle, crossing it in the picture.
+        let g = Geometry {
+            segments: vec![
+                seg([-1.0, 0.0, 1.0], [1.0, 0.0, 1.0], 1),
+                seg([0.0, -1.0, -1.0], [0.0, 1.0, -1.0], 2),
+            ],
+            ..Geometry::default()
+        };
+        let colours = |view: View| -> Vec<u8> {
+            let opts = RenderOptions {
+                view,
+                ..RenderOptions::default()
+            };
+            layout(&g, &opts).runs.iter().map(|r| r.colour.0).collect()
+        };
+        // Seen from +z (the default view) the z = +1 segment is nearer.
+        assert_eq!(colours(View::default()), [2, 1]);
+        // Seen from −z (azimuth 180°) the other one is.
+        let behind = View {
+            azimuth: 180.0,
+            elevation: 0.0,
+        };
+        assert_eq!(colours(behind), [1, 2]);
+        // Seen from above (elevation 90°) both are at the same height: the
+        // turtle's order stays.
+        let above = View {
+            azimuth: 0.0,
+            elevation: 90.0,
+        };
+        assert_eq!(colours(above), [1, 2]);
+    }
 
     #[test]
     fn open_spline_starts_and_ends_at_the_end_points() {

@@ -138,7 +138,35 @@ fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
     (a2, b2)
 }
 
+/// Rotations between two re-orthonormalisations of the frame: rounding in
+/// each rotation moves the frame off orthonormal by about 1e-16, so millions
+/// of rotations (a LinF random walk) would drift by 1e-10 and more.
+const RENORMALISE_EVERY: u32 = 32;
+
+fn normalised(v: Vec3) -> Vec3 {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / n, v[1] / n, v[2] / n]
+}
+
 impl State {
+    /// Gram–Schmidt: H unit, L unit and orthogonal to H, U = H × L.
+    fn renormalise(&mut self) {
+        let h = normalised(self.h);
+        let d = self.l[0] * h[0] + self.l[1] * h[1] + self.l[2] * h[2];
+        let l = normalised([
+            self.l[0] - d * h[0],
+            self.l[1] - d * h[1],
+            self.l[2] - d * h[2],
+        ]);
+        self.u = [
+            h[1] * l[2] - h[2] * l[1],
+            h[2] * l[0] - h[0] * l[2],
+            h[0] * l[1] - h[1] * l[0],
+        ];
+        self.h = h;
+        self.l = l;
+    }
+
     fn turn(&mut self, axis: Axis, angle: f64) {
         let angle = if self.swapped { -angle } else { angle };
         let (s, c) = angle.sin_cos();
@@ -213,10 +241,15 @@ pub fn interpret_with(
     } else {
         usize::MAX
     };
+    let mut rotations: u32 = 0;
     for &sym in word {
         let Some(op) = ops.get(sym.index()).copied().flatten() else {
             continue;
         };
+        if rotations >= RENORMALISE_EVERY {
+            st.renormalise();
+            rotations = 0;
+        }
         match op {
             TurtleOp::Forward { draw } => {
                 let a = st.pos;
@@ -243,6 +276,7 @@ pub fn interpret_with(
             TurtleOp::Rotate { axis, angle } => {
                 let a = resolve(angle);
                 st.turn(axis, a);
+                rotations += 1;
             }
             TurtleOp::Frenet { rotation, negate } => {
                 if let Some(r) = sys.rotations.get(rotation.0 as usize) {
@@ -250,6 +284,7 @@ pub fn interpret_with(
                     let (t, k) = (resolve(r.torsion), resolve(r.curvature));
                     st.turn(Axis::Heading, -sign * t);
                     st.turn(Axis::Up, -sign * k);
+                    rotations += 1;
                 }
             }
             TurtleOp::TurnAround => {
@@ -312,6 +347,7 @@ pub fn interpret_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ir::Word;
     use crate::pfg::read_ok;
 
     fn draw(src: &str) -> Geometry {
@@ -411,6 +447,48 @@ mod tests {
         let g = interpret(&sys, &word, 0);
         let colours: Vec<u8> = g.segments.iter().map(|s| s.colour.0).collect();
         assert_eq!(colours, [1, 2, 3, 2, 3, 2, 1, 1]);
+    }
+
+    /// The frame after `n` rotations by an irrational (torsion, curvature)
+    /// pair, read off three unit segments drawn along t, n and −b.
+    fn frame_after_rotations(n: usize) -> [Vec3; 3] {
+        let mut sys = crate::linf::read_ok(
+            "lines f\nangles w = (0.7311, 1.1234) q = (0, pi/2) p = (pi/2, pi/2)\nrules x = +w f+q+p",
+        );
+        let [f, w, q, p] = ["f", "+w", "+q", "+p"].map(|s| sys.symbols.get(s).unwrap());
+        sys.axiom = Word([vec![w; n], vec![f, q, f, p, f]].concat());
+        let g = interpret(&sys, &sys.axiom.0, 0);
+        let d = |k: usize| {
+            let s: &Segment = &g.segments[k];
+            [s.b[0] - s.a[0], s.b[1] - s.a[1], s.b[2] - s.a[2]]
+        };
+        [d(0), d(1), d(2)]
+    }
+
+    #[test]
+    fn frames_stay_orthonormal_over_millions_of_rotations() {
+        let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let cross = |a: Vec3, b: Vec3| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let [t, n, minus_b] = frame_after_rotations(5_000_000);
+        let mut worst: f64 = 0.0;
+        for v in [t, n, minus_b] {
+            worst = worst.max((dot(v, v) - 1.0).abs());
+        }
+        for (a, b) in [(t, n), (n, minus_b), (t, minus_b)] {
+            worst = worst.max(dot(a, b).abs());
+        }
+        // b = t × n, and the third segment runs along −b.
+        let b = cross(t, n);
+        for k in 0..3 {
+            worst = worst.max((b[k] + minus_b[k]).abs());
+        }
+        assert!(worst < 1e-13, "orthonormality error {worst:e}");
     }
 
     #[test]
