@@ -1,14 +1,15 @@
-//! Keeps `grammar/pfg.ebnf` true to the pfg front end.
+//! Keeps each `grammar/*.ebnf` true to its front end.
 //!
-//! The grammar file is read as ISO EBNF (comments, terminals, special
-//! sequences, rules) and checked for internal consistency; its header
-//! keywords are compared with the parser's; the codes of its constraint
-//! section with the diagnostics registry; and every example and
-//! counterexample it holds is compiled with `graftal::driver::compile`.
+//! A grammar file is read as ISO EBNF (comments, terminals, special
+//! sequences, rules) and checked for internal consistency; its keywords are
+//! compared with the front end's; the codes of its constraint section with
+//! the diagnostics registry; and every example and counterexample it holds
+//! is compiled with `graftal::driver::compile` as a file of its notation.
 //! See the top of `grammar/pfg.ebnf` for the format of the examples.
 
 use graftal::diagnostics::codes;
 use graftal::driver::{compile, Compiled};
+use graftal::linf::lexer::BlockKind;
 use graftal::pfg::parser::HEADERS;
 use graftal::source::SourceFile;
 use std::collections::{BTreeMap, BTreeSet};
@@ -16,9 +17,30 @@ use std::collections::{BTreeMap, BTreeSet};
 const MIN_EXAMPLES: usize = 15;
 const MIN_COUNTEREXAMPLES: usize = 12;
 
-fn grammar_text() -> String {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/pfg.ebnf");
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {path}: {e}"))
+/// A grammar file and the extension of the files it describes.
+struct Grammar {
+    file: &'static str,
+    ext: &'static str,
+    /// Rules every such grammar must define.
+    starts: &'static [&'static str],
+}
+
+const GRAMMARS: [Grammar; 2] = [
+    Grammar {
+        file: "pfg.ebnf",
+        ext: "l",
+        starts: &["file", "source text", "header", "production"],
+    },
+    Grammar {
+        file: "linf.ebnf",
+        ext: "linf",
+        starts: &["file", "block", "string", "expression", "interval"],
+    },
+];
+
+fn grammar_text(file: &str) -> String {
+    let path = format!("{}/grammar/{file}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {path}: {e}"))
 }
 
 // ---------------------------------------------------------------------------
@@ -149,20 +171,20 @@ fn lex_ebnf(src: &str) -> Result<Vec<Tok>, String> {
 
 /// The rules of the grammar: name -> definition tokens, in file order.
 fn rules(src: &str) -> Vec<(String, Vec<Tok>)> {
-    let toks = lex_ebnf(src).unwrap_or_else(|e| panic!("grammar/pfg.ebnf: {e}"));
+    let toks = lex_ebnf(src).unwrap_or_else(|e| panic!("grammar: {e}"));
     let mut out = Vec::new();
     let mut rest = toks.as_slice();
     while !rest.is_empty() {
         let Some(end) = rest.iter().position(|t| *t == Tok::Op(';')) else {
             panic!(
-                "grammar/pfg.ebnf: rule without `;` near {:?}",
+                "grammar: rule without `;` near {:?}",
                 &rest[..3.min(rest.len())]
             );
         };
         let rule = &rest[..end];
         rest = &rest[end + 1..];
         let [Tok::Ident(name), Tok::Op('='), body @ ..] = rule else {
-            panic!("grammar/pfg.ebnf: not a rule `name = …;`: {rule:?}");
+            panic!("grammar: not a rule `name = …;`: {rule:?}");
         };
         let mut depth: Vec<char> = Vec::new();
         for t in body {
@@ -187,8 +209,14 @@ fn rules(src: &str) -> Vec<(String, Vec<Tok>)> {
 }
 
 #[test]
-fn grammar_is_well_formed_iso_ebnf() {
-    let src = grammar_text();
+fn grammars_are_well_formed_iso_ebnf() {
+    for g in &GRAMMARS {
+        well_formed(g);
+    }
+}
+
+fn well_formed(g: &Grammar) {
+    let src = grammar_text(g.file);
     let rules = rules(&src);
     assert!(rules.len() > 20, "only {} rules found", rules.len());
     let mut defined = BTreeSet::new();
@@ -212,20 +240,22 @@ fn grammar_is_well_formed_iso_ebnf() {
         undefined.is_empty(),
         "undefined meta-identifiers: {undefined:?}"
     );
-    for start in ["file", "source text", "header", "production"] {
-        assert!(defined.contains(start), "no rule `{start}`");
+    for start in g.starts {
+        assert!(defined.contains(start), "{}: no rule `{start}`", g.file);
     }
 }
 
-#[test]
-fn header_keywords_match_the_parser() {
-    let src = grammar_text();
+/// The alternatives of rule `name` in grammar `file`, each a list of
+/// terminals joined by `,`, the terminals of an alternative joined by a
+/// space.
+fn keyword_rule(file: &str, name: &str) -> Vec<String> {
+    let src = grammar_text(file);
     let rules = rules(&src);
     let body = rules
         .iter()
-        .find(|(n, _)| n == "header keyword")
-        .map(|(_, b)| b)
-        .expect("the grammar has a rule `header keyword`");
+        .find(|(n, _)| n == name)
+        .map(|(_, b)| b.clone())
+        .unwrap_or_else(|| panic!("{file} has no rule `{name}`"));
     let mut keywords = Vec::new();
     for alt in body.split(|t| *t == Tok::Op('|')) {
         let mut words = Vec::new();
@@ -238,9 +268,22 @@ fn header_keywords_match_the_parser() {
                 }
             }
         }
-        assert!(!words.is_empty(), "empty alternative in `header keyword`");
+        assert!(!words.is_empty(), "empty alternative in `{name}`");
         keywords.push(words.join(" "));
     }
+    keywords
+}
+
+#[test]
+fn linf_block_keywords_match_the_lexer() {
+    let keywords = keyword_rule("linf.ebnf", "block keyword");
+    let lexer: Vec<&str> = BlockKind::ALL.iter().map(|k| k.keyword()).collect();
+    assert_eq!(keywords, lexer);
+}
+
+#[test]
+fn header_keywords_match_the_parser() {
+    let keywords = keyword_rule("pfg.ebnf", "header keyword");
     assert_eq!(keywords, HEADERS.to_vec());
     // The keys are words: letters only, so that the lexer reads them as
     // `word` tokens; written in lower case, compared without regard to case.
@@ -334,8 +377,8 @@ fn examples(src: &str) -> Vec<Example> {
     out
 }
 
-fn run(text: &str) -> Compiled {
-    compile(SourceFile::new("ex.l", text))
+fn run(text: &str, ext: &str) -> Compiled {
+    compile(SourceFile::new(&format!("ex.{ext}"), text))
 }
 
 fn codes_of(c: &Compiled) -> Vec<&'static str> {
@@ -379,7 +422,13 @@ fn constraint_codes(src: &str) -> BTreeSet<String> {
 
 #[test]
 fn enough_examples_to_mean_something() {
-    let all = examples(&grammar_text());
+    for g in &GRAMMARS {
+        enough_examples(g);
+    }
+}
+
+fn enough_examples(g: &Grammar) {
+    let all = examples(&grammar_text(g.file));
     let valid = all.iter().filter(|e| e.code.is_none()).count();
     let invalid = all.len() - valid;
     assert!(valid >= MIN_EXAMPLES, "only {valid} examples");
@@ -391,14 +440,20 @@ fn enough_examples_to_mean_something() {
 
 #[test]
 fn examples_compile_without_any_diagnostic() {
+    for g in &GRAMMARS {
+        examples_compile(g);
+    }
+}
+
+fn examples_compile(g: &Grammar) {
     let mut failures = Vec::new();
     let mut count = 0;
-    for ex in examples(&grammar_text())
+    for ex in examples(&grammar_text(g.file))
         .iter()
         .filter(|e| e.code.is_none())
     {
         count += 1;
-        let c = run(&ex.text);
+        let c = run(&ex.text, g.ext);
         if c.diagnostics.has_errors() || c.system.is_none() || !c.diagnostics.is_empty() {
             failures.push(format!(
                 "line {}: {:?}\n    gave {:?}",
@@ -414,19 +469,26 @@ fn examples_compile_without_any_diagnostic() {
     assert!(count >= MIN_EXAMPLES);
     assert!(
         failures.is_empty(),
-        "examples that do not compile cleanly:\n{}",
+        "{}: examples that do not compile cleanly:\n{}",
+        g.file,
         failures.join("\n")
     );
 }
 
 #[test]
 fn counterexamples_give_exactly_their_code() {
+    for g in &GRAMMARS {
+        counterexamples(g);
+    }
+}
+
+fn counterexamples(g: &Grammar) {
     let mut failures = Vec::new();
     let mut count = 0;
-    for ex in examples(&grammar_text()) {
+    for ex in examples(&grammar_text(g.file)) {
         let Some(code) = &ex.code else { continue };
         count += 1;
-        let c = run(&ex.text);
+        let c = run(&ex.text, g.ext);
         let got = codes_of(&c);
         let is_warning = code.starts_with('W');
         let compiled = c.system.is_some() && !c.diagnostics.has_errors();
@@ -447,14 +509,21 @@ fn counterexamples_give_exactly_their_code() {
     assert!(count >= MIN_COUNTEREXAMPLES);
     assert!(
         failures.is_empty(),
-        "counterexamples that disagree with the implementation:\n{}",
+        "{}: counterexamples that disagree with the implementation:\n{}",
+        g.file,
         failures.join("\n")
     );
 }
 
 #[test]
 fn constraint_codes_are_registered_and_each_has_a_counterexample() {
-    let src = grammar_text();
+    for g in &GRAMMARS {
+        constraint_codes_checked(g);
+    }
+}
+
+fn constraint_codes_checked(g: &Grammar) {
+    let src = grammar_text(g.file);
     let named = constraint_codes(&src);
     assert!(named.len() >= MIN_COUNTEREXAMPLES, "only {named:?}");
     let registered: BTreeSet<&str> = codes::all().map(|c| c.code.0).collect();
@@ -494,11 +563,19 @@ fn the_fig_3_11a_data_file_is_an_example_whole() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/stdlib/pfg/hogeweg-hesper-a.l");
     let file = std::fs::read_to_string(path).expect("stdlib/pfg/hogeweg-hesper-a.l");
     assert!(
-        examples(&grammar_text())
+        examples(&grammar_text("pfg.ebnf"))
             .iter()
             .any(|e| e.code.is_none() && e.text == file),
         "no example is exactly {path}"
     );
+}
+
+#[test]
+fn the_fig_10_listing_is_an_example_whole() {
+    let listing = "lines f\nangles (0, [0 2*pi])\naxiom f\nrules f = f+f\n";
+    assert!(examples(&grammar_text("linf.ebnf"))
+        .iter()
+        .any(|e| e.code.is_none() && e.text == listing));
 }
 
 #[test]

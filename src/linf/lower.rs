@@ -286,9 +286,11 @@ fn declare_names(cx: &mut Cx<'_>, names: &[Name], role: Role) {
 fn declare_rotations(cx: &mut Cx<'_>, decls: &[RotationDecl]) {
     let mut default_span: Option<Span> = None;
     for d in decls {
-        let Some((torsion, curvature)) = rotation_pair(cx, d) else {
-            continue;
-        };
+        // A rotation in error is still declared (as no rotation at all), so
+        // that its uses are not reported again; the file has an error and is
+        // not drawn anyway.
+        let (torsion, curvature) =
+            rotation_pair(cx, d).unwrap_or((Angle::Radians(0.0), Angle::Radians(0.0)));
         let name = d.name.as_ref().map_or(String::new(), |n| n.text.clone());
         let rotation = Rotation {
             name: name.clone(),
