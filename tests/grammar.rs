@@ -378,7 +378,7 @@ fn examples(src: &str) -> Vec<Example> {
 }
 
 fn run(text: &str, ext: &str) -> Compiled {
-    compile(SourceFile::new(&format!("ex.{ext}"), text))
+    compile(SourceFile::new(format!("ex.{ext}"), text))
 }
 
 fn codes_of(c: &Compiled) -> Vec<&'static str> {
