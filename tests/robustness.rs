@@ -52,6 +52,8 @@ const MAX_SYMBOLS: usize = 20_000;
 #[derive(Clone, Debug)]
 struct Case {
     text: String,
+    /// The file's extension, which picks the front end (`l`, `linf`).
+    ext: &'static str,
     /// Steps for the first derivation (`-n k`); the second uses the file's
     /// own derivation length.
     k: u64,
@@ -138,7 +140,10 @@ fn check_diagnostic(d: &Diagnostic, file: &SourceFile) -> Result<(), String> {
 /// Compile, check diagnostics, derive (twice), lay out, SVG, PNG.
 fn pipeline(case: &Case) -> Result<Outcome, String> {
     let compiled = stage("driver::compile", || {
-        driver::compile(SourceFile::new("fuzz.l", case.text.clone()))
+        driver::compile(SourceFile::new(
+            format!("fuzz.{}", case.ext),
+            case.text.clone(),
+        ))
     })?;
     for d in compiled.diagnostics.iter() {
         check_diagnostic(d, &compiled.file)?;
@@ -512,11 +517,13 @@ fn edit() -> impl Strategy<Value = Edit> {
 }
 
 /// A stdlib file with 1 to 5 edits.
-fn mutated_text() -> impl Strategy<Value = String> {
+/// A stdlib file (of any notation) after a few edits, with its extension.
+fn mutated_text() -> impl Strategy<Value = (String, &'static str)> {
     (0..ENTRIES.len(), prop::collection::vec(edit(), 1..6)).prop_map(|(i, edits)| {
-        edits
+        let text = edits
             .iter()
-            .fold(ENTRIES[i].text.to_string(), |t, e| apply(&t, e))
+            .fold(ENTRIES[i].text.to_string(), |t, e| apply(&t, e));
+        (text, ext_of(ENTRIES[i].file))
     })
 }
 
@@ -751,7 +758,21 @@ fn structured_text() -> impl Strategy<Value = String> {
         })
 }
 
-fn case(text: impl Strategy<Value = String>) -> impl Strategy<Value = Case> {
+/// The extension of a stdlib entry's file name.
+fn ext_of(file: &str) -> &'static str {
+    match file.rsplit('.').next() {
+        Some("linf") => "linf",
+        Some("stl") => "stl",
+        _ => "l",
+    }
+}
+
+/// pfg text.
+fn pfg(text: impl Strategy<Value = String>) -> impl Strategy<Value = (String, &'static str)> {
+    text.prop_map(|t| (t, "l"))
+}
+
+fn case(text: impl Strategy<Value = (String, &'static str)>) -> impl Strategy<Value = Case> {
     let seed = prop_oneof![3 => 0u64..16, 1 => any::<u64>()];
     let view = prop_oneof![
         6 => Just((0.0, 0.0)),
@@ -761,8 +782,9 @@ fn case(text: impl Strategy<Value = String>) -> impl Strategy<Value = Case> {
         1 => Just((1e6, -1e6)),
     ];
     let size = prop_oneof![8 => Just((64, 64)), 1 => Just((1, 1)), 1 => Just((64, 17))];
-    (text, 0u64..8, seed, view, size).prop_map(|(text, k, seed, view, size)| Case {
+    (text, 0u64..8, seed, view, size).prop_map(|((text, ext), k, seed, view, size)| Case {
         text,
+        ext,
         k,
         seed,
         view,
@@ -809,6 +831,7 @@ fn stdlib_files_as_written_pass() {
         for seed in [0, 1] {
             let c = Case {
                 text: e.text.to_string(),
+                ext: ext_of(e.file),
                 k: 3,
                 seed,
                 view: (0.0, 0.0),
@@ -828,12 +851,181 @@ fn mutated_stdlib_files_never_panic_or_hang() {
 
 #[test]
 fn random_strings_never_panic_or_hang() {
-    run_all("random", 2000, 2, case(random_text()));
+    run_all("random", 2000, 2, case(pfg(random_text())));
 }
 
 #[test]
 fn structured_random_files_never_panic_or_hang() {
-    run_all("structured", 2000, 3, case(structured_text()));
+    run_all("structured", 2000, 3, case(pfg(structured_text())));
+}
+
+// ---------------------------------------------------------------------------
+// LinF
+// ---------------------------------------------------------------------------
+
+/// Pieces of LinF text: keywords, names, rotations, strings, numbers and
+/// the marks that go wrong most easily.
+const LINF_FRAGMENTS: &[&str] = &[
+    "lines ",
+    "blanks ",
+    "angles ",
+    "axiom ",
+    "rules ",
+    "colors ",
+    "f",
+    "g",
+    "fg",
+    "b",
+    "i",
+    "j",
+    "t",
+    "w",
+    " ",
+    "\n",
+    "\t",
+    "=",
+    " = ",
+    "+",
+    "-",
+    "++",
+    "--",
+    "+t",
+    "-w",
+    "[",
+    "]",
+    "{",
+    "}",
+    "!",
+    "@",
+    "?",
+    "0.5",
+    ".5",
+    "1e308",
+    "1e-320",
+    "0",
+    "-1",
+    "2*pi",
+    "pi/0",
+    "(",
+    ")",
+    ",",
+    "(0, pi/3)",
+    "t = (pi/2, pi/6)",
+    "w = (0, [0 2*pi])",
+    "[0 -pi]",
+    "0.7@",
+    "0.5?j",
+    "(0,0,0)",
+    "(300, 1, 2)",
+    "0: ",
+    "#",
+    "#: steps 3",
+    "#: view 30,20",
+    "é",
+    "$",
+    "\u{7}",
+    "\u{feff}",
+    "lines",
+    "axiomf",
+    "2pi",
+    "(((",
+    ")))",
+];
+
+fn linf_fragment() -> impl Strategy<Value = String> {
+    proptest::sample::select(LINF_FRAGMENTS).prop_map(String::from)
+}
+
+/// Random LinF-flavoured strings.
+fn linf_random_text() -> impl Strategy<Value = (String, &'static str)> {
+    let piece = prop_oneof![
+        9 => linf_fragment(),
+        1 => any::<char>().prop_map(String::from),
+    ];
+    prop::collection::vec(piece, 0..120).prop_map(|v| (v.concat(), "linf"))
+}
+
+/// A LinF string over the declared names, now and then a mistake.
+fn linf_string() -> impl Strategy<Value = String> {
+    let item = prop_oneof![
+        36 => proptest::sample::select(&["f", "g", "b", "i", "j", "fg"][..]).prop_map(String::from),
+        18 => proptest::sample::select(&["+", "-", "++", "+t", "-t", "--w", "+w", "!"][..])
+            .prop_map(String::from),
+        2 => Just("[f+i]".to_string()),
+        2 => proptest::sample::select(&["{", "}", "[{f}]"][..]).prop_map(String::from),
+        2 => (0.01f64..0.99).prop_map(|p| format!("{p:.2}?j")),
+        2 => (0.1f64..1.5).prop_map(|x| format!("{x:.2}@")),
+        1 => proptest::sample::select(&["[", "]", "-q", "x", "1.5?j", "@", "7", "0?i"][..])
+            .prop_map(String::from),
+    ];
+    prop::collection::vec(item, 0..14).prop_map(|v| v.concat())
+}
+
+/// Structured LinF files: blocks in random order, some twice, with random
+/// rotations (intervals), rules and colours, and now and then a mistake.
+fn linf_structured_text() -> impl Strategy<Value = (String, &'static str)> {
+    let component = prop_oneof![
+        32 => (-7.0f64..7.0).prop_map(|v| format!("{v:.3}")),
+        16 => Just("pi/3".to_string()),
+        16 => (-4.0f64..0.0, 0.0f64..4.0).prop_map(|(a, b)| format!("[{a:.2} {b:.2}]")),
+        1 => proptest::sample::select(&["pi/0", "tau", "[2 1]", "1e999"][..]).prop_map(String::from),
+    ];
+    let pair = prop_oneof![
+        40 => (component.clone(), component.clone()).prop_map(|(a, b)| format!("({a}, {b})")),
+        1 => prop::collection::vec(component, 0..4).prop_map(|c| format!("({})", c.join(", "))),
+    ];
+    let named = prop_oneof![30 => Just("t"), 30 => Just("w"), 1 => Just("f")];
+    let rotations =
+        (pair.clone(), prop::collection::vec((named, pair), 2..4)).prop_map(|(default, named)| {
+            let named: Vec<String> = named.iter().map(|(n, p)| format!("{n} = {p}")).collect();
+            format!("angles {default} {}\n", named.join(" "))
+        });
+    let head = prop_oneof![40 => proptest::sample::select(&["f", "g", "b"][..]), 1 => Just("+")];
+    let rule = (head, linf_string()).prop_map(|(h, body)| format!("  {h} = {body}\n"));
+    let rules = (
+        linf_string(),
+        linf_string(),
+        prop::collection::vec(rule, 0..3),
+    )
+        .prop_map(|(i, j, more)| format!("rules\n  i = {i}\n  j = {j}\n{}", more.concat()));
+    let channel = prop_oneof![60 => 0i32..256, 1 => 256i32..300];
+    let colour = (channel, 0i32..256, 0i32..256).prop_map(|(r, g, b)| format!("({r},{g},{b}) "));
+    let blocks = (
+        Just("lines f g\nblanks b\n".to_string()),
+        rotations,
+        linf_string().prop_map(|a| format!("axiom {a}\n")),
+        rules,
+        prop::collection::vec(colour, 0..4).prop_map(|c| format!("colors {}\n", c.concat())),
+        prop::option::of(proptest::sample::select(
+            &[
+                "#: steps 4\n",
+                "#: view 30,20\n",
+                "#: steps x\n",
+                "axiom f\n",
+            ][..],
+        )),
+    );
+    (blocks, any::<u64>()).prop_map(|((lines, angles, axiom, rules, colours, extra), order)| {
+        let mut parts: Vec<String> = vec![lines, angles, axiom, rules, colours];
+        parts.extend(extra.map(String::from));
+        // A deterministic shuffle driven by `order`.
+        let mut o = order;
+        for i in (1..parts.len()).rev() {
+            parts.swap(i, (o % (i as u64 + 1)) as usize);
+            o /= i as u64 + 1;
+        }
+        (parts.concat(), "linf")
+    })
+}
+
+#[test]
+fn linf_random_strings_never_panic_or_hang() {
+    run_all("linf random", 1500, 5, case(linf_random_text()));
+}
+
+#[test]
+fn linf_structured_random_files_never_panic_or_hang() {
+    run_all("linf structured", 1500, 6, case(linf_structured_text()));
 }
 
 /// `graftal derive` through `cli::run` on files written to disk: the exit
@@ -849,15 +1041,16 @@ fn cli_derive_on_mutated_files() {
     std::fs::create_dir_all(&dir).expect("create the temp dir");
     let mut runner = runner(1, 4);
     let strategy = (
-        prop_oneof![2 => mutated_text(), 1 => structured_text()],
+        prop_oneof![2 => mutated_text(), 1 => pfg(structured_text()), 1 => linf_structured_text()],
         prop::option::of(0u64..8),
         0u64..16,
         any::<bool>(),
     );
     let mut failures = Vec::new();
     for i in 0..300 {
-        let (text, steps, seed, json) = strategy.new_tree(&mut runner).expect("a value").current();
-        let path = dir.join(format!("case-{i}.l"));
+        let ((text, ext), steps, seed, json) =
+            strategy.new_tree(&mut runner).expect("a value").current();
+        let path = dir.join(format!("case-{i}.{ext}"));
         std::fs::write(&path, &text).expect("write the input");
         let path = path.display().to_string();
         let mut args: Vec<String> = vec![
@@ -1068,6 +1261,7 @@ fn hand_written_edge_cases_never_panic_or_hang() {
         for (k, seed) in [(0, 0), (3, 4), (7, 8)] {
             let c = Case {
                 text: text.to_string(),
+                ext: "l",
                 k,
                 seed,
                 view: (0.0, 0.0),
@@ -1095,6 +1289,7 @@ fn hand_written_edge_cases_never_panic_or_hang() {
 fn must_pass(text: &str) {
     let c = Case {
         text: text.to_string(),
+        ext: "l",
         k: 3,
         seed: 0,
         view: (0.0, 0.0),

@@ -640,7 +640,62 @@ fn push_pieces(
     }
 }
 
+/// Names may end in digits (`f1`), so `f0.5?j` and `f2@` lex as the name
+/// `f0` or `f2` and what follows. When the trailing digits of such a name
+/// are no declared name, and a number, `?` or `@` follows, they are the
+/// number: `f0.5?j` is `f 0.5?j`, `f2@` is `f 2@`.
+fn detach_numbers(cx: &Cx<'_>, items: &[Item]) -> Vec<Item> {
+    let mut out: Vec<Item> = Vec::with_capacity(items.len());
+    let mut i = 0;
+    while i < items.len() {
+        let (Item::Name(n), Some(next)) = (&items[i], items.get(i + 1)) else {
+            out.push(items[i].clone());
+            i += 1;
+            continue;
+        };
+        let fraction = match next {
+            Item::Number { text, span, .. }
+                if text.starts_with('.') && span.start == n.span.end =>
+            {
+                Some((text.as_str(), span.end))
+            }
+            Item::Question(s) | Item::At(s) if s.start == n.span.end => None,
+            _ => {
+                out.push(items[i].clone());
+                i += 1;
+                continue;
+            }
+        };
+        let digits = n.text.len() - n.text.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+        let unknown_tail =
+            matches!(split(cx, &n.text, 0).last(), Some((Err(()), t, _)) if t.len() >= digits);
+        if digits == 0 || digits == n.text.len() || !unknown_tail {
+            out.push(items[i].clone());
+            i += 1;
+            continue;
+        }
+        let cut = n.span.end - digits;
+        out.push(Item::Name(Name {
+            text: n.text[..n.text.len() - digits].to_string(),
+            span: n.span.start..cut,
+        }));
+        let digit_text = &n.text[n.text.len() - digits..];
+        let (text, end) = match fraction {
+            Some((f, end)) => (format!("{digit_text}{f}"), end),
+            None => (digit_text.to_string(), n.span.end),
+        };
+        out.push(Item::Number {
+            value: text.parse().unwrap_or(f64::NAN),
+            text,
+            span: cut..end,
+        });
+        i += if fraction.is_some() { 2 } else { 1 };
+    }
+    out
+}
+
 fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
+    let items = &detach_numbers(cx, items)[..];
     let mut out = StringOut {
         word: Vec::new(),
         spans: Vec::new(),
