@@ -170,8 +170,7 @@ fn guarded_expansion_frequency_matches_its_probability() {
     let n = 20_000.0;
     for (steps, p) in [(1, 0.3), (2, 0.51)] {
         let got = count_b(steps, 42);
-        let sigma = (n * p * (1.0 - p)) as f64;
-        let sigma = sigma.sqrt();
+        let sigma = (n * p * (1.0 - p)).sqrt();
         assert!(
             (got - n * p).abs() < 4.0 * sigma,
             "after {steps} steps: {got} of {n}, expected {} ± {sigma:.0}",
