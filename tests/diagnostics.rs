@@ -15,7 +15,10 @@ fn inputs() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir())
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "l"))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| e == "l" || e == "linf" || e == "stl")
+        })
         .collect();
     v.sort();
     v
@@ -189,4 +192,81 @@ fn a_string_starting_with_star_is_empty_as_in_the_listing() {
     )
     .unwrap();
     assert_eq!(w.display(&sys.symbols), "C");
+}
+
+#[test]
+fn each_linf_problem_has_its_code_and_all_errors_come_in_one_run() {
+    let has = |file: &str, expected: &[codes::Code]| {
+        let got = codes_of(file);
+        for c in expected {
+            assert!(got.contains(&c.0), "{file}: no {c} in {got:?}");
+        }
+    };
+    has(
+        "linf-undeclared.linf",
+        &[codes::LINF_UNDECLARED, codes::LINF_UNKNOWN_ANGLE],
+    );
+    has(
+        "linf-signs.linf",
+        &[
+            codes::LINF_UNKNOWN_ANGLE,
+            codes::LINF_NO_DEFAULT_ROTATION,
+            codes::LINF_BARE_ANGLE,
+        ],
+    );
+    has(
+        "linf-numbers.linf",
+        &[
+            codes::LINF_MISSING_NUMBER,
+            codes::LINF_PROBABILITY,
+            codes::LINF_STRAY_NUMBER,
+            codes::LINF_GUARD_TARGET,
+        ],
+    );
+    has(
+        "linf-rotations.linf",
+        &[
+            codes::LINF_NOT_A_PAIR,
+            codes::LINF_BAD_EXPRESSION,
+            codes::LINF_EMPTY_INTERVAL,
+            codes::SYNTAX,
+        ],
+    );
+    has(
+        "linf-colours.linf",
+        &[
+            codes::LINF_COLOUR_ARITY,
+            codes::LINF_COLOUR_RANGE,
+            codes::LINF_COLOUR_LABEL,
+        ],
+    );
+    has(
+        "linf-blocks.linf",
+        &[
+            codes::LINF_OUTSIDE_BLOCK,
+            codes::LINF_DUPLICATE_BLOCK,
+            codes::LINF_RULE_IN_AXIOM,
+            codes::LINF_RESERVED_RULE,
+        ],
+    );
+    has(
+        "linf-brackets.linf",
+        &[codes::LINF_UNBALANCED, codes::LINF_COLOUR_BALANCE],
+    );
+    // One run reports every error of the file, each once, and no cascade:
+    // the failed interval `w` stays declared, so `-w` is not reported.
+    let many = codes_of("linf-many-errors.linf");
+    assert_eq!(
+        many,
+        [
+            codes::LINF_EMPTY_INTERVAL.0,
+            codes::LINF_UNKNOWN_ANGLE.0,
+            codes::SYNTAX.0,
+            codes::SYNTAX.0,
+            codes::LINF_UNDECLARED.0,
+            codes::LINF_PROBABILITY.0,
+            codes::LINF_RESERVED_RULE.0,
+            codes::LINF_COLOUR_RANGE.0,
+        ]
+    );
 }

@@ -50,6 +50,8 @@ pub struct RotationDecl {
     pub name: Option<Name>,
     /// The components as written (a rotation needs exactly two).
     pub components: Vec<Component>,
+    /// The parser could not read the components (and said why).
+    pub recovered: bool,
     /// From `(` to `)`.
     pub span: Span,
 }

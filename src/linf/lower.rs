@@ -337,6 +337,9 @@ fn declare_rotations(cx: &mut Cx<'_>, decls: &[RotationDecl]) {
 /// The (torsion, curvature) of a declaration, or `None` after reporting why
 /// it has none.
 fn rotation_pair(cx: &mut Cx<'_>, d: &RotationDecl) -> Option<(Angle, Angle)> {
+    if d.recovered {
+        return None;
+    }
     if d.components.len() != 2 {
         let n = d.components.len();
         let help = match n {
@@ -583,12 +586,22 @@ impl StringOut {
 }
 
 fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
-    let names: Vec<&str> = cx.roles.keys().map(String::as_str).collect();
+    // Angles are not suggested: alone in a string they would be wrong too.
+    let names: Vec<&str> = cx
+        .roles
+        .iter()
+        .filter(|(_, (r, _))| !matches!(r, Role::Angle(_)))
+        .map(|(n, _)| n.as_str())
+        .collect();
     let mut near = nearest(text, &names);
     if near.is_empty() && whole != text {
         near = nearest(whole, &names);
     }
     near.sort();
+    // With one-letter names everything is one edit away: no guess then.
+    if near.len() > 3 {
+        near.clear();
+    }
     let d = Diagnostic::at(
         codes::LINF_UNDECLARED,
         span,
@@ -880,8 +893,29 @@ fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], mut i: usiz
                 .filter(|(_, (r, _))| matches!(r, Role::Angle(_)))
                 .map(|(n, _)| n.as_str())
                 .collect();
-            let mut near = nearest(text, &angles);
+            let mut near: Vec<String> = nearest(text, &angles)
+                .into_iter()
+                .map(|n| format!("{run_text}{n}"))
+                .collect();
+            if near.is_empty() {
+                // `+laef` for `+leaf`: the default rotation, then a name.
+                let others: Vec<&str> = cx
+                    .roles
+                    .iter()
+                    .filter(|(_, (r, _))| !matches!(r, Role::Angle(_)))
+                    .map(|(n, _)| n.as_str())
+                    .collect();
+                if cx.default_rotation.is_some() {
+                    near = nearest(text, &others)
+                        .into_iter()
+                        .map(|n| format!("{run_text}{n}"))
+                        .collect();
+                }
+            }
             near.sort();
+            if near.len() > 3 {
+                near.clear();
+            }
             let d = Diagnostic::at(
                 codes::LINF_UNKNOWN_ANGLE,
                 span.clone(),
@@ -890,7 +924,7 @@ fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], mut i: usiz
             .with_label("not a declared angle")
             .with_secondary(run.clone(), "rotates by the angle named here");
             let d = match (near.first(), angles.is_empty()) {
-                (Some(n), _) => d.with_help(format!("did you mean `{run_text}{n}`?")),
+                (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
                 (None, true) => d.with_help(format!(
                     "declare it in the angles block: `angles {text} = (0, pi/2)`"
                 )),

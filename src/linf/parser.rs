@@ -197,13 +197,23 @@ where
             component
                 .separated_by(just(Token::Comma))
                 .collect::<Vec<_>>()
+                .map(Some)
                 .delimited_by(just(Token::LParen), just(Token::RParen))
+                // A malformed pair is reported and skipped to its `)`, and
+                // the name stays declared (no cascade at its uses).
+                .recover_with(via_parser(nested_delimiters(
+                    Token::LParen,
+                    Token::RParen,
+                    [(Token::LBracket, Token::RBracket)],
+                    |_| None,
+                )))
                 .map_with(|c, e| (c, range(e.span())))
                 .labelled("a rotation `(torsion, curvature)`"),
         )
         .map(|(name, (components, span))| RotationDecl {
             name,
-            components,
+            recovered: components.is_none(),
+            components: components.unwrap_or_default(),
             span,
         });
     let angles_body = rotation
@@ -600,8 +610,11 @@ mod tests {
         let BlockBody::Angles(a) = &f.blocks[0].body else {
             panic!()
         };
-        assert_eq!(a.len(), 1, "{a:?}");
-        assert_eq!(a[0].name.as_ref().unwrap().text, "u");
+        // The malformed pair keeps its name (so its uses are not reported
+        // again) and is marked as recovered.
+        assert_eq!(a.len(), 2, "{a:?}");
+        assert!(a[0].recovered && a[0].name.as_ref().unwrap().text == "t");
+        assert!(!a[1].recovered && a[1].name.as_ref().unwrap().text == "u");
         let BlockBody::Rules(r) = &f.blocks[1].body else {
             panic!()
         };
