@@ -168,7 +168,7 @@ fn guarded_expansion_frequency_matches_its_probability() {
         w.0.iter().filter(|&&s| s == b).count() as f64
     };
     let n = 20_000.0;
-    for (steps, p) in [(1, 0.3), (2, 0.51)] {
+    for (steps, p) in [(1u64, 0.3f64), (2, 0.51)] {
         let got = count_b(steps, 42);
         let sigma = (n * p * (1.0 - p)).sqrt();
         assert!(
