@@ -1,4 +1,4 @@
-//! Golden outputs in naga's style: every tests/in/NAME.l is derived and
+//! Golden outputs in naga's style: every tests/in/NAME.l (or .linf) is derived and
 //! rendered; tests/out/NAME.txt (the derived word and stats) and
 //! tests/out/NAME.svg must equal the output byte for byte. Regenerate on
 //! purpose with `GRAFTAL_BLESS=1 cargo test --test golden`.
@@ -22,7 +22,8 @@ fn golden_words_and_svgs() {
     for input in inputs {
         let stem = input.file_stem().unwrap().to_string_lossy().to_string();
         let text = std::fs::read_to_string(&input).unwrap();
-        let c = compile(SourceFile::new(format!("{stem}.l"), text));
+        let name = input.file_name().unwrap().to_string_lossy().to_string();
+        let c = compile(SourceFile::new(name, text));
         let sys = c
             .system
             .unwrap_or_else(|| panic!("{stem}: {:#?}", c.diagnostics));
@@ -39,11 +40,13 @@ fn golden_words_and_svgs() {
             g.polygons.len(),
             g.max_depth,
             b[0], b[1], b[2], b[3], b[4], b[5],
-            word.display(&sys.symbols)
+            graftal::driver::word_text(&sys, &word)
         );
+        let (azimuth, elevation) = sys.settings.view.unwrap_or((0.0, 0.0));
         let ropts = RenderOptions {
             width: 400,
             height: 400,
+            view: graftal::render::View { azimuth, elevation },
             ..RenderOptions::default()
         };
         let svg = String::from_utf8(render_bytes(&sys, &g, Format::Svg, ropts).unwrap()).unwrap();
