@@ -58,6 +58,17 @@ impl Role {
     }
 }
 
+impl Cx<'_> {
+    /// The declared angle names (`angles`), or all the other names.
+    fn names(&self, angles: bool) -> Vec<&str> {
+        self.roles
+            .iter()
+            .filter(|(_, (r, _))| matches!(r, Role::Angle(_)) == angles)
+            .map(|(n, _)| n.as_str())
+            .collect()
+    }
+}
+
 struct Cx<'a> {
     diags: &'a mut Diagnostics,
     sys: System,
@@ -587,12 +598,7 @@ impl StringOut {
 
 fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
     // Angles are not suggested: alone in a string they would be wrong too.
-    let names: Vec<&str> = cx
-        .roles
-        .iter()
-        .filter(|(_, (r, _))| !matches!(r, Role::Angle(_)))
-        .map(|(n, _)| n.as_str())
-        .collect();
+    let names = cx.names(false);
     let mut near = nearest(text, &names);
     if near.is_empty() && whole != text {
         near = nearest(whole, &names);
@@ -887,24 +893,14 @@ fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], mut i: usiz
             Some(r)
         }
         Some((Err(()), text, span)) => {
-            let angles: Vec<&str> = cx
-                .roles
-                .iter()
-                .filter(|(_, (r, _))| matches!(r, Role::Angle(_)))
-                .map(|(n, _)| n.as_str())
-                .collect();
+            let angles = cx.names(true);
             let mut near: Vec<String> = nearest(text, &angles)
                 .into_iter()
                 .map(|n| format!("{run_text}{n}"))
                 .collect();
             if near.is_empty() {
                 // `+laef` for `+leaf`: the default rotation, then a name.
-                let others: Vec<&str> = cx
-                    .roles
-                    .iter()
-                    .filter(|(_, (r, _))| !matches!(r, Role::Angle(_)))
-                    .map(|(n, _)| n.as_str())
-                    .collect();
+                let others = cx.names(false);
                 if cx.default_rotation.is_some() {
                     near = nearest(text, &others)
                         .into_iter()
@@ -947,12 +943,7 @@ fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], mut i: usiz
         None => match cx.default_rotation {
             Some(id) => (Some(id), String::new()),
             None => {
-                let angles: Vec<&str> = cx
-                    .roles
-                    .iter()
-                    .filter(|(_, (r, _))| matches!(r, Role::Angle(_)))
-                    .map(|(n, _)| n.as_str())
-                    .collect();
+                let angles = cx.names(true);
                 let help = match angles.iter().min() {
                     Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
                     None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
