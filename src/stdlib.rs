@@ -79,6 +79,17 @@ pub static ENTRIES: &[Entry] = &[
     entry!("signal-basipetal"),
     entry!("snowflake-quadratic"),
     entry!("stochastic-bush"),
+    entry!("linf" / "fig01-koch-curve" . "linf"),
+    entry!("linf" / "fig03-koch-snowflake" . "linf"),
+    entry!("linf" / "fig04-sierpinski-carpet" . "linf"),
+    entry!("linf" / "fig05-peano-curve" . "linf"),
+    entry!("linf" / "fig06-plant" . "linf"),
+    entry!("linf" / "fig07-plant-3d" . "linf"),
+    entry!("linf" / "fig08-tree-3d" . "linf"),
+    entry!("linf" / "fig09-stochastic-plant" . "linf"),
+    entry!("linf" / "fig10-brownian-motion" . "linf"),
+    entry!("linf" / "fig11-feathers" . "linf"),
+    entry!("linf" / "fig12-trees" . "linf"),
 ];
 
 /// The entry called `name` (with or without its extension; pfg entries

@@ -1100,7 +1100,7 @@ fn cli_derive_on_mutated_files() {
                         ..RunOptions::default()
                     },
                 )
-                .map(|w| w.display(&sys.symbols))
+                .map(|w| driver::word_text(sys, &w))
                 .map_err(|_| ()),
             };
             let stdout = String::from_utf8_lossy(&stdout);
