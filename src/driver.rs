@@ -80,7 +80,11 @@ pub fn compile(file: SourceFile) -> Compiled {
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
     let (system, spans) = match ext.as_str() {
-        "linf" | "stl" => {
+        "stl" => {
+            let lowered = crate::stl::read(&file.text, &mut diags);
+            (Some(lowered.system), lowered.spans)
+        }
+        "linf" => {
             diags.push(Diagnostic::global(
                 codes::UNSUPPORTED_NOTATION,
                 format!("the `.{ext}` front end is not available in this version"),

@@ -12,10 +12,12 @@
 pub mod cli;
 pub mod diagnostics;
 pub mod driver;
+pub mod emit;
 pub mod eval;
 pub mod ir;
 pub mod pfg;
 pub mod render;
 pub mod source;
 pub mod stdlib;
+pub mod stl;
 pub mod turtle;
