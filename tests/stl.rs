@@ -133,3 +133,218 @@ fn stem_parameters_show_as_widths_and_lengths() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------
+// Outline growth (the paper's section IV) on one outline.
+
+/// A crown (ellipse) over a trunk (rectangle); `R1 = [-F][+F]` as in the
+/// paper's Fig. 9 (the right branch `[-F]` has the first priority).
+const OUTLINE: &str = "ANGLE 30\nB = 4 (0.3)\nL = 30 (2)\nGROWTH BFS\nLEVELS 12\nR1 = [-F][+F]\nSEED\nF R1\nENDSEED\nLAYOUT\n(clGreen) Ellipse (-150, 20), 300, 260\n(clMaroon) Rectangle (-10, 0), 20, 40\nENDLAYOUT\n";
+
+fn grown(strategy: &str) -> System {
+    stl::read_ok(&OUTLINE.replace("GROWTH BFS", &format!("GROWTH {strategy}")))
+}
+
+/// Inside the crown or the trunk, computed here independently of
+/// `stl::layout` (with a tolerance of 1e-9).
+fn in_outline(p: [f64; 3]) -> bool {
+    let (u, v) = ((p[0] - 0.0) / 150.0, (p[1] - 150.0) / 130.0);
+    let ellipse = u * u + v * v <= 1.0 + 1e-9;
+    let rect =
+        (-10.0 - 1e-9..=10.0 + 1e-9).contains(&p[0]) && (-1e-9..=40.0 + 1e-9).contains(&p[1]);
+    ellipse || rect
+}
+
+fn point_seg(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let e = [b[0] - a[0], b[1] - a[1]];
+    let l2 = e[0] * e[0] + e[1] * e[1];
+    let t = if l2 > 0.0 {
+        (((p[0] - a[0]) * e[0] + (p[1] - a[1]) * e[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((a[0] + t * e[0] - p[0]).powi(2) + (a[1] + t * e[1] - p[1]).powi(2)).sqrt()
+}
+
+fn same(p: [f64; 3], q: [f64; 3]) -> bool {
+    (p[0] - q[0]).abs() < 1e-7 && (p[1] - q[1]).abs() < 1e-7
+}
+
+/// Descendant counts (rule applications) under each entry of the seed's
+/// first term: the first-priority branch and the last.
+fn sides(sys: &System) -> Vec<usize> {
+    use graftal::ir::{BranchEntry, BranchTerm, SeedItem};
+    fn count(t: &BranchTerm) -> usize {
+        t.entries
+            .iter()
+            .map(|e| match e {
+                BranchEntry::Term(c) => 1 + count(c),
+                _ => 0,
+            })
+            .sum()
+    }
+    let st = sys.structure.as_ref().unwrap();
+    let root = st
+        .seed
+        .iter()
+        .find_map(|s| match s {
+            SeedItem::Term(t) => Some(t),
+            _ => None,
+        })
+        .unwrap();
+    root.entries
+        .iter()
+        .map(|e| match e {
+            BranchEntry::Term(c) => 1 + count(c),
+            _ => 0,
+        })
+        .collect()
+}
+
+#[test]
+fn every_grown_stem_stays_inside_the_layout() {
+    for strategy in ["BFS", "DFS"] {
+        let g = geometry(&grown(strategy));
+        assert!(g.segments.len() > 300, "{strategy}: {}", g.segments.len());
+        for s in &g.segments {
+            for k in 0..=200 {
+                let t = k as f64 / 200.0;
+                let p = [
+                    s.a[0] + t * (s.b[0] - s.a[0]),
+                    s.a[1] + t * (s.b[1] - s.a[1]),
+                    0.0,
+                ];
+                assert!(
+                    in_outline(p),
+                    "{strategy}: {s:?} leaves the layout at {p:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn no_two_stems_are_closer_than_their_broadness_except_at_a_joint() {
+    for strategy in ["BFS", "DFS"] {
+        let g = geometry(&grown(strategy));
+        let segs = &g.segments;
+        let mut joints = 0;
+        let mut closest = f64::INFINITY;
+        for i in 0..segs.len() {
+            for j in 0..i {
+                let (s, t) = (&segs[i], &segs[j]);
+                let need = (s.width + t.width) / 2.0;
+                let pairs = [(s.a, t.a), (s.a, t.b), (s.b, t.a), (s.b, t.b)];
+                let d = if let Some(k) = pairs.iter().position(|&(p, q)| same(p, q)) {
+                    joints += 1;
+                    // At a joint, each stem's free end keeps clear of the other.
+                    let sf = if k < 2 { s.b } else { s.a };
+                    let tf = if k % 2 == 0 { t.b } else { t.a };
+                    point_seg(sf, t.a, t.b).min(point_seg(tf, s.a, s.b))
+                } else {
+                    // No crossing (checked by the endpoint distances being
+                    // positive and the segments not intersecting).
+                    let cross = |o: [f64; 3], p: [f64; 3], q: [f64; 3]| {
+                        (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
+                    };
+                    let x = cross(s.a, s.b, t.a) * cross(s.a, s.b, t.b) < 0.0
+                        && cross(t.a, t.b, s.a) * cross(t.a, t.b, s.b) < 0.0;
+                    assert!(!x, "{strategy}: stems cross: {s:?} {t:?}");
+                    point_seg(s.a, t.a, t.b)
+                        .min(point_seg(s.b, t.a, t.b))
+                        .min(point_seg(t.a, s.a, s.b))
+                        .min(point_seg(t.b, s.a, s.b))
+                };
+                closest = closest.min(d - need);
+                assert!(
+                    d >= need - 1e-7,
+                    "{strategy}: {s:?} and {t:?} are {d} apart, need {need}"
+                );
+            }
+        }
+        assert!(joints >= segs.len() - 1, "{strategy}: {joints} joints");
+        // The constraint is active: some pair is close to the limit.
+        assert!(closest < 1.0, "{strategy}: closest margin {closest}");
+    }
+}
+
+#[test]
+fn bfs_and_dfs_grow_different_trees_with_the_papers_bias() {
+    let (bfs, dfs) = (grown("BFS"), grown("DFS"));
+    let (gb, gd) = (geometry(&bfs), geometry(&dfs));
+    assert_ne!(gb.segments, gd.segments);
+    let (b, d) = (sides(&bfs), sides(&dfs));
+    let ratio = |v: &[usize]| v[0] as f64 / v[1] as f64;
+    // Table 2: under DFS the first-priority (right) branch dominates ...
+    assert!(ratio(&d) > 1.5, "DFS sides {d:?}");
+    // ... under BFS the two sides are balanced.
+    assert!((ratio(&b) - 1.0).abs() < 0.15, "BFS sides {b:?}");
+    // Measured on this outline: BFS 157 vs 149, DFS 156 vs 77.
+    assert_eq!((b.clone(), d.clone()), (vec![157, 149], vec![156, 77]));
+}
+
+#[test]
+fn growth_stops_at_the_resemblance_count_and_at_levels() {
+    fn depth(sys: &System) -> usize {
+        use graftal::ir::{BranchEntry, BranchTerm, SeedItem};
+        fn d(t: &BranchTerm) -> usize {
+            1 + t
+                .entries
+                .iter()
+                .map(|e| match e {
+                    BranchEntry::Term(c) => d(c),
+                    _ => 0,
+                })
+                .max()
+                .unwrap_or(0)
+        }
+        sys.structure
+            .as_ref()
+            .unwrap()
+            .seed
+            .iter()
+            .map(|s| match s {
+                SeedItem::Term(t) => d(t),
+                _ => 0,
+            })
+            .max()
+            .unwrap_or(0)
+    }
+    let big = "LAYOUT\n(clWhite) Ellipse (-5000, 0), 10000, 10000\nENDLAYOUT\n";
+    let levels = stl::read_ok(&format!(
+        "L = 10\nLEVELS 4\nR1 = [-F][+F]\nSEED\nF R1\nENDSEED\n{big}"
+    ));
+    assert_eq!(depth(&levels), 4);
+    // At most the full binary tree of 4 levels over the trunk; a few
+    // level-4 tips collide with their cousins.
+    let n = geometry(&levels).segments.len();
+    assert!((1 + 2 + 4 + 8 + 1..=1 + 2 + 4 + 8 + 16).contains(&n), "{n}");
+    let counted = stl::read_ok(&format!(
+        "L = 10\nR1 = [-F][+F]\nR2 = [I 3 R1]\nSEED\nF R2\nENDSEED\n{big}"
+    ));
+    assert_eq!(depth(&counted), 3);
+    let default = stl::read_ok(&format!(
+        "L = 10\nANGLE 20\nR1 = [-F][+F]\nSEED\nF R1\nENDSEED\n{big}"
+    ));
+    assert_eq!(depth(&default), 12);
+}
+
+#[test]
+fn the_grown_bed_reads_back_to_the_same_stems() {
+    for strategy in ["BFS", "DFS"] {
+        let sys = grown(strategy);
+        let bed = graftal::emit::stl::write(&sys).unwrap();
+        assert!(bed.contains("R1{") && bed.contains('~'), "{bed}");
+        let back = stl::read_ok(&bed);
+        let (a, b) = (geometry(&sys), geometry(&back));
+        assert_eq!(a.segments.len(), b.segments.len());
+        for (s, t) in a.segments.iter().zip(&b.segments) {
+            assert!(
+                same(s.a, t.a) && same(s.b, t.b) && s.width == t.width,
+                "{s:?} {t:?}"
+            );
+        }
+        // Written again, the BED is unchanged (a fixed point).
+        assert_eq!(graftal::emit::stl::write(&back).unwrap(), bed);
+    }
+}

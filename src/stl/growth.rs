@@ -493,17 +493,36 @@ pub fn grow(
             }
         }
     } else {
-        let mut queue: std::collections::VecDeque<(Point, usize)> =
-            points.iter().copied().zip(0..).collect();
-        while let Some((p, node)) = queue.pop_front() {
-            g.trunk(&p);
-            for k in 0..units[p.rule].branches.len() {
-                if let Some(child) = g.branch(&p, node, k) {
-                    let c = g.new_node(child.rule);
-                    g.out.nodes[node].entries[k] = Grown::Node(c);
-                    queue.push_back((child, c));
+        // Level by level. A level's growth points are in the tree's order
+        // (that of the rules' branches), which runs across the tree from
+        // one side to the other; they are taken alternately from its two
+        // ends, so that neither side of the tree claims the contested space
+        // first (the paper's "stems in the same level share almost the same
+        // probability to branch successfully").
+        let mut level: Vec<(Point, usize)> = points.iter().copied().zip(0..).collect();
+        while !level.is_empty() {
+            let n = level.len();
+            let order = (0..n).map(|i| if i % 2 == 0 { i / 2 } else { n - 1 - i / 2 });
+            let mut next: Vec<Option<(Point, usize)>> = Vec::new();
+            let mut slots: Vec<Vec<usize>> = vec![Vec::new(); n];
+            for i in order {
+                let (p, node) = level[i];
+                g.trunk(&p);
+                for k in 0..units[p.rule].branches.len() {
+                    if let Some(child) = g.branch(&p, node, k) {
+                        let c = g.new_node(child.rule);
+                        g.out.nodes[node].entries[k] = Grown::Node(c);
+                        slots[i].push(next.len());
+                        next.push(Some((child, c)));
+                    }
                 }
             }
+            // The next level in the tree's order.
+            level = slots
+                .into_iter()
+                .flatten()
+                .filter_map(|j| next[j].take())
+                .collect();
         }
     }
     g.out
