@@ -79,6 +79,16 @@ pub static ENTRIES: &[Entry] = &[
     entry!("signal-basipetal"),
     entry!("snowflake-quadratic"),
     entry!("stochastic-bush"),
+    entry!("stl" / "fig02-koch-curve" . "stl"),
+    entry!("stl" / "fig03-koch-curve" . "stl"),
+    entry!("stl" / "fig04-plant" . "stl"),
+    entry!("stl" / "fig04-plant-1" . "stl"),
+    entry!("stl" / "fig04-plant-2" . "stl"),
+    entry!("stl" / "fig06-rm" . "stl"),
+    entry!("stl" / "fig06-rn" . "stl"),
+    entry!("stl" / "fig07-layout" . "stl"),
+    entry!("stl" / "fig09-outline-bfs" . "stl"),
+    entry!("stl" / "fig10-outline-dfs" . "stl"),
 ];
 
 /// The Delphi colour table of STL layouts (`stdlib/stl/delphi-colours.txt`):
