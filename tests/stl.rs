@@ -348,3 +348,52 @@ fn the_grown_bed_reads_back_to_the_same_stems() {
         assert_eq!(graftal::emit::stl::write(&back).unwrap(), bed);
     }
 }
+
+#[test]
+fn each_stl_problem_has_its_code() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/diagnostics");
+    let cases: [(&str, &[&str]); 11] = [
+        ("stl-unknown-rule.stl", &["E0501"]),
+        ("stl-too-many-entries.stl", &["E0502"]),
+        ("stl-no-branches.stl", &["E0503"]),
+        ("stl-unterminated-seed.stl", &["E0504"]),
+        ("stl-unterminated-layout.stl", &["E0504"]),
+        ("stl-unknown-shape-colour.stl", &["E0505", "E0506", "E0506"]),
+        ("stl-polygon-points.stl", &["E0507"]),
+        ("stl-negative.stl", &["E0508", "E0508", "E0508", "E0508"]),
+        ("stl-cycle.stl", &["E0509"]),
+        ("stl-clamped.stl", &["W0501", "W0501"]),
+        (
+            "stl-many-errors.stl",
+            &[
+                "E0512", "E0003", "E0516", "E0003", "E0501", "E0516", "E0003", "E0511",
+            ],
+        ),
+    ];
+    for (name, expected) in cases {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        let c = driver::compile(graftal::source::SourceFile::new(name, text));
+        let got: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
+        assert_eq!(got, expected, "{name}");
+        for d in c.diagnostics.iter() {
+            assert!(d.span.is_some() && d.help.is_some(), "{name}: {d:?}");
+        }
+    }
+    // The warnings clamp: the tree still compiles, and its thinnest stems
+    // are a tenth of B.
+    let text = std::fs::read_to_string(dir.join("stl-clamped.stl")).unwrap();
+    let c = driver::compile(graftal::source::SourceFile::new("c.stl", text));
+    let g = geometry(c.system.as_ref().unwrap());
+    let thinnest = g
+        .segments
+        .iter()
+        .map(|s| s.width)
+        .fold(f64::INFINITY, f64::min);
+    assert!((thinnest - 0.8).abs() < 1e-12, "{thinnest}");
+    let shortest = g
+        .segments
+        .iter()
+        .map(|s| ((s.b[0] - s.a[0]).powi(2) + (s.b[1] - s.a[1]).powi(2)).sqrt())
+        .fold(f64::INFINITY, f64::min);
+    assert!((shortest - 4.0).abs() < 1e-9, "{shortest}");
+}
