@@ -1106,7 +1106,9 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
         length: st.l,
     };
     let comp_ids = intern_components(&mut system);
-    if !ok || ctx.too_large {
+    // Nothing is grown or expanded in a file with errors (a parse error
+    // may have dropped part of the seed or the layout).
+    if !ok || ctx.too_large || ctx.diags.has_errors() {
         system.structure = Some(structure);
         return Lowered {
             system,
