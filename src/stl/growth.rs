@@ -32,7 +32,7 @@
 use super::layout::{point_segment_distance, segment_distance, Outline};
 
 /// The most stems growth makes.
-pub const MAX_STEMS: usize = 2_000_000;
+pub const MAX_STEMS: usize = 1_000_000;
 
 /// The most cells of the grid.
 const MAX_CELLS: usize = 1 << 18;
@@ -289,8 +289,11 @@ impl Grid {
 }
 
 /// Whether the stems `s` and `t` keep clear of each other.
+///
+/// Stems never cross or lie on each other, even with no broadness: the
+/// least clearance is `eps` (a billionth of the layout's size).
 fn clear(s: &Stem, t: &Stem, eps: f64) -> bool {
-    let need = s.half + t.half;
+    let need = (s.half + t.half).max(2.0 * eps);
     let close = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).abs() <= eps && (p[1] - q[1]).abs() <= eps;
     let shared = [(s.a, t.a), (s.a, t.b), (s.b, t.a), (s.b, t.b)]
         .iter()

@@ -44,7 +44,10 @@ pub const DEFAULT_LENGTH: f64 = 10.0;
 /// The most levels an outline grows (`LEVELS`).
 pub const MAX_LEVELS: u32 = 256;
 /// The most drawing components an expansion may have.
-pub const MAX_EXPANSION: usize = 20_000_000;
+pub const MAX_EXPANSION: usize = 8_000_000;
+/// The widest stroke drawn (turtle width units: pixels per 600 pixels of
+/// picture). Growth uses B as given; only the picture is capped.
+pub const MAX_DRAWN_WIDTH: f64 = 200.0;
 
 /// A lowered STL file: the IR and where its parts came from.
 #[derive(Clone, Debug)]
@@ -371,6 +374,17 @@ impl Ctx<'_> {
                             }
                             Piece::Rule(r, rspan) => {
                                 let ents = if i == last { entries.as_ref() } else { None };
+                                if ents.is_none() {
+                                    // A macro: the rule's expansion.
+                                    if self.term(r, &rspan, None, false).is_none()
+                                        || !self.room(out.len(), self.full[r].len(), &rspan)
+                                    {
+                                        ok = false;
+                                        continue;
+                                    }
+                                    out.extend_from_slice(&self.full[r]);
+                                    continue;
+                                }
                                 let Some(t) = self.term(r, &rspan, ents, false) else {
                                     ok = false;
                                     continue;
@@ -546,8 +560,10 @@ impl Ctx<'_> {
             out.push(Ev::Growth(usize::MAX));
         } else {
             let mut i = 0;
+            // The branches in order of their `[`: the next one to meet.
+            let mut k = 0;
             while i < full.len() {
-                if let Some(k) = br.iter().position(|&(o, _)| o == i) {
+                if k < br.len() && br[k].0 == i {
                     let close = br[k].1;
                     match t.entries.get(k) {
                         Some(TermEntry::Failed) => {}
@@ -562,6 +578,7 @@ impl Ctx<'_> {
                         _ => out.extend(full[i..=close].iter().map(|&c| Ev::C(c))),
                     }
                     i = close + 1;
+                    k += 1;
                 } else {
                     out.push(Ev::C(full[i]));
                     i += 1;
@@ -1091,7 +1108,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     let mut system = System::new(Notation::Stl);
     system.settings.angle = st.angle;
     system.settings.step = st.l.0;
-    system.settings.width = st.b.0;
+    system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);
     let mut structure = Structure {
         rules: Vec::new(),
         seed: Vec::new(),
@@ -1181,7 +1198,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
                     system.set_interpretation(
                         id,
                         TurtleOp::Stem {
-                            width: w,
+                            width: w.min(MAX_DRAWN_WIDTH),
                             length: l,
                         },
                     );

@@ -137,6 +137,9 @@ struct Cursor<'a, 'src> {
     diags: &'a mut Diagnostics,
     /// Where the item ends (for "expected … here" at the end).
     end: usize,
+    /// Set when nesting went too deep: the rest of the item is skipped and
+    /// the enclosing brackets are not reported again.
+    aborted: bool,
 }
 
 impl<'src> Cursor<'_, 'src> {
@@ -288,6 +291,7 @@ impl<'src> Cursor<'_, 'src> {
         );
         // Skip the rest of the item.
         self.pos = self.toks.len();
+        self.aborted = true;
     }
 
     /// `[ … ]` or `[I n X]`, the cursor at `[`.
@@ -307,6 +311,7 @@ impl<'src> Cursor<'_, 'src> {
         let body = self.string(|t| *t == Token::Close, depth + 1);
         let end = match self.peek() {
             Some(Token::Close) => self.bump().1.end,
+            _ if self.aborted => return None,
             _ => {
                 self.diags.push(
                     Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `[`")
@@ -399,6 +404,7 @@ impl<'src> Cursor<'_, 'src> {
                         span: open.start..close.end,
                     });
                 }
+                _ if self.aborted => return None,
                 _ => {
                     self.diags.push(
                         Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `{`")
@@ -448,6 +454,7 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
                 pos: 0,
                 diags,
                 end: body_end,
+                aborted: false,
             };
             let span = open.start..end;
             if seed {
@@ -480,6 +487,7 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
                 pos: 0,
                 diags,
                 end,
+                aborted: false,
             };
             if let Some(item) = line(&mut cur) {
                 file.items.push(item);

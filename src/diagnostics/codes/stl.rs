@@ -128,7 +128,7 @@ Write `ANGLE 30`.";
 
     STL_TOO_DEEP = "E0513", "too deeply nested or too large",
 "graftal reads at most 1000 nested brackets and braces, grows at most 256
-levels (LEVELS) and 2 000 000 stems. These limits keep every input within
+levels (LEVELS) and 1 000 000 stems. These limits keep every input within
 memory and time.
 
 Example:
