@@ -221,7 +221,7 @@ fn empty_picture_is_a_warning_not_an_error() {
 #[test]
 fn every_stdlib_entry_renders() {
     for e in graftal::stdlib::ENTRIES {
-        let out = temp(&format!("std-{}.png", e.name));
+        let out = temp(&format!("std-{}.png", e.name.replace('/', "-")));
         let o = graftal(&[
             "render",
             &format!("std:{}", e.name),
