@@ -65,18 +65,17 @@ fn self_resemblance_counts_as_spec_defines_them() {
         "F[+F][+F[+F]]"
     );
     assert_eq!(expand("SEED\n[I 2 F[+F]]\nENDSEED"), "F[+F][+F[+F]]");
+    // F -> F[RF] three times: 1, 2, 4, then 8 F's, each step substituting
+    // every F of the previous string in parallel.
+    let one = "F[RF]";
+    let three = one.replace('F', one).replace('F', one);
+    assert_eq!(three.matches('F').count(), 8);
     assert_eq!(
         expand("R1 = F[RF]\nR3 = [I 3 R1]\nSEED\nR3\nENDSEED"),
-        "F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]".replace(
-            "F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]F[RF]",
-            &{
-                // F -> F[RF] three times, computed by hand: 1 -> 2 -> 4 -> 8 F's.
-                let one = "F[RF]";
-                let two = one.replace('F', one);
-                two.replace('F', one)
-            }
-        )
+        three
     );
+    // `[I 0 X]` is F itself.
+    assert_eq!(expand("SEED\n[I 0 F[+F]]\nENDSEED"), "F");
 }
 
 #[test]
