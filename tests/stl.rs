@@ -68,7 +68,8 @@ fn self_resemblance_counts_as_spec_defines_them() {
     // F -> F[RF] three times: 1, 2, 4, then 8 F's, each step substituting
     // every F of the previous string in parallel.
     let one = "F[RF]";
-    let three = one.replace('F', one).replace('F', one);
+    let two = one.replace('F', one);
+    let three = two.replace('F', one);
     assert_eq!(three.matches('F').count(), 8);
     assert_eq!(
         expand("R1 = F[RF]\nR3 = [I 3 R1]\nSEED\nR3\nENDSEED"),
