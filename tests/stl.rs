@@ -415,3 +415,20 @@ fn a_large_outline_grows_tens_of_thousands_of_stems_quickly() {
     // takes well under a second in release and a few in the test profile.
     assert!(grow.as_secs_f64() < 30.0, "{grow:?}");
 }
+
+#[test]
+fn a_counted_rule_of_a_literal_string_grows_and_round_trips() {
+    // `[I 3 X]` with X a string: growth uses X for at most 3 levels, and
+    // the BED names X as a rule of its own (`Rc_unit`).
+    let src = "L = 20\nRc = [I 3 [-F][+F]]\nSEED\nF Rc\nENDSEED\nLAYOUT\n(clWhite) Ellipse (-500, 0), 1000, 1000\nENDLAYOUT\n";
+    let sys = stl::read_ok(src);
+    let g = geometry(&sys);
+    assert_eq!(g.segments.len(), 1 + 2 + 4 + 8);
+    let bed = graftal::emit::stl::write(&sys).unwrap();
+    assert!(
+        bed.contains("Rc_unit = [-F][+F]") && bed.contains("F Rc_unit{Rc_unit{Rc_unit{}"),
+        "{bed}"
+    );
+    let back = geometry(&stl::read_ok(&bed));
+    assert_eq!(back.segments, g.segments);
+}

@@ -1137,17 +1137,8 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     let max_level = st.levels.saturating_add(2).max(64);
     let (bw, _) = per_level(st.b.0, st.b.1, max_level);
     let (lw, _) = per_level(st.l.0, st.l.1, max_level);
-    let mut extra_rules: Vec<(String, Vec<Comp>)> = Vec::new();
     if od {
-        let has_growth = grow_outline(
-            &mut ctx,
-            &mut parts,
-            &st,
-            &shapes,
-            &bw,
-            &lw,
-            &mut extra_rules,
-        );
+        let has_growth = grow_outline(&mut ctx, &mut parts, &st, &shapes, &bw, &lw);
         if !has_growth {
             let span = layout_span.clone().unwrap_or(0..0);
             ctx.diags.push(
@@ -1251,13 +1242,6 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
             resemblance: ctx.count[r],
         });
     }
-    for (name, body) in extra_rules {
-        structure.rules.push(StlRule {
-            name,
-            body: Word(body.iter().map(|&c| comp_ids[c as usize]).collect()),
-            resemblance: None,
-        });
-    }
     for p in &parts {
         match p {
             Part::Comps(cs) => structure.seed.push(SeedItem::Word(Word(
@@ -1318,8 +1302,8 @@ fn intern_components(sys: &mut System) -> [crate::ir::SymbolId; 7] {
 }
 
 /// Grows the outline: replaces each growth point of `parts` by the grown
-/// terms. Returns whether there was any growth point.
-#[allow(clippy::too_many_arguments)]
+/// terms (adding a rule `NAME_unit` for each counted rule `[I n string]`
+/// grown). Returns whether there was any growth point.
 fn grow_outline(
     ctx: &mut Ctx<'_>,
     parts: &mut [Part],
@@ -1327,7 +1311,6 @@ fn grow_outline(
     shapes: &[Shape],
     bw: &[f64],
     lw: &[f64],
-    extra_rules: &mut Vec<(String, Vec<Comp>)>,
 ) -> bool {
     let delta = st.angle.to_radians();
     // Walk the seed with a turtle: the seed's stems, and where each growth
@@ -1352,13 +1335,26 @@ fn grow_outline(
             (Some(_), Some(k)) => k,
             (Some(_), None) => {
                 let mut name = format!("{}_unit", ctx.rules[r].name);
-                while ctx.by_name.contains_key(&name) || extra_rules.iter().any(|(n, _)| *n == name)
-                {
+                while ctx.by_name.contains_key(&name) {
                     name.push('_');
                 }
-                extra_rules.push((name, ctx.unit[r].clone()));
-                unit_comps.push(ctx.unit[r].clone());
-                unit_comps.len() - 1
+                // A rule of its own, so the grown terms can name it.
+                let unit = ctx.unit[r].clone();
+                let id = ctx.rules.len();
+                ctx.rules.push(RuleSrc {
+                    name: name.clone(),
+                    name_span: ctx.rules[r].name_span.clone(),
+                    span: ctx.rules[r].span.clone(),
+                    body: Str::default(),
+                });
+                ctx.by_name.insert(name, id);
+                ctx.state.push(State::Done);
+                ctx.full.push(unit.clone());
+                ctx.unit.push(unit.clone());
+                ctx.count.push(None);
+                ctx.unit_ref.push(None);
+                unit_comps.push(unit);
+                id
             }
         };
         unit_of[r] = Some(u);
