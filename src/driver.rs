@@ -85,11 +85,8 @@ pub fn compile(file: SourceFile) -> Compiled {
             (Some(lowered.system), lowered.spans)
         }
         "stl" => {
-            diags.push(Diagnostic::global(
-                codes::UNSUPPORTED_NOTATION,
-                format!("the `.{ext}` front end is not available in this version"),
-            ));
-            (None, SpanTable::default())
+            let lowered = crate::stl::read(&file.text, &mut diags);
+            (Some(lowered.system), lowered.spans)
         }
         _ => {
             let lowered = pfg::read(&file.text, &mut diags);
@@ -202,6 +199,26 @@ pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Dia
     let word = derive(sys, opts)?;
     let g = interpret(sys, &word, opts, false)?;
     Ok((word, g))
+}
+
+/// Adds an STL system's layout shapes to `g` as filled polygons drawn
+/// first, so the tree is drawn over them (PNG and SVG draw polygons before
+/// segments). Systems without a layout are left as they are.
+pub fn add_layout(sys: &System, g: &mut Geometry) {
+    let Some(st) = &sys.structure else { return };
+    let shapes: Vec<turtle::Polygon> = st
+        .layout
+        .iter()
+        .map(|s| turtle::Polygon {
+            points: crate::stl::layout::outline(s)
+                .into_iter()
+                .map(|p| [p[0], p[1], 0.0])
+                .collect(),
+            colour: crate::stl::layout::colour(s),
+        })
+        .filter(|p| p.points.len() >= 3)
+        .collect();
+    g.polygons.splice(0..0, shapes);
 }
 
 /// The warning for a picture with nothing in it.

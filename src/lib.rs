@@ -12,6 +12,7 @@
 pub mod cli;
 pub mod diagnostics;
 pub mod driver;
+pub mod emit;
 pub mod eval;
 pub mod ir;
 pub mod linf;
@@ -19,4 +20,5 @@ pub mod pfg;
 pub mod render;
 pub mod source;
 pub mod stdlib;
+pub mod stl;
 pub mod turtle;

@@ -1,6 +1,6 @@
 //! Rendered diagnostics, snapshot-tested as plain text (colour off) and as
 //! JSON: tests/diagnostics/NAME.l -> NAME.txt and NAME.json, compared byte
-//! for byte. Regenerate on purpose with `GRAFTAL_BLESS=1 cargo test`.
+//! for byte (and tests/diagnostics/stl-*.stl likewise). Regenerate on purpose with `GRAFTAL_BLESS=1 cargo test`.
 
 use graftal::diagnostics::{codes, render_json};
 use graftal::driver::compile;

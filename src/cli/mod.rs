@@ -30,6 +30,14 @@ enum OutputFormat {
     Json,
 }
 
+/// Notations `translate` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Target {
+    Pfg,
+    Linf,
+    Stl,
+}
+
 #[derive(clap::Args, Debug, Clone)]
 struct DeriveArgs {
     /// A path, or std:NAME for a standard-library system.
@@ -77,6 +85,26 @@ enum Command {
         /// (as the book draws kolams and Fig. 2.11).
         #[arg(long)]
         spline: bool,
+        /// Do not draw an STL file's layout shapes under the tree.
+        #[arg(long)]
+        no_layout: bool,
+    },
+    /// Translate a file to another notation (today: STL to an STL
+    /// Branch-Expansion Description).
+    Translate {
+        /// A path, or std:NAME for a standard-library system.
+        file: String,
+        /// The target notation.
+        #[arg(long, value_enum)]
+        to: Target,
+        /// Output file (default: stdout).
+        #[arg(short = 'o', long = "output")]
+        output: Option<String>,
+        /// Approximate or drop what the target cannot express, with a warning each.
+        #[arg(long)]
+        lossy: bool,
+        #[arg(long, value_enum, default_value_t)]
+        format: OutputFormat,
     },
     /// Count symbols, segments, polygons; bounding box and branch depth.
     Stats(DeriveArgs),
@@ -198,6 +226,7 @@ where
             size,
             view,
             spline,
+            no_layout,
         } => {
             let Some(format) = Format::from_path(&output) else {
                 let _ = writeln!(
@@ -208,7 +237,10 @@ where
             };
             with_system(io, &args, |io, c, sys, opts, _| {
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
+                let mut g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
+                if !no_layout {
+                    driver::add_layout(sys, &mut g);
+                }
                 if g.is_empty() {
                     report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
                 }
@@ -237,6 +269,13 @@ where
                 Ok(0)
             })
         }
+        Command::Translate {
+            file,
+            to,
+            output,
+            lossy: _,
+            format,
+        } => translate(io, &file, to, output.as_deref(), format),
         Command::Explain { code } => match diagnostics::codes::lookup(&code) {
             Some(info) => {
                 let _ = writeln!(
@@ -267,6 +306,64 @@ where
             0
         }
     }
+}
+
+/// `graftal translate`: only STL -> STL (a Branch-Expansion Description)
+/// exists so far; other directions are a usage error.
+fn translate(
+    io: &mut Io<'_>,
+    file: &str,
+    to: Target,
+    output: Option<&str>,
+    format: OutputFormat,
+) -> i32 {
+    let src = match driver::load(file) {
+        Ok(f) => f,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            return 2;
+        }
+    };
+    let from = match src.extension().unwrap_or("l").to_ascii_lowercase().as_str() {
+        "stl" => Target::Stl,
+        "linf" => Target::Linf,
+        _ => Target::Pfg,
+    };
+    if (from, to) != (Target::Stl, Target::Stl) {
+        let name = |t: Target| match t {
+            Target::Pfg => "pfg",
+            Target::Linf => "linf",
+            Target::Stl => "stl",
+        };
+        let _ = writeln!(
+            io.stderr,
+            "error: translation from {} to {} is not available yet (only stl to stl, which writes a Branch-Expansion Description)",
+            name(from),
+            name(to)
+        );
+        return 2;
+    }
+    let c = driver::compile(src);
+    report(io, &c, c.diagnostics.0.iter(), format);
+    let Some(sys) = &c.system else {
+        return 1;
+    };
+    let Some(text) = crate::emit::stl::write(sys) else {
+        let _ = writeln!(io.stderr, "error: `{file}` has no STL structure to write");
+        return 2;
+    };
+    match output {
+        Some(path) => {
+            if let Err(e) = std::fs::write(path, text) {
+                let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
+                return 2;
+            }
+        }
+        None => {
+            let _ = write!(io.stdout, "{text}");
+        }
+    }
+    0
 }
 
 /// Loads and compiles `a.file`, prints its diagnostics, and runs `f` on the

@@ -92,6 +92,14 @@
 //! BED, which then expands to a word like any other. Drawing components `F`,
 //! `L`/`+`, `R`/`-` are symbols interpreted as `Forward`, and rotations about
 //! [`Axis::Up`] by ∓δ.
+//!
+//! **STL stem levels** (`B = 8 (1)`, `L = 40 (4)`): a stem drawn at growth
+//! level k has broadness `B − k·ΔB` and length `L − k·ΔL`. The STL front end
+//! writes a *silent* symbol ([`SymbolTable::intern_silent`]: its name is
+//! empty, so it prints as nothing) wherever the level changes in the
+//! expanded word, interpreted as [`TurtleOp::Stem`] `{ width, length }`,
+//! which sets the turtle's line width and step length for what follows in
+//! the branch (push/pop restore them like the rest of the state).
 
 use serde::Serialize;
 use std::collections::HashMap;
@@ -155,6 +163,22 @@ impl SymbolTable {
             guard: None,
         });
         self.index.insert(name.to_string(), id);
+        id
+    }
+
+    /// Interns a *silent* symbol under `key`: its name is empty, so words
+    /// print without it; `get(key)` finds it again. Used for markers that
+    /// only the turtle sees (STL stem levels).
+    pub fn intern_silent(&mut self, key: &str) -> SymbolId {
+        if let Some(&id) = self.index.get(key) {
+            return id;
+        }
+        let id = SymbolId(self.symbols.len() as u32);
+        self.symbols.push(SymbolInfo {
+            name: String::new(),
+            guard: None,
+        });
+        self.index.insert(key.to_string(), id);
         id
     }
 
@@ -299,6 +323,9 @@ pub enum TurtleOp {
     SwapTurns,
     /// LinF `x@`: multiply the step length by `x`.
     ScaleLength(f64),
+    /// STL stem level: set the line width and the step length (absolute,
+    /// turtle units) for what follows.
+    Stem { width: f64, length: f64 },
 }
 
 /// A successor with its weight.
@@ -547,6 +574,16 @@ impl System {
     /// Interns `name`, growing the interpretation table to match.
     pub fn intern(&mut self, name: &str) -> SymbolId {
         let id = self.symbols.intern(name);
+        if self.interpretation.len() < self.symbols.len() {
+            self.interpretation.resize(self.symbols.len(), None);
+        }
+        id
+    }
+
+    /// Interns a silent symbol (see [`SymbolTable::intern_silent`]),
+    /// growing the interpretation table to match.
+    pub fn intern_silent(&mut self, key: &str) -> SymbolId {
+        let id = self.symbols.intern_silent(key);
         if self.interpretation.len() < self.symbols.len() {
             self.interpretation.resize(self.symbols.len(), None);
         }

@@ -338,6 +338,10 @@ pub fn interpret_with(
             }
             TurtleOp::SwapTurns => st.swapped = !st.swapped,
             TurtleOp::ScaleLength(f) => st.length *= f,
+            TurtleOp::Stem { width, length } => {
+                st.width = width;
+                st.length = length;
+            }
         }
     }
     g.paths.retain(|p| p.points.len() >= 2);

@@ -1,0 +1,1489 @@
+//! Lowering an STL AST to the IR: the paper's Language Analyzer.
+//!
+//! * **Rules are macros.** A rule name in a string stands for the rule's
+//!   body. Names written together are split into the longest declared rule
+//!   names and the components F, L, R (`FR1` is `F R1`). A rule that uses
+//!   itself through macros is an error (E0509) with the path.
+//! * **`[I n X]`** is what `F` becomes after n parallel rewritings by
+//!   `F -> X` (`[I 0 X]` is `F`). A rule whose whole body is `[I n X]` has
+//!   the self-resemblance count n: as a macro it is that expansion; in an
+//!   outline it grows X for at most n levels.
+//! * **Branching terms** `R{e1, …, em}` extend R's top-level branches (of
+//!   R's expansion as a macro). A rule name without braces in a seed or an
+//!   entry is the term with no entries (`R1{R1, R2, R1}` = `R1{R1{}, R2{},
+//!   R1{}}`); a rule without branches is written without braces.
+//! * **Levels.** The seed's own stems are level 0; the stems of a term at
+//!   level k are level k + 1, and its entries' terms level k + 2, …; a stem
+//!   at level k has broadness `B − k·ΔB` and length `L − k·ΔL` (a tenth of
+//!   the first value where that would not be positive: W0501). Inside a
+//!   rule's body (a macro) there are no levels.
+//! * **Outline Descriptions.** A file with a LAYOUT is an OD: in its seed, a
+//!   rule name without braces whose rule has branches is a *growth point*
+//!   ([`super::growth`]); everything written explicitly (components, terms
+//!   with braces) is drawn as written and occupies space before growth
+//!   starts. The grown tree replaces each growth point by explicit terms,
+//!   so the lowered seed is a BED: written out with its layout
+//!   (`translate --to stl`) it reads back to exactly the same stems, since
+//!   it has no growth points left.
+
+use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
+use super::growth::{self, branches, Comp, Grown, Point, Pose, Stem, UnitGeom};
+use super::layout::{self, Outline};
+use super::parser::RESERVED;
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::{
+    Angle, Axis, BranchEntry, BranchTerm, Growth, Notation, SeedItem, Shape, Span, SpanTable,
+    StlRule, StlRuleId, Structure, System, TurtleOp, Word,
+};
+use std::collections::HashMap;
+
+pub const DEFAULT_ANGLE: f64 = 30.0;
+pub const DEFAULT_LEVELS: u32 = 12;
+pub const DEFAULT_BROADNESS: f64 = 1.0;
+pub const DEFAULT_LENGTH: f64 = 10.0;
+/// The most levels an outline grows (`LEVELS`).
+pub const MAX_LEVELS: u32 = 256;
+/// The most drawing components an expansion may have.
+pub const MAX_EXPANSION: usize = 8_000_000;
+/// The widest stroke drawn (turtle width units: pixels per 600 pixels of
+/// picture). Growth uses B as given; only the picture is capped.
+pub const MAX_DRAWN_WIDTH: f64 = 200.0;
+
+/// A lowered STL file: the IR and where its parts came from.
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub system: System,
+    pub spans: SpanTable,
+}
+
+/// A branching term during lowering.
+#[derive(Clone, Debug)]
+struct Term {
+    rule: usize,
+    entries: Vec<TermEntry>,
+    /// A growth point of an outline (a rule with branches written bare).
+    growth: bool,
+}
+
+#[derive(Clone, Debug)]
+enum TermEntry {
+    Empty,
+    Failed,
+    Term(Term),
+}
+
+#[derive(Clone, Debug)]
+enum Part {
+    Comps(Vec<Comp>),
+    Term(Term),
+}
+
+/// An expanded seed: components, level changes and growth points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ev {
+    C(Comp),
+    Level(u32),
+    Growth(usize),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum State {
+    New,
+    Busy,
+    Done,
+    Failed,
+}
+
+struct RuleSrc {
+    name: String,
+    name_span: Span,
+    span: Span,
+    body: Str,
+}
+
+struct Ctx<'a> {
+    diags: &'a mut Diagnostics,
+    rules: Vec<RuleSrc>,
+    by_name: HashMap<String, usize>,
+    max_name: usize,
+    state: Vec<State>,
+    full: Vec<Vec<Comp>>,
+    unit: Vec<Vec<Comp>>,
+    count: Vec<Option<u32>>,
+    /// For `[I n Rk]`: k.
+    unit_ref: Vec<Option<usize>>,
+    stack: Vec<usize>,
+    /// Set once an expansion went past [`MAX_EXPANSION`] (reported once).
+    too_large: bool,
+}
+
+enum Piece {
+    C(Comp),
+    Rule(usize, Span),
+}
+
+impl Ctx<'_> {
+    /// Splits an identifier run into components and rule names.
+    fn split(&mut self, text: &str, span: &Span) -> Option<Vec<Piece>> {
+        let mut out = Vec::new();
+        let bytes = text.as_bytes();
+        let mut i = 0;
+        while i < text.len() {
+            let longest = (1..=self.max_name.min(text.len() - i))
+                .rev()
+                .find_map(|n| self.by_name.get(&text[i..i + n]).map(|&r| (r, n)));
+            if let Some((r, n)) = longest {
+                out.push(Piece::Rule(r, span.start + i..span.start + i + n));
+                i += n;
+                continue;
+            }
+            let next_digit = bytes
+                .get(i + 1)
+                .is_some_and(|b| b.is_ascii_digit() || *b == b'_');
+            let comp = match bytes[i] {
+                b'F' if !next_digit => Some(Comp::F),
+                b'L' if !next_digit => Some(Comp::L),
+                b'R' if !next_digit => Some(Comp::R),
+                _ => None,
+            };
+            if let Some(c) = comp {
+                out.push(Piece::C(c));
+                i += 1;
+                continue;
+            }
+            let mut j = i + 1;
+            while j < text.len() && !bytes[j].is_ascii_uppercase() {
+                j += 1;
+            }
+            let bad = &text[i..j];
+            let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
+            let near = nearest(bad, &names);
+            let help = match near.first() {
+                Some(n) => format!("did you mean `{n}`?"),
+                None if names.is_empty() => format!(
+                    "define it as a rule, e.g. `{bad} = [F][+F]`; drawing components are F, L, R, +, -"
+                ),
+                None => format!(
+                    "the rules are {}; drawing components are F, L, R, +, -",
+                    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+                ),
+            };
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_UNKNOWN_RULE,
+                    span.start + i..span.start + j,
+                    format!("unknown rule `{bad}`"),
+                )
+                .with_label("not a rule or a drawing component")
+                .with_help(help),
+            );
+            return None;
+        }
+        Some(out)
+    }
+
+    fn room(&mut self, have: usize, add: usize, span: &Span) -> bool {
+        if have.saturating_add(add) <= MAX_EXPANSION {
+            return true;
+        }
+        if !self.too_large {
+            self.too_large = true;
+            self.diags.push(
+                Diagnostic::at(
+                    codes::TOO_MANY_SYMBOLS,
+                    span.clone(),
+                    format!("this expands to more than {MAX_EXPANSION} drawing components"),
+                )
+                .with_label("expands too far")
+                .with_help("use fewer rewritings in `[I n X]` or fewer nested rules"),
+            );
+        }
+        false
+    }
+
+    /// Resolves rule `r` (its expansion, unit and count); `None` if it has
+    /// errors (already reported).
+    fn resolve(&mut self, r: usize) -> Option<()> {
+        match self.state[r] {
+            State::Done => return Some(()),
+            State::Failed | State::Busy => return None,
+            State::New => {}
+        }
+        self.state[r] = State::Busy;
+        self.stack.push(r);
+        let body = self.rules[r].body.clone();
+        let ok = if let [Elem::Resemble {
+            count,
+            body: x,
+            span,
+        }] = body.elems.as_slice()
+        {
+            let n = self.count(count);
+            let unit = self.expand(x);
+            match (n, unit) {
+                (Some(n), Some(unit)) => {
+                    self.unit_ref[r] = match x.elems.as_slice() {
+                        [Elem::Name {
+                            text,
+                            entries: None,
+                            ..
+                        }] => self.by_name.get(text).copied(),
+                        _ => None,
+                    };
+                    let full = self.rewrite(&unit, n, span);
+                    self.count[r] = Some(n);
+                    self.unit[r] = unit;
+                    match full {
+                        Some(f) => {
+                            self.full[r] = f;
+                            true
+                        }
+                        None => false,
+                    }
+                }
+                _ => false,
+            }
+        } else {
+            match self.expand(&body) {
+                Some(f) => {
+                    self.unit[r] = f.clone();
+                    self.full[r] = f;
+                    true
+                }
+                None => false,
+            }
+        };
+        self.stack.pop();
+        self.state[r] = if ok { State::Done } else { State::Failed };
+        ok.then_some(())
+    }
+
+    /// A count of `[I n X]`.
+    fn count(&mut self, n: &Num) -> Option<u32> {
+        if n.value < 0.0 || n.value.fract() != 0.0 || !n.value.is_finite() {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_NEGATIVE,
+                    n.span.clone(),
+                    format!(
+                        "the self-resemblance count must be a whole number of 0 or more, not {}",
+                        n.value
+                    ),
+                )
+                .with_label("not a count")
+                .with_help("write the number of rewritings, e.g. `[I 3 R1]`"),
+            );
+            return None;
+        }
+        Some(n.value.min(u32::MAX as f64) as u32)
+    }
+
+    /// What F becomes after `n` rewritings `F -> unit`.
+    fn rewrite(&mut self, unit: &[Comp], n: u32, span: &Span) -> Option<Vec<Comp>> {
+        let fs = unit.iter().filter(|c| **c == Comp::F).count();
+        if n == 0 {
+            return Some(vec![Comp::F]);
+        }
+        if fs == 1 {
+            // F -> A F B: n rewritings give A^n F B^n, built directly.
+            let at = unit.iter().position(|c| *c == Comp::F).unwrap_or(0);
+            let (a, b) = (&unit[..at], &unit[at + 1..]);
+            let len = (n as usize)
+                .saturating_mul(unit.len() - 1)
+                .saturating_add(1);
+            if !self.room(0, len, span) {
+                return None;
+            }
+            let mut out = Vec::with_capacity(len);
+            for _ in 0..n {
+                out.extend_from_slice(a);
+            }
+            out.push(Comp::F);
+            for _ in 0..n {
+                out.extend_from_slice(b);
+            }
+            return Some(out);
+        }
+        let mut cur = vec![Comp::F];
+        for _ in 0..n {
+            let f = cur.iter().filter(|c| **c == Comp::F).count();
+            if f == 0 {
+                break;
+            }
+            let new_len = (cur.len() - f).saturating_add(f.saturating_mul(unit.len()));
+            if !self.room(0, new_len, span) {
+                return None;
+            }
+            let mut next = Vec::with_capacity(new_len);
+            for &c in &cur {
+                if c == Comp::F {
+                    next.extend_from_slice(unit);
+                } else {
+                    next.push(c);
+                }
+            }
+            cur = next;
+        }
+        Some(cur)
+    }
+
+    /// The macro expansion of a string (no levels).
+    fn expand(&mut self, s: &Str) -> Option<Vec<Comp>> {
+        let mut out = Vec::new();
+        let mut ok = true;
+        for e in &s.elems {
+            match e {
+                Elem::Turn { left, .. } => out.push(if *left { Comp::Plus } else { Comp::Minus }),
+                Elem::Branch { body, span } => match self.expand(body) {
+                    Some(b) if self.room(out.len(), b.len() + 2, span) => {
+                        out.push(Comp::Open);
+                        out.extend(b);
+                        out.push(Comp::Close);
+                    }
+                    _ => ok = false,
+                },
+                Elem::Resemble { count, body, span } => {
+                    let x = self.expand(body);
+                    let n = self.count(count);
+                    match (x, n) {
+                        (Some(x), Some(n)) => match self.rewrite(&x, n, span) {
+                            Some(f) if self.room(out.len(), f.len(), span) => out.extend(f),
+                            _ => ok = false,
+                        },
+                        _ => ok = false,
+                    }
+                }
+                Elem::Name {
+                    text,
+                    span,
+                    entries,
+                } => {
+                    let Some(pieces) = self.split(text, span) else {
+                        ok = false;
+                        continue;
+                    };
+                    let last = pieces.len().saturating_sub(1);
+                    for (i, p) in pieces.into_iter().enumerate() {
+                        match p {
+                            Piece::C(c) => {
+                                if i == last && entries.is_some() {
+                                    self.no_branches_component(span, c);
+                                    ok = false;
+                                }
+                                out.push(c);
+                            }
+                            Piece::Rule(r, rspan) => {
+                                let ents = if i == last { entries.as_ref() } else { None };
+                                if ents.is_none() {
+                                    // A macro: the rule's expansion.
+                                    if self.term(r, &rspan, None, false).is_none()
+                                        || !self.room(out.len(), self.full[r].len(), &rspan)
+                                    {
+                                        ok = false;
+                                        continue;
+                                    }
+                                    out.extend_from_slice(&self.full[r]);
+                                    continue;
+                                }
+                                let Some(t) = self.term(r, &rspan, ents, false) else {
+                                    ok = false;
+                                    continue;
+                                };
+                                let mut evs = Vec::new();
+                                self.expand_term(&t, None, &mut evs);
+                                if !self.room(out.len(), evs.len(), &rspan) {
+                                    ok = false;
+                                    continue;
+                                }
+                                out.extend(evs.into_iter().filter_map(|e| match e {
+                                    Ev::C(c) => Some(c),
+                                    _ => None,
+                                }));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        ok.then_some(out)
+    }
+
+    fn no_branches_component(&mut self, span: &Span, c: Comp) {
+        self.diags.push(
+            Diagnostic::at(
+                codes::STL_NO_BRANCHES,
+                span.clone(),
+                format!("branching entries after the drawing component `{c:?}`"),
+            )
+            .with_label("only a rule with branches takes `{…}`")
+            .with_help("write the entries after a rule name: `R1{R2, ~}`"),
+        );
+    }
+
+    /// A branching term for rule `r` written at `span` with `entries`.
+    fn term(&mut self, r: usize, span: &Span, entries: Option<&Entries>, od: bool) -> Option<Term> {
+        if self.state[r] == State::Busy {
+            let from = self.stack.iter().position(|&x| x == r).unwrap_or(0);
+            let path: Vec<&str> = self.stack[from..]
+                .iter()
+                .chain(std::iter::once(&r))
+                .map(|&x| self.rules[x].name.as_str())
+                .collect();
+            let path = path.join(" -> ");
+            let def = self.rules[r].name_span.clone();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_CYCLE,
+                    span.clone(),
+                    format!("rule `{}` is defined through itself: {path}", self.rules[r].name),
+                )
+                .with_label("uses the rule being defined")
+                .with_secondary(def, "defined here")
+                .with_help("a rule is a macro and cannot use itself; grow it from a SEED with a LAYOUT, or write `[I n R]`"),
+            );
+            return None;
+        }
+        self.resolve(r)?;
+        let nb = branches(&self.full[r]).len();
+        let Some(entries) = entries else {
+            return Some(Term {
+                rule: r,
+                entries: Vec::new(),
+                growth: od && nb > 0,
+            });
+        };
+        if nb == 0 {
+            let def = self.rules[r].span.clone();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_NO_BRANCHES,
+                    span.start..entries.span.end,
+                    format!("`{}` has no branches to extend", self.rules[r].name),
+                )
+                .with_label("a branching term on a rule without branches")
+                .with_secondary(def, "this rule has no top-level `[...]`")
+                .with_help(format!("write `{}` without `{{…}}`", self.rules[r].name)),
+            );
+            return None;
+        }
+        let mut ok = true;
+        if entries.list.len() > nb {
+            let extra = entries.list[nb].span();
+            let def = self.rules[r].span.clone();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_TOO_MANY_ENTRIES,
+                    extra,
+                    format!(
+                        "`{}` has {nb} branch{}, but {} entries are given",
+                        self.rules[r].name,
+                        if nb == 1 { "" } else { "es" },
+                        entries.list.len()
+                    ),
+                )
+                .with_label(format!("entry {} has no branch to extend", nb + 1))
+                .with_secondary(
+                    def,
+                    format!(
+                        "`{}` is defined here with {nb} top-level branch{}",
+                        self.rules[r].name,
+                        if nb == 1 { "" } else { "es" }
+                    ),
+                )
+                .with_help(format!("give at most {nb} entries, one per branch")),
+            );
+            ok = false;
+        }
+        let mut list = Vec::new();
+        for e in &entries.list {
+            match e {
+                Entry::Empty(_) => list.push(TermEntry::Empty),
+                Entry::Failed(_) => list.push(TermEntry::Failed),
+                Entry::Term {
+                    name,
+                    name_span,
+                    entries,
+                } => {
+                    let Some(k) = self.rule_named(name, name_span) else {
+                        ok = false;
+                        continue;
+                    };
+                    match self.term(k, name_span, entries.as_ref(), od) {
+                        Some(t) => list.push(TermEntry::Term(t)),
+                        None => ok = false,
+                    }
+                }
+            }
+        }
+        ok.then_some(Term {
+            rule: r,
+            entries: list,
+            growth: false,
+        })
+    }
+
+    /// The rule called `name` (an entry names exactly one rule).
+    fn rule_named(&mut self, name: &str, span: &Span) -> Option<usize> {
+        if let Some(&r) = self.by_name.get(name) {
+            return Some(r);
+        }
+        let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
+        let near = nearest(name, &names);
+        let help = match near.first() {
+            Some(n) => format!("did you mean `{n}`?"),
+            None => "an entry is a rule name, `~` (failed) or nothing".to_string(),
+        };
+        self.diags.push(
+            Diagnostic::at(
+                codes::STL_UNKNOWN_RULE,
+                span.clone(),
+                format!("unknown rule `{name}`"),
+            )
+            .with_label("no rule of this name")
+            .with_help(help),
+        );
+        None
+    }
+
+    /// Expands a term into events; `level` is the term's level (None in a
+    /// macro: no level events).
+    fn expand_term(&mut self, t: &Term, level: Option<u32>, out: &mut Vec<Ev>) {
+        if self.too_large {
+            return;
+        }
+        let full = self.full[t.rule].clone();
+        let br = branches(&full);
+        if let Some(l) = level {
+            out.push(Ev::Level(l));
+        }
+        if t.growth {
+            out.push(Ev::Growth(usize::MAX));
+        } else {
+            let mut i = 0;
+            // The branches in order of their `[`: the next one to meet.
+            let mut k = 0;
+            while i < full.len() {
+                if k < br.len() && br[k].0 == i {
+                    let close = br[k].1;
+                    match t.entries.get(k) {
+                        Some(TermEntry::Failed) => {}
+                        Some(TermEntry::Term(child)) => {
+                            out.extend(full[i..close].iter().map(|&c| Ev::C(c)));
+                            self.expand_term(child, level.map(|l| l + 1), out);
+                            if let Some(l) = level {
+                                out.push(Ev::Level(l));
+                            }
+                            out.push(Ev::C(Comp::Close));
+                        }
+                        _ => out.extend(full[i..=close].iter().map(|&c| Ev::C(c))),
+                    }
+                    i = close + 1;
+                    k += 1;
+                } else {
+                    out.push(Ev::C(full[i]));
+                    i += 1;
+                }
+                if out.len() > MAX_EXPANSION {
+                    let span = self.rules[t.rule].name_span.clone();
+                    self.room(out.len(), 1, &span);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// The seed's parts; `od` marks growth points.
+    fn seed(&mut self, s: &Str, od: bool, parts: &mut Vec<Part>) -> bool {
+        let mut ok = true;
+        let push = |parts: &mut Vec<Part>, c: Comp| match parts.last_mut() {
+            Some(Part::Comps(v)) => v.push(c),
+            _ => parts.push(Part::Comps(vec![c])),
+        };
+        for e in &s.elems {
+            match e {
+                Elem::Turn { left, .. } => {
+                    push(parts, if *left { Comp::Plus } else { Comp::Minus })
+                }
+                Elem::Branch { body, .. } => {
+                    push(parts, Comp::Open);
+                    ok &= self.seed(body, od, parts);
+                    push(parts, Comp::Close);
+                }
+                Elem::Resemble { .. } => {
+                    let one = Str {
+                        elems: vec![e.clone()],
+                        span: s.span.clone(),
+                    };
+                    match self.expand(&one) {
+                        Some(cs) => cs.into_iter().for_each(|c| push(parts, c)),
+                        None => ok = false,
+                    }
+                }
+                Elem::Name {
+                    text,
+                    span,
+                    entries,
+                } => {
+                    let Some(pieces) = self.split(text, span) else {
+                        ok = false;
+                        continue;
+                    };
+                    let last = pieces.len().saturating_sub(1);
+                    for (i, p) in pieces.into_iter().enumerate() {
+                        match p {
+                            Piece::C(c) => {
+                                if i == last && entries.is_some() {
+                                    self.no_branches_component(span, c);
+                                    ok = false;
+                                }
+                                push(parts, c);
+                            }
+                            Piece::Rule(r, rspan) => {
+                                let ents = if i == last { entries.as_ref() } else { None };
+                                match self.term(r, &rspan, ents, od) {
+                                    Some(t) => parts.push(Part::Term(t)),
+                                    None => ok = false,
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        ok
+    }
+
+    fn seed_events(&mut self, parts: &[Part]) -> Vec<Ev> {
+        let mut out = vec![Ev::Level(0)];
+        for p in parts {
+            match p {
+                Part::Comps(cs) => out.extend(cs.iter().map(|&c| Ev::C(c))),
+                Part::Term(t) => {
+                    self.expand_term(t, Some(1), &mut out);
+                    out.push(Ev::Level(0));
+                }
+            }
+            if self.too_large {
+                break;
+            }
+        }
+        out
+    }
+}
+
+fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
+    if !n.value.is_finite() || n.value < 0.0 {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_NEGATIVE,
+                n.span.clone(),
+                format!("{what} cannot be negative"),
+            )
+            .with_label(format!("{} is less than zero", n.value))
+            .with_help("write a number of zero or more"),
+        );
+        return None;
+    }
+    Some(n.value)
+}
+
+/// Broadness or length per level, clamped to a tenth of the first value
+/// where it would not be positive; the first clamped level, if any.
+pub fn per_level(base: f64, dec: f64, levels: u32) -> (Vec<f64>, Option<u32>) {
+    let mut first = None;
+    let v = (0..=levels)
+        .map(|k| {
+            let x = base - dec * k as f64;
+            if x <= 0.0 && base > 0.0 {
+                first.get_or_insert(k);
+                base * 0.1
+            } else {
+                x.max(0.0)
+            }
+        })
+        .collect();
+    (v, first)
+}
+
+fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
+    let colour = match &s.colour {
+        ColourAst::Name(n, span) => match layout::named_colour(n) {
+            Some(c) => Some(c),
+            None => {
+                let names: Vec<&str> = crate::stdlib::delphi_colours()
+                    .iter()
+                    .map(|(n, _)| *n)
+                    .collect();
+                let near = nearest(n, &names);
+                let help = match near.first() {
+                    Some(k) => format!("did you mean `{k}`?"),
+                    None => "use a Delphi colour name (clGreen, clOlive, …; `graftal explain E0506` lists them) or `$00BBGGRR`".into(),
+                };
+                diags.push(
+                    Diagnostic::at(
+                        codes::STL_UNKNOWN_COLOUR,
+                        span.clone(),
+                        format!("unknown colour `{n}`"),
+                    )
+                    .with_label("not a Delphi colour name")
+                    .with_help(help),
+                );
+                None
+            }
+        },
+        ColourAst::Hex(h, span) => {
+            match layout::hex_colour(h) {
+                Some(c) => Some(c),
+                None => {
+                    diags.push(
+                    Diagnostic::at(codes::STL_UNKNOWN_COLOUR, span.clone(), format!("`{h}` is not a colour"))
+                        .with_label("expected `$00BBGGRR`")
+                        .with_help("write up to eight hex digits with a zero top byte: `$0000FF00` is green"),
+                );
+                    None
+                }
+            }
+        }
+    };
+    const KINDS: [&str; 4] = ["Rectangle", "RoundRect", "Ellipse", "Polygon"];
+    let Some(kind) = KINDS.iter().find(|k| k.eq_ignore_ascii_case(&s.kind)) else {
+        let near = nearest(&s.kind, &KINDS);
+        let help = match near.first() {
+            Some(k) => format!("did you mean `{k}`?"),
+            None => "the shapes are Rectangle, RoundRect, Ellipse and Polygon".into(),
+        };
+        diags.push(
+            Diagnostic::at(
+                codes::STL_UNKNOWN_SHAPE,
+                s.kind_span.clone(),
+                format!("unknown shape `{}`", s.kind),
+            )
+            .with_label("not a layout shape")
+            .with_help(help),
+        );
+        return None;
+    };
+    let colour = colour?;
+    let args_help = |k: &str| match k {
+        "Rectangle" | "Ellipse" => format!("write `{k} (x, y), width, height`"),
+        "RoundRect" => "write `RoundRect (x, y), width, height, corner`".to_string(),
+        _ => "write `Polygon (x1, y1), (x2, y2), (x3, y3), …`".to_string(),
+    };
+    if *kind == "Polygon" {
+        let mut points = Vec::new();
+        for a in &s.args {
+            match a {
+                Arg::Point(x, y, _) => points.push((x.value, y.value)),
+                Arg::Num(n) => {
+                    diags.push(
+                        Diagnostic::at(
+                            codes::STL_SHAPE_ARGS,
+                            n.span.clone(),
+                            "a polygon takes points, not numbers",
+                        )
+                        .with_label("expected a point `(x, y)`")
+                        .with_help(args_help(kind)),
+                    );
+                    return None;
+                }
+            }
+        }
+        if points.len() < 3 {
+            diags.push(
+                Diagnostic::at(
+                    codes::STL_FEW_POINTS,
+                    s.span.clone(),
+                    format!(
+                        "a polygon needs at least three points, this one has {}",
+                        points.len()
+                    ),
+                )
+                .with_label("too few points")
+                .with_help("add points: `(clGreen) Polygon (0,0), (100,0), (50,100)`"),
+            );
+            return None;
+        }
+        return Some(Shape::Polygon { colour, points });
+    }
+    let want = if *kind == "RoundRect" { 4 } else { 3 };
+    let (start, nums) = match s.args.split_first() {
+        Some((Arg::Point(x, y, _), rest)) => (Some((x.value, y.value)), rest),
+        _ => (None, &s.args[..]),
+    };
+    let nums: Option<Vec<&Num>> = nums
+        .iter()
+        .map(|a| match a {
+            Arg::Num(n) => Some(n),
+            _ => None,
+        })
+        .collect();
+    let (Some((x, y)), Some(nums)) = (start, nums) else {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_SHAPE_ARGS,
+                s.span.clone(),
+                format!("wrong arguments for {kind}"),
+            )
+            .with_label("expected a starting point, then sizes")
+            .with_help(args_help(kind)),
+        );
+        return None;
+    };
+    if nums.len() + 1 != want {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_SHAPE_ARGS,
+                s.span.clone(),
+                format!("{kind} takes {want} arguments, {} given", nums.len() + 1),
+            )
+            .with_label("wrong number of arguments")
+            .with_help(args_help(kind)),
+        );
+        return None;
+    }
+    let mut sizes = Vec::new();
+    for n in &nums {
+        sizes.push(nonneg(diags, n, "a size")?);
+    }
+    Some(match *kind {
+        "Rectangle" => Shape::Rectangle {
+            colour,
+            x,
+            y,
+            w: sizes[0],
+            h: sizes[1],
+        },
+        "Ellipse" => Shape::Ellipse {
+            colour,
+            x,
+            y,
+            w: sizes[0],
+            h: sizes[1],
+        },
+        _ => Shape::RoundRect {
+            colour,
+            x,
+            y,
+            w: sizes[0],
+            h: sizes[1],
+            corner: sizes[2],
+        },
+    })
+}
+
+/// The settings a file gives.
+struct Settings {
+    angle: f64,
+    levels: u32,
+    depth_first: bool,
+    b: (f64, f64),
+    l: (f64, f64),
+    b_span: Option<Span>,
+    l_span: Option<Span>,
+}
+
+/// Lowers a parsed STL file.
+pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
+    let mut st = Settings {
+        angle: DEFAULT_ANGLE,
+        levels: DEFAULT_LEVELS,
+        depth_first: false,
+        b: (DEFAULT_BROADNESS, 0.0),
+        l: (DEFAULT_LENGTH, 0.0),
+        b_span: None,
+        l_span: None,
+    };
+    let mut seen: HashMap<&'static str, Span> = HashMap::new();
+    let mut dup = |diags: &mut Diagnostics, key: &'static str, span: &Span| {
+        if let Some(first) = seen.get(key) {
+            diags.push(
+                Diagnostic::at(
+                    codes::STL_DUPLICATE,
+                    span.clone(),
+                    format!("`{key}` given twice"),
+                )
+                .with_label("given again here")
+                .with_secondary(first.clone(), "first given here")
+                .with_help("keep one of them"),
+            );
+            false
+        } else {
+            seen.insert(key, span.clone());
+            true
+        }
+    };
+    let mut ctx = Ctx {
+        diags,
+        rules: Vec::new(),
+        by_name: HashMap::new(),
+        max_name: 0,
+        state: Vec::new(),
+        full: Vec::new(),
+        unit: Vec::new(),
+        count: Vec::new(),
+        unit_ref: Vec::new(),
+        stack: Vec::new(),
+        too_large: false,
+    };
+    let mut seed: Option<(&Str, Span)> = None;
+    let mut shapes: Vec<Shape> = Vec::new();
+    let mut layout_span: Option<Span> = None;
+    let mut ok = true;
+    for item in &file.items {
+        match item {
+            Item::Angle { value, span } => {
+                if dup(ctx.diags, "ANGLE", span) {
+                    if value.value.is_finite() {
+                        st.angle = value.value;
+                    } else {
+                        ok = false;
+                    }
+                }
+            }
+            Item::Levels { value, span } => {
+                if !dup(ctx.diags, "LEVELS", span) {
+                    continue;
+                }
+                let v = value.value;
+                if v < 0.0 || v.fract() != 0.0 || !v.is_finite() {
+                    ctx.diags.push(
+                        Diagnostic::at(
+                            codes::STL_NEGATIVE,
+                            value.span.clone(),
+                            format!("LEVELS must be a whole number of 0 or more, not {v}"),
+                        )
+                        .with_label("not a count")
+                        .with_help("write e.g. `LEVELS 12`"),
+                    );
+                    ok = false;
+                } else if v > MAX_LEVELS as f64 {
+                    ctx.diags.push(
+                        Diagnostic::at(
+                            codes::STL_TOO_DEEP,
+                            value.span.clone(),
+                            format!("LEVELS {v} is more than the {MAX_LEVELS} graftal grows"),
+                        )
+                        .with_label("too many levels")
+                        .with_help(format!("use at most `LEVELS {MAX_LEVELS}`")),
+                    );
+                    ok = false;
+                } else {
+                    st.levels = v as u32;
+                }
+            }
+            Item::Growth { depth_first, span } => {
+                if dup(ctx.diags, "GROWTH", span) {
+                    st.depth_first = *depth_first;
+                }
+            }
+            Item::Param {
+                param,
+                value,
+                decrement,
+                span,
+            } => {
+                let key = if *param == 'B' { "B" } else { "L" };
+                if !dup(ctx.diags, key, span) {
+                    continue;
+                }
+                let what = if *param == 'B' {
+                    "the broadness B"
+                } else {
+                    "the length L"
+                };
+                let v = nonneg(ctx.diags, value, what);
+                let d = match decrement {
+                    Some(d) => nonneg(ctx.diags, d, "a decrement per level"),
+                    None => Some(0.0),
+                };
+                if *param == 'L' && v == Some(0.0) {
+                    ctx.diags.push(
+                        Diagnostic::at(
+                            codes::STL_NEGATIVE,
+                            value.span.clone(),
+                            "the length L must be more than zero",
+                        )
+                        .with_label("stems of length 0 draw nothing")
+                        .with_help("write e.g. `L = 40 (4)`"),
+                    );
+                    ok = false;
+                    continue;
+                }
+                match (v, d) {
+                    (Some(v), Some(d)) => {
+                        let dspan = decrement.as_ref().map_or(span.clone(), |d| d.span.clone());
+                        if *param == 'B' {
+                            st.b = (v, d);
+                            st.b_span = Some(dspan);
+                        } else {
+                            st.l = (v, d);
+                            st.l_span = Some(dspan);
+                        }
+                    }
+                    _ => ok = false,
+                }
+            }
+            Item::Rule {
+                name,
+                name_span,
+                body,
+                span,
+            } => {
+                if RESERVED.contains(&name.as_str()) || name == "DFS" {
+                    ctx.diags.push(
+                        Diagnostic::at(codes::STL_RESERVED_NAME, name_span.clone(), format!("`{name}` cannot name a rule"))
+                            .with_label("reserved")
+                            .with_help("F, L, R draw, B and L are the stem parameters, I counts rewritings; name rules R1, R2, …"),
+                    );
+                    ok = false;
+                    continue;
+                }
+                if let Some(&first) = ctx.by_name.get(name) {
+                    let fs = ctx.rules[first].name_span.clone();
+                    ctx.diags.push(
+                        Diagnostic::at(
+                            codes::STL_DUPLICATE,
+                            name_span.clone(),
+                            format!("rule `{name}` is defined twice"),
+                        )
+                        .with_label("defined again here")
+                        .with_secondary(fs, "first defined here")
+                        .with_help("give this rule another name"),
+                    );
+                    ok = false;
+                    continue;
+                }
+                ctx.by_name.insert(name.clone(), ctx.rules.len());
+                ctx.max_name = ctx.max_name.max(name.len());
+                ctx.rules.push(RuleSrc {
+                    name: name.clone(),
+                    name_span: name_span.clone(),
+                    span: span.clone(),
+                    body: body.clone(),
+                });
+            }
+            Item::Seed { body, span } => {
+                if dup(ctx.diags, "SEED", span) {
+                    seed = Some((body, span.clone()));
+                } else {
+                    ok = false;
+                }
+            }
+            Item::Layout { shapes: ss, span } => {
+                layout_span.get_or_insert(span.clone());
+                for s in ss {
+                    match shape(ctx.diags, s) {
+                        Some(sh) => shapes.push(sh),
+                        None => ok = false,
+                    }
+                }
+            }
+        }
+    }
+    let n = ctx.rules.len();
+    ctx.state = vec![State::New; n];
+    ctx.full = vec![Vec::new(); n];
+    ctx.unit = vec![Vec::new(); n];
+    ctx.count = vec![None; n];
+    ctx.unit_ref = vec![None; n];
+    for r in 0..n {
+        if ctx.resolve(r).is_none() {
+            ok = false;
+        }
+    }
+    let od = layout_span.is_some();
+    let mut parts = Vec::new();
+    match seed {
+        Some((body, _)) => ok &= ctx.seed(body, od, &mut parts),
+        None => {
+            ctx.diags.push(
+                Diagnostic::at(codes::STL_MISSING_SEED, src_len..src_len, "missing SEED")
+                    .with_label("the file ends without a seed")
+                    .with_help("add the seed to draw: `SEED`, e.g. `F R1`, then `ENDSEED`"),
+            );
+            ok = false;
+        }
+    }
+
+    let mut system = System::new(Notation::Stl);
+    system.settings.angle = st.angle;
+    system.settings.step = st.l.0;
+    system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);
+    let mut structure = Structure {
+        rules: Vec::new(),
+        seed: Vec::new(),
+        layout: shapes.clone(),
+        growth: if st.depth_first {
+            Growth::DepthFirst
+        } else {
+            Growth::BreadthFirst
+        },
+        levels: st.levels,
+        broadness: st.b,
+        length: st.l,
+    };
+    let comp_ids = intern_components(&mut system);
+    // Nothing is grown or expanded in a file with errors (a parse error
+    // may have dropped part of the seed or the layout).
+    if !ok || ctx.too_large || ctx.diags.has_errors() {
+        system.structure = Some(structure);
+        return Lowered {
+            system,
+            spans: SpanTable::default(),
+        };
+    }
+
+    // Growth (an outline) or the seed as written (a BED).
+    let max_level = st.levels.saturating_add(2).max(64);
+    let (bw, _) = per_level(st.b.0, st.b.1, max_level);
+    let (lw, _) = per_level(st.l.0, st.l.1, max_level);
+    if od {
+        let has_growth = grow_outline(&mut ctx, &mut parts, &st, &shapes, &bw, &lw);
+        if !has_growth {
+            let span = layout_span.clone().unwrap_or(0..0);
+            ctx.diags.push(
+                Diagnostic::at(
+                    codes::STL_NO_GROWTH,
+                    span,
+                    "this layout has nothing to grow",
+                )
+                .with_label("an Outline Description grows the seed's rules")
+                .with_help("name a rule with branches in the seed, without `{…}`, e.g. `F R1`"),
+            );
+        }
+    }
+    let events = ctx.seed_events(&parts);
+    if ctx.too_large {
+        system.structure = Some(structure);
+        return Lowered {
+            system,
+            spans: SpanTable::default(),
+        };
+    }
+
+    // The word, with a silent stem-level marker wherever the level changes.
+    let mut word = Vec::with_capacity(events.len());
+    let mut max_seen = 0u32;
+    let mut markers: HashMap<u32, crate::ir::SymbolId> = HashMap::new();
+    let mut last_level = None;
+    for e in &events {
+        match *e {
+            Ev::C(c) => word.push(comp_ids[c as usize]),
+            Ev::Level(k) => {
+                if last_level == Some(k) {
+                    continue;
+                }
+                last_level = Some(k);
+                max_seen = max_seen.max(k);
+                let id = *markers.entry(k).or_insert_with(|| {
+                    let id = system.intern_silent(&format!("stl-level-{k}"));
+                    let kk = k as usize;
+                    let w = bw
+                        .get(kk)
+                        .copied()
+                        .unwrap_or_else(|| per_level(st.b.0, st.b.1, k).0[kk]);
+                    let l = lw
+                        .get(kk)
+                        .copied()
+                        .unwrap_or_else(|| per_level(st.l.0, st.l.1, k).0[kk]);
+                    system.set_interpretation(
+                        id,
+                        TurtleOp::Stem {
+                            width: w.min(MAX_DRAWN_WIDTH),
+                            length: l,
+                        },
+                    );
+                    id
+                });
+                // A marker right before another marker is dead: replace it.
+                if let Some(&prev) = word.last() {
+                    if markers.values().any(|&m| m == prev) {
+                        word.pop();
+                    }
+                }
+                word.push(id);
+            }
+            Ev::Growth(_) => {}
+        }
+    }
+    // Only levels with stems count for the clamping warnings.
+    for (which, (base, dec), span) in [
+        ("B", st.b, st.b_span.clone()),
+        ("L", st.l, st.l_span.clone()),
+    ] {
+        let (_, first) = per_level(base, dec, max_seen);
+        if let (Some(k), Some(span)) = (first, span) {
+            let what = if which == "B" { "broadness" } else { "length" };
+            ctx.diags.push(
+                Diagnostic::at(
+                    codes::STL_CLAMPED,
+                    span,
+                    format!(
+                        "the stem {what} {which} reaches {} at level {k}; clamped to {}",
+                        base - dec * k as f64,
+                        base * 0.1
+                    ),
+                )
+                .with_label(format!("this decrement makes {which} non-positive"))
+                .with_note(format!("the tree has {max_seen} levels"))
+                .with_help(format!(
+                    "use a smaller decrement, e.g. `({})`",
+                    fmt_num(base / (max_seen as f64 + 1.0))
+                )),
+            );
+        }
+    }
+
+    // The IR.
+    for (r, src) in ctx.rules.iter().enumerate() {
+        structure.rules.push(StlRule {
+            name: src.name.clone(),
+            body: Word(ctx.full[r].iter().map(|&c| comp_ids[c as usize]).collect()),
+            resemblance: ctx.count[r],
+        });
+    }
+    for p in &parts {
+        match p {
+            Part::Comps(cs) => structure.seed.push(SeedItem::Word(Word(
+                cs.iter().map(|&c| comp_ids[c as usize]).collect(),
+            ))),
+            Part::Term(t) => structure.seed.push(SeedItem::Term(ir_term(t))),
+        }
+    }
+    system.axiom = Word(word);
+    system.structure = Some(structure);
+    Lowered {
+        system,
+        spans: SpanTable::default(),
+    }
+}
+
+fn fmt_num(x: f64) -> String {
+    let s = format!("{x:.2}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+fn ir_term(t: &Term) -> BranchTerm {
+    BranchTerm {
+        rule: StlRuleId(t.rule as u32),
+        entries: t
+            .entries
+            .iter()
+            .map(|e| match e {
+                TermEntry::Empty => BranchEntry::Empty,
+                TermEntry::Failed => BranchEntry::Failed,
+                TermEntry::Term(c) => BranchEntry::Term(ir_term(c)),
+            })
+            .collect(),
+    }
+}
+
+/// The drawing components as symbols, indexed by `Comp as usize`.
+fn intern_components(sys: &mut System) -> [crate::ir::SymbolId; 7] {
+    let turn = |d: f64| TurtleOp::Rotate {
+        axis: Axis::Up,
+        angle: Angle::Delta(d),
+    };
+    let mut ids = [crate::ir::SymbolId::OPEN; 7];
+    for (c, name, op) in [
+        (Comp::F, "F", TurtleOp::Forward { draw: true }),
+        (Comp::L, "L", turn(-1.0)),
+        (Comp::R, "R", turn(1.0)),
+        (Comp::Plus, "+", turn(-1.0)),
+        (Comp::Minus, "-", turn(1.0)),
+    ] {
+        let id = sys.intern(name);
+        sys.set_interpretation(id, op);
+        ids[c as usize] = id;
+    }
+    ids[Comp::Open as usize] = crate::ir::SymbolId::OPEN;
+    ids[Comp::Close as usize] = crate::ir::SymbolId::CLOSE;
+    ids
+}
+
+/// Grows the outline: replaces each growth point of `parts` by the grown
+/// terms (adding a rule `NAME_unit` for each counted rule `[I n string]`
+/// grown). Returns whether there was any growth point.
+fn grow_outline(
+    ctx: &mut Ctx<'_>,
+    parts: &mut [Part],
+    st: &Settings,
+    shapes: &[Shape],
+    bw: &[f64],
+    lw: &[f64],
+) -> bool {
+    let delta = st.angle.to_radians();
+    // Walk the seed with a turtle: the seed's stems, and where each growth
+    // point stands.
+    let events = ctx.seed_events(parts);
+    let mut growth_terms: Vec<usize> = Vec::new();
+    collect_growth(parts, &mut growth_terms);
+    if growth_terms.is_empty() {
+        return false;
+    }
+    // Unit rules: the rule itself, the rule named in `[I n Rk]`, or a new
+    // rule holding the string of `[I n string]`.
+    let n = ctx.rules.len();
+    let mut unit_of: Vec<Option<usize>> = vec![None; n];
+    let mut unit_comps: Vec<Vec<Comp>> = ctx.full.clone();
+    for &r in &growth_terms {
+        if unit_of[r].is_some() {
+            continue;
+        }
+        let u = match (ctx.count[r], ctx.unit_ref[r]) {
+            (None, _) => r,
+            (Some(_), Some(k)) => k,
+            (Some(_), None) => {
+                let mut name = format!("{}_unit", ctx.rules[r].name);
+                while ctx.by_name.contains_key(&name) {
+                    name.push('_');
+                }
+                // A rule of its own, so the grown terms can name it.
+                let unit = ctx.unit[r].clone();
+                let id = ctx.rules.len();
+                ctx.rules.push(RuleSrc {
+                    name: name.clone(),
+                    name_span: ctx.rules[r].name_span.clone(),
+                    span: ctx.rules[r].span.clone(),
+                    body: Str::default(),
+                });
+                ctx.by_name.insert(name, id);
+                ctx.state.push(State::Done);
+                ctx.full.push(unit.clone());
+                ctx.unit.push(unit.clone());
+                ctx.count.push(None);
+                ctx.unit_ref.push(None);
+                unit_comps.push(unit);
+                id
+            }
+        };
+        unit_of[r] = Some(u);
+    }
+    let units: Vec<UnitGeom> = unit_comps.iter().map(|c| UnitGeom::new(c, delta)).collect();
+
+    let mut stems = Vec::new();
+    let mut points = Vec::new();
+    let mut pose = Pose {
+        pos: [0.0, 0.0],
+        turns: 0,
+    };
+    let mut level = 0u32;
+    let mut stack = Vec::new();
+    let mut gi = 0;
+    for e in events {
+        match e {
+            Ev::C(Comp::F) => {
+                let d = [
+                    -(pose.turns as f64 * delta).sin(),
+                    (pose.turns as f64 * delta).cos(),
+                ];
+                let len = lw.get(level as usize).copied().unwrap_or(st.l.0);
+                let b = [pose.pos[0] + len * d[0], pose.pos[1] + len * d[1]];
+                stems.push(Stem {
+                    a: pose.pos,
+                    b,
+                    half: bw.get(level as usize).copied().unwrap_or(st.b.0) / 2.0,
+                });
+                pose.pos = b;
+            }
+            Ev::C(Comp::Open) => stack.push(pose),
+            Ev::C(Comp::Close) => {
+                if let Some(p) = stack.pop() {
+                    pose = p;
+                }
+            }
+            Ev::C(c) => pose.turns += c.turn(),
+            Ev::Level(k) => level = k,
+            Ev::Growth(_) => {
+                let r = growth_terms[gi];
+                gi += 1;
+                let u = unit_of[r].unwrap_or(r);
+                points.push(Point {
+                    rule: u,
+                    pose,
+                    level,
+                    budget: ctx.count[r].unwrap_or(st.levels),
+                });
+            }
+        }
+    }
+    let outline = Outline::new(shapes);
+    let bounds = layout::bounds(shapes).unwrap_or([0.0, 0.0, 1.0, 1.0]);
+    let params = growth::Params {
+        delta,
+        depth_first: st.depth_first,
+        broadness: bw.to_vec(),
+        length: lw.to_vec(),
+        max_stems: growth::MAX_STEMS,
+    };
+    // Growth points with no budget (`[I 0 X]`) grow nothing.
+    let out = growth::grow(&units, &outline, bounds, &params, &stems, &points);
+    if out.truncated {
+        ctx.diags.push(
+            Diagnostic::global(
+                codes::STL_TOO_DEEP,
+                format!("growth stopped at {} stems", growth::MAX_STEMS),
+            )
+            .with_help("use fewer LEVELS, a larger broadness B or a smaller layout"),
+        );
+    }
+    // Replace the growth points by the grown terms.
+    let mut next = 0;
+    fill_growth(parts, &out.nodes, &points, &mut next);
+    true
+}
+
+fn collect_growth(parts: &[Part], out: &mut Vec<usize>) {
+    fn term(t: &Term, out: &mut Vec<usize>) {
+        if t.growth {
+            out.push(t.rule);
+        }
+        for e in &t.entries {
+            if let TermEntry::Term(c) = e {
+                term(c, out);
+            }
+        }
+    }
+    for p in parts {
+        if let Part::Term(t) = p {
+            term(t, out);
+        }
+    }
+}
+
+fn fill_growth(parts: &mut [Part], nodes: &[growth::Node], points: &[Point], next: &mut usize) {
+    fn node_term(nodes: &[growth::Node], i: usize) -> Term {
+        Term {
+            rule: nodes[i].rule,
+            entries: nodes[i]
+                .entries
+                .iter()
+                .map(|e| match *e {
+                    Grown::Empty => TermEntry::Empty,
+                    Grown::Failed => TermEntry::Failed,
+                    Grown::Node(c) => TermEntry::Term(node_term(nodes, c)),
+                })
+                .collect(),
+            growth: false,
+        }
+    }
+    fn term(t: &mut Term, nodes: &[growth::Node], points: &[Point], next: &mut usize) {
+        if t.growth {
+            if *next < points.len() {
+                *t = node_term(nodes, *next);
+            }
+            *next += 1;
+            return;
+        }
+        for e in &mut t.entries {
+            if let TermEntry::Term(c) = e {
+                term(c, nodes, points, next);
+            }
+        }
+    }
+    for p in parts {
+        if let Part::Term(t) = p {
+            term(t, nodes, points, next);
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! The STL front end: the Structural Tree Language of Yeh, Chien & Lee
+//! (drawing components, growth rules, self-resemblance counts, stem
+//! parameters, branching syntax, layouts), with the file format SPEC.md
+//! fixes and `grammar/stl.ebnf` states normatively.
+//!
+//! `lexer` (logos) -> `parser` (chumsky, recovering) -> `ast` -> `lower`
+//! (the paper's Language Analyzer; for an Outline Description it runs
+//! `growth`, the Graphics Developer, over the `layout` shapes) -> IR. The
+//! lowered seed is always a Branch-Expansion Description, which
+//! [`crate::emit::stl`] writes back out.
+
+pub mod ast;
+pub mod growth;
+pub mod layout;
+pub mod lexer;
+pub mod lower;
+pub mod parser;
+
+pub use lower::{lower, Lowered};
+pub use parser::parse;
+
+use crate::diagnostics::Diagnostics;
+
+/// Parses and lowers STL source text: the IR (usable only when `diags` got
+/// no error) and its spans.
+pub fn read(src: &str, diags: &mut Diagnostics) -> Lowered {
+    let ast = parse(src, diags);
+    lower(&ast, src.len(), diags)
+}
+
+/// Reads an STL text that must be free of errors (for tests and examples).
+///
+/// # Panics
+/// When the text has errors; the message lists them.
+pub fn read_ok(src: &str) -> crate::ir::System {
+    let mut d = Diagnostics::default();
+    let l = read(src, &mut d);
+    assert!(!d.has_errors(), "{d:#?}");
+    l.system
+}

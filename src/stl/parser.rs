@@ -1,0 +1,842 @@
+//! The STL parser (chumsky 0.12 over logos tokens, then precise checks).
+//!
+//! Two passes, as in the pfg front end:
+//!
+//! 1. A permissive chumsky grammar cuts the token stream into *raw items*:
+//!    `SEED … ENDSEED` and `LAYOUT … ENDLAYOUT` blocks (which may span lines;
+//!    a block whose end keyword is missing runs to the end of the file) and
+//!    single lines (settings and rule definitions). It accepts every token
+//!    sequence, so it never fails.
+//! 2. [`build`] reads each raw item by recursive descent and says precisely
+//!    what is wrong (an unclosed `[`, a shape without its colour, …) with a
+//!    code, a span and a help line; after an error it recovers at the next
+//!    token that can start something, so every error of a file is reported
+//!    in one run. Nesting deeper than [`MAX_NESTING`] is an error, so no
+//!    input can exhaust the stack.
+
+use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
+use super::lexer::{lex, Token};
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::Span;
+use chumsky::input::ValueInput;
+use chumsky::prelude::*;
+
+/// The statement keywords (upper case, as the paper writes them).
+pub const KEYWORDS: [&str; 7] = ["ANGLE", "B", "L", "GROWTH", "LEVELS", "SEED", "LAYOUT"];
+
+/// Names that cannot be rule names: the drawing components, the stem
+/// parameters, `I` of `[I n X]` and the keywords.
+pub const RESERVED: [&str; 13] = [
+    "F",
+    "L",
+    "R",
+    "B",
+    "I",
+    "ANGLE",
+    "GROWTH",
+    "LEVELS",
+    "SEED",
+    "ENDSEED",
+    "LAYOUT",
+    "ENDLAYOUT",
+    "BFS",
+];
+
+/// The deepest nesting of `[ ]` and `{ }` read.
+pub const MAX_NESTING: usize = 1000;
+
+type Tok<'src> = (Token<'src>, SimpleSpan);
+
+/// What chumsky hands to [`build`].
+#[derive(Clone, Debug)]
+enum Raw<'src> {
+    Line(Vec<Tok<'src>>),
+    Block {
+        seed: bool,
+        open: SimpleSpan,
+        body: Vec<Tok<'src>>,
+        close: Option<SimpleSpan>,
+    },
+}
+
+fn raw_parser<'tokens, 'src: 'tokens, I>(
+) -> impl Parser<'tokens, I, Vec<Option<Raw<'src>>>, extra::Err<Rich<'tokens, Token<'src>>>>
+where
+    I: ValueInput<'tokens, Token = Token<'src>, Span = SimpleSpan>,
+{
+    let kw = |k: &'static str| select! { Token::Ident(s) if s == k => () };
+    let block = |open: &'static str, close: &'static str, seed: bool| {
+        kw(open)
+            .map_with(|_, e| e.span())
+            .then(
+                any()
+                    .and_is(kw(close).not())
+                    .map_with(|t, e| (t, e.span()))
+                    .repeated()
+                    .collect::<Vec<_>>(),
+            )
+            .then(kw(close).map_with(|_, e| e.span()).or_not())
+            .map(move |((open, body), close)| Raw::Block {
+                seed,
+                open,
+                body,
+                close,
+            })
+    };
+    let line = any()
+        .filter(|t: &Token| *t != Token::Newline)
+        .map_with(|t, e| (t, e.span()))
+        .repeated()
+        .at_least(1)
+        .collect::<Vec<_>>()
+        .map(Raw::Line);
+    choice((
+        block("SEED", "ENDSEED", true).map(Some),
+        block("LAYOUT", "ENDLAYOUT", false).map(Some),
+        just(Token::Newline).to(None),
+        line.map(Some),
+    ))
+    .repeated()
+    .collect::<Vec<_>>()
+    .then_ignore(end())
+}
+
+/// Parses STL source text into an AST. Never fails: problems are pushed to
+/// `diags` and what they affect is left out of the AST.
+pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
+    let tokens: Vec<Tok<'_>> = lex(src, diags)
+        .into_iter()
+        .map(|(t, s)| (t, SimpleSpan::from(s)))
+        .collect();
+    let eoi = SimpleSpan::from(src.len()..src.len());
+    let (raws, errors) = raw_parser()
+        .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
+        .into_output_errors();
+    for err in errors {
+        // The raw grammar accepts every token sequence; report defensively.
+        diags.push(
+            Diagnostic::at(codes::SYNTAX, err.span().into_range(), "unexpected token")
+                .with_help("see grammar/stl.ebnf for the format"),
+        );
+    }
+    let mut file = File::default();
+    for raw in raws.unwrap_or_default().into_iter().flatten() {
+        build(raw, src, diags, &mut file);
+    }
+    file
+}
+
+fn range(s: SimpleSpan) -> Span {
+    s.into_range()
+}
+
+/// A cursor over the tokens of one raw item.
+struct Cursor<'a, 'src> {
+    toks: Vec<(Token<'src>, Span)>,
+    pos: usize,
+    diags: &'a mut Diagnostics,
+    /// Where the item ends (for "expected … here" at the end).
+    end: usize,
+    /// Set when nesting went too deep: the rest of the item is skipped and
+    /// the enclosing brackets are not reported again.
+    aborted: bool,
+}
+
+impl<'src> Cursor<'_, 'src> {
+    fn peek(&self) -> Option<Token<'src>> {
+        self.toks.get(self.pos).map(|t| t.0)
+    }
+    fn peek_at(&self, k: usize) -> Option<Token<'src>> {
+        self.toks.get(self.pos + k).map(|t| t.0)
+    }
+    fn span(&self) -> Span {
+        self.toks
+            .get(self.pos)
+            .map_or(self.end..self.end, |t| t.1.clone())
+    }
+    fn bump(&mut self) -> (Token<'src>, Span) {
+        let t = self.toks[self.pos].clone();
+        self.pos += 1;
+        t
+    }
+    fn at_end(&self) -> bool {
+        self.pos >= self.toks.len()
+    }
+    fn unexpected(&mut self, expected: &str, help: &str) {
+        let span = self.span();
+        let d = match self.peek() {
+            Some(t) => Diagnostic::at(codes::SYNTAX, span, format!("unexpected {t}")),
+            None => Diagnostic::at(codes::SYNTAX, span, "unexpected end of line"),
+        };
+        self.diags
+            .push(d.with_label(format!("expected {expected}")).with_help(help));
+    }
+
+    /// A number, with an optional leading `-`.
+    fn number(&mut self) -> Option<Num> {
+        let start = self.span().start;
+        let neg = if self.peek() == Some(Token::Minus)
+            && matches!(self.peek_at(1), Some(Token::Number(_)))
+        {
+            self.bump();
+            true
+        } else {
+            false
+        };
+        match self.peek() {
+            Some(Token::Number(n)) => {
+                let (_, s) = self.bump();
+                let v: f64 = n.parse().unwrap_or(f64::NAN);
+                Some(Num {
+                    value: if neg { -v } else { v },
+                    span: start..s.end,
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// A string of elements up to (not including) a token `stop` accepts,
+    /// or the end. `depth` counts enclosing brackets and braces.
+    fn string(&mut self, stop: fn(&Token) -> bool, depth: usize) -> Str {
+        let start = self.span().start;
+        let mut elems = Vec::new();
+        while let Some(t) = self.peek() {
+            if stop(&t) {
+                break;
+            }
+            match t {
+                Token::Newline => {
+                    self.bump();
+                }
+                Token::Ident(name) => {
+                    let (_, span) = self.bump();
+                    let entries = if self.peek() == Some(Token::LBrace) {
+                        self.entries(depth + 1)
+                    } else {
+                        None
+                    };
+                    elems.push(Elem::Name {
+                        text: name.to_string(),
+                        span,
+                        entries,
+                    });
+                }
+                Token::Plus | Token::Minus => {
+                    let (_, span) = self.bump();
+                    elems.push(Elem::Turn {
+                        left: t == Token::Plus,
+                        span,
+                    });
+                }
+                Token::Open => {
+                    if depth >= MAX_NESTING {
+                        self.too_deep();
+                        return Str {
+                            elems,
+                            span: start..self.end,
+                        };
+                    }
+                    if let Some(e) = self.bracket(depth) {
+                        elems.push(e);
+                    }
+                }
+                Token::Close => {
+                    let (_, span) = self.bump();
+                    self.diags.push(
+                        Diagnostic::at(codes::STL_UNBALANCED, span, "unmatched `]`")
+                            .with_label("no `[` opens this branch")
+                            .with_help("remove this `]` or add the `[` that opens the branch"),
+                    );
+                }
+                Token::LBrace => {
+                    let span = self.span();
+                    self.diags.push(
+                        Diagnostic::at(codes::SYNTAX, span, "unexpected `{`")
+                            .with_label("a branching `{…}` must follow a rule name")
+                            .with_help("write the rule before its entries: `R1{R2, ~, R1}`"),
+                    );
+                    let _ = self.entries(depth + 1);
+                }
+                _ => {
+                    self.unexpected(
+                        "a drawing component, a rule name or `[`",
+                        "a string holds F L R + - [ ], rule names, `[I n X]` and branching terms `R{…}`",
+                    );
+                    self.bump();
+                }
+            }
+        }
+        let end = self
+            .toks
+            .get(self.pos.saturating_sub(1))
+            .map_or(start, |t| t.1.end)
+            .max(start);
+        Str {
+            elems,
+            span: start..end,
+        }
+    }
+
+    fn too_deep(&mut self) {
+        let span = self.span();
+        self.diags.push(
+            Diagnostic::at(
+                codes::STL_TOO_DEEP,
+                span,
+                format!("nesting deeper than {MAX_NESTING} levels"),
+            )
+            .with_label("too deep")
+            .with_help("flatten the string; graftal reads at most this many nested `[` and `{`"),
+        );
+        // Skip the rest of the item.
+        self.pos = self.toks.len();
+        self.aborted = true;
+    }
+
+    /// `[ … ]` or `[I n X]`, the cursor at `[`.
+    fn bracket(&mut self, depth: usize) -> Option<Elem> {
+        let (_, open) = self.bump();
+        let resemble = matches!(self.peek(), Some(Token::Ident("I")))
+            && matches!(self.peek_at(1), Some(Token::Number(_)) | Some(Token::Minus));
+        let count = if resemble {
+            self.bump();
+            self.number()
+        } else {
+            None
+        };
+        if resemble && count.is_none() {
+            self.unexpected("a count", "a self-resemblance count is written `[I 3 R1]`");
+        }
+        let body = self.string(|t| *t == Token::Close, depth + 1);
+        let end = match self.peek() {
+            Some(Token::Close) => self.bump().1.end,
+            _ if self.aborted => return None,
+            _ => {
+                self.diags.push(
+                    Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `[`")
+                        .with_label("this branch is never closed")
+                        .with_secondary(self.end..self.end, "the string ends here")
+                        .with_help("close the branch with `]`"),
+                );
+                return None;
+            }
+        };
+        let span = open.start..end;
+        if resemble {
+            let count = count?;
+            if body.elems.is_empty() {
+                self.diags.push(
+                    Diagnostic::at(codes::SYNTAX, span, "`[I n]` without a rule")
+                        .with_label("nothing to repeat")
+                        .with_help(
+                            "write the rule or string to rewrite: `[I 3 R1]` or `[I 2 F[+F]]`",
+                        ),
+                );
+                return None;
+            }
+            Some(Elem::Resemble { count, body, span })
+        } else {
+            Some(Elem::Branch { body, span })
+        }
+    }
+
+    /// `{ e1, …, em }`, the cursor at `{`.
+    fn entries(&mut self, depth: usize) -> Option<Entries> {
+        if depth >= MAX_NESTING {
+            self.too_deep();
+            return None;
+        }
+        let (_, open) = self.bump();
+        let mut list = Vec::new();
+        let mut sep = open.clone();
+        if self.peek() == Some(Token::RBrace) {
+            let close = self.bump().1;
+            return Some(Entries {
+                list,
+                span: open.start..close.end,
+            });
+        }
+        loop {
+            while self.peek() == Some(Token::Newline) {
+                self.bump();
+            }
+            match self.peek() {
+                Some(Token::Comma) | Some(Token::RBrace) => list.push(Entry::Empty(sep.clone())),
+                Some(Token::Tilde) => list.push(Entry::Failed(self.bump().1)),
+                Some(Token::Ident(name)) => {
+                    let (_, name_span) = self.bump();
+                    let entries = if self.peek() == Some(Token::LBrace) {
+                        self.entries(depth + 1)
+                    } else {
+                        None
+                    };
+                    list.push(Entry::Term {
+                        name: name.to_string(),
+                        name_span,
+                        entries,
+                    });
+                }
+                None => {}
+                Some(_) => {
+                    self.unexpected(
+                        "a rule name, `~` or `,`",
+                        "an entry is a rule (with its own optional `{…}`), `~` for a failed branch, or nothing",
+                    );
+                    // Skip to the next comma or brace at this level.
+                    while let Some(t) = self.peek() {
+                        if matches!(t, Token::Comma | Token::RBrace | Token::Newline) {
+                            break;
+                        }
+                        self.bump();
+                    }
+                }
+            }
+            while self.peek() == Some(Token::Newline) {
+                self.bump();
+            }
+            match self.peek() {
+                Some(Token::Comma) => sep = self.bump().1,
+                Some(Token::RBrace) => {
+                    let close = self.bump().1;
+                    return Some(Entries {
+                        list,
+                        span: open.start..close.end,
+                    });
+                }
+                _ if self.aborted => return None,
+                _ => {
+                    self.diags.push(
+                        Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `{`")
+                            .with_label("these branching entries are never closed")
+                            .with_secondary(self.span(), "expected `,` or `}` here")
+                            .with_help("separate entries with `,` and close them with `}`"),
+                    );
+                    return None;
+                }
+            }
+        }
+    }
+}
+
+/// Reads one raw item into the AST.
+fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
+    match raw {
+        Raw::Block {
+            seed,
+            open,
+            body,
+            close,
+        } => {
+            let (open_kw, close_kw) = if seed {
+                ("SEED", "ENDSEED")
+            } else {
+                ("LAYOUT", "ENDLAYOUT")
+            };
+            let end = close.map_or(src.len(), |c| c.end);
+            if close.is_none() {
+                diags.push(
+                    Diagnostic::at(
+                        codes::STL_UNTERMINATED,
+                        range(open),
+                        format!("unterminated `{open_kw}`"),
+                    )
+                    .with_label(format!("this `{open_kw}` has no `{close_kw}`"))
+                    .with_secondary(src.len()..src.len(), "the file ends here")
+                    .with_help(format!("end the block with `{close_kw}` on its own line")),
+                );
+            }
+            let toks: Vec<(Token<'_>, Span)> =
+                body.into_iter().map(|(t, s)| (t, range(s))).collect();
+            let body_end = toks.last().map_or(open.end, |t| t.1.end);
+            let mut cur = Cursor {
+                toks,
+                pos: 0,
+                diags,
+                end: body_end,
+                aborted: false,
+            };
+            let span = open.start..end;
+            if seed {
+                let body = cur.string(|_| false, 0);
+                file.items.push(Item::Seed { body, span });
+            } else {
+                let mut shapes = Vec::new();
+                while !cur.at_end() {
+                    if cur.peek() == Some(Token::Newline) {
+                        cur.bump();
+                        continue;
+                    }
+                    if let Some(s) = shape(&mut cur) {
+                        shapes.push(s);
+                    }
+                    // Skip what is left of the line.
+                    while !cur.at_end() && cur.peek() != Some(Token::Newline) {
+                        cur.bump();
+                    }
+                }
+                file.items.push(Item::Layout { shapes, span });
+            }
+        }
+        Raw::Line(toks) => {
+            let toks: Vec<(Token<'_>, Span)> =
+                toks.into_iter().map(|(t, s)| (t, range(s))).collect();
+            let end = toks.last().map_or(0, |t| t.1.end);
+            let mut cur = Cursor {
+                toks,
+                pos: 0,
+                diags,
+                end,
+                aborted: false,
+            };
+            if let Some(item) = line(&mut cur) {
+                file.items.push(item);
+            }
+        }
+    }
+}
+
+/// A setting or a rule definition.
+fn line(cur: &mut Cursor<'_, '_>) -> Option<Item> {
+    let start = cur.span().start;
+    let end = cur.end;
+    let span = start..end;
+    let Some(Token::Ident(first)) = cur.peek() else {
+        cur.unexpected(
+            "a setting or a rule",
+            "a line is a setting (`ANGLE 30`, `B = 8 (1)`, `GROWTH BFS`, `LEVELS 12`), a rule `R1 = …`, or a `SEED`/`LAYOUT` block",
+        );
+        return None;
+    };
+    let (_, first_span) = cur.bump();
+    let rest_done = |cur: &mut Cursor<'_, '_>| {
+        if !cur.at_end() {
+            cur.unexpected(
+                "the end of the line",
+                "put one setting or rule on each line",
+            );
+        }
+    };
+    match first {
+        "ANGLE" | "LEVELS" => {
+            let Some(value) = cur.number() else {
+                cur.unexpected(
+                    "a number",
+                    &format!(
+                        "write e.g. `{first} {}`",
+                        if first == "ANGLE" { "30" } else { "12" }
+                    ),
+                );
+                return None;
+            };
+            rest_done(cur);
+            Some(if first == "ANGLE" {
+                Item::Angle { value, span }
+            } else {
+                Item::Levels { value, span }
+            })
+        }
+        "GROWTH" => {
+            let which = match cur.peek() {
+                Some(Token::Ident("BFS")) => false,
+                Some(Token::Ident("DFS")) => true,
+                Some(Token::Ident(other)) => {
+                    let s = cur.span();
+                    let near = nearest(other, &["BFS", "DFS"]);
+                    let help = match near.first() {
+                        Some(n) => format!("did you mean `{n}`?"),
+                        None => "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)"
+                            .into(),
+                    };
+                    cur.diags.push(
+                        Diagnostic::at(
+                            codes::SYNTAX,
+                            s,
+                            format!("unknown growth strategy `{other}`"),
+                        )
+                        .with_label("expected `BFS` or `DFS`")
+                        .with_help(help),
+                    );
+                    return None;
+                }
+                _ => {
+                    cur.unexpected(
+                        "`BFS` or `DFS`",
+                        "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)",
+                    );
+                    return None;
+                }
+            };
+            cur.bump();
+            rest_done(cur);
+            Some(Item::Growth {
+                depth_first: which,
+                span,
+            })
+        }
+        _ if cur.peek() == Some(Token::Eq) => {
+            cur.bump();
+            if first == "B" || first == "L" {
+                let Some(value) = cur.number() else {
+                    cur.unexpected(
+                        "a number",
+                        &format!(
+                            "write `{first} = {} (1)`: the value and its decrement per level",
+                            if first == "B" { "8" } else { "40" }
+                        ),
+                    );
+                    return None;
+                };
+                let decrement = if cur.peek() == Some(Token::LParen) {
+                    cur.bump();
+                    let Some(d) = cur.number() else {
+                        cur.unexpected(
+                            "a number",
+                            "the decrement per level is a number in parentheses: `(1)`",
+                        );
+                        return None;
+                    };
+                    if cur.peek() != Some(Token::RParen) {
+                        cur.unexpected("`)`", "close the decrement with `)`");
+                        return None;
+                    }
+                    cur.bump();
+                    Some(d)
+                } else {
+                    None
+                };
+                rest_done(cur);
+                return Some(Item::Param {
+                    param: if first == "B" { 'B' } else { 'L' },
+                    value,
+                    decrement,
+                    span,
+                });
+            }
+            let body = cur.string(|_| false, 0);
+            Some(Item::Rule {
+                name: first.to_string(),
+                name_span: first_span,
+                body,
+                span,
+            })
+        }
+        _ => {
+            let keywords: Vec<&str> = KEYWORDS
+                .iter()
+                .copied()
+                .chain(["ENDSEED", "ENDLAYOUT"])
+                .collect();
+            let near = nearest(first, &keywords);
+            let d = if matches!(first, "ENDSEED" | "ENDLAYOUT") {
+                Diagnostic::at(
+                    codes::SYNTAX,
+                    first_span,
+                    format!("`{first}` without its opening keyword"),
+                )
+                .with_label("no block to end")
+                .with_help(format!("start the block with `{}`", &first[3..]))
+            } else if let Some(k) = near
+                .first()
+                .filter(|_| first.chars().all(|c| c.is_ascii_uppercase()))
+            {
+                Diagnostic::at(
+                    codes::STL_UNKNOWN_KEYWORD,
+                    first_span,
+                    format!("unknown keyword `{first}`"),
+                )
+                .with_label("not an STL keyword")
+                .with_help(format!("did you mean `{k}`?"))
+            } else {
+                Diagnostic::at(
+                    codes::STL_UNKNOWN_KEYWORD,
+                    first_span,
+                    format!("`{first}` is not a setting or a rule definition"),
+                )
+                .with_label("expected a keyword or `NAME =`")
+                .with_help(
+                    "define a rule with `R1 = [F][+F]`; the seed goes between `SEED` and `ENDSEED`",
+                )
+            };
+            cur.diags.push(d);
+            None
+        }
+    }
+}
+
+/// One layout shape: `(colour) Kind arg, arg, …`.
+fn shape(cur: &mut Cursor<'_, '_>) -> Option<ShapeAst> {
+    let start = cur.span().start;
+    let help = "a shape is `(colour) Kind arguments`, e.g. `(clGreen) Ellipse (-150,0), 300, 400`";
+    if cur.peek() != Some(Token::LParen) {
+        cur.unexpected("`(` and a colour", help);
+        return None;
+    }
+    cur.bump();
+    let colour = match cur.peek() {
+        Some(Token::Ident(n)) => ColourAst::Name(n.to_string(), cur.bump().1),
+        Some(Token::Hex(h)) => ColourAst::Hex(h.to_string(), cur.bump().1),
+        _ => {
+            cur.unexpected("a colour name or `$00BBGGRR`", help);
+            return None;
+        }
+    };
+    if cur.peek() != Some(Token::RParen) {
+        cur.unexpected("`)`", help);
+        return None;
+    }
+    cur.bump();
+    let (kind, kind_span) = match cur.peek() {
+        Some(Token::Ident(k)) => (k.to_string(), cur.bump().1),
+        _ => {
+            cur.unexpected("a shape: Rectangle, RoundRect, Ellipse or Polygon", help);
+            return None;
+        }
+    };
+    let mut args = Vec::new();
+    loop {
+        if cur.at_end() || cur.peek() == Some(Token::Newline) {
+            break;
+        }
+        let a = if cur.peek() == Some(Token::LParen) {
+            let s = cur.bump().1;
+            let x = cur.number();
+            let comma = cur.peek() == Some(Token::Comma);
+            if comma {
+                cur.bump();
+            }
+            let y = cur.number();
+            match (x, comma, y, cur.peek()) {
+                (Some(x), true, Some(y), Some(Token::RParen)) => {
+                    let e = cur.bump().1;
+                    Arg::Point(x, y, s.start..e.end)
+                }
+                _ => {
+                    cur.unexpected(
+                        "a point `(x, y)`",
+                        "a point is two numbers in parentheses: `(-150, 0)`",
+                    );
+                    return None;
+                }
+            }
+        } else if let Some(n) = cur.number() {
+            Arg::Num(n)
+        } else {
+            cur.unexpected("a number or a point `(x, y)`", help);
+            return None;
+        };
+        args.push(a);
+        match cur.peek() {
+            Some(Token::Comma) => {
+                cur.bump();
+            }
+            None | Some(Token::Newline) => break,
+            _ => {
+                cur.unexpected(
+                    "`,` or the end of the line",
+                    "separate a shape's arguments with `,`",
+                );
+                return None;
+            }
+        }
+    }
+    let end = args.last().map_or(kind_span.end, |a| a.span().end);
+    Some(ShapeAst {
+        colour,
+        kind,
+        kind_span,
+        args,
+        span: start..end,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_ok(src: &str) -> File {
+        let mut d = Diagnostics::default();
+        let f = parse(src, &mut d);
+        assert!(d.is_empty(), "{d:#?}");
+        f
+    }
+
+    fn codes_of(src: &str) -> Vec<&'static str> {
+        let mut d = Diagnostics::default();
+        parse(src, &mut d);
+        d.iter().map(|d| d.code.0).collect()
+    }
+
+    #[test]
+    fn parses_settings_rules_seed_and_layout() {
+        let f = parse_ok(
+            "ANGLE 30\nB = 8 (1)\nL = 40\nGROWTH DFS\nLEVELS 5\nR1 = [F][+F][-F]\nR3 = [I 3 R1]\nSEED\nF R1{R1, R2{,}, ~}\nENDSEED\nLAYOUT\n(clGreen) Ellipse (-150,0), 300, 400\n($00FF00) Polygon (0,0), (1,0), (0,1)\nENDLAYOUT\n",
+        );
+        assert_eq!(f.items.len(), 9);
+        let Item::Seed { body, .. } = &f.items[7] else {
+            panic!()
+        };
+        let Elem::Name {
+            entries: Some(e), ..
+        } = &body.elems[1]
+        else {
+            panic!()
+        };
+        assert_eq!(e.list.len(), 3);
+        assert!(matches!(e.list[2], Entry::Failed(_)));
+        let Item::Layout { shapes, .. } = &f.items[8] else {
+            panic!()
+        };
+        assert_eq!(shapes.len(), 2);
+        assert_eq!(shapes[1].args.len(), 3);
+        let Item::Rule { body, .. } = &f.items[6] else {
+            panic!()
+        };
+        assert!(matches!(body.elems[0], Elem::Resemble { .. }));
+    }
+
+    #[test]
+    fn seeds_span_lines_and_empty_entries_count() {
+        let f = parse_ok("SEED\nR1{R1{,},\n ,}\nENDSEED");
+        let Item::Seed { body, .. } = &f.items[0] else {
+            panic!()
+        };
+        let Elem::Name {
+            entries: Some(e), ..
+        } = &body.elems[0]
+        else {
+            panic!()
+        };
+        assert_eq!(e.list.len(), 3);
+        let Entry::Term {
+            entries: Some(inner),
+            ..
+        } = &e.list[0]
+        else {
+            panic!()
+        };
+        assert_eq!(inner.list.len(), 2);
+    }
+
+    #[test]
+    fn errors_are_reported_and_parsing_goes_on() {
+        assert_eq!(codes_of("SEED\nF[F\n"), vec!["E0504", "E0516"]);
+        assert_eq!(
+            codes_of("SEED F] ENDSEED\nANGEL 30\nR1 = F{\n"),
+            vec!["E0516", "E0512", "E0516"]
+        );
+        assert_eq!(
+            codes_of("LAYOUT\nEllipse (0,0), 1, 2\nENDLAYOUT"),
+            vec!["E0003"]
+        );
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_crash() {
+        let src = format!("SEED\n{}F{}\nENDSEED", "[".repeat(5000), "]".repeat(5000));
+        let codes = codes_of(&src);
+        assert!(codes.contains(&"E0513"), "{codes:?}");
+        let src = format!("SEED\n{}\nENDSEED", "R1{".repeat(5000));
+        assert!(codes_of(&src).contains(&"E0513"));
+    }
+}

@@ -1,0 +1,481 @@
+//! Keeps `grammar/stl.ebnf` true to the STL front end, the way
+//! tests/grammar.rs keeps grammar/pfg.ebnf true to pfg: the grammar is read
+//! as ISO EBNF and checked for consistency; its keyword and shape lists are
+//! compared with the parser's; the codes of its constraint section with the
+//! registry; and every example and counterexample is compiled as a `.stl`
+//! file. (The EBNF reader below is the one of tests/grammar.rs.)
+
+use graftal::diagnostics::codes;
+use graftal::driver::{compile, Compiled};
+use graftal::source::SourceFile;
+use graftal::stl::parser::KEYWORDS;
+use std::collections::{BTreeMap, BTreeSet};
+
+const MIN_EXAMPLES: usize = 15;
+const MIN_COUNTEREXAMPLES: usize = 25;
+
+fn grammar_text() -> String {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/stl.ebnf");
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {path}: {e}"))
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Tok {
+    /// A meta-identifier, inner whitespace collapsed to one space.
+    Ident(String),
+    /// A terminal string, without its quotes.
+    Term(String),
+    /// A special sequence `? … ?`, without the question marks.
+    Special(String),
+    /// One of `= , | ; - [ ] { } ( )`.
+    Op(char),
+}
+
+/// 1-based line of byte offset `at`.
+fn line_of(src: &str, at: usize) -> usize {
+    src[..at].matches('\n').count() + 1
+}
+
+/// Tokenises ISO EBNF, skipping (nested) comments.
+fn lex_ebnf(src: &str) -> Result<Vec<Tok>, String> {
+    let chars: Vec<(usize, char)> = src.char_indices().collect();
+    let at = |i: usize| chars.get(i).map(|&(_, c)| c);
+    let pos = |i: usize| chars.get(i).map_or(src.len(), |&(p, _)| p);
+    let mut toks = Vec::new();
+    let mut i = 0;
+    while let Some(c) = at(i) {
+        if c.is_whitespace() {
+            i += 1;
+        } else if c == '(' && at(i + 1) == Some('*') {
+            let start = i;
+            let mut depth = 0usize;
+            loop {
+                match (at(i), at(i + 1)) {
+                    (Some('('), Some('*')) => {
+                        depth += 1;
+                        i += 2;
+                    }
+                    (Some('*'), Some(')')) => {
+                        depth -= 1;
+                        i += 2;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    (Some(_), _) => i += 1,
+                    (None, _) => {
+                        return Err(format!(
+                            "line {}: comment never closed",
+                            line_of(src, pos(start))
+                        ))
+                    }
+                }
+            }
+        } else if c == '*' && at(i + 1) == Some(')') {
+            return Err(format!(
+                "line {}: `*)` outside a comment",
+                line_of(src, pos(i))
+            ));
+        } else if c == '"' || c == '\'' || c == '?' {
+            let start = i;
+            i += 1;
+            let mut text = String::new();
+            loop {
+                match at(i) {
+                    Some(d) if d == c => break,
+                    Some('\n') | None if c != '?' => {
+                        return Err(format!(
+                            "line {}: unterminated terminal string",
+                            line_of(src, pos(start))
+                        ))
+                    }
+                    None => {
+                        return Err(format!(
+                            "line {}: unterminated special sequence",
+                            line_of(src, pos(start))
+                        ))
+                    }
+                    Some(d) => text.push(d),
+                }
+                i += 1;
+            }
+            i += 1;
+            if c == '?' {
+                toks.push(Tok::Special(text));
+            } else if text.is_empty() {
+                return Err(format!(
+                    "line {}: empty terminal string",
+                    line_of(src, pos(start))
+                ));
+            } else {
+                toks.push(Tok::Term(text));
+            }
+        } else if c.is_ascii_alphabetic() {
+            let mut words = Vec::new();
+            let mut word = String::new();
+            while let Some(d) = at(i) {
+                if d.is_ascii_alphanumeric() {
+                    word.push(d);
+                } else if d.is_whitespace() {
+                    if !word.is_empty() {
+                        words.push(std::mem::take(&mut word));
+                    }
+                } else {
+                    break;
+                }
+                i += 1;
+            }
+            if !word.is_empty() {
+                words.push(word);
+            }
+            toks.push(Tok::Ident(words.join(" ")));
+        } else if "=,|;-[]{}()".contains(c) {
+            toks.push(Tok::Op(c));
+            i += 1;
+        } else {
+            return Err(format!(
+                "line {}: unexpected character {c:?} outside a comment",
+                line_of(src, pos(i))
+            ));
+        }
+    }
+    Ok(toks)
+}
+
+/// The rules of the grammar: name -> definition tokens, in file order.
+fn rules(src: &str) -> Vec<(String, Vec<Tok>)> {
+    let toks = lex_ebnf(src).unwrap_or_else(|e| panic!("grammar/stl.ebnf: {e}"));
+    let mut out = Vec::new();
+    let mut rest = toks.as_slice();
+    while !rest.is_empty() {
+        let Some(end) = rest.iter().position(|t| *t == Tok::Op(';')) else {
+            panic!(
+                "grammar/stl.ebnf: rule without `;` near {:?}",
+                &rest[..3.min(rest.len())]
+            );
+        };
+        let rule = &rest[..end];
+        rest = &rest[end + 1..];
+        let [Tok::Ident(name), Tok::Op('='), body @ ..] = rule else {
+            panic!("grammar/stl.ebnf: not a rule `name = …;`: {rule:?}");
+        };
+        let mut depth: Vec<char> = Vec::new();
+        for t in body {
+            match t {
+                Tok::Op(c @ ('[' | '{' | '(')) => depth.push(*c),
+                Tok::Op(c @ (']' | '}' | ')')) => {
+                    let open = match c {
+                        ']' => '[',
+                        '}' => '{',
+                        _ => '(',
+                    };
+                    assert_eq!(depth.pop(), Some(open), "unbalanced `{c}` in rule `{name}`");
+                }
+                Tok::Op('=') => panic!("`=` inside rule `{name}` (missing `;`?)"),
+                _ => {}
+            }
+        }
+        assert!(depth.is_empty(), "unclosed bracket in rule `{name}`");
+        out.push((name.clone(), body.to_vec()));
+    }
+    out
+}
+
+#[derive(Debug)]
+struct Example {
+    /// `None` for an example, the expected code for a counterexample.
+    code: Option<String>,
+    text: String,
+    /// 1-based line in the grammar file.
+    line: usize,
+}
+
+/// Decodes the escapes of an example's text (see the top of the grammar).
+fn unescape(raw: &str, line: usize) -> String {
+    let mut out = String::new();
+    let mut it = raw.chars();
+    while let Some(c) = it.next() {
+        if c != '\\' {
+            out.push(c);
+            continue;
+        }
+        match it.next() {
+            Some('n') => out.push('\n'),
+            Some('r') => out.push('\r'),
+            Some('t') => out.push('\t'),
+            Some('\\') => out.push('\\'),
+            Some('u') => {
+                assert_eq!(it.next(), Some('{'), "line {line}: `\\u` without `{{`");
+                let hex: String = it.by_ref().take_while(|&c| c != '}').collect();
+                let ch = u32::from_str_radix(&hex, 16)
+                    .ok()
+                    .and_then(char::from_u32)
+                    .unwrap_or_else(|| panic!("line {line}: bad escape `\\u{{{hex}}}`"));
+                out.push(ch);
+            }
+            other => panic!("line {line}: unknown escape `\\{}`", other.unwrap_or(' ')),
+        }
+    }
+    out
+}
+
+fn is_code(s: &str) -> bool {
+    s.len() == 5
+        && (s.starts_with('E') || s.starts_with('W'))
+        && s[1..].chars().all(|c| c.is_ascii_digit())
+}
+
+fn examples(src: &str) -> Vec<Example> {
+    let mut out = Vec::new();
+    for (i, line) in src.lines().enumerate() {
+        let n = i + 1;
+        // Indented lines are documentation of the format, not examples.
+        if !(line.starts_with("(* example") || line.starts_with("(* counterexample")) {
+            continue;
+        }
+        let body = line
+            .strip_suffix(" *)")
+            .unwrap_or_else(|| panic!("line {n}: an example must end with ` *)`"));
+        let (code, raw) = if let Some(raw) = body.strip_prefix("(* example: ") {
+            (None, raw)
+        } else if let Some(rest) = body.strip_prefix("(* counterexample ") {
+            let (code, raw) = rest
+                .split_once(": ")
+                .unwrap_or_else(|| panic!("line {n}: expected `(* counterexample CODE: …`"));
+            assert!(is_code(code), "line {n}: `{code}` is not a code");
+            (Some(code.to_string()), raw)
+        } else {
+            panic!("line {n}: malformed example line");
+        };
+        assert!(
+            !raw.contains("*)") && !raw.contains("(*"),
+            "line {n}: an example's text may not contain `*)` or `(*`"
+        );
+        out.push(Example {
+            code,
+            text: unescape(raw, n),
+            line: n,
+        });
+    }
+    out
+}
+
+/// The codes named between the constraint markers.
+fn constraint_codes(src: &str) -> BTreeSet<String> {
+    let marker = |m: &str| {
+        let found: Vec<usize> = src
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| l.trim_end() == m)
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(found.len(), 1, "the grammar must have one line `{m}`");
+        found[0]
+    };
+    let begin = marker("(* BEGIN CONSTRAINTS *)");
+    let end = marker("(* END CONSTRAINTS *)");
+    assert!(begin < end, "END CONSTRAINTS before BEGIN CONSTRAINTS");
+    let section: String = src
+        .lines()
+        .skip(begin + 1)
+        .take(end - begin - 1)
+        .collect::<Vec<_>>()
+        .join("\n");
+    let section: Vec<char> = section.chars().collect();
+    let mut found = BTreeSet::new();
+    for i in 0..section.len().saturating_sub(4) {
+        let word: String = section[i..i + 5].iter().collect();
+        let before = i.checked_sub(1).map(|j| section[j]);
+        let after = section.get(i + 5);
+        let boundary = |c: Option<&char>| !c.is_some_and(|c| c.is_ascii_alphanumeric());
+        if is_code(&word) && boundary(before.as_ref()) && boundary(after) {
+            found.insert(word);
+        }
+    }
+    found
+}
+
+fn run(text: &str) -> Compiled {
+    compile(SourceFile::new("ex.stl", text))
+}
+
+fn codes_of(c: &Compiled) -> Vec<&'static str> {
+    c.diagnostics.iter().map(|d| d.code.0).collect()
+}
+
+/// The terminals of a rule whose body is `"a" | "b" | …`.
+fn alternatives(rules: &[(String, Vec<Tok>)], name: &str) -> Vec<String> {
+    let body = rules
+        .iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, b)| b)
+        .unwrap_or_else(|| panic!("the grammar has no rule `{name}`"));
+    body.split(|t| *t == Tok::Op('|'))
+        .map(|alt| match alt {
+            [Tok::Term(w)] => w.clone(),
+            _ => panic!("`{name}` alternatives must be single terminals: {alt:?}"),
+        })
+        .collect()
+}
+
+#[test]
+fn grammar_is_well_formed_iso_ebnf() {
+    let rules = rules(&grammar_text());
+    assert!(rules.len() > 25, "only {} rules found", rules.len());
+    let mut defined = BTreeSet::new();
+    for (name, _) in &rules {
+        assert!(
+            defined.insert(name.as_str()),
+            "rule `{name}` is defined twice"
+        );
+    }
+    let mut undefined = BTreeSet::new();
+    for (name, body) in &rules {
+        for t in body {
+            if let Tok::Ident(id) = t {
+                if !defined.contains(id.as_str()) {
+                    undefined.insert(format!("`{id}` (used in `{name}`)"));
+                }
+            }
+        }
+    }
+    assert!(
+        undefined.is_empty(),
+        "undefined meta-identifiers: {undefined:?}"
+    );
+    for start in ["file", "source text", "string", "entries", "shape"] {
+        assert!(defined.contains(start), "no rule `{start}`");
+    }
+}
+
+#[test]
+fn keywords_shapes_and_reserved_names_match_the_implementation() {
+    let rules = rules(&grammar_text());
+    assert_eq!(alternatives(&rules, "keyword"), KEYWORDS.to_vec());
+    assert_eq!(
+        alternatives(&rules, "shape name"),
+        ["Rectangle", "RoundRect", "Ellipse", "Polygon"]
+    );
+    let reserved = alternatives(&rules, "reserved name");
+    for r in graftal::stl::parser::RESERVED {
+        assert!(
+            reserved.contains(&r.to_string()),
+            "`{r}` is reserved but not in the grammar"
+        );
+    }
+    // Each shape and each keyword is accepted by the front end.
+    for k in alternatives(&rules, "shape name") {
+        let c = run(&format!(
+            "SEED\nF\nENDSEED\nLAYOUT\n(clWhite) {k} (0,0), (1,0), (0,1)\nENDLAYOUT\n"
+        ));
+        assert!(!codes_of(&c).contains(&"E0505"), "{k}");
+    }
+}
+
+#[test]
+fn enough_examples_to_mean_something() {
+    let all = examples(&grammar_text());
+    let valid = all.iter().filter(|e| e.code.is_none()).count();
+    assert!(valid >= MIN_EXAMPLES, "only {valid} examples");
+    assert!(
+        all.len() - valid >= MIN_COUNTEREXAMPLES,
+        "only {} counterexamples",
+        all.len() - valid
+    );
+}
+
+#[test]
+fn examples_compile_without_any_diagnostic() {
+    let mut failures = Vec::new();
+    for ex in examples(&grammar_text())
+        .iter()
+        .filter(|e| e.code.is_none())
+    {
+        let c = run(&ex.text);
+        if c.system.is_none() || !c.diagnostics.is_empty() {
+            failures.push(format!(
+                "line {}: {:?}\n    gave {:?}",
+                ex.line,
+                ex.text,
+                c.diagnostics
+                    .iter()
+                    .map(|d| format!("{} {}", d.code, d.message))
+                    .collect::<Vec<_>>()
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "examples that do not compile cleanly:\n{}",
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn counterexamples_give_exactly_their_code() {
+    let mut failures = Vec::new();
+    for ex in examples(&grammar_text()) {
+        let Some(code) = &ex.code else { continue };
+        let c = run(&ex.text);
+        let got = codes_of(&c);
+        let is_warning = code.starts_with('W');
+        let compiled = c.system.is_some() && !c.diagnostics.has_errors();
+        if got.is_empty() || got.iter().any(|g| g != code) || compiled != is_warning {
+            failures.push(format!(
+                "line {}: {:?}\n    expected only {code}, got {got:?}, compiled: {compiled}",
+                ex.line, ex.text
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "counterexamples that disagree with the implementation:\n{}",
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn constraint_codes_are_registered_and_each_has_a_counterexample() {
+    let src = grammar_text();
+    let named = constraint_codes(&src);
+    let registered: BTreeSet<&str> = codes::all().map(|c| c.code.0).collect();
+    let unknown: Vec<_> = named
+        .iter()
+        .filter(|c| !registered.contains(c.as_str()))
+        .collect();
+    assert!(
+        unknown.is_empty(),
+        "codes in the grammar but not registered: {unknown:?}"
+    );
+    // Every STL code is in the grammar.
+    let stl: Vec<&str> = registered
+        .iter()
+        .copied()
+        .filter(|c| c[1..].starts_with("05"))
+        .collect();
+    let missing_stl: Vec<_> = stl.iter().filter(|c| !named.contains(**c)).collect();
+    assert!(
+        missing_stl.is_empty(),
+        "STL codes the grammar does not name: {missing_stl:?}"
+    );
+    let mut per_code: BTreeMap<&str, usize> = BTreeMap::new();
+    let all = examples(&src);
+    for ex in &all {
+        if let Some(code) = &ex.code {
+            *per_code.entry(code.as_str()).or_default() += 1;
+            assert!(
+                named.contains(code),
+                "line {}: {code} is not in the constraint section",
+                ex.line
+            );
+        }
+    }
+    let missing: Vec<_> = named
+        .iter()
+        .filter(|c| !per_code.contains_key(c.as_str()))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "constraint codes without a counterexample: {missing:?}"
+    );
+}
