@@ -113,6 +113,17 @@ pub fn word_text(sys: &System, word: &Word) -> String {
     }
 }
 
+/// How many symbols of `word` are written: STL's silent stem-level markers
+/// (symbols with an empty name) are not counted.
+fn written_symbols(sys: &System, word: &Word) -> usize {
+    let silent: Vec<bool> = sys.symbols.iter().map(|(_, i)| i.name.is_empty()).collect();
+    if silent.iter().any(|&s| s) {
+        word.0.iter().filter(|s| !silent[s.index()]).count()
+    } else {
+        word.len()
+    }
+}
+
 /// Settings given on the command line.
 #[derive(Clone, Debug)]
 pub struct RunOptions {
@@ -301,7 +312,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let secs = |d: Duration| d.as_secs_f64();
     Ok(Stats {
         steps: opts.derive_options(sys).steps,
-        symbols: word.len(),
+        symbols: written_symbols(sys, &word),
         segments: g.segments.len(),
         polygons: g.polygons.len(),
         bbox: g.bbox().unwrap_or([0.0; 6]),

@@ -16,7 +16,7 @@ use std::io::{IsTerminal, Write};
 #[command(
     name = "graftal",
     version,
-    about = "Read, check, derive, draw and explain L-systems (pfg .l files)"
+    about = "Read, check, derive, draw, translate and explain L-systems (pfg .l, LinF .linf, STL .stl)"
 )]
 pub struct Cli {
     #[command(subcommand)]
