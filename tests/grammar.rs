@@ -23,18 +23,29 @@ struct Grammar {
     ext: &'static str,
     /// Rules every such grammar must define.
     starts: &'static [&'static str],
+    /// The code range of the notation's own diagnostics (`"04"` for
+    /// E04xx/W04xx), every one of which the grammar must name.
+    range: Option<&'static str>,
 }
 
-const GRAMMARS: [Grammar; 2] = [
+const GRAMMARS: [Grammar; 3] = [
     Grammar {
         file: "pfg.ebnf",
         ext: "l",
         starts: &["file", "source text", "header", "production"],
+        range: None,
     },
     Grammar {
         file: "linf.ebnf",
         ext: "linf",
         starts: &["file", "block", "string", "expression", "interval"],
+        range: Some("04"),
+    },
+    Grammar {
+        file: "stl.ebnf",
+        ext: "stl",
+        starts: &["file", "source text", "string", "entries", "shape"],
+        range: Some("05"),
     },
 ];
 
@@ -279,6 +290,31 @@ fn linf_block_keywords_match_the_lexer() {
     let keywords = keyword_rule("linf.ebnf", "block keyword");
     let lexer: Vec<&str> = BlockKind::ALL.iter().map(|k| k.keyword()).collect();
     assert_eq!(keywords, lexer);
+}
+
+#[test]
+fn stl_keywords_shapes_and_reserved_names_match_the_implementation() {
+    assert_eq!(
+        keyword_rule("stl.ebnf", "keyword"),
+        graftal::stl::parser::KEYWORDS.to_vec()
+    );
+    let shapes = keyword_rule("stl.ebnf", "shape name");
+    assert_eq!(shapes, ["Rectangle", "RoundRect", "Ellipse", "Polygon"]);
+    let reserved = keyword_rule("stl.ebnf", "reserved name");
+    for r in graftal::stl::parser::RESERVED {
+        assert!(
+            reserved.contains(&r.to_string()),
+            "`{r}` is reserved but not in the grammar"
+        );
+    }
+    // Each shape is accepted by the front end.
+    for k in shapes {
+        let c = run(
+            &format!("SEED\nF\nENDSEED\nLAYOUT\n(clWhite) {k} (0,0), (1,0), (0,1)\nENDLAYOUT\n"),
+            "stl",
+        );
+        assert!(!codes_of(&c).contains(&"E0505"), "{k}");
+    }
 }
 
 #[test]
@@ -535,6 +571,17 @@ fn constraint_codes_checked(g: &Grammar) {
         unknown.is_empty(),
         "codes in the grammar but not in codes::ALL: {unknown:?}"
     );
+    if let Some(range) = g.range {
+        let unnamed: Vec<&&str> = registered
+            .iter()
+            .filter(|c| c[1..].starts_with(range) && !named.contains(**c))
+            .collect();
+        assert!(
+            unnamed.is_empty(),
+            "{}: codes of the notation the grammar does not name: {unnamed:?}",
+            g.file
+        );
+    }
 
     let mut per_code: BTreeMap<&str, usize> = BTreeMap::new();
     let all = examples(&src);
