@@ -1,37 +1,8 @@
 //! The command-line contract: commands, exit statuses, output formats,
 //! `std:NAME`, seeds and byte-identical output.
 
-use graftal::cli::{run, Io};
-
-struct Out {
-    status: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn graftal(args: &[&str]) -> Out {
-    let mut stdout = Vec::new();
-    let mut stderr = Vec::new();
-    let mut io = Io {
-        stdout: &mut stdout,
-        stderr: &mut stderr,
-        terminal: false,
-    };
-    let mut argv = vec!["graftal"];
-    argv.extend_from_slice(args);
-    let status = run(argv, &mut io);
-    Out {
-        status,
-        stdout: String::from_utf8(stdout).unwrap(),
-        stderr: String::from_utf8(stderr).unwrap(),
-    }
-}
-
-fn temp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("graftal-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
+mod common;
+use common::{graftal, temp};
 
 #[test]
 fn derive_prints_the_word() {

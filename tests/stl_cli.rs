@@ -2,40 +2,12 @@
 //! and without the layout), translate to a Branch-Expansion Description,
 //! and every STL stdlib entry (the paper's figures).
 
-use graftal::cli::{run, Io};
 use graftal::driver::{self, Format, RunOptions};
 use graftal::render::RenderOptions;
 use graftal::stdlib::ENTRIES;
 
-struct Out {
-    status: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn graftal(args: &[&str]) -> Out {
-    let mut stdout = Vec::new();
-    let mut stderr = Vec::new();
-    let mut io = Io {
-        stdout: &mut stdout,
-        stderr: &mut stderr,
-        terminal: false,
-    };
-    let mut argv = vec!["graftal"];
-    argv.extend_from_slice(args);
-    let status = run(argv, &mut io);
-    Out {
-        status,
-        stdout: String::from_utf8(stdout).unwrap(),
-        stderr: String::from_utf8(stderr).unwrap(),
-    }
-}
-
-fn temp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("graftal-stl-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
+mod common;
+use common::{graftal, temp};
 
 #[test]
 fn derive_prints_the_expanded_drawing_components() {
