@@ -56,6 +56,29 @@ struct DeriveArgs {
     format: OutputFormat,
 }
 
+#[derive(clap::Args, Debug, Clone)]
+struct TranslateArgs {
+    /// A path, or std:NAME for a standard-library system.
+    file: String,
+    /// The target notation.
+    #[arg(long, value_enum)]
+    to: Target,
+    /// Output file (default: stdout).
+    #[arg(short = 'o', long = "output")]
+    output: Option<String>,
+    /// Approximate or drop what the target cannot express, with a warning each.
+    #[arg(long)]
+    lossy: bool,
+    /// Derivation steps: the target's derivation length, or, for STL, the
+    /// steps written into its rules (default: the file's derivation length).
+    #[arg(short = 'n', long = "steps")]
+    steps: Option<u64>,
+    /// `json` prints the mapping (each construct, exact or approximated,
+    /// with its span) on stdout, and diagnostics as JSON.
+    #[arg(long, value_enum, default_value_t)]
+    format: OutputFormat,
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Parse and validate files; diagnostics on stderr.
@@ -89,23 +112,9 @@ enum Command {
         #[arg(long)]
         no_layout: bool,
     },
-    /// Translate a file to another notation (today: STL to an STL
-    /// Branch-Expansion Description).
-    Translate {
-        /// A path, or std:NAME for a standard-library system.
-        file: String,
-        /// The target notation.
-        #[arg(long, value_enum)]
-        to: Target,
-        /// Output file (default: stdout).
-        #[arg(short = 'o', long = "output")]
-        output: Option<String>,
-        /// Approximate or drop what the target cannot express, with a warning each.
-        #[arg(long)]
-        lossy: bool,
-        #[arg(long, value_enum, default_value_t)]
-        format: OutputFormat,
-    },
+    /// Translate a file to another notation (pfg, LinF or STL); what the
+    /// target cannot express is an error, or a warning with --lossy.
+    Translate(TranslateArgs),
     /// Count symbols, segments, polygons; bounding box and branch depth.
     Stats(DeriveArgs),
     /// Explain a diagnostic code, e.g. `graftal explain E0004`.
@@ -269,13 +278,7 @@ where
                 Ok(0)
             })
         }
-        Command::Translate {
-            file,
-            to,
-            output,
-            lossy: _,
-            format,
-        } => translate(io, &file, to, output.as_deref(), format),
+        Command::Translate(a) => translate(io, &a),
         Command::Explain { code } => match diagnostics::codes::lookup(&code) {
             Some(info) => {
                 let _ = writeln!(
@@ -308,57 +311,85 @@ where
     }
 }
 
-/// `graftal translate`: only STL -> STL (a Branch-Expansion Description)
-/// exists so far; other directions are a usage error.
-fn translate(
-    io: &mut Io<'_>,
-    file: &str,
-    to: Target,
-    output: Option<&str>,
-    format: OutputFormat,
-) -> i32 {
-    let src = match driver::load(file) {
+/// `graftal translate`: source -> IR -> the target's emitter. Errors (what
+/// the target cannot express, without `--lossy`) mean exit status 1 and
+/// nothing written.
+fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
+    let src = match driver::load(&a.file) {
         Ok(f) => f,
         Err(e) => {
             let _ = writeln!(io.stderr, "error: {e}");
             return 2;
         }
     };
-    let from = match src.extension().unwrap_or("l").to_ascii_lowercase().as_str() {
-        "stl" => Target::Stl,
-        "linf" => Target::Linf,
-        _ => Target::Pfg,
-    };
-    if (from, to) != (Target::Stl, Target::Stl) {
-        let name = |t: Target| match t {
-            Target::Pfg => "pfg",
-            Target::Linf => "linf",
-            Target::Stl => "stl",
-        };
-        let _ = writeln!(
-            io.stderr,
-            "error: translation from {} to {} is not available yet (only stl to stl, which writes a Branch-Expansion Description)",
-            name(from),
-            name(to)
-        );
-        return 2;
-    }
     let c = driver::compile(src);
-    report(io, &c, c.diagnostics.0.iter(), format);
+    report(io, &c, c.diagnostics.0.iter(), a.format);
     let Some(sys) = &c.system else {
         return 1;
     };
-    let Some(text) = crate::emit::stl::write(sys) else {
-        let _ = writeln!(io.stderr, "error: `{file}` has no STL structure to write");
-        return 2;
+    let target = match a.to {
+        Target::Pfg => crate::ir::Notation::Pfg,
+        Target::Linf => crate::ir::Notation::Linf,
+        Target::Stl => crate::ir::Notation::Stl,
     };
-    match output {
+    let req = crate::emit::Request {
+        target,
+        lossy: a.lossy,
+        steps: a.steps,
+    };
+    let t = crate::emit::translate(sys, &c.spans, &c.file.text, &req);
+    report(io, &c, t.diagnostics.0.iter(), a.format);
+    if a.format == OutputFormat::Json {
+        let span = |s: &Option<crate::ir::Span>| {
+            s.as_ref().map(|s| {
+                let (line, column) = c.file.line_col(s.start);
+                serde_json::json!({"start": s.start, "end": s.end, "line": line, "column": column})
+            })
+        };
+        let constructs: Vec<serde_json::Value> = t
+            .mapping
+            .iter()
+            .map(|m| {
+                serde_json::json!({
+                    "construct": m.construct,
+                    "status": m.status,
+                    "span": span(&m.span),
+                    "target": m.target,
+                    "note": m.note,
+                })
+            })
+            .collect();
+        let names: Vec<serde_json::Value> = t
+            .names
+            .iter()
+            .map(|(f, to)| serde_json::json!({"source": f, "target": to}))
+            .collect();
+        let mut doc = serde_json::json!({
+            "file": c.file.name,
+            "from": crate::emit::notation_name(sys.notation),
+            "to": crate::emit::notation_name(target),
+            "exact": t.is_exact(),
+            "written": t.text.is_some(),
+            "output": a.output,
+            "names": names,
+            "constructs": constructs,
+        });
+        if a.output.is_none() {
+            doc["text"] = serde_json::json!(t.text);
+        }
+        let _ = writeln!(io.stdout, "{doc}");
+    }
+    let Some(text) = t.text else {
+        return 1;
+    };
+    match &a.output {
         Some(path) => {
             if let Err(e) = std::fs::write(path, text) {
                 let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
                 return 2;
             }
         }
+        None if a.format == OutputFormat::Json => {}
         None => {
             let _ = write!(io.stdout, "{text}");
         }

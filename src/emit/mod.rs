@@ -1,5 +1,785 @@
-//! Emitters, one per notation: IR -> source text of that notation.
-//! `stl` writes a Branch-Expansion Description; the pfg and LinF emitters
-//! come with the other translation directions.
+//! Translation: a system in the IR written out in a notation, exactly
+//! where the target can express it and honestly where not.
+//!
+//! `graftal translate FILE --to pfg|linf|stl` is source -> IR -> emitter.
+//! One emitter per target notation:
+//!
+//! * [`pfg`] writes the 1988 format of the Appendix A listing;
+//! * [`linf`] writes LinF blocks in the paper's order;
+//! * [`stl`] writes STL: a Branch-Expansion Description for an STL source,
+//!   and, for a pfg or LinF source, rules whose expansion is the derived
+//!   word (one macro per symbol and step, `[I n X]` where that is exact).
+//!
+//! An STL source is first turned into a bracketed production system by
+//! [`from_stl`]: each branching term becomes a symbol whose production is
+//! its rule's body with the term's entries at the branch ends, and stem
+//! levels become length factors. The pfg and LinF emitters then write that
+//! system like any other.
+//!
+//! Every emitter reports what its target cannot express as a [`Problem`]:
+//! the kind of construct (each kind has an error code `E06xx` and, for
+//! `--lossy`, a warning code `W06xx`), the source span, what the construct
+//! is and what `--lossy` does with it. Without `--lossy` any problem means
+//! nothing is written; with it, each problem is one warning. A translation
+//! without problems is exact: the translated file, evaluated with the same
+//! steps and seed, draws the same segments (tests/translate.rs checks this
+//! over the standard library and over random systems).
+//!
+//! Everything the emitters decide is also recorded as a [`Mapped`] entry
+//! (construct, source span, status, what it became), which `translate
+//! --format json` prints.
 
+pub mod from_stl;
+pub mod linf;
+pub mod pfg;
 pub mod stl;
+
+use crate::diagnostics::codes::{self, Code};
+use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::ir::{Angle, Axis, Notation, Production, Span, SpanTable, SymbolId, System, TurtleOp};
+use serde::Serialize;
+use std::collections::{HashMap, HashSet};
+
+/// What to translate to.
+#[derive(Clone, Debug)]
+pub struct Request {
+    pub target: Notation,
+    /// Approximate what the target cannot express, with a warning each.
+    pub lossy: bool,
+    /// Steps (the file's derivation length when `None`): written as the
+    /// target's derivation length, or baked into STL rules.
+    pub steps: Option<u64>,
+}
+
+/// How a construct was carried over.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Written so that it means exactly the same.
+    Exact,
+    /// Changed (`--lossy`): see the note.
+    Approximated,
+    /// The target cannot express it and `--lossy` was not given.
+    Impossible,
+}
+
+/// One construct of the source and what it became.
+#[derive(Clone, Debug, Serialize)]
+pub struct Mapped {
+    /// What the construct is, e.g. "production `F --> F+F`".
+    pub construct: String,
+    /// Where it is in the source (byte range), when known.
+    pub span: Option<Span>,
+    pub status: Status,
+    /// What it became in the target's text (empty when dropped).
+    pub target: String,
+    pub note: Option<String>,
+}
+
+/// The kinds of construct a target may be unable to express.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    Context,
+    Stochastic,
+    Guard,
+    Interval,
+    ThreeD,
+    Angle,
+    Length,
+    Attribute,
+    Swap,
+    Layout,
+    Rule,
+    Move,
+    TooLarge,
+}
+
+impl Kind {
+    /// The error code, and the warning code used under `--lossy` (none
+    /// when the construct cannot be approximated at all).
+    pub fn codes(self) -> (Code, Option<Code>) {
+        use codes::*;
+        match self {
+            Kind::Context => (TR_CONTEXT, Some(TR_CONTEXT_APPROX)),
+            Kind::Stochastic => (TR_STOCHASTIC, Some(TR_STOCHASTIC_APPROX)),
+            Kind::Guard => (TR_GUARD, Some(TR_GUARD_APPROX)),
+            Kind::Interval => (TR_INTERVAL, Some(TR_INTERVAL_APPROX)),
+            Kind::ThreeD => (TR_3D, Some(TR_3D_APPROX)),
+            Kind::Angle => (TR_ANGLE, Some(TR_ANGLE_APPROX)),
+            Kind::Length => (TR_LENGTH, Some(TR_LENGTH_APPROX)),
+            Kind::Attribute => (TR_ATTRIBUTE, Some(TR_ATTRIBUTE_APPROX)),
+            Kind::Swap => (TR_SWAP, Some(TR_SWAP_APPROX)),
+            Kind::Layout => (TR_LAYOUT, Some(TR_LAYOUT_APPROX)),
+            Kind::Rule => (TR_RULE, Some(TR_RULE_APPROX)),
+            Kind::Move => (TR_MOVE, Some(TR_MOVE_APPROX)),
+            Kind::TooLarge => (TR_TOO_LARGE, None),
+        }
+    }
+}
+
+/// Something the target cannot express.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    pub kind: Kind,
+    pub span: Option<Span>,
+    /// The construct, e.g. "the context of `a < b --> c`".
+    pub what: String,
+    /// What `--lossy` does with it.
+    pub change: String,
+}
+
+/// The result of a translation.
+#[derive(Clone, Debug)]
+pub struct Translation {
+    /// The translated file; `None` when the target cannot express the
+    /// source and `--lossy` was not given.
+    pub text: Option<String>,
+    pub mapping: Vec<Mapped>,
+    /// Source symbol name -> how the target writes it, where they differ.
+    pub names: Vec<(String, String)>,
+    /// One error per problem (or one warning under `--lossy`).
+    pub diagnostics: Diagnostics,
+}
+
+impl Translation {
+    /// Whether the translation is written and means exactly the source.
+    pub fn is_exact(&self) -> bool {
+        self.text.is_some() && self.diagnostics.is_empty()
+    }
+}
+
+/// What the emitters share: the source, the problems found, the mapping.
+pub struct Emitter<'a> {
+    pub sys: &'a System,
+    pub spans: &'a SpanTable,
+    /// The source text (for comments) and its notation.
+    pub source: &'a str,
+    pub source_notation: Notation,
+    pub lossy: bool,
+    pub steps: u64,
+    problems: Vec<Problem>,
+    seen: HashSet<(Kind, String)>,
+    pub mapping: Vec<Mapped>,
+    pub names: Vec<(String, String)>,
+}
+
+impl<'a> Emitter<'a> {
+    pub fn new(sys: &'a System, spans: &'a SpanTable, source: &'a str, req: &Request) -> Self {
+        Emitter {
+            sys,
+            spans,
+            source,
+            source_notation: sys.notation,
+            lossy: req.lossy,
+            steps: req.steps.or(sys.settings.steps).unwrap_or(0),
+            problems: Vec::new(),
+            seen: HashSet::new(),
+            mapping: Vec::new(),
+            names: Vec::new(),
+        }
+    }
+
+    /// Reports a construct the target cannot express (once per kind and
+    /// description).
+    pub fn problem(
+        &mut self,
+        kind: Kind,
+        span: Option<Span>,
+        what: impl Into<String>,
+        change: impl Into<String>,
+    ) {
+        let what = what.into();
+        if !self.seen.insert((kind, what.clone())) {
+            return;
+        }
+        let change = change.into();
+        let lossy = self.lossy && kind.codes().1.is_some();
+        self.mapping.push(Mapped {
+            construct: what.clone(),
+            span: span.clone(),
+            status: if lossy {
+                Status::Approximated
+            } else {
+                Status::Impossible
+            },
+            target: String::new(),
+            note: Some(change.clone()),
+        });
+        self.problems.push(Problem {
+            kind,
+            span,
+            what,
+            change,
+        });
+    }
+
+    /// Records a construct carried over exactly.
+    pub fn exact(&mut self, construct: impl Into<String>, span: Option<Span>, target: &str) {
+        self.mapping.push(Mapped {
+            construct: construct.into(),
+            span,
+            status: Status::Exact,
+            target: target.to_string(),
+            note: None,
+        });
+    }
+
+    /// Where symbol `id` is first written in the source.
+    pub fn symbol_span(&self, id: SymbolId) -> Option<Span> {
+        self.spans.symbols.get(&id).cloned()
+    }
+
+    /// The source span of production `i`.
+    pub fn production_span(&self, i: usize) -> Option<Span> {
+        self.spans.productions.get(i).cloned()
+    }
+
+    /// Production `i` as the source would write it, for messages.
+    pub fn production_text(&self, i: usize) -> String {
+        if let Some(s) = self.production_span(i) {
+            if let Some(t) = self.source.get(s) {
+                let t = t.split_whitespace().collect::<Vec<_>>().join(" ");
+                if !t.is_empty() {
+                    return t;
+                }
+            }
+        }
+        let p = &self.sys.productions[i];
+        let name = |w: &[SymbolId]| -> String {
+            w.iter()
+                .map(|&s| self.sys.symbols.name(s))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let succ = p
+            .alternatives
+            .first()
+            .map(|a| name(&a.successor.0))
+            .unwrap_or_default();
+        format!("{} -> {}", name(&p.predecessor), succ)
+    }
+
+    /// The symbol's name as the source writes it.
+    pub fn name(&self, id: SymbolId) -> &str {
+        self.sys.symbols.name(id)
+    }
+
+    /// Records that the source's `from` is written `to`.
+    pub fn rename(&mut self, from: &str, to: &str) {
+        if from != to && !from.is_empty() {
+            self.names.push((from.to_string(), to.to_string()));
+        }
+    }
+
+    /// Turns the problems into diagnostics and decides whether the text is
+    /// written.
+    pub fn finish(self, text: String) -> Translation {
+        let mut diags = Diagnostics::default();
+        let mut blocked = false;
+        for p in &self.problems {
+            let (error, warning) = p.kind.codes();
+            let d = match (self.lossy, warning) {
+                (true, Some(w)) => {
+                    let d = match &p.span {
+                        Some(s) => Diagnostic::at(w, s.clone(), format!("{}: {}", p.what, p.change)),
+                        None => Diagnostic::global(w, format!("{}: {}", p.what, p.change)),
+                    };
+                    d.with_label("approximated")
+                }
+                _ => {
+                    blocked = true;
+                    let d = match &p.span {
+                        Some(s) => Diagnostic::at(error, s.clone(), p.what.clone()),
+                        None => Diagnostic::global(error, p.what.clone()),
+                    };
+                    let d = d.with_label("the target cannot express this");
+                    if warning.is_some() {
+                        d.with_help(format!("with `--lossy`: {}", p.change))
+                    } else {
+                        d.with_help(p.change.clone())
+                    }
+                }
+            };
+            diags.push(d);
+        }
+        diags.sort();
+        Translation {
+            text: if blocked { None } else { Some(text) },
+            mapping: self.mapping,
+            names: self.names,
+            diagnostics: diags,
+        }
+    }
+}
+
+/// Translates `sys` (read from `source`, with `spans`) to `req.target`.
+pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -> Translation {
+    match (sys.notation, req.target) {
+        (Notation::Stl, Notation::Stl) => {
+            let mut e = Emitter::new(sys, spans, source, req);
+            let text = stl::write(sys).unwrap_or_default();
+            e.exact("the STL file, as a Branch-Expansion Description", None, "");
+            e.finish(text)
+        }
+        (Notation::Stl, target) => {
+            let (flat, problems) = from_stl::productions(sys);
+            let empty = SpanTable::default();
+            let mut req2 = req.clone();
+            req2.steps = flat.settings.steps;
+            let mut e = Emitter::new(&flat, &empty, source, &req2);
+            e.source_notation = Notation::Stl;
+            for p in problems {
+                e.problem(p.kind, p.span, p.what, p.change);
+            }
+            let text = match target {
+                Notation::Pfg => pfg::write(&mut e),
+                _ => linf::write(&mut e),
+            };
+            e.finish(text)
+        }
+        (_, target) => {
+            let mut e = Emitter::new(sys, spans, source, req);
+            let text = match target {
+                Notation::Pfg => pfg::write(&mut e),
+                Notation::Linf => linf::write(&mut e),
+                Notation::Stl => stl::from_productions(&mut e),
+            };
+            e.finish(text)
+        }
+    }
+}
+
+// ---------------------------------------------------------------------
+// Shared analysis
+// ---------------------------------------------------------------------
+
+/// The symbols that occur anywhere in the system (axiom, productions), in
+/// symbol-table order.
+pub fn occurring(sys: &System) -> Vec<SymbolId> {
+    let mut seen = vec![false; sys.symbols.len()];
+    let mut mark = |w: &[SymbolId]| {
+        for &s in w {
+            seen[s.index()] = true;
+            if let Some(g) = sys.symbols.info(s).guard {
+                seen[g.base.index()] = true;
+            }
+        }
+    };
+    mark(&sys.axiom.0);
+    for p in &sys.productions {
+        mark(&p.left);
+        mark(&p.predecessor);
+        mark(&p.right);
+        for a in &p.alternatives {
+            mark(&a.successor.0);
+        }
+    }
+    (0..seen.len())
+        .filter(|&i| seen[i])
+        .map(|i| SymbolId(i as u32))
+        .collect()
+}
+
+/// The alternative a deterministic target uses: the heaviest (the first
+/// of equal weights).
+pub fn heaviest(p: &Production) -> usize {
+    let mut best = 0;
+    for (i, a) in p.alternatives.iter().enumerate() {
+        if a.weight > p.alternatives[best].weight {
+            best = i;
+        }
+    }
+    best
+}
+
+/// For targets that rewrite one symbol by one rule (LinF, STL): for each
+/// symbol, the index of the production that rewrites it, reporting what
+/// such targets cannot express (contexts, several predecessor symbols,
+/// random choice). Contexts dropped under `--lossy` make the first
+/// production for a symbol apply everywhere; productions after it never
+/// apply, in the source as in the target.
+pub fn single_symbol_rules(e: &mut Emitter<'_>, target: &str) -> HashMap<SymbolId, usize> {
+    let mut rules: HashMap<SymbolId, usize> = HashMap::new();
+    for (i, p) in e.sys.productions.iter().enumerate() {
+        let text = e.production_text(i);
+        let span = e.production_span(i);
+        if p.predecessor.len() != 1 {
+            e.problem(
+                Kind::Rule,
+                span,
+                format!("the production `{text}` rewrites several symbols at once, which {target} cannot"),
+                "the production is dropped",
+            );
+            continue;
+        }
+        let head = p.predecessor[0];
+        if p.is_context_sensitive() {
+            e.problem(
+                Kind::Context,
+                span.clone(),
+                format!("the context of `{text}`: {target} rewrites without context"),
+                "the context is dropped, so the production applies wherever its predecessor occurs",
+            );
+            if !e.lossy {
+                continue;
+            }
+        }
+        if rules.contains_key(&head) {
+            e.mapping.push(Mapped {
+                construct: format!("production `{text}`"),
+                span,
+                status: Status::Exact,
+                target: String::new(),
+                note: Some("never applies: an earlier production for the same symbol always does".into()),
+            });
+            continue;
+        }
+        if p.is_stochastic() {
+            e.problem(
+                Kind::Stochastic,
+                span,
+                format!("the random choice of `{text}`: {target} has no stochastic rules"),
+                "the most likely successor is always used",
+            );
+        }
+        rules.insert(head, i);
+    }
+    rules
+}
+
+/// The rotations a turtle operation makes, each about one axis (radians),
+/// in order; `None` when it is not a rotation.
+pub enum Turns {
+    Fixed(Vec<(Axis, f64)>),
+    /// An interval angle: drawn at random when applied. The rotations are
+    /// given with each interval's middle.
+    Random(Vec<(Axis, f64)>),
+}
+
+/// Resolves an angle in radians for a system; `None` for intervals.
+pub fn radians(sys: &System, a: Angle) -> Option<f64> {
+    match a {
+        Angle::Delta(k) => Some(k * sys.settings.angle.to_radians()),
+        Angle::Radians(r) => Some(r),
+        Angle::Uniform { .. } => None,
+    }
+}
+
+fn middle(sys: &System, a: Angle) -> f64 {
+    match a {
+        Angle::Uniform { lo, hi } => (lo + hi) / 2.0,
+        other => radians(sys, other).unwrap_or(0.0),
+    }
+}
+
+/// The turns of `op`, as rotations about the turtle's axes.
+pub fn turns(sys: &System, op: TurtleOp) -> Option<Turns> {
+    match op {
+        TurtleOp::Rotate { axis, angle } => {
+            let t = vec![(axis, middle(sys, angle))];
+            Some(match angle {
+                Angle::Uniform { .. } => Turns::Random(t),
+                _ => Turns::Fixed(t),
+            })
+        }
+        TurtleOp::Frenet { rotation, negate } => {
+            let r = sys.rotations.get(rotation.0 as usize)?;
+            let sign = if negate { -1.0 } else { 1.0 };
+            let mut t = Vec::new();
+            let tor = middle(sys, r.torsion);
+            let cur = middle(sys, r.curvature);
+            if tor != 0.0 {
+                t.push((Axis::Heading, -sign * tor));
+            }
+            if cur != 0.0 {
+                t.push((Axis::Up, -sign * cur));
+            }
+            let random = matches!(r.torsion, Angle::Uniform { .. })
+                || matches!(r.curvature, Angle::Uniform { .. });
+            Some(if random {
+                Turns::Random(t)
+            } else {
+                Turns::Fixed(t)
+            })
+        }
+        TurtleOp::TurnAround => Some(Turns::Fixed(vec![(Axis::Up, std::f64::consts::PI)])),
+        _ => None,
+    }
+}
+
+/// The largest angle 2π/n (n at most 3600) of which every angle is a
+/// whole multiple (within 1e-9 of a turn); `prefer` is tried first.
+pub fn increment(angles: &[f64], prefer: Option<u64>) -> Option<u64> {
+    let fits = |n: u64| {
+        angles.iter().all(|&a| {
+            let k = a * n as f64 / std::f64::consts::TAU;
+            (k - k.round()).abs() < 1e-9 * n as f64
+        })
+    };
+    if let Some(p) = prefer.filter(|&p| p >= 1 && fits(p)) {
+        return Some(p);
+    }
+    (1..=3600).find(|&n| fits(n))
+}
+
+/// Whole multiples of 2π/n making up `a`, between −n/2 and n/2.
+pub fn multiples(a: f64, n: u64) -> i64 {
+    let n = n as i64;
+    let mut k = (a * n as f64 / std::f64::consts::TAU).round() as i64;
+    k = k.rem_euclid(n);
+    if k * 2 > n {
+        k -= n;
+    }
+    k
+}
+
+/// `x` as a short decimal that reads back as the same `f64`.
+pub fn number(x: f64) -> String {
+    let s = format!("{x}");
+    if s.contains('e') || s.contains("inf") || s.contains("NaN") {
+        format!("{x:?}")
+    } else {
+        s
+    }
+}
+
+// ---------------------------------------------------------------------
+// Names
+// ---------------------------------------------------------------------
+
+/// Allocates the target's names, avoiding reserved ones and each other.
+pub struct Names {
+    used: HashSet<String>,
+}
+
+impl Names {
+    pub fn new(reserved: &[&str]) -> Self {
+        Names {
+            used: reserved.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    pub fn is_free(&self, name: &str) -> bool {
+        !self.used.contains(name)
+    }
+
+    /// Takes the first free name of `candidates`.
+    pub fn take(&mut self, candidates: impl IntoIterator<Item = String>) -> Option<String> {
+        for c in candidates {
+            if !c.is_empty() && !self.used.contains(&c) {
+                self.used.insert(c.clone());
+                return Some(c);
+            }
+        }
+        None
+    }
+
+    /// Reserves `name`.
+    pub fn reserve(&mut self, name: &str) {
+        self.used.insert(name.to_string());
+    }
+}
+
+// ---------------------------------------------------------------------
+// Comments
+// ---------------------------------------------------------------------
+
+/// The comments of a source: (span, text without the delimiters).
+pub fn comments(notation: Notation, src: &str) -> Vec<(Span, String)> {
+    let mut out = Vec::new();
+    match notation {
+        Notation::Pfg => {
+            let mut i = 0;
+            while let Some(k) = src[i..].find("/*") {
+                let start = i + k;
+                let (end, body_end) = match src[start + 2..].find("*/") {
+                    Some(e) => (start + 2 + e + 2, start + 2 + e),
+                    None => (src.len(), src.len()),
+                };
+                out.push((start..end, src[start + 2..body_end].to_string()));
+                i = end;
+            }
+        }
+        Notation::Linf | Notation::Stl => {
+            let mut offset = 0;
+            for line in src.split_inclusive('\n') {
+                if let Some(k) = line.find('#') {
+                    let body = line[k + 1..].trim_end_matches(['\n', '\r']);
+                    // LinF `#:` lines are directives, not comments.
+                    if !(notation == Notation::Linf && body.starts_with(':')) {
+                        out.push((offset + k..offset + line.len(), body.to_string()));
+                    }
+                }
+                offset += line.len();
+            }
+        }
+    }
+    out
+}
+
+/// A comment's lines, trimmed and with common decoration removed.
+pub fn comment_lines(text: &str) -> Vec<String> {
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| l.trim_end().to_string())
+        .collect::<Vec<_>>();
+    let indent = lines
+        .iter()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.len() - l.trim_start().len())
+        .min()
+        .unwrap_or(0);
+    let mut out: Vec<String> = lines
+        .iter()
+        .map(|l| l.get(indent..).unwrap_or("").trim_end().to_string())
+        .collect();
+    while out.first().is_some_and(|l| l.trim().is_empty()) {
+        out.remove(0);
+    }
+    while out.last().is_some_and(|l| l.trim().is_empty()) {
+        out.pop();
+    }
+    out
+}
+
+/// The comment that opens the file (before anything else), if any.
+pub fn file_comment(notation: Notation, src: &str) -> Option<Vec<String>> {
+    let cs = comments(notation, src);
+    let mut lines = Vec::new();
+    let mut pos = 0;
+    for (span, text) in &cs {
+        if !src[pos..span.start].trim().is_empty() {
+            break;
+        }
+        lines.extend(comment_lines(text));
+        pos = span.end;
+    }
+    (!lines.is_empty()).then_some(lines)
+}
+
+/// The comment attached to the item at `span`: on the same line after it,
+/// else on the lines right above it (no blank line between), not counting
+/// the file's opening comment.
+pub fn attached_comment(notation: Notation, src: &str, span: &Span) -> Option<Vec<String>> {
+    let cs = comments(notation, src);
+    let opening_end = {
+        let mut pos = 0;
+        for (s, _) in &cs {
+            if !src[pos..s.start].trim().is_empty() {
+                break;
+            }
+            pos = s.end;
+        }
+        pos
+    };
+    let line_end = src[span.end.min(src.len())..]
+        .find('\n')
+        .map_or(src.len(), |k| span.end + k);
+    // Trailing: a comment starting on the item's last line.
+    for (s, text) in &cs {
+        if s.start >= span.end && s.start <= line_end {
+            let l = comment_lines(text);
+            if !l.is_empty() {
+                return Some(l);
+            }
+        }
+    }
+    // Leading: comments that end on the line before the item, chained up.
+    let line_start = src[..span.start.min(src.len())]
+        .rfind('\n')
+        .map_or(0, |k| k + 1);
+    let mut lines: Vec<String> = Vec::new();
+    let mut boundary = line_start;
+    for (s, text) in cs.iter().rev() {
+        if s.end > boundary || s.start < opening_end {
+            continue;
+        }
+        let between = &src[s.end..boundary];
+        // Only blanks and at most one line break between the comment and
+        // what follows it.
+        if !between.trim().is_empty() || between.matches('\n').count() > 1 {
+            break;
+        }
+        // The comment must start its line.
+        let ls = src[..s.start].rfind('\n').map_or(0, |k| k + 1);
+        if !src[ls..s.start].trim().is_empty() {
+            break;
+        }
+        let mut l = comment_lines(text);
+        l.append(&mut lines);
+        lines = l;
+        boundary = ls;
+    }
+    (!lines.is_empty()).then_some(lines)
+}
+
+/// The name of a notation as the CLI spells it.
+pub fn notation_name(n: Notation) -> &'static str {
+    match n {
+        Notation::Pfg => "pfg",
+        Notation::Linf => "linf",
+        Notation::Stl => "stl",
+    }
+}
+
+/// The first line every translation starts with.
+pub fn banner(e: &Emitter<'_>, target: Notation) -> String {
+    let _ = target;
+    format!(
+        "Translated by graftal from {}",
+        match e.source_notation {
+            Notation::Pfg => "pfg",
+            Notation::Linf => "LinF",
+            Notation::Stl => "STL",
+        }
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn increment_finds_the_largest_common_angle() {
+        let pi = std::f64::consts::PI;
+        assert_eq!(increment(&[pi / 3.0], None), Some(6));
+        assert_eq!(increment(&[pi / 3.0, pi / 2.0], None), Some(12));
+        assert_eq!(increment(&[pi / 2.0], Some(8)), Some(8));
+        assert_eq!(increment(&[1.0], None), None);
+        assert_eq!(increment(&[], None), Some(1));
+    }
+
+    #[test]
+    fn multiples_are_reduced_to_half_a_turn() {
+        let pi = std::f64::consts::PI;
+        assert_eq!(multiples(pi / 3.0, 6), 1);
+        assert_eq!(multiples(-pi / 3.0, 6), -1);
+        assert_eq!(multiples(5.0 * pi / 3.0, 6), -1);
+        assert_eq!(multiples(pi, 4), 2);
+    }
+
+    #[test]
+    fn comments_attach_to_the_item_after_them_or_on_their_line() {
+        let src = "/* file */\naxiom: F\n/* doubles */\nF --> FF\nG --> G /* stays */\n\n/* far */\n\nH --> H\n";
+        let at = |s: &str| {
+            let k = src.find(s).unwrap();
+            k..k + s.len()
+        };
+        assert_eq!(file_comment(Notation::Pfg, src), Some(vec!["file".into()]));
+        assert_eq!(
+            attached_comment(Notation::Pfg, src, &at("F --> FF")),
+            Some(vec!["doubles".into()])
+        );
+        assert_eq!(
+            attached_comment(Notation::Pfg, src, &at("G --> G")),
+            Some(vec!["stays".into()])
+        );
+        assert_eq!(attached_comment(Notation::Pfg, src, &at("H --> H")), None);
+        let linf = "# top\nrules\n  # grows\n  f = ff  # twice\n";
+        let k = linf.find("f = ff").unwrap();
+        assert_eq!(
+            attached_comment(Notation::Linf, linf, &(k..k + 6)),
+            Some(vec!["twice".into()])
+        );
+    }
+}

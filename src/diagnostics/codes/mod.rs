@@ -4,8 +4,9 @@
 //! Codes are stable: a code is never reused for another problem. `E` codes
 //! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
-//! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`);
-//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL.
+//! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
+//! translation (`codes/translate.rs`);
+//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation.
 
 use super::Severity;
 use std::fmt;
@@ -55,12 +56,18 @@ macro_rules! codes {
 
 mod linf;
 mod stl;
+mod translate;
 pub use linf::*;
 pub use stl::*;
+pub use translate::*;
 
 /// Every registered code: the general and pfg codes, then each front end's.
 pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
-    GENERAL.iter().chain(linf::LINF).chain(stl::STL)
+    GENERAL
+        .iter()
+        .chain(linf::LINF)
+        .chain(stl::STL)
+        .chain(translate::TRANSLATE)
 }
 
 codes! { GENERAL;

@@ -1,0 +1,235 @@
+//! An STL system as bracketed productions, for the pfg and LinF emitters.
+//!
+//! The STL front end keeps the file's structure (rules, the seed's
+//! branching terms, the layout, stem levels) and expands it into the axiom
+//! word. Here the structure becomes a production system that derives the
+//! same word:
+//!
+//! * each distinct branching term at each level, `R1{R1, ~, R2{,}}`,
+//!   becomes a symbol (named after its rule) whose production is the rule's
+//!   body with each entry's term symbol placed at the end of its branch,
+//!   a failed branch (`~`) left out;
+//! * the axiom is the seed, with a term symbol where the seed has a term;
+//! * the derivation length is the depth of the deepest term, so that after
+//!   it every term is expanded: an Outline Description's grown tree comes
+//!   out as its explicit tree;
+//! * stem levels become length factors: the axiom starts with the seed's
+//!   length (`L`), each term's production with the ratio of its level's
+//!   length to its parent's, and a seed term followed by more of the seed
+//!   is followed by the inverse ratio (a branch's `]` restores the length
+//!   by itself). Stem broadness has no equivalent: unless every stem is 1
+//!   wide, that is reported, as is a layout.
+
+use super::{Kind, Problem};
+use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
+use crate::stl::lower::{per_level, MAX_DRAWN_WIDTH};
+use std::collections::HashMap;
+
+struct Builder<'a> {
+    st: &'a Structure,
+    out: System,
+    lengths: Vec<f64>,
+    terms: HashMap<(String, u32), SymbolId>,
+    taken: HashMap<String, u32>,
+}
+
+fn key(t: &BranchTerm) -> String {
+    let mut s = format!("{}{{", t.rule.0);
+    for e in &t.entries {
+        match e {
+            BranchEntry::Empty => s.push(','),
+            BranchEntry::Failed => s.push_str("~,"),
+            BranchEntry::Term(c) => {
+                s.push_str(&key(c));
+                s.push(',');
+            }
+        }
+    }
+    s.push('}');
+    s
+}
+
+fn depth(t: &BranchTerm) -> u32 {
+    1 + t
+        .entries
+        .iter()
+        .map(|e| match e {
+            BranchEntry::Term(c) => depth(c),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+impl Builder<'_> {
+    fn scale(&mut self, ratio: f64) -> Option<SymbolId> {
+        if ratio == 1.0 || !ratio.is_finite() {
+            return None;
+        }
+        let id = self.out.intern(&format!("{}@", super::number(ratio)));
+        self.out.set_interpretation(id, TurtleOp::ScaleLength(ratio));
+        Some(id)
+    }
+
+    fn length(&self, level: u32) -> f64 {
+        self.lengths
+            .get(level as usize)
+            .copied()
+            .unwrap_or(1.0)
+    }
+
+    /// The symbol of term `t` at `level`, defining its production.
+    fn term(&mut self, t: &BranchTerm, level: u32) -> SymbolId {
+        let k = (key(t), level);
+        if let Some(&id) = self.terms.get(&k) {
+            return id;
+        }
+        let rule = &self.st.rules[t.rule.0 as usize];
+        let n = self.taken.entry(rule.name.clone()).or_insert(0);
+        *n += 1;
+        let name = if *n == 1 {
+            rule.name.clone()
+        } else {
+            format!("{}_{}", rule.name, n)
+        };
+        let id = self.out.intern(&name);
+        self.terms.insert(k, id);
+        // The parent's production comes before its children's.
+        let slot = self.out.productions.len();
+        self.out.productions.push(crate::ir::Production {
+            left: Vec::new(),
+            predecessor: vec![id],
+            right: Vec::new(),
+            condition: crate::ir::Condition::Always,
+            alternatives: vec![crate::ir::Alternative {
+                weight: 1.0,
+                successor: Word::default(),
+            }],
+        });
+        let body = rule.body.0.clone();
+        let mut succ = Vec::with_capacity(body.len() + 4);
+        let ratio = self.length(level) / self.length(level.saturating_sub(1));
+        succ.extend(self.scale(ratio));
+        let mut i = 0;
+        let mut branch = 0;
+        while i < body.len() {
+            if body[i] == SymbolId::OPEN {
+                let mut d = 0;
+                let mut j = i;
+                while j < body.len() {
+                    if body[j] == SymbolId::OPEN {
+                        d += 1;
+                    } else if body[j] == SymbolId::CLOSE {
+                        d -= 1;
+                        if d == 0 {
+                            break;
+                        }
+                    }
+                    j += 1;
+                }
+                let j = j.min(body.len() - 1);
+                match t.entries.get(branch) {
+                    Some(BranchEntry::Failed) => {}
+                    Some(BranchEntry::Term(c)) => {
+                        succ.extend_from_slice(&body[i..j]);
+                        let child = self.term(c, level + 1);
+                        succ.push(child);
+                        succ.push(SymbolId::CLOSE);
+                    }
+                    _ => succ.extend_from_slice(&body[i..=j]),
+                }
+                branch += 1;
+                i = j + 1;
+            } else {
+                succ.push(body[i]);
+                i += 1;
+            }
+        }
+        let silent: Vec<bool> = (0..self.out.symbols.len())
+            .map(|i| self.out.symbols.name(SymbolId(i as u32)).is_empty())
+            .collect();
+        succ.retain(|s| !silent.get(s.index()).copied().unwrap_or(false));
+        self.out.productions[slot].alternatives[0].successor = Word(succ);
+        id
+    }
+}
+
+/// The production system of an STL system, and what pfg and LinF cannot
+/// express of it (layout, stem broadness).
+pub fn productions(sys: &System) -> (System, Vec<Problem>) {
+    let mut problems = Vec::new();
+    let mut out = sys.clone();
+    out.productions.clear();
+    out.structure = None;
+    out.settings.step = 1.0;
+    out.settings.width = 1.0;
+    let silent = |s: &SymbolId| sys.symbols.name(*s).is_empty();
+    let Some(st) = &sys.structure else {
+        out.axiom = Word(sys.axiom.0.iter().copied().filter(|s| !silent(s)).collect());
+        out.settings.steps = Some(0);
+        return (out, problems);
+    };
+    out.axiom = Word::default();
+    if !st.layout.is_empty() {
+        problems.push(Problem {
+            kind: Kind::Layout,
+            span: None,
+            what: format!(
+                "the layout ({} shape{}): only STL draws shapes",
+                st.layout.len(),
+                if st.layout.len() == 1 { "" } else { "s" }
+            ),
+            change: "the shapes are dropped; the grown tree is kept".into(),
+        });
+    }
+    let max_depth = st
+        .seed
+        .iter()
+        .map(|i| match i {
+            SeedItem::Term(t) => depth(t),
+            SeedItem::Word(_) => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    let (lengths, _) = per_level(st.length.0, st.length.1, max_depth);
+    let (widths, _) = per_level(st.broadness.0, st.broadness.1, max_depth);
+    if widths.iter().any(|&w| w.min(MAX_DRAWN_WIDTH) != 1.0) {
+        problems.push(Problem {
+            kind: Kind::Attribute,
+            span: None,
+            what: format!(
+                "the stem broadness B = {} ({}): the target has no per-stem widths",
+                super::number(st.broadness.0),
+                super::number(st.broadness.1)
+            ),
+            change: "every stem is drawn 1 wide".into(),
+        });
+    }
+    let mut b = Builder {
+        st,
+        out,
+        lengths,
+        terms: HashMap::new(),
+        taken: HashMap::new(),
+    };
+    let mut axiom = Vec::new();
+    let l0 = b.length(0);
+    axiom.extend(b.scale(l0));
+    for (i, item) in st.seed.iter().enumerate() {
+        match item {
+            SeedItem::Word(w) => axiom.extend(w.0.iter().copied().filter(|s| !silent(s))),
+            SeedItem::Term(t) => {
+                let id = b.term(t, 1);
+                axiom.push(id);
+                if i + 1 < st.seed.len() {
+                    let back = b.length(0) / b.length(1);
+                    axiom.extend(b.scale(back));
+                }
+            }
+        }
+    }
+    let mut out = b.out;
+    out.axiom = Word(axiom);
+    out.settings.steps = Some(max_depth as u64);
+    (out, problems)
+}
