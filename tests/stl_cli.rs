@@ -181,16 +181,3 @@ fn translate_writes_a_bed_that_renders_the_same() {
     let o = graftal(&["translate", "std:stl/fig06-rn", "--to", "stl"]);
     assert!(o.stdout.contains("R1{R1{}, R2{}, R1{}}"), "{}", o.stdout);
 }
-
-#[test]
-fn other_translation_directions_are_a_usage_error() {
-    for (file, to) in [
-        ("std:stl/fig06-rn", "pfg"),
-        ("std:stl/fig06-rn", "linf"),
-        ("std:koch-island", "stl"),
-    ] {
-        let o = graftal(&["translate", file, "--to", to]);
-        assert_eq!(o.status, 2, "{file} -> {to}");
-        assert!(o.stderr.contains("not available yet"), "{}", o.stderr);
-    }
-}

@@ -12,7 +12,8 @@
 //! * the axiom is the seed, with a term symbol where the seed has a term;
 //! * the derivation length is the depth of the deepest term, so that after
 //!   it every term is expanded: an Outline Description's grown tree comes
-//!   out as its explicit tree;
+//!   out as its explicit tree (or, when pfg's alphabet is too small for
+//!   the distinct terms, the axiom is that tree, with no productions);
 //! * stem levels become length factors: the axiom starts with the seed's
 //!   length (`L`), each term's production with the ratio of its level's
 //!   length to its parent's, and a seed term followed by more of the seed
@@ -31,6 +32,8 @@ struct Builder<'a> {
     lengths: Vec<f64>,
     terms: HashMap<(String, u32), SymbolId>,
     taken: HashMap<String, u32>,
+    /// Expand terms in place: the axiom is the explicit tree.
+    explicit: bool,
 }
 
 fn key(t: &BranchTerm) -> String {
@@ -67,15 +70,13 @@ impl Builder<'_> {
             return None;
         }
         let id = self.out.intern(&format!("{}@", super::number(ratio)));
-        self.out.set_interpretation(id, TurtleOp::ScaleLength(ratio));
+        self.out
+            .set_interpretation(id, TurtleOp::ScaleLength(ratio));
         Some(id)
     }
 
     fn length(&self, level: u32) -> f64 {
-        self.lengths
-            .get(level as usize)
-            .copied()
-            .unwrap_or(1.0)
+        self.lengths.get(level as usize).copied().unwrap_or(1.0)
     }
 
     /// The symbol of term `t` at `level`, defining its production.
@@ -106,6 +107,16 @@ impl Builder<'_> {
                 successor: Word::default(),
             }],
         });
+        let succ = self.expand(t, level);
+        self.out.productions[slot].alternatives[0].successor = Word(succ);
+        id
+    }
+
+    /// What term `t` at `level` stands for: its rule's body with the
+    /// entries at the branch ends, as term symbols, or expanded in place
+    /// when `self.explicit`.
+    fn expand(&mut self, t: &BranchTerm, level: u32) -> Vec<SymbolId> {
+        let rule = &self.st.rules[t.rule.0 as usize];
         let body = rule.body.0.clone();
         let mut succ = Vec::with_capacity(body.len() + 4);
         let ratio = self.length(level) / self.length(level.saturating_sub(1));
@@ -132,8 +143,13 @@ impl Builder<'_> {
                     Some(BranchEntry::Failed) => {}
                     Some(BranchEntry::Term(c)) => {
                         succ.extend_from_slice(&body[i..j]);
-                        let child = self.term(c, level + 1);
-                        succ.push(child);
+                        if self.explicit {
+                            let inner = self.expand(c, level + 1);
+                            succ.extend(inner);
+                        } else {
+                            let child = self.term(c, level + 1);
+                            succ.push(child);
+                        }
                         succ.push(SymbolId::CLOSE);
                     }
                     _ => succ.extend_from_slice(&body[i..=j]),
@@ -145,18 +161,40 @@ impl Builder<'_> {
                 i += 1;
             }
         }
-        let silent: Vec<bool> = (0..self.out.symbols.len())
-            .map(|i| self.out.symbols.name(SymbolId(i as u32)).is_empty())
-            .collect();
-        succ.retain(|s| !silent.get(s.index()).copied().unwrap_or(false));
-        self.out.productions[slot].alternatives[0].successor = Word(succ);
-        id
+        let out = &self.out;
+        succ.retain(|s| !out.symbols.name(*s).is_empty());
+        succ
     }
 }
 
+/// How many distinct (term, level) pairs the seed has: the symbols
+/// [`productions`] needs.
+pub fn term_count(sys: &System) -> usize {
+    fn walk(t: &BranchTerm, level: u32, seen: &mut std::collections::HashSet<(String, u32)>) {
+        if seen.insert((key(t), level)) {
+            for e in &t.entries {
+                if let BranchEntry::Term(c) = e {
+                    walk(c, level + 1, seen);
+                }
+            }
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(st) = &sys.structure {
+        for i in &st.seed {
+            if let SeedItem::Term(t) = i {
+                walk(t, 1, &mut seen);
+            }
+        }
+    }
+    seen.len()
+}
+
 /// The production system of an STL system, and what pfg and LinF cannot
-/// express of it (layout, stem broadness).
-pub fn productions(sys: &System) -> (System, Vec<Problem>) {
+/// express of it (layout, stem broadness). With `explicit`, there are no
+/// productions: the axiom is the whole tree (for pfg, whose alphabet is
+/// too small for a big grown outline's distinct terms).
+pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
     let mut problems = Vec::new();
     let mut out = sys.clone();
     out.productions.clear();
@@ -211,6 +249,7 @@ pub fn productions(sys: &System) -> (System, Vec<Problem>) {
         lengths,
         terms: HashMap::new(),
         taken: HashMap::new(),
+        explicit,
     };
     let mut axiom = Vec::new();
     let l0 = b.length(0);
@@ -219,8 +258,13 @@ pub fn productions(sys: &System) -> (System, Vec<Problem>) {
         match item {
             SeedItem::Word(w) => axiom.extend(w.0.iter().copied().filter(|s| !silent(s))),
             SeedItem::Term(t) => {
-                let id = b.term(t, 1);
-                axiom.push(id);
+                if explicit {
+                    let inner = b.expand(t, 1);
+                    axiom.extend(inner);
+                } else {
+                    let id = b.term(t, 1);
+                    axiom.push(id);
+                }
                 if i + 1 < st.seed.len() {
                     let back = b.length(0) / b.length(1);
                     axiom.extend(b.scale(back));
@@ -230,6 +274,6 @@ pub fn productions(sys: &System) -> (System, Vec<Problem>) {
     }
     let mut out = b.out;
     out.axiom = Word(axiom);
-    out.settings.steps = Some(max_depth as u64);
+    out.settings.steps = Some(if explicit { 0 } else { max_depth as u64 });
     (out, problems)
 }

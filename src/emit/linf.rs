@@ -17,7 +17,7 @@
 //!   the axiom.
 
 use super::{
-    attached_comment, banner, file_comment, heaviest, number, occurring, single_symbol_rules,
+    attached, banner, file_comment, heaviest, number, occurring, single_symbol_rules, Attached,
     Emitter, Kind, Names,
 };
 use crate::ir::{Angle, Axis, Notation, Rgb, SymbolId, TurtleOp};
@@ -25,7 +25,9 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
 
-const RESERVED: &[&str] = &["lines", "blanks", "angles", "axiom", "rules", "colors", "pi"];
+const RESERVED: &[&str] = &[
+    "lines", "blanks", "angles", "axiom", "rules", "colors", "pi",
+];
 
 fn is_ident(s: &str) -> bool {
     let mut cs = s.chars();
@@ -157,10 +159,17 @@ impl Rotations {
         let name = if self.decls.iter().all(|d| !d.name.is_empty()) && wish.contains(&"") {
             String::new()
         } else {
-            let w: Vec<String> = wish.iter().filter(|w| !w.is_empty()).map(|w| w.to_string()).collect();
+            let w: Vec<String> = wish
+                .iter()
+                .filter(|w| !w.is_empty())
+                .map(|w| w.to_string())
+                .collect();
             let base = w.first().cloned().unwrap_or_else(|| "a".into());
             names
-                .take(w.into_iter().chain((2..).map(|i| format!("{base}{i}")).take(1000)))
+                .take(
+                    w.into_iter()
+                        .chain((2..).map(|i| format!("{base}{i}")).take(1000)),
+                )
                 .unwrap_or_default()
         };
         self.decls.push(Decl {
@@ -184,7 +193,10 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             e.problem(
                 Kind::Rule,
                 e.production_span(i),
-                format!("the production `{text}` rewrites `{}`, which LinF cannot rewrite", e.name(s)),
+                format!(
+                    "the production `{text}` rewrites `{}`, which LinF cannot rewrite",
+                    e.name(s)
+                ),
                 "the production is dropped",
             );
             rules.remove(&s);
@@ -233,7 +245,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             String::new()
         } else {
             names
-                .take(wishes(&r.name).into_iter().chain((2..).map(|i| format!("{}{i}", r.name)).take(1000)))
+                .take(
+                    wishes(&r.name)
+                        .into_iter()
+                        .chain((2..).map(|i| format!("{}{i}", r.name)).take(1000)),
+                )
                 .unwrap_or_default()
         };
         if !r.name.is_empty() {
@@ -383,7 +399,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         let toks: Vec<&str> = w
             .iter()
             .filter_map(|s| spell.get(s).map(String::as_str))
-            .filter(|t| !t.is_empty())
+            .flat_map(str::split_whitespace)
             .collect();
         join(&toks, all_short, &angle_names)
     };
@@ -399,17 +415,19 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         let head = spell.get(&s).cloned().unwrap_or_default();
         let mut line = format!("  {head} = {}", word(&alt.successor.0));
         let span = e.production_span(i);
-        if let Some(c) = span
+        match span
             .as_ref()
-            .and_then(|sp| attached_comment(e.source_notation, e.source, sp))
+            .and_then(|sp| attached(e.source_notation, e.source, sp))
         {
-            if c.len() == 1 {
-                let _ = write!(line, "  # {}", c[0].trim());
-            } else {
+            Some(Attached::After(c)) => {
+                let _ = write!(line, "  # {c}");
+            }
+            Some(Attached::Above(c)) => {
                 for l in c {
-                    rule_lines.push(format!("  #{}", if l.is_empty() { String::new() } else { format!(" {l}") }));
+                    rule_lines.push(format!("  {}", comment_line(&l).trim_end()));
                 }
             }
+            None => {}
         }
         let text = e.production_text(i);
         e.exact(format!("production `{text}`"), span, line.trim());
@@ -426,7 +444,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     let mut axiom = word(&sys.axiom.0);
     if sys.settings.step != 1.0 {
         let f = format!("{}@", number(sys.settings.step));
-        axiom = if axiom.is_empty() { f } else { format!("{f} {axiom}") };
+        axiom = if axiom.is_empty() {
+            f
+        } else {
+            format!("{f} {axiom}")
+        };
     }
 
     let mut out = String::new();
@@ -466,7 +488,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         }
     }
     let _ = writeln!(out, "axiom {axiom}");
-    e.exact("the axiom", e.spans.axiom.first().cloned(), &format!("axiom {axiom}"));
+    e.exact(
+        "the axiom",
+        e.spans.axiom.first().cloned(),
+        &format!("axiom {axiom}"),
+    );
     if !rule_lines.is_empty() {
         out.push_str("rules\n");
         for l in rule_lines {
@@ -534,8 +560,7 @@ fn join(toks: &[&str], all_short: bool, angles: &[&str]) -> String {
             let space = (name(p) && (number || (name(first) && !all_short)))
                 || (sign(p) && sign(first) && !t.chars().all(sign))
                 || (sign(p) && (number || (name(first) && angle_prefix)))
-                || (p == '@' && name(first))
-                || t.contains(' ');
+                || (p == '@' && name(first));
             if space {
                 out.push(' ');
             }
@@ -565,9 +590,12 @@ mod tests {
     fn tokens_are_joined_so_that_they_split_back() {
         assert_eq!(join(&["F", "+", "F", "-", "-", "F"], true, &[""]), "F+F--F");
         assert_eq!(join(&["f", "0.5@", "0.5?j"], true, &[]), "f 0.5@ 0.5?j");
-        assert_eq!(join(&["apex", "+r", "leaf"], false, &["r"]), "apex +r leaf");
+        assert_eq!(join(&["apex", "+r", "leaf"], false, &["r"]), "apex+r leaf");
         assert_eq!(join(&["+", "-r"], true, &["r"]), "+ -r");
-        assert_eq!(join(&["+", "Plant", "+", "roll"], false, &["", "r"]), "+Plant+ roll");
+        assert_eq!(
+            join(&["+", "Plant", "+", "roll"], false, &["", "r"]),
+            "+Plant+ roll"
+        );
         assert_eq!(join(&["0.5@", "Plant"], false, &[]), "0.5@ Plant");
     }
 }

@@ -281,7 +281,9 @@ impl<'a> Emitter<'a> {
             let d = match (self.lossy, warning) {
                 (true, Some(w)) => {
                     let d = match &p.span {
-                        Some(s) => Diagnostic::at(w, s.clone(), format!("{}: {}", p.what, p.change)),
+                        Some(s) => {
+                            Diagnostic::at(w, s.clone(), format!("{}: {}", p.what, p.change))
+                        }
                         None => Diagnostic::global(w, format!("{}: {}", p.what, p.change)),
                     };
                     d.with_label("approximated")
@@ -322,7 +324,9 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
             e.finish(text)
         }
         (Notation::Stl, target) => {
-            let (flat, problems) = from_stl::productions(sys);
+            // pfg has about 80 characters for symbols.
+            let explicit = target == Notation::Pfg && from_stl::term_count(sys) > 60;
+            let (flat, problems) = from_stl::productions(sys, explicit);
             let empty = SpanTable::default();
             let mut req2 = req.clone();
             req2.steps = flat.settings.steps;
@@ -430,7 +434,9 @@ pub fn single_symbol_rules(e: &mut Emitter<'_>, target: &str) -> HashMap<SymbolI
                 span,
                 status: Status::Exact,
                 target: String::new(),
-                note: Some("never applies: an earlier production for the same symbol always does".into()),
+                note: Some(
+                    "never applies: an earlier production for the same symbol always does".into(),
+                ),
             });
             continue;
         }
@@ -654,12 +660,45 @@ pub fn file_comment(notation: Notation, src: &str) -> Option<Vec<String>> {
         lines.extend(comment_lines(text));
         pos = span.end;
     }
+    // A translation's own first line is not carried into the next one.
+    if lines
+        .first()
+        .is_some_and(|l| l.starts_with("Translated by graftal from"))
+    {
+        lines.remove(0);
+        lines = comment_lines(&lines.join("\n"));
+    }
     (!lines.is_empty()).then_some(lines)
+}
+
+/// Where a comment stands relative to the item it is attached to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Attached {
+    /// On the lines right above the item.
+    Above(Vec<String>),
+    /// On the item's (last) line, after it.
+    After(String),
 }
 
 /// The comment attached to the item at `span`: on the same line after it,
 /// else on the lines right above it (no blank line between), not counting
 /// the file's opening comment.
+pub fn attached(notation: Notation, src: &str, span: &Span) -> Option<Attached> {
+    let lines = attached_comment(notation, src, span)?;
+    let line_end = src[span.end.min(src.len())..]
+        .find('\n')
+        .map_or(src.len(), |k| span.end + k);
+    let trailing = comments(notation, src)
+        .iter()
+        .any(|(s, _)| s.start >= span.end && s.start <= line_end);
+    Some(if trailing && lines.len() == 1 {
+        Attached::After(lines[0].trim().to_string())
+    } else {
+        Attached::Above(lines)
+    })
+}
+
+/// The lines of the comment [`attached`] to the item at `span`.
 pub fn attached_comment(notation: Notation, src: &str, span: &Span) -> Option<Vec<String>> {
     let cs = comments(notation, src);
     let opening_end = {

@@ -23,8 +23,8 @@
 //! * A consider list (cpfg) becomes the ignore list of everything else.
 
 use super::{
-    attached_comment, banner, file_comment, heaviest, increment, multiples, number, occurring,
-    turns, Emitter, Kind, Names, Turns,
+    attached, banner, file_comment, heaviest, increment, multiples, number, occurring, turns,
+    Attached, Emitter, Kind, Names, Turns,
 };
 use crate::ir::{Axis, ContextFilter, Notation, SymbolId, TurtleOp};
 use std::collections::HashMap;
@@ -140,8 +140,14 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 e.problem(
                     Kind::Interval,
                     e.symbol_span(s),
-                    format!("the interval angle of `{}`: pfg turns by fixed angles", e.name(s)),
-                    format!("the middle of the interval is used ({} degrees)", mid.join(", ")),
+                    format!(
+                        "the interval angle of `{}`: pfg turns by fixed angles",
+                        e.name(s)
+                    ),
+                    format!(
+                        "the middle of the interval is used ({} degrees)",
+                        mid.join(", ")
+                    ),
                 );
                 angles.extend(t.iter().map(|x| x.1.abs()));
             }
@@ -292,7 +298,9 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                     e.problem(
                         Kind::Attribute,
                         span,
-                        format!("`{name}` goes back to the previous colour: pfg has no such symbol"),
+                        format!(
+                            "`{name}` goes back to the previous colour: pfg has no such symbol"
+                        ),
                         "it is dropped",
                     );
                 }
@@ -312,7 +320,9 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                     e.problem(
                         Kind::Length,
                         span,
-                        format!("the length factor `{name}`: pfg draws every step with the same length"),
+                        format!(
+                            "the length factor `{name}`: pfg draws every step with the same length"
+                        ),
                         "the factor is dropped",
                     );
                 }
@@ -417,11 +427,9 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         let head = format!("{} < {} > {} -->", star(lc), pred, star(rc));
         let comment = span
             .as_ref()
-            .and_then(|s| attached_comment(e.source_notation, e.source, s));
-        if let Some(c) = &comment {
-            if c.len() > 1 {
-                lines.push(comment_block(c));
-            }
+            .and_then(|s| attached(e.source_notation, e.source, s));
+        if let Some(Attached::Above(c)) = &comment {
+            lines.push(comment_block(c));
         }
         let weighted = p.alternatives.len() > 1;
         let _ = heaviest;
@@ -431,9 +439,9 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             if weighted {
                 let _ = write!(line, " : {}", number(a.weight));
             }
-            if let Some(c) = comment.as_ref().filter(|c| c.len() == 1) {
+            if let Some(Attached::After(c)) = &comment {
                 if first.is_empty() {
-                    let _ = write!(line, " /* {} */", sanitize(&c[0]));
+                    let _ = write!(line, " /* {} */", sanitize(c));
                 }
             }
             if first.is_empty() {
@@ -504,12 +512,18 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     let mut axiom = full(&sys.axiom.0);
     if axiom.is_empty() {
         // pfg needs an axiom: a symbol that does nothing.
-        axiom = names
-            .take(pool())
-            .unwrap_or_else(|| "Z".to_string());
-        e.exact("the empty axiom", None, &format!("axiom: {axiom} (a symbol that does nothing)"));
+        axiom = names.take(pool()).unwrap_or_else(|| "Z".to_string());
+        e.exact(
+            "the empty axiom",
+            None,
+            &format!("axiom: {axiom} (a symbol that does nothing)"),
+        );
     } else {
-        e.exact("the axiom", e.spans.axiom.first().cloned(), &format!("axiom: {axiom}"));
+        e.exact(
+            "the axiom",
+            e.spans.axiom.first().cloned(),
+            &format!("axiom: {axiom}"),
+        );
     }
 
     let mut out = String::new();
@@ -522,7 +536,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     out.push('\n');
     let _ = writeln!(out, "derivation length: {}", e.steps);
     let _ = writeln!(out, "angle factor: {n}");
-    let _ = writeln!(out, "scale factor: {}", number(sys.settings.scale.clamp(0.0, 100.0)));
+    let _ = writeln!(
+        out,
+        "scale factor: {}",
+        number(sys.settings.scale.clamp(0.0, 100.0))
+    );
     let _ = writeln!(out, "axiom: {axiom}");
     let _ = writeln!(out, "{}", format!("ignore: {ignore}").trim_end());
     for l in lines {
@@ -549,6 +567,10 @@ fn comment_block(lines: &[String]) -> String {
     if body.len() == 1 {
         format!("/* {} */", body[0])
     } else {
-        format!("/* {}\n{} */", body[0], body[1..].iter().map(indent).collect::<Vec<_>>().join("\n"))
+        format!(
+            "/* {}\n{} */",
+            body[0],
+            body[1..].iter().map(indent).collect::<Vec<_>>().join("\n")
+        )
     }
 }

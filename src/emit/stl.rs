@@ -191,7 +191,10 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                 e.problem(
                     Kind::Interval,
                     e.symbol_span(s),
-                    format!("the interval angle of `{}`: STL turns by a fixed angle", e.name(s)),
+                    format!(
+                        "the interval angle of `{}`: STL turns by a fixed angle",
+                        e.name(s)
+                    ),
                     "the middle of the interval is used",
                 );
                 t
@@ -248,7 +251,9 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                 );
                 "F".into()
             }
-            Some(op @ (TurtleOp::Rotate { .. } | TurtleOp::Frenet { .. } | TurtleOp::TurnAround)) => {
+            Some(
+                op @ (TurtleOp::Rotate { .. } | TurtleOp::Frenet { .. } | TurtleOp::TurnAround),
+            ) => {
                 let t = match turns(sys, op) {
                     Some(Turns::Fixed(t)) | Some(Turns::Random(t)) => t,
                     None => Vec::new(),
@@ -309,7 +314,9 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                     e.problem(
                         Kind::Length,
                         span,
-                        format!("the length factor `{name}`: STL stem lengths change per level only"),
+                        format!(
+                            "the length factor `{name}`: STL stem lengths change per level only"
+                        ),
                         "the factor is dropped",
                     );
                 }
@@ -339,7 +346,10 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         e.problem(
             Kind::Attribute,
             None,
-            format!("the scale factor {}: STL pictures fill the frame", number(sys.settings.scale)),
+            format!(
+                "the scale factor {}: STL pictures fill the frame",
+                number(sys.settings.scale)
+            ),
             "the figure fills the picture",
         );
     }
@@ -403,8 +413,15 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                 let n = sys.symbols.name(s);
                 let ok = n.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
                     && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-                let stem = if ok { n.to_string() } else { format!("S{}", s.0) };
-                let stem = if stem.chars().all(|c| matches!(c, 'F' | 'L' | 'R' | 'B' | 'I')) {
+                let stem = if ok {
+                    n.to_string()
+                } else {
+                    format!("S{}", s.0)
+                };
+                let stem = if stem
+                    .chars()
+                    .all(|c| matches!(c, 'F' | 'L' | 'R' | 'B' | 'I'))
+                {
                     format!("{stem}x")
                 } else {
                     stem
@@ -423,7 +440,8 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
             && steps >= 1
             && successor(draw[0]).is_some_and(|w| {
                 w.iter().all(|&t| sys.symbols.info(t).guard.is_none())
-                    && w.iter().any(|t| comps.get(t).is_some_and(|c| !c.is_empty()))
+                    && w.iter()
+                        .any(|t| comps.get(t).is_some_and(|c| !c.is_empty()))
             })
     };
     let mut seed = Vec::new();
@@ -435,7 +453,11 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
             .map(|t| comps.get(t).cloned().unwrap_or_default())
             .collect();
         let name = names
-            .take(["Plant".to_string(), "Plant1".to_string(), "Plant2".to_string()])
+            .take([
+                "Plant".to_string(),
+                "Plant1".to_string(),
+                "Plant2".to_string(),
+            ])
             .unwrap_or_else(|| "Plant".into());
         out_rules.push((steps, name.clone(), format!("[I {steps} {body}]")));
         for &s in &sys.axiom.0 {
@@ -468,7 +490,17 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
             }
             let stem = rule_name(s, names);
             let name = names
-                .take((0..).map(|i| if i == 0 { format!("{stem}{k}") } else { format!("{stem}{k}_{i}") }).take(1000))
+                .take(
+                    (0..)
+                        .map(|i| {
+                            if i == 0 {
+                                format!("{stem}{k}")
+                            } else {
+                                format!("{stem}{k}_{i}")
+                            }
+                        })
+                        .take(1000),
+                )
                 .unwrap_or_default();
             defined.insert((s, k), name.clone());
             stack.push((s, k));
@@ -501,10 +533,20 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     if let Some(c) = super::file_comment(e.source_notation, e.source) {
         out.push_str("#\n");
         for l in c {
-            out.push_str(&format!("#{}\n", if l.is_empty() { String::new() } else { format!(" {l}") }));
+            out.push_str(&format!(
+                "#{}\n",
+                if l.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {l}")
+                }
+            ));
         }
     }
-    let _ = writeln!(out, "# {steps} derivation steps are written into the rules.");
+    let _ = writeln!(
+        out,
+        "# {steps} derivation steps are written into the rules."
+    );
     let _ = writeln!(out, "ANGLE {}", number(360.0 / n as f64));
     let _ = writeln!(out, "B = {} (0)", number(sys.settings.width));
     let _ = writeln!(out, "L = {} (0)", number(sys.settings.step));
@@ -539,7 +581,8 @@ fn join(toks: &[String]) -> String {
     let mut prev_comp = true;
     for t in toks {
         let c = comp(t);
-        let together = out.is_empty() || out.ends_with('[') || t.starts_with(']') || (c && prev_comp);
+        let together =
+            out.is_empty() || out.ends_with('[') || t.starts_with(']') || (c && prev_comp);
         if !together {
             out.push(' ');
         }

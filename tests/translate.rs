@@ -1,0 +1,729 @@
+//! Translation between pfg, LinF and STL (`graftal translate`).
+//!
+//! The central property: a translation without warnings draws the same
+//! segments as its source (same count, every endpoint within 1e-9 of the
+//! picture's size) when both are evaluated with the same steps and seed.
+//! It is checked over every stdlib entry and every target, and over random
+//! pfg and LinF systems. Translations the target cannot express must name
+//! each construct (E06xx) and write nothing; under `--lossy` they are
+//! written, pass `check`, and carry one warning per approximation.
+
+use graftal::driver::{self, Compiled, RunOptions};
+use graftal::emit::{self, Request, Translation};
+use graftal::ir::{Notation, System};
+use graftal::source::SourceFile;
+use graftal::stdlib::ENTRIES;
+use graftal::turtle::Geometry;
+
+mod common;
+use common::{graftal, temp};
+
+const TARGETS: [Notation; 3] = [Notation::Pfg, Notation::Linf, Notation::Stl];
+
+fn ext(n: Notation) -> &'static str {
+    match n {
+        Notation::Pfg => "l",
+        Notation::Linf => "linf",
+        Notation::Stl => "stl",
+    }
+}
+
+fn compile(name: &str, text: &str) -> Compiled {
+    driver::compile(SourceFile::new(name, text))
+}
+
+fn translate(c: &Compiled, to: Notation, lossy: bool) -> Translation {
+    let sys = c.system.as_ref().expect("compiles");
+    emit::translate(
+        sys,
+        &c.spans,
+        &c.file.text,
+        &Request {
+            target: to,
+            lossy,
+            steps: None,
+        },
+    )
+}
+
+fn geometry(sys: &System, seed: u64) -> Geometry {
+    let opts = RunOptions {
+        seed,
+        ..RunOptions::default()
+    };
+    driver::geometry(sys, &opts).expect("evaluates").1
+}
+
+/// Same segments, in the same order, within 1e-9 of the picture's size.
+fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
+    if a.segments.len() != b.segments.len() {
+        return Err(format!(
+            "{} segments, translation {}",
+            a.segments.len(),
+            b.segments.len()
+        ));
+    }
+    let (Some(ba), Some(bb)) = (a.bbox(), b.bbox()) else {
+        return Ok(());
+    };
+    let size = (0..3)
+        .map(|i| ba[i + 3] - ba[i])
+        .fold(0.0f64, f64::max)
+        .max(1e-12);
+    let tol = 1e-9 * size.max(1.0);
+    for i in 0..6 {
+        if (ba[i] - bb[i]).abs() > tol {
+            return Err(format!("bounding boxes differ: {ba:?} vs {bb:?}"));
+        }
+    }
+    for (k, (s, t)) in a.segments.iter().zip(&b.segments).enumerate() {
+        for i in 0..3 {
+            if (s.a[i] - t.a[i]).abs() > tol || (s.b[i] - t.b[i]).abs() > tol {
+                return Err(format!("segment {k} differs: {s:?} vs {t:?}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks what every translation must satisfy, returning the compiled
+/// output when it was written. An exact translation must draw the same.
+fn check_translation(
+    name: &str,
+    c: &Compiled,
+    to: Notation,
+    seed: u64,
+) -> Option<(bool, Compiled)> {
+    let t = translate(c, to, false);
+    let out_name = format!("{name}.{}", ext(to));
+    match &t.text {
+        Some(text) => {
+            assert!(
+                t.diagnostics.is_empty(),
+                "{name} -> {to:?}: written with diagnostics"
+            );
+            let out = compile(&out_name, text);
+            // A grown outline's BED keeps its layout, which has nothing
+            // left to grow (W0502); nothing else is allowed.
+            assert!(
+                out.diagnostics
+                    .iter()
+                    .all(|d| d.code.0 == "W0502" && to == Notation::Stl),
+                "{name} -> {to:?}: the translation does not pass check: {:#?}\n{text}",
+                out.diagnostics
+            );
+            let a = geometry(c.system.as_ref().unwrap(), seed);
+            let b = geometry(out.system.as_ref().unwrap(), seed);
+            if let Err(e) = same_drawing(&a, &b) {
+                panic!("{name} -> {to:?} claims to be exact but: {e}\n{text}");
+            }
+            Some((true, out))
+        }
+        None => {
+            assert!(!t.diagnostics.is_empty());
+            for d in t.diagnostics.iter() {
+                assert!(
+                    d.code.0.starts_with("E06") && d.is_error(),
+                    "{name} -> {to:?}: {d:?}"
+                );
+            }
+            let errors = t.diagnostics.len();
+            let lossy = translate(c, to, true);
+            let text = lossy.text.as_ref().unwrap_or_else(|| {
+                // Only what cannot be approximated at all blocks --lossy.
+                assert!(lossy.diagnostics.iter().any(|d| d.code.0 == "E0613"));
+                panic!("{name} -> {to:?}: too large even with --lossy")
+            });
+            assert_eq!(
+                lossy.diagnostics.len(),
+                errors,
+                "{name} -> {to:?}: one warning per construct"
+            );
+            assert!(lossy
+                .diagnostics
+                .iter()
+                .all(|d| d.code.0.starts_with("W06")));
+            let out = compile(&out_name, text);
+            assert!(
+                !out.diagnostics.has_errors(),
+                "{name} -> {to:?} --lossy does not pass check: {:#?}\n{text}",
+                out.diagnostics
+            );
+            Some((false, out))
+        }
+    }
+}
+
+/// `a` and `b` are the same strings up to a one-to-one renaming of
+/// symbols.
+fn same_up_to_renaming(
+    a: &System,
+    wa: &graftal::ir::Word,
+    b: &System,
+    wb: &graftal::ir::Word,
+) -> Result<(), String> {
+    let na: Vec<&str> =
+        wa.0.iter()
+            .map(|&s| a.symbols.name(s))
+            .filter(|n| !n.is_empty())
+            .collect();
+    let nb: Vec<&str> =
+        wb.0.iter()
+            .map(|&s| b.symbols.name(s))
+            .filter(|n| !n.is_empty())
+            .collect();
+    if na.len() != nb.len() {
+        return Err(format!("{} symbols vs {}", na.len(), nb.len()));
+    }
+    let mut fwd = std::collections::HashMap::new();
+    let mut back = std::collections::HashMap::new();
+    for (x, y) in na.iter().zip(&nb) {
+        if *fwd.entry(*x).or_insert(*y) != *y || *back.entry(*y).or_insert(*x) != *x {
+            return Err(format!("`{x}` and `{y}` do not correspond one to one"));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
+    let mut exact: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut round_trips = 0;
+    for e in ENTRIES {
+        let c = compile(e.file, e.text);
+        assert!(c.system.is_some(), "{}", e.name);
+        let from = c.system.as_ref().unwrap().notation;
+        for to in TARGETS {
+            let Some((is_exact, out)) = check_translation(e.name, &c, to, 0) else {
+                continue;
+            };
+            if !is_exact {
+                continue;
+            }
+            *exact
+                .entry(format!(
+                    "{} -> {}",
+                    emit::notation_name(from),
+                    emit::notation_name(to)
+                ))
+                .or_default() += 1;
+            // Back again: the same strings (pfg and LinF), the same drawing.
+            let back = translate(&out, from, false);
+            let Some(text) = back.text else {
+                continue;
+            };
+            let again = compile(&format!("back.{}", ext(from)), &text);
+            assert!(
+                again.diagnostics.iter().all(|d| d.code.0 == "W0502"),
+                "{}: {:?}",
+                e.name,
+                again.diagnostics
+            );
+            let (sa, sb) = (c.system.as_ref().unwrap(), again.system.as_ref().unwrap());
+            same_drawing(&geometry(sa, 0), &geometry(sb, 0))
+                .unwrap_or_else(|err| panic!("{} -> {to:?} -> back: {err}\n{text}", e.name));
+            // A symbol the target writes as several (a pfg pitch is a LinF
+            // roll, turn and roll) comes back as several: same drawing,
+            // longer string.
+            let one_to_one = translate(&c, to, false)
+                .names
+                .iter()
+                .all(|(_, t)| !t.contains(' '));
+            if from != Notation::Stl && to != Notation::Stl && one_to_one {
+                let wa = driver::derive(sa, &RunOptions::default()).unwrap();
+                let wb = driver::derive(sb, &RunOptions::default()).unwrap();
+                same_up_to_renaming(sa, &wa, sb, &wb)
+                    .unwrap_or_else(|err| panic!("{} -> {to:?} -> back: {err}\n{text}", e.name));
+                if from == Notation::Pfg {
+                    assert_eq!(
+                        wa.display(&sa.symbols),
+                        wb.display(&sb.symbols),
+                        "{}: pfg -> {to:?} -> pfg keeps every symbol",
+                        e.name
+                    );
+                }
+                round_trips += 1;
+            }
+        }
+    }
+    eprintln!("exact translations of stdlib entries: {exact:?}; round trips with the same strings: {round_trips}");
+    // The classic systems are mostly context-free, 2D, one angle.
+    let count = |k: &str| exact.get(k).copied().unwrap_or(0);
+    assert!(count("pfg -> pfg") >= 45, "{exact:?}");
+    assert!(count("pfg -> linf") >= 25, "{exact:?}");
+    assert!(count("pfg -> stl") >= 10, "{exact:?}");
+    assert!(count("linf -> linf") >= 10, "{exact:?}");
+    assert!(count("linf -> pfg") >= 3, "{exact:?}");
+    assert!(count("linf -> stl") >= 3, "{exact:?}");
+    assert!(count("stl -> stl") >= 10, "{exact:?}");
+    assert!(count("stl -> linf") >= 3, "{exact:?}");
+    assert!(round_trips >= 40, "{round_trips}");
+}
+
+/// A small deterministic generator for the random systems.
+struct Gen(u64);
+
+impl Gen {
+    /// splitmix64.
+    fn below(&mut self, n: usize) -> usize {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) % n as u64) as usize
+    }
+    fn pick<'a>(&mut self, xs: &[&'a str]) -> &'a str {
+        xs[self.below(xs.len())]
+    }
+    /// A word over `alphabet` with balanced brackets.
+    fn word(&mut self, alphabet: &[&str], len: usize, sep: &str) -> String {
+        let mut out: Vec<String> = Vec::new();
+        let mut open = 0;
+        for _ in 0..len {
+            match self.below(8) {
+                0 => {
+                    out.push("[".into());
+                    open += 1;
+                }
+                1 if open > 0 => {
+                    out.push("]".into());
+                    open -= 1;
+                }
+                _ => out.push(self.pick(alphabet).to_string()),
+            }
+        }
+        out.extend(std::iter::repeat_n("]".to_string(), open));
+        out.join(sep)
+    }
+}
+
+fn random_pfg(g: &mut Gen) -> String {
+    let factor = [4, 6, 8, 12, 16][g.below(5)];
+    let three_d = g.below(4) == 0;
+    let mut alphabet = vec!["F", "F", "+", "-", "X", "Y", "A"];
+    if g.below(3) == 0 {
+        alphabet.push("f");
+    }
+    if g.below(4) == 0 {
+        alphabet.push("|");
+    }
+    if three_d {
+        alphabet.extend(["&", "^", "\\", "/"]);
+    }
+    let mut s =
+        format!(
+        "derivation length: {}\nangle factor: {factor}\nscale factor: 100\naxiom: {}\nignore: +-\n",
+        g.below(4),
+        {
+            let n = 1 + g.below(4);
+            let w = g.word(&alphabet, n, "");
+            if w.is_empty() { "F".to_string() } else { w }
+        }
+    );
+    for head in ["F", "X", "Y"] {
+        if g.below(3) > 0 {
+            let n = 1 + g.below(6);
+            let succ = g.word(&alphabet, n, "");
+            let succ = if succ.is_empty() { "*".into() } else { succ };
+            s.push_str(&format!("{head} --> {succ}\n"));
+        }
+    }
+    if g.below(5) == 0 {
+        // A context: LinF and STL cannot express it.
+        s.push_str("X < A --> AF\n");
+    }
+    s
+}
+
+fn random_linf(g: &mut Gen) -> String {
+    let k = [2, 3, 4, 6][g.below(4)];
+    let mut s = String::from("lines f g\nblanks b\n");
+    s.push_str(&format!("angles (0, pi/{k})"));
+    if g.below(3) == 0 {
+        s.push_str(&format!(" t = (pi/{}, 0)", [2, 3][g.below(2)]));
+    }
+    if g.below(4) == 0 {
+        s.push_str(" w = (0, [0 pi])");
+    }
+    s.push('\n');
+    let mut alphabet = vec!["f", "g", "b", "+", "-", "x"];
+    if s.contains("t =") {
+        alphabet.push("+t");
+    }
+    if s.contains("w =") {
+        alphabet.push("-w");
+    }
+    if g.below(3) == 0 {
+        alphabet.push("0.5@");
+    }
+    if g.below(4) == 0 {
+        alphabet.push("0.5?x");
+    }
+    let n = 1 + g.below(4);
+    let axiom = g.word(&alphabet, n, " ");
+    s.push_str(&format!("axiom f {axiom}\nrules\n"));
+    for head in ["f", "g", "x"] {
+        if g.below(3) > 0 {
+            let n = 1 + g.below(6);
+            let succ = g.word(&alphabet, n, " ");
+            s.push_str(&format!("  {head} = {succ}\n"));
+        }
+    }
+    if !s.contains("  x =") {
+        s.push_str("  x = x\n");
+    }
+    s.push_str(&format!("#: steps {}\n", g.below(4)));
+    s
+}
+
+#[test]
+fn random_systems_translate_exactly_or_say_why() {
+    let mut g = Gen(5);
+    let mut exact = 0;
+    let mut tried = 0;
+    for i in 0..400 {
+        let (name, text) = if i % 2 == 0 {
+            (format!("random{i}.l"), random_pfg(&mut g))
+        } else {
+            (format!("random{i}.linf"), random_linf(&mut g))
+        };
+        let c = compile(&name, &text);
+        if c.system.is_none() {
+            continue;
+        }
+        for to in TARGETS {
+            tried += 1;
+            let seed = i as u64;
+            if let Some((true, _)) = check_translation(&format!("{name}\n{text}"), &c, to, seed) {
+                exact += 1;
+            }
+        }
+    }
+    eprintln!("random systems: {exact} of {tried} translations exact");
+    assert!(exact * 3 > tried, "{exact} of {tried}");
+}
+
+#[test]
+fn three_d_pfg_turns_become_linf_rotation_pairs_that_draw_the_same() {
+    let src = "derivation length: 3\nangle factor: 8\nscale factor: 100\naxiom: F\nignore:\nF --> F[&F][^F][\\F/F]F[+&F]|F\n";
+    let c = compile("t.l", src);
+    let t = translate(&c, Notation::Linf, false);
+    let text = t.text.clone().expect("pfg's 3D turtle is LinF pairs");
+    let out = compile("t.linf", &text);
+    assert!(out.diagnostics.is_empty(), "{:?}\n{text}", out.diagnostics);
+    let (a, b) = (
+        geometry(c.system.as_ref().unwrap(), 0),
+        geometry(out.system.as_ref().unwrap(), 0),
+    );
+    same_drawing(&a, &b).unwrap();
+    let bb = a.bbox().unwrap();
+    assert!(bb[5] - bb[2] > 0.5, "the test system is really 3D: {bb:?}");
+    // Rolls and turns come back as pfg's own symbols; a pitch comes back
+    // as the roll, turn and roll LinF wrote, which draws the same.
+    let back = translate(&out, Notation::Pfg, false).text.unwrap();
+    assert!(back.contains("[\\F/F]"), "{back}");
+    assert!(back.contains("|F"), "{back}");
+    let again = compile("t2.l", &back);
+    same_drawing(&a, &geometry(again.system.as_ref().unwrap(), 0)).unwrap();
+    // STL cannot draw it.
+    let stl = translate(&c, Notation::Stl, false);
+    assert!(stl.text.is_none());
+    assert!(stl.diagnostics.iter().all(|d| d.code.0 == "E0605"));
+    assert_eq!(stl.diagnostics.len(), 4, "one per 3D symbol: & ^ \\ /");
+}
+
+#[test]
+fn several_linf_line_symbols_become_markers_before_pfg_f() {
+    let src = "lines f g\nblanks b h\nangles (0, pi/2)\naxiom f g\nrules\n  f = f+g b\n  g = g-f h f\n#: steps 4\n";
+    let c = compile("t.linf", src);
+    let t = translate(&c, Notation::Pfg, false);
+    let text = t.text.expect("exact");
+    assert!(text.contains("* < F > * --> *"), "{text}");
+    assert!(text.contains("* < f > * --> *"), "{text}");
+    let out = compile("t.l", &text);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    same_drawing(
+        &geometry(c.system.as_ref().unwrap(), 0),
+        &geometry(out.system.as_ref().unwrap(), 0),
+    )
+    .unwrap();
+    // Moving symbols keep moving: the picture has gaps.
+    assert!(geometry(out.system.as_ref().unwrap(), 0).segments.len() > 10);
+}
+
+#[test]
+fn untranslatable_constructs_are_errors_with_spans_and_nothing_is_written() {
+    let out = temp("hh.linf");
+    let _ = std::fs::remove_file(&out);
+    let o = graftal(&[
+        "translate",
+        "std:hogeweg-hesper-a",
+        "--to",
+        "linf",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status, 1, "{}", o.stderr);
+    assert!(!out.exists(), "nothing is written");
+    // One error per context-sensitive production, each at its line.
+    assert_eq!(o.stderr.matches("[E0601]").count(), 8, "{}", o.stderr);
+    for line in 6..=13 {
+        assert!(
+            o.stderr.contains(&format!("hogeweg-hesper-a.l:{line}:1")),
+            "{}",
+            o.stderr
+        );
+    }
+    // pfg can rewrite `+` and `-`; LinF cannot.
+    assert!(o.stderr.contains("[E0611]"), "{}", o.stderr);
+    // --lossy writes it, with one warning each.
+    let o = graftal(&[
+        "translate",
+        "std:hogeweg-hesper-a",
+        "--to",
+        "linf",
+        "--lossy",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert_eq!(o.stderr.matches("[W0601]").count(), 8, "{}", o.stderr);
+    assert_eq!(o.stderr.matches("[W0611]").count(), 2, "{}", o.stderr);
+    let check = graftal(&["check", out.to_str().unwrap()]);
+    assert_eq!(check.status, 0, "{}", check.stderr);
+}
+
+#[test]
+fn linf_randomness_is_an_error_for_pfg_and_stl() {
+    for (entry, code) in [
+        ("std:linf/fig10-brownian-motion", "[E0604]"),
+        ("std:linf/fig09-stochastic-plant", "[E0603]"),
+    ] {
+        for to in ["pfg", "stl"] {
+            let o = graftal(&["translate", entry, "--to", to]);
+            assert_eq!(o.status, 1, "{entry} -> {to}");
+            assert!(o.stdout.is_empty());
+            assert!(o.stderr.contains(code), "{entry} -> {to}: {}", o.stderr);
+        }
+    }
+    // LinF to LinF keeps the randomness, and the same seed gives the same
+    // picture.
+    let c = compile(
+        "b.linf",
+        ENTRIES
+            .iter()
+            .find(|e| e.name == "linf/fig10-brownian-motion")
+            .unwrap()
+            .text,
+    );
+    for seed in [0, 7] {
+        let t = translate(&c, Notation::Linf, false);
+        let out = compile("b2.linf", t.text.as_ref().unwrap());
+        same_drawing(
+            &geometry(c.system.as_ref().unwrap(), seed),
+            &geometry(out.system.as_ref().unwrap(), seed),
+        )
+        .unwrap();
+    }
+}
+
+#[test]
+fn json_reports_each_construct_with_its_span() {
+    let o = graftal(&[
+        "translate",
+        "std:koch-island",
+        "--to",
+        "linf",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["from"], "pfg");
+    assert_eq!(v["to"], "linf");
+    assert_eq!(v["exact"], true);
+    assert!(v["text"].as_str().unwrap().contains("F = F+F-F-FF+F+F-F"));
+    let cs = v["constructs"].as_array().unwrap();
+    let prod = cs
+        .iter()
+        .find(|c| c["construct"].as_str().unwrap().starts_with("production"))
+        .unwrap();
+    assert_eq!(prod["status"], "exact");
+    assert_eq!(prod["target"], "F = F+F-F-FF+F+F-F");
+    let span = &prod["span"];
+    let text = ENTRIES
+        .iter()
+        .find(|e| e.name == "koch-island")
+        .unwrap()
+        .text;
+    let (s, e) = (
+        span["start"].as_u64().unwrap() as usize,
+        span["end"].as_u64().unwrap() as usize,
+    );
+    assert!(
+        text[s..e].contains("F --> F+F-F-FF+F+F-F"),
+        "{}",
+        &text[s..e]
+    );
+
+    // Approximations under --lossy, with their spans.
+    let o = graftal(&[
+        "translate",
+        "std:hogeweg-hesper-a",
+        "--to",
+        "stl",
+        "--lossy",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["exact"], false);
+    let approx: Vec<&serde_json::Value> = v["constructs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["status"] == "approximated")
+        .collect();
+    assert!(approx.len() >= 8);
+    assert!(approx.iter().all(|c| c["note"].is_string()));
+    assert!(approx.iter().filter(|c| c["span"]["line"].is_u64()).count() >= 8);
+    // Without --lossy: "impossible", nothing written.
+    let o = graftal(&[
+        "translate",
+        "std:hogeweg-hesper-a",
+        "--to",
+        "stl",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status, 1);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["written"], false);
+    assert!(v["text"].is_null());
+}
+
+#[test]
+fn comments_are_carried_over_where_they_attach() {
+    let src = "/* A bush. */\nderivation length: 2\nangle factor: 8\naxiom: X\n/* the stem doubles */\nF --> FF\nX --> F[+X][-X]FX /* apex */\n";
+    let c = compile("bush.l", src);
+    let linf = translate(&c, Notation::Linf, false).text.unwrap();
+    assert!(linf.contains("# A bush."), "{linf}");
+    assert!(linf.contains("# the stem doubles\n  F = FF"), "{linf}");
+    assert!(linf.contains("X = F[+X][-X]FX  # apex"), "{linf}");
+    let pfg = translate(&c, Notation::Pfg, false).text.unwrap();
+    assert!(
+        pfg.contains("/* the stem doubles */\n* < F > * --> FF"),
+        "{pfg}"
+    );
+    assert!(
+        pfg.contains("* < X > * --> F[+X][-X]FX /* apex */"),
+        "{pfg}"
+    );
+    // Formatting is canonical: translating the output again changes nothing
+    // but the first line.
+    let again = translate(&compile("b2.l", &pfg), Notation::Pfg, false)
+        .text
+        .unwrap();
+    assert_eq!(pfg, again);
+}
+
+#[test]
+fn stl_structure_becomes_bracketed_productions() {
+    // Rn of Fig. 6: F R1{R1, R2, R1} with R1 = [F][+F][-F], R2 = [++F][-F].
+    let c = compile(
+        "rn.stl",
+        ENTRIES
+            .iter()
+            .find(|e| e.name == "stl/fig06-rn")
+            .unwrap()
+            .text,
+    );
+    // Fig. 6 narrows its stems per level (B = 6 (2)): LinF has no widths.
+    let t = translate(&c, Notation::Linf, false);
+    assert!(t.text.is_none());
+    assert!(t.diagnostics.iter().all(|d| d.code.0 == "E0608"));
+    let t = translate(&c, Notation::Linf, true);
+    let text = t.text.expect("written with --lossy");
+    assert!(t.diagnostics.iter().all(|d| d.code.0 == "W0608"));
+    assert!(text.contains("R1 = "), "{text}");
+    let out = compile("rn.linf", &text);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let word = driver::derive(out.system.as_ref().unwrap(), &RunOptions::default()).unwrap();
+    let src_word = driver::derive(c.system.as_ref().unwrap(), &RunOptions::default()).unwrap();
+    assert_eq!(
+        driver::word_text(c.system.as_ref().unwrap(), &src_word),
+        "F[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]"
+    );
+    // The LinF word, drawing symbols only, reads as STL's with the turns
+    // written LinF's way.
+    let linf_word = driver::word_text(out.system.as_ref().unwrap(), &word);
+    let drawn: String = linf_word.chars().filter(|c| "F[]+-".contains(*c)).collect();
+    assert_eq!(drawn.matches('F').count(), 12, "{linf_word}");
+    same_drawing(
+        &geometry(c.system.as_ref().unwrap(), 0),
+        &geometry(out.system.as_ref().unwrap(), 0),
+    )
+    .unwrap();
+    // A grown outline: the explicit tree, the layout reported.
+    let od = compile(
+        "od.stl",
+        ENTRIES
+            .iter()
+            .find(|e| e.name == "stl/fig09-outline-bfs")
+            .unwrap()
+            .text,
+    );
+    let t = translate(&od, Notation::Linf, false);
+    assert!(t.text.is_none());
+    assert!(
+        t.diagnostics.iter().any(|d| d.code.0 == "E0610"),
+        "{:?}",
+        t.diagnostics
+    );
+    let lossy = translate(&od, Notation::Linf, true);
+    let out = compile("od.linf", lossy.text.as_ref().unwrap());
+    assert!(!out.diagnostics.has_errors());
+    let a = geometry(od.system.as_ref().unwrap(), 0);
+    let b = geometry(out.system.as_ref().unwrap(), 0);
+    // Only widths and the layout were approximated: the stems are the same.
+    assert!(lossy
+        .diagnostics
+        .iter()
+        .all(|d| d.code.0 == "W0610" || d.code.0 == "W0608"));
+    same_drawing(&a, &b).unwrap();
+}
+
+#[test]
+fn pfg_to_stl_writes_the_derivation_into_rules() {
+    // Only F is rewritten: the paper's self-resemblance count.
+    let o = graftal(&["translate", "std:plant-a", "--to", "stl"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(
+        o.stdout.contains("Plant = [I 5 F[RF]F[LF]F]"),
+        "{}",
+        o.stdout
+    );
+    // Several rewritten symbols: one rule per symbol and step; -n chooses
+    // the steps.
+    let o = graftal(&["translate", "std:hilbert", "--to", "stl", "-n", "3"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let c = compile("h.stl", &o.stdout);
+    assert!(
+        c.diagnostics.is_empty(),
+        "{:?}\n{}",
+        c.diagnostics,
+        o.stdout
+    );
+    let src = driver::compile(driver::load("std:hilbert").unwrap());
+    let opts = RunOptions {
+        steps: Some(3),
+        ..RunOptions::default()
+    };
+    let a = driver::geometry(src.system.as_ref().unwrap(), &opts)
+        .unwrap()
+        .1;
+    let b = geometry(c.system.as_ref().unwrap(), 0);
+    same_drawing(&a, &b).unwrap();
+    assert_eq!(b.segments.len(), 63);
+}
