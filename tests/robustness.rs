@@ -26,6 +26,8 @@
 
 use graftal::diagnostics::{codes, render_human, to_json, Diagnostic};
 use graftal::driver::{self, RunOptions};
+use graftal::emit::{self, Request};
+use graftal::ir::Notation;
 use graftal::render::{self, RenderOptions, View};
 use graftal::source::SourceFile;
 use graftal::stdlib::ENTRIES;
@@ -158,6 +160,39 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
     };
     if has_errors {
         return Err("a system was produced despite error diagnostics".into());
+    }
+    // Translation to every notation, exact or lossy: never a panic, spans
+    // inside the file, and whatever is written reads back without errors.
+    for to in [Notation::Pfg, Notation::Linf, Notation::Stl] {
+        for lossy in [false, true] {
+            let req = Request {
+                target: to,
+                lossy,
+                steps: Some(case.k.min(3)),
+            };
+            let t = stage(&format!("emit::translate to {to:?}"), || {
+                emit::translate(sys, &compiled.spans, &compiled.file.text, &req)
+            })?;
+            for d in t.diagnostics.iter() {
+                check_diagnostic(d, &compiled.file)?;
+            }
+            if let Some(text) = &t.text {
+                let ext = match to {
+                    Notation::Pfg => "l",
+                    Notation::Linf => "linf",
+                    Notation::Stl => "stl",
+                };
+                let back = stage("driver::compile of a translation", || {
+                    driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()))
+                })?;
+                if back.diagnostics.has_errors() {
+                    return Err(format!(
+                        "the translation to {to:?} (lossy {lossy}) does not compile: {:?}\n{text}",
+                        back.diagnostics
+                    ));
+                }
+            }
+        }
     }
     for steps in [Some(case.k), None] {
         let opts = RunOptions {

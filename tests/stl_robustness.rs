@@ -88,6 +88,33 @@ fn pipeline(text: String) -> Result<Option<usize>, String> {
     };
     driver::render_bytes(sys, &g, Format::Svg, opts).map_err(|e| e.to_string())?;
     driver::render_bytes(sys, &g, Format::Png, opts).map_err(|e| e.to_string())?;
+    // Translation to pfg and LinF: never a panic, and what is written
+    // reads back without errors.
+    for target in [graftal::ir::Notation::Pfg, graftal::ir::Notation::Linf] {
+        let req = graftal::emit::Request {
+            target,
+            lossy: true,
+            steps: None,
+        };
+        let t = graftal::emit::translate(sys, &c.spans, &c.file.text, &req);
+        for d in t.diagnostics.iter() {
+            check_diagnostic(d, &c.file)?;
+        }
+        if let Some(text) = &t.text {
+            let ext = if target == graftal::ir::Notation::Pfg {
+                "l"
+            } else {
+                "linf"
+            };
+            let back = driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()));
+            if back.diagnostics.has_errors() {
+                return Err(format!(
+                    "the {target:?} translation does not compile: {:?}\n{text}",
+                    back.diagnostics
+                ));
+            }
+        }
+    }
     let bed = graftal::emit::stl::write(sys).ok_or("no BED for an STL system")?;
     let back = driver::compile(SourceFile::new("bed.stl", bed.clone()));
     let Some(back_sys) = &back.system else {

@@ -727,3 +727,76 @@ fn pfg_to_stl_writes_the_derivation_into_rules() {
     same_drawing(&a, &b).unwrap();
     assert_eq!(b.segments.len(), 63);
 }
+
+/// tests/diagnostics/translate/NAME--TARGET.EXT -> NAME--TARGET.txt: the
+/// diagnostics (colour off) and the text written, then the same with
+/// `--lossy` when the plain translation is refused. Regenerate on purpose
+/// with `GRAFTAL_BLESS=1`.
+#[test]
+fn translations_and_their_diagnostics_match_their_snapshots() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/diagnostics/translate");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e != "txt"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 6);
+    let mut failures = Vec::new();
+    for path in files {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let target = match name.split("--").nth(1).and_then(|t| t.split('.').next()) {
+            Some("pfg") => Notation::Pfg,
+            Some("linf") => Notation::Linf,
+            Some("stl") => Notation::Stl,
+            other => panic!("{name}: no target in the name ({other:?})"),
+        };
+        let c = compile(&name, &std::fs::read_to_string(&path).unwrap());
+        let mut snap = String::new();
+        for lossy in [false, true] {
+            let t = translate(&c, target, lossy);
+            if lossy {
+                snap.push_str("\n===== with --lossy =====\n");
+            }
+            snap.push_str(&t.diagnostics.render(&c.file, false));
+            match &t.text {
+                Some(text) => {
+                    snap.push_str("----- written -----\n");
+                    snap.push_str(text);
+                    let out = compile(&format!("out.{}", ext(target)), text);
+                    assert!(
+                        !out.diagnostics.has_errors(),
+                        "{name}: {:?}",
+                        out.diagnostics
+                    );
+                    if !lossy {
+                        same_drawing(
+                            &geometry(c.system.as_ref().unwrap(), 0),
+                            &geometry(out.system.as_ref().unwrap(), 0),
+                        )
+                        .unwrap_or_else(|e| panic!("{name}: {e}"));
+                        break;
+                    }
+                }
+                None => snap.push_str("----- nothing written -----\n"),
+            }
+        }
+        let snap_path = path.with_extension("txt");
+        if std::env::var_os("GRAFTAL_BLESS").is_some() {
+            std::fs::write(&snap_path, &snap).unwrap();
+            continue;
+        }
+        match std::fs::read_to_string(&snap_path) {
+            Ok(expected) if expected == snap => {}
+            Ok(expected) => failures.push(format!(
+                "{} differs:\n--- expected\n{expected}\n--- actual\n{snap}",
+                snap_path.display()
+            )),
+            Err(_) => failures.push(format!(
+                "{} is missing (GRAFTAL_BLESS=1 writes it)",
+                snap_path.display()
+            )),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}

@@ -511,6 +511,9 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         Vec::new()
     };
     if !colours.is_empty() && (uses_colour || distinct_colours > 1 || sys.colours.len() > 1) {
+        if sys.colours.is_empty() {
+            out.push_str("# pfg's palette, eight times: pfg starts again after the eighth colour, LinF stays on the last\n");
+        }
         out.push_str("colors");
         for (i, c) in colours.iter().enumerate() {
             if i > 0 && i % 8 == 0 {

@@ -327,13 +327,33 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
             // pfg has about 80 characters for symbols.
             let explicit = target == Notation::Pfg && from_stl::term_count(sys) > 60;
             let (flat, problems) = from_stl::productions(sys, explicit);
-            let empty = SpanTable::default();
+            // Where things are: STL keeps no spans past lowering, so they
+            // are found by the lines that define them.
+            let mut where_ = SpanTable::default();
+            for (id, info) in flat.symbols.iter() {
+                let line = match flat.op(id) {
+                    Some(TurtleOp::ScaleLength(_)) => line_starting(source, "L"),
+                    _ => info
+                        .name
+                        .split('_')
+                        .next()
+                        .and_then(|rule| line_starting(source, rule)),
+                };
+                if let Some(span) = line {
+                    where_.symbols.insert(id, span);
+                }
+            }
             let mut req2 = req.clone();
             req2.steps = flat.settings.steps;
-            let mut e = Emitter::new(&flat, &empty, source, &req2);
+            let mut e = Emitter::new(&flat, &where_, source, &req2);
             e.source_notation = Notation::Stl;
             for p in problems {
-                e.problem(p.kind, p.span, p.what, p.change);
+                let span = p.span.or_else(|| match p.kind {
+                    Kind::Layout => line_starting(source, "LAYOUT"),
+                    Kind::Attribute => line_starting(source, "B"),
+                    _ => None,
+                });
+                e.problem(p.kind, span, p.what, p.change);
             }
             let text = match target {
                 Notation::Pfg => pfg::write(&mut e),
@@ -351,6 +371,30 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
             e.finish(text)
         }
     }
+}
+
+/// The first line of `src` that starts with the word `word` (followed by
+/// a blank, `=` or the end of the line), as a span without its blanks;
+/// comments are not lines.
+pub fn line_starting(src: &str, word: &str) -> Option<Span> {
+    let mut offset = 0;
+    for line in src.split_inclusive('\n') {
+        let t = line.trim_start();
+        let start = offset + (line.len() - t.len());
+        offset += line.len();
+        let Some(rest) = t.strip_prefix(word) else {
+            continue;
+        };
+        if rest
+            .chars()
+            .next()
+            .is_none_or(|c| c.is_whitespace() || c == '=')
+        {
+            let body = t.trim_end();
+            return Some(start..start + body.len());
+        }
+    }
+    None
 }
 
 // ---------------------------------------------------------------------
@@ -528,15 +572,50 @@ pub fn increment(angles: &[f64], prefer: Option<u64>) -> Option<u64> {
     (1..=3600).find(|&n| fits(n))
 }
 
+/// The first of `angles` (with the symbol that turns by it) that is not a
+/// whole multiple of one angle together with those before it: where to
+/// point when [`increment`] finds none.
+pub fn odd_angle(angles: &[(SymbolId, f64)]) -> Option<SymbolId> {
+    let mut seen = Vec::new();
+    for &(s, a) in angles {
+        seen.push(a);
+        if increment(&seen, None).is_none() {
+            return Some(s);
+        }
+    }
+    None
+}
+
 /// Whole multiples of 2π/n making up `a`, between −n/2 and n/2.
 pub fn multiples(a: f64, n: u64) -> i64 {
-    let n = n as i64;
-    let mut k = (a * n as f64 / std::f64::consts::TAU).round() as i64;
-    k = k.rem_euclid(n);
-    if k * 2 > n {
+    let n = n as f64;
+    let mut k = (a * n / std::f64::consts::TAU).round().rem_euclid(n);
+    if k * 2.0 > n {
         k -= n;
     }
-    k
+    k as i64
+}
+
+/// The most times one turn symbol is repeated to make an angle.
+pub const MAX_REPEAT: u64 = 3600;
+
+/// `c` written `|k|` times for the turn of symbol `s`; a problem (and
+/// nothing written) beyond [`MAX_REPEAT`].
+pub fn repeated(e: &mut Emitter<'_>, s: SymbolId, c: char, k: i64) -> String {
+    let n = k.unsigned_abs();
+    if n > MAX_REPEAT {
+        e.problem(
+            Kind::Angle,
+            e.symbol_span(s),
+            format!(
+                "the turn of `{}` would be {n} turn symbols (the angle increment is too small)",
+                e.name(s)
+            ),
+            "the turn is dropped",
+        );
+        return String::new();
+    }
+    std::iter::repeat_n(c, n as usize).collect()
 }
 
 /// `x` as a short decimal that reads back as the same `f64`.
@@ -625,6 +704,8 @@ pub fn comments(notation: Notation, src: &str) -> Vec<(Span, String)> {
 
 /// A comment's lines, trimmed and with common decoration removed.
 pub fn comment_lines(text: &str) -> Vec<String> {
+    // A lone CR ends a line too (it would end a LinF or STL comment).
+    let text = text.replace("\r\n", "\n").replace('\r', "\n");
     let lines: Vec<String> = text
         .lines()
         .map(|l| l.trim_end().to_string())

@@ -23,8 +23,8 @@
 //! * A consider list (cpfg) becomes the ignore list of everything else.
 
 use super::{
-    attached, banner, file_comment, heaviest, increment, multiples, number, occurring, turns,
-    Attached, Emitter, Kind, Names, Turns,
+    attached, banner, file_comment, increment, multiples, number, occurring, turns, Attached,
+    Emitter, Kind, Names, Turns,
 };
 use crate::ir::{Axis, ContextFilter, Notation, SymbolId, TurtleOp};
 use std::collections::HashMap;
@@ -128,8 +128,12 @@ pub fn write(e: &mut Emitter<'_>) -> String {
 
     // The angle factor.
     let mut angles = Vec::new();
+    let mut by_symbol = Vec::new();
     for &s in occ.iter().filter(|&&s| plain(s)) {
         let Some(op) = sys.op(s) else { continue };
+        if let Some(Turns::Fixed(t) | Turns::Random(t)) = turns(sys, op) {
+            by_symbol.extend(t.iter().map(|x| (s, x.1.abs())));
+        }
         match turns(sys, op) {
             Some(Turns::Fixed(t)) => angles.extend(t.iter().map(|x| x.1.abs())),
             Some(Turns::Random(t)) => {
@@ -155,7 +159,8 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         }
     }
     let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
-        .then(|| (360.0 / sys.settings.angle).round() as u64);
+        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
+        .map(|n| n.min(i64::MAX as u64));
     let n = match increment(&angles, prefer) {
         Some(n) => n,
         None => {
@@ -163,12 +168,15 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 .iter()
                 .map(|a| format!("{:.6}", a.to_degrees()))
                 .collect();
+            let odd = super::odd_angle(&by_symbol);
             e.problem(
                 Kind::Angle,
-                None,
+                odd.and_then(|s| e.symbol_span(s)),
                 format!(
-                    "the angles ({} degrees) are not whole multiples of one angle 360/n",
-                    list.join(", ")
+                    "the angles ({} degrees) are not whole multiples of one angle 360/n{}",
+                    list.join(", "),
+                    odd.map(|s| format!(": `{}` turns by none", e.name(s)))
+                        .unwrap_or_default()
                 ),
                 "every angle is rounded to a whole degree (angle factor 360)",
             );
@@ -254,7 +262,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                         out.push('|');
                     } else {
                         let c = if k > 0 { pos } else { neg };
-                        out.extend(std::iter::repeat_n(c, k.unsigned_abs() as usize));
+                        out.push_str(&super::repeated(e, s, c, k));
                     }
                 }
                 out
@@ -432,12 +440,16 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             lines.push(comment_block(c));
         }
         let weighted = p.alternatives.len() > 1;
-        let _ = heaviest;
+        // Weights are relative: written as shares of the largest, and
+        // equal when the source's do not make sense as numbers.
+        let max = p.alternatives.iter().map(|a| a.weight).fold(0.0, f64::max);
         let mut first = String::new();
         for a in &p.alternatives {
             let mut line = format!("{head} {}", star(full(&a.successor.0)));
             if weighted {
-                let _ = write!(line, " : {}", number(a.weight));
+                let w = a.weight / max;
+                let w = if w.is_finite() && w > 0.0 { w } else { 1.0 };
+                let _ = write!(line, " : {}", number(w));
             }
             if let Some(Attached::After(c)) = &comment {
                 if first.is_empty() {

@@ -183,6 +183,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
 
     // The turning angle.
     let mut angles = Vec::new();
+    let mut by_symbol = Vec::new();
     for &s in occ.iter().filter(|&&s| plain(s)) {
         let Some(op) = sys.op(s) else { continue };
         let t = match turns(sys, op) {
@@ -204,6 +205,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         for (axis, a) in t {
             if axis == Axis::Up {
                 angles.push(a.abs());
+                by_symbol.push((s, a.abs()));
             } else {
                 e.problem(
                     Kind::ThreeD,
@@ -215,14 +217,20 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         }
     }
     let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
-        .then(|| (360.0 / sys.settings.angle).round() as u64);
+        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
+        .map(|n| n.min(i64::MAX as u64));
     let n = match increment(&angles, prefer) {
         Some(n) => n,
         None => {
+            let odd = super::odd_angle(&by_symbol);
             e.problem(
                 Kind::Angle,
-                None,
-                "the angles are not whole multiples of one angle: STL turns by one ANGLE",
+                odd.and_then(|s| e.symbol_span(s)),
+                format!(
+                    "the angles are not whole multiples of one angle: STL turns by one ANGLE{}",
+                    odd.map(|s| format!(", and `{}` turns by none", e.name(s)))
+                        .unwrap_or_default()
+                ),
                 "every angle is rounded to a whole degree (ANGLE 1)",
             );
             360
@@ -265,7 +273,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                     }
                     let k = multiples(a, n);
                     let c = if k > 0 { 'R' } else { 'L' };
-                    out.extend(std::iter::repeat_n(c, k.unsigned_abs() as usize));
+                    out.push_str(&super::repeated(e, s, c, k));
                 }
                 out
             }

@@ -857,6 +857,11 @@ fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
             ),
         );
     }
+    // The first place each symbol is written (for diagnostics elsewhere,
+    // e.g. translation).
+    for (id, span) in out.word.iter().zip(&out.spans) {
+        cx.spans.symbols.entry(*id).or_insert_with(|| span.clone());
+    }
     (out.word, out.spans)
 }
 

@@ -130,14 +130,15 @@ occurs.";
 
     TR_STOCHASTIC_APPROX = "W0602", "stochastic choice made deterministic",
 "`--lossy` replaced a random choice between successors by its most likely
-successor (see E0602).";
+successor (see E0602); of equal weights, the first.";
 
     TR_GUARD_APPROX = "W0603", "per-occurrence probability dropped",
-"`--lossy` replaced `p?s` by `s`, always expanded (see E0603).";
+"`--lossy` replaced `p?s` by `s`, always expanded (see E0603): a LinF
+`i = [.5?j]` becomes `i = [j]`, so every branch grows.";
 
     TR_INTERVAL_APPROX = "W0604", "interval angle fixed",
 "`--lossy` replaced an interval angle `[lo hi]` by its middle (see
-E0604).";
+E0604): `(0, [0 2*pi])` turns by pi every time.";
 
     TR_3D_APPROX = "W0605", "3D rotation dropped",
 "`--lossy` dropped a rotation out of the plane (see E0605); the drawing
@@ -158,15 +159,17 @@ E0608): the segments are the same, their colours or widths differ.";
 
     TR_SWAP_APPROX = "W0609", "swapping turns dropped",
 "`--lossy` dropped LinF's `!` (see E0609): turns after it are not
-exchanged.";
+exchanged, so a mirrored branch is drawn unmirrored.";
 
     TR_LAYOUT_APPROX = "W0610", "layout dropped",
 "`--lossy` dropped an STL layout's shapes (see E0610); the grown tree is
 translated exactly.";
 
     TR_RULE_APPROX = "W0611", "production dropped",
-"`--lossy` dropped a production the target cannot express (see E0611).";
+"`--lossy` dropped a production the target cannot express (see E0611):
+the symbols it rewrote are copied unchanged.";
 
     TR_MOVE_APPROX = "W0612", "move drawn",
-"`--lossy` drew a move without a line as a stem (see E0612).";
+"`--lossy` drew a move without a line as a stem (see E0612): the
+positions are the same, the gaps are filled.";
 }
