@@ -586,6 +586,38 @@ pub fn odd_angle(angles: &[(SymbolId, f64)]) -> Option<SymbolId> {
     None
 }
 
+/// The angle factor n (turns by multiples of 360/n degrees) for the
+/// turns `by_symbol` (each symbol with an angle it turns by): the source's
+/// own factor when it is pfg and fits, else the smallest that fits; when
+/// none does, a problem at the first angle that breaks it, and 360.
+pub fn angle_factor(e: &mut Emitter<'_>, by_symbol: &[(SymbolId, f64)], target: &str) -> u64 {
+    let sys = e.sys;
+    let angles: Vec<f64> = by_symbol.iter().map(|x| x.1).collect();
+    let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
+        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
+        .map(|n| n.min(i64::MAX as u64));
+    if let Some(n) = increment(&angles, prefer) {
+        return n;
+    }
+    let list: Vec<String> = angles
+        .iter()
+        .map(|a| format!("{:.6}", a.to_degrees()))
+        .collect();
+    let odd = odd_angle(by_symbol);
+    e.problem(
+        Kind::Angle,
+        odd.and_then(|s| e.symbol_span(s)),
+        format!(
+            "the angles ({} degrees) are not whole multiples of one angle, as {target} needs{}",
+            list.join(", "),
+            odd.map(|s| format!(": `{}` breaks it", e.name(s)))
+                .unwrap_or_default()
+        ),
+        "every angle is rounded to a whole degree",
+    );
+    360
+}
+
 /// Whole multiples of 2π/n making up `a`, between −n/2 and n/2.
 pub fn multiples(a: f64, n: u64) -> i64 {
     let n = n as f64;

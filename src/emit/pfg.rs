@@ -23,8 +23,8 @@
 //! * A consider list (cpfg) becomes the ignore list of everything else.
 
 use super::{
-    attached, banner, file_comment, increment, multiples, number, occurring, turns, Attached,
-    Emitter, Kind, Names, Turns,
+    attached, banner, file_comment, multiples, number, occurring, turns, Attached, Emitter, Kind,
+    Names, Turns,
 };
 use crate::ir::{Axis, ContextFilter, Notation, SymbolId, TurtleOp};
 use std::collections::HashMap;
@@ -127,7 +127,6 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     let pair_move = moves.len() > 1;
 
     // The angle factor.
-    let mut angles = Vec::new();
     let mut by_symbol = Vec::new();
     for &s in occ.iter().filter(|&&s| plain(s)) {
         let Some(op) = sys.op(s) else { continue };
@@ -135,7 +134,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             by_symbol.extend(t.iter().map(|x| (s, x.1.abs())));
         }
         match turns(sys, op) {
-            Some(Turns::Fixed(t)) => angles.extend(t.iter().map(|x| x.1.abs())),
+            Some(Turns::Fixed(_)) => {}
             Some(Turns::Random(t)) => {
                 let mid: Vec<String> = t
                     .iter()
@@ -153,36 +152,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                         mid.join(", ")
                     ),
                 );
-                angles.extend(t.iter().map(|x| x.1.abs()));
             }
             None => {}
         }
     }
-    let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
-        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
-        .map(|n| n.min(i64::MAX as u64));
-    let n = match increment(&angles, prefer) {
-        Some(n) => n,
-        None => {
-            let list: Vec<String> = angles
-                .iter()
-                .map(|a| format!("{:.6}", a.to_degrees()))
-                .collect();
-            let odd = super::odd_angle(&by_symbol);
-            e.problem(
-                Kind::Angle,
-                odd.and_then(|s| e.symbol_span(s)),
-                format!(
-                    "the angles ({} degrees) are not whole multiples of one angle 360/n{}",
-                    list.join(", "),
-                    odd.map(|s| format!(": `{}` turns by none", e.name(s)))
-                        .unwrap_or_default()
-                ),
-                "every angle is rounded to a whole degree (angle factor 360)",
-            );
-            360
-        }
-    };
+    let n = super::angle_factor(e, &by_symbol, "pfg");
     e.exact(
         "the turning angles",
         None,

@@ -171,7 +171,7 @@ const MAX_COMPONENTS: u64 = crate::stl::lower::MAX_EXPANSION as u64;
 /// stems only: moves without drawing, 3D turns, colours, widths and
 /// length factors are problems, as are contexts and random choices.
 pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
-    use super::{heaviest, increment, multiples, number, occurring, single_symbol_rules, turns};
+    use super::{heaviest, multiples, number, occurring, single_symbol_rules, turns};
     use super::{Kind, Turns};
     use crate::ir::{Axis, Notation, TurtleOp};
     use std::collections::HashMap;
@@ -182,7 +182,6 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     let plain = |s: SymbolId| sys.symbols.info(s).guard.is_none();
 
     // The turning angle.
-    let mut angles = Vec::new();
     let mut by_symbol = Vec::new();
     for &s in occ.iter().filter(|&&s| plain(s)) {
         let Some(op) = sys.op(s) else { continue };
@@ -204,7 +203,6 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         };
         for (axis, a) in t {
             if axis == Axis::Up {
-                angles.push(a.abs());
                 by_symbol.push((s, a.abs()));
             } else {
                 e.problem(
@@ -216,26 +214,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
             }
         }
     }
-    let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
-        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
-        .map(|n| n.min(i64::MAX as u64));
-    let n = match increment(&angles, prefer) {
-        Some(n) => n,
-        None => {
-            let odd = super::odd_angle(&by_symbol);
-            e.problem(
-                Kind::Angle,
-                odd.and_then(|s| e.symbol_span(s)),
-                format!(
-                    "the angles are not whole multiples of one angle: STL turns by one ANGLE{}",
-                    odd.map(|s| format!(", and `{}` turns by none", e.name(s)))
-                        .unwrap_or_default()
-                ),
-                "every angle is rounded to a whole degree (ANGLE 1)",
-            );
-            360
-        }
-    };
+    let n = super::angle_factor(e, &by_symbol, "STL");
 
     // Components of each symbol.
     let distinct_colours = {
