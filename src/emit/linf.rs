@@ -20,7 +20,7 @@ use super::{
     attached, banner, file_comment, heaviest, number, occurring, single_symbol_rules, Attached,
     Emitter, Kind, Names,
 };
-use crate::ir::{Angle, Axis, Notation, Rgb, SymbolId, TurtleOp};
+use crate::ir::{Angle, Axis, Rgb, SymbolId, TurtleOp};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
@@ -452,7 +452,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     }
 
     let mut out = String::new();
-    out.push_str(&format!("# {}\n", banner(e, Notation::Linf)));
+    out.push_str(&format!("# {}\n", banner(e)));
     if let Some(c) = file_comment(e.source_notation, e.source) {
         out.push_str("#\n");
         for l in c {

@@ -875,8 +875,7 @@ pub fn notation_name(n: Notation) -> &'static str {
 }
 
 /// The first line every translation starts with.
-pub fn banner(e: &Emitter<'_>, target: Notation) -> String {
-    let _ = target;
+pub fn banner(e: &Emitter<'_>) -> String {
     format!(
         "Translated by graftal from {}",
         match e.source_notation {

@@ -26,7 +26,7 @@ use super::{
     attached, banner, file_comment, multiples, number, occurring, turns, Attached, Emitter, Kind,
     Names, Turns,
 };
-use crate::ir::{Axis, ContextFilter, Notation, SymbolId, TurtleOp};
+use crate::ir::{Axis, ContextFilter, SymbolId, TurtleOp};
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -513,7 +513,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     }
 
     let mut out = String::new();
-    let mut head = vec![banner(e, Notation::Pfg)];
+    let mut head = vec![banner(e)];
     if let Some(c) = file_comment(e.source_notation, e.source) {
         head.push(String::new());
         head.extend(c);

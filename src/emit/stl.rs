@@ -173,7 +173,7 @@ const MAX_COMPONENTS: u64 = crate::stl::lower::MAX_EXPANSION as u64;
 pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     use super::{heaviest, multiples, number, occurring, single_symbol_rules, turns};
     use super::{Kind, Turns};
-    use crate::ir::{Axis, Notation, TurtleOp};
+    use crate::ir::{Axis, TurtleOp};
     use std::collections::HashMap;
 
     let sys = e.sys;
@@ -516,7 +516,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     }
 
     let mut out = String::new();
-    out.push_str(&format!("# {}\n", super::banner(e, Notation::Stl)));
+    out.push_str(&format!("# {}\n", super::banner(e)));
     if let Some(c) = super::file_comment(e.source_notation, e.source) {
         out.push_str("#\n");
         for l in c {
