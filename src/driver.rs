@@ -4,6 +4,7 @@
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
+use crate::ir::parametric::ModuleWord;
 use crate::ir::{Notation, SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
@@ -79,7 +80,12 @@ pub fn compile(file: SourceFile) -> Compiled {
         };
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
+    let cpfg_dialect = ext == "l" && crate::cpfg::looks_like_cpfg(&file.text);
     let (system, spans) = match ext.as_str() {
+        _ if cpfg_dialect => {
+            let lowered = crate::cpfg::read_file(&file, &mut diags);
+            (Some(lowered.system), lowered.spans)
+        }
         "linf" => {
             let lowered = linf::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
@@ -205,6 +211,141 @@ pub fn interpret(
     ))
 }
 
+/// A derived word: plain symbols, or modules with parameters (cpfg).
+#[derive(Clone, Debug)]
+pub enum Derived {
+    Plain(Word),
+    Modules(ModuleWord),
+}
+
+impl Derived {
+    /// Symbols or modules in the word.
+    pub fn len(&self) -> usize {
+        match self {
+            Derived::Plain(w) => w.len(),
+            Derived::Modules(m) => m.len(),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The word as text in its notation (modules as `A(1,2.5)`).
+    pub fn text(&self, sys: &System) -> String {
+        match self {
+            Derived::Plain(w) => word_text(sys, w),
+            Derived::Modules(m) => modules_text(sys, m),
+        }
+    }
+}
+
+/// A parametric word as cpfg writes it: `F(1.5)A(2,3)[+B]`.
+pub fn modules_text(sys: &System, word: &ModuleWord) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::with_capacity(word.len() * 3);
+    for i in 0..word.len() {
+        out.push_str(sys.symbols.name(word.symbols[i]));
+        let args = word.args(i);
+        if !args.is_empty() {
+            out.push('(');
+            for (k, a) in args.iter().enumerate() {
+                if k > 0 {
+                    out.push(',');
+                }
+                let _ = write!(out, "{a}");
+            }
+            out.push(')');
+        }
+    }
+    out
+}
+
+/// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
+/// finds there, drawing the word through the homomorphism.
+fn answer_queries(sys: &System, word: &mut ModuleWord, opts: &RunOptions) {
+    let dopts = opts.derive_options(sys);
+    let Ok((drawn, origins)) = crate::eval::parametric::homomorphism(sys, word, &dopts) else {
+        return;
+    };
+    let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
+    turtle::interpret_modules(
+        sys,
+        &drawn,
+        opts.seed,
+        turtle::TurtleOptions::default(),
+        &mut |i, _, v| answers.push((i, v)),
+    );
+    for (i, v) in answers {
+        // Only a query module the homomorphism kept writes back.
+        let Some(&o) = origins.get(i) else { continue };
+        let o = o as usize;
+        if word.symbols.get(o) != drawn.symbols.get(i) {
+            continue;
+        }
+        let (a, b) = (word.starts[o] as usize, word.starts[o + 1] as usize);
+        for (slot, x) in word.params[a..b].iter_mut().zip(v) {
+            *slot = x;
+        }
+    }
+}
+
+/// Derives any system, reporting progress after each step.
+pub fn derive_any(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<Derived, Diagnostic> {
+    if sys.parametric.is_some() {
+        let dopts = opts.derive_options(sys);
+        let w = crate::eval::parametric::derive(sys, &dopts, progress, &mut |w| {
+            answer_queries(sys, w, opts)
+        })?;
+        Ok(Derived::Modules(w))
+    } else {
+        derive_with_progress(sys, opts, progress).map(Derived::Plain)
+    }
+}
+
+/// Interprets any derived word (a parametric one through its
+/// homomorphism), with the same limits as [`interpret`].
+pub fn interpret_any(
+    sys: &System,
+    word: &Derived,
+    opts: &RunOptions,
+    paths: bool,
+) -> Result<Geometry, Diagnostic> {
+    match word {
+        Derived::Plain(w) => interpret(sys, w, opts, paths),
+        Derived::Modules(m) => {
+            let (drawn, _) =
+                crate::eval::parametric::homomorphism(sys, m, &opts.derive_options(sys))?;
+            let moves = drawn
+                .symbols
+                .iter()
+                .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
+                .count();
+            if moves > opts.max_moves {
+                return Err(Diagnostic::global(
+                    codes::TOO_MUCH_GEOMETRY,
+                    format!(
+                        "the word moves the turtle {moves} times, more than can be drawn ({})",
+                        opts.max_moves
+                    ),
+                )
+                .with_help("draw fewer steps with `-n`; `derive` has no such limit"));
+            }
+            Ok(turtle::interpret_modules(
+                sys,
+                &drawn,
+                opts.seed,
+                turtle::TurtleOptions { paths },
+                &mut |_, _, _| {},
+            ))
+        }
+    }
+}
+
 /// Derives and interprets: the geometry of the system.
 pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
     let word = derive(sys, opts)?;
@@ -233,7 +374,7 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
 }
 
 /// The warning for a picture with nothing in it.
-pub fn nothing_drawn(word: &Word) -> Diagnostic {
+pub fn nothing_drawn(word: &Derived) -> Diagnostic {
     Diagnostic::global(
         codes::NOTHING_DRAWN,
         "nothing is drawn: the picture is empty",
@@ -305,14 +446,17 @@ pub struct StageTimes {
 /// Derives and interprets without drawing, and measures.
 pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let t0 = Instant::now();
-    let word = derive(sys, opts)?;
+    let word = derive_any(sys, opts, |_, _| {})?;
     let t1 = Instant::now();
-    let g = interpret(sys, &word, opts, false)?;
+    let g = interpret_any(sys, &word, opts, false)?;
     let t2 = Instant::now();
     let secs = |d: Duration| d.as_secs_f64();
     Ok(Stats {
         steps: opts.derive_options(sys).steps,
-        symbols: written_symbols(sys, &word),
+        symbols: match &word {
+            Derived::Plain(w) => written_symbols(sys, w),
+            Derived::Modules(m) => m.len(),
+        },
         segments: g.segments.len(),
         polygons: g.polygons.len(),
         bbox: g.bbox().unwrap_or([0.0; 6]),

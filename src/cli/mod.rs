@@ -203,7 +203,7 @@ where
         }
         Command::Derive(a) => with_system(io, &a, |io, _c, sys, opts, _| {
             let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-            let text = driver::word_text(sys, &word);
+            let text = word.text(sys);
             let _ = writeln!(io.stdout, "{text}");
             Ok(0)
         }),
@@ -246,7 +246,7 @@ where
             };
             with_system(io, &args, |io, c, sys, opts, _| {
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let mut g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
+                let mut g = driver::interpret_any(sys, &word, opts, spline).map_err(|d| vec![d])?;
                 if !no_layout {
                     driver::add_layout(sys, &mut g);
                 }
@@ -445,11 +445,11 @@ fn derive_reporting(
     io: &Io<'_>,
     sys: &crate::ir::System,
     opts: &RunOptions,
-) -> Result<crate::ir::Word, Diagnostic> {
+) -> Result<driver::Derived, Diagnostic> {
     let steps = opts.derive_options(sys).steps;
     let show = io.terminal && std::env::var_os("CI").is_none() && steps > 0;
     if !show {
-        return driver::derive(sys, opts);
+        return driver::derive_any(sys, opts, |_, _| {});
     }
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
@@ -457,7 +457,7 @@ fn derive_reporting(
             .expect("valid template"),
     );
     bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    let r = driver::derive_with_progress(sys, opts, |step, len| {
+    let r = driver::derive_any(sys, opts, |step, len| {
         bar.set_position(step);
         bar.set_message(format!("{len} symbols"));
     });

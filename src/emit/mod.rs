@@ -316,6 +316,22 @@ impl<'a> Emitter<'a> {
 
 /// Translates `sys` (read from `source`, with `spans`) to `req.target`.
 pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -> Translation {
+    if sys.parametric.is_some() {
+        let mut diagnostics = crate::diagnostics::Diagnostics::default();
+        diagnostics.push(
+            crate::diagnostics::Diagnostic::global(
+                crate::diagnostics::codes::CPFG_UNSUPPORTED,
+                "parametric cpfg L-systems cannot be translated yet",
+            )
+            .with_help("graftal translates pfg, LinF and STL systems, and Fractint entries"),
+        );
+        return Translation {
+            text: None,
+            mapping: Vec::new(),
+            names: Vec::new(),
+            diagnostics,
+        };
+    }
     match (sys.notation, req.target) {
         (Notation::Stl, Notation::Stl) => {
             let mut e = Emitter::new(sys, spans, source, req);
@@ -364,7 +380,8 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
         (_, target) => {
             let mut e = Emitter::new(sys, spans, source, req);
             let text = match target {
-                Notation::Pfg => pfg::write(&mut e),
+                // Nothing asks for a cpfg target; pfg is its closest form.
+                Notation::Pfg | Notation::Cpfg => pfg::write(&mut e),
                 Notation::Linf => linf::write(&mut e),
                 Notation::Stl => stl::from_productions(&mut e),
             };
@@ -717,7 +734,7 @@ pub fn comments(notation: Notation, src: &str) -> Vec<(Span, String)> {
                 i = end;
             }
         }
-        Notation::Linf | Notation::Stl => {
+        Notation::Linf | Notation::Stl | Notation::Cpfg => {
             let mut offset = 0;
             for line in src.split_inclusive('\n') {
                 if let Some(k) = line.find('#') {
@@ -871,6 +888,7 @@ pub fn notation_name(n: Notation) -> &'static str {
         Notation::Pfg => "pfg",
         Notation::Linf => "linf",
         Notation::Stl => "stl",
+        Notation::Cpfg => "cpfg",
     }
 }
 
@@ -882,6 +900,7 @@ pub fn banner(e: &Emitter<'_>) -> String {
             Notation::Pfg => "pfg",
             Notation::Linf => "LinF",
             Notation::Stl => "STL",
+            Notation::Cpfg => "cpfg",
         }
     )
 }

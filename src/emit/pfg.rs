@@ -319,6 +319,22 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 );
                 String::new()
             }
+            // cpfg's own turtle commands: parametric systems are refused
+            // before any emitter runs (see `translate`).
+            TurtleOp::ColourIndex { .. }
+            | TurtleOp::LineWidth { .. }
+            | TurtleOp::PolygonVertex
+            | TurtleOp::Sphere
+            | TurtleOp::ScreenDisc
+            | TurtleOp::Circle
+            | TurtleOp::MoveTo
+            | TurtleOp::SetHeading
+            | TurtleOp::RollToVertical
+            | TurtleOp::Surface(_)
+            | TurtleOp::CylinderStart
+            | TurtleOp::CylinderPoint { .. }
+            | TurtleOp::CylinderTangents
+            | TurtleOp::Query(_) => continue,
         };
         if text != name {
             e.rename(&name, &text);

@@ -310,6 +310,9 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                 String::new()
             }
             Some(TurtleOp::Stem { .. }) => String::new(),
+            // cpfg's own turtle commands: parametric systems are refused
+            // before any emitter runs (see `translate`).
+            Some(_) => String::new(),
         };
         comps.insert(s, text);
     }

@@ -12,6 +12,7 @@
 //! symbols in all stops with [`codes::TOO_MUCH_WORK`], so no input can exhaust
 //! memory or run without end.
 
+pub mod parametric;
 mod rng;
 
 pub use rng::Rng;

@@ -101,6 +101,8 @@
 //! which sets the turtle's line width and step length for what follows in
 //! the branch (push/pop restore them like the rest of the state).
 
+pub mod parametric;
+
 use serde::Serialize;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -326,6 +328,50 @@ pub enum TurtleOp {
     /// STL stem level: set the line width and the step length (absolute,
     /// turtle units) for what follows.
     Stem { width: f64, length: f64 },
+    /// cpfg `;` (`up`) and `,`: step the colour index by the view file's
+    /// colour increment, or set it to the module's parameter.
+    ColourIndex { up: bool },
+    /// cpfg `#` (`up`) and `!`: step the line width by the view file's
+    /// width increment, or set it to the module's parameter.
+    LineWidth { up: bool },
+    /// cpfg `.`: a polygon vertex at the turtle's position (with a
+    /// parameter, a generalized-cylinder control point, as `@Gc`).
+    PolygonVertex,
+    /// cpfg `@O(d)`: a sphere of diameter `d` (default: the line width),
+    /// drawn as a filled disc facing the viewer.
+    Sphere,
+    /// cpfg `@o(d)`: a filled circle facing the viewer (in the screen plane).
+    ScreenDisc,
+    /// cpfg `@c(d)`: a filled circle in the turtle's HL plane.
+    Circle,
+    /// cpfg `@M(x,y,z)`: move the turtle to a point without drawing.
+    MoveTo,
+    /// cpfg `@R(hx,hy,hz[,ux,uy,uz])`: set the heading (and up vector).
+    SetHeading,
+    /// cpfg `@v`: roll about H so that U is as close to +y as it can be.
+    RollToVertical,
+    /// cpfg `~id`: draw surface `id` (an index into the system's surfaces)
+    /// at the turtle, scaled by the module's parameters.
+    Surface(u16),
+    /// cpfg `@Gs`: start a generalized cylinder at the turtle's position.
+    CylinderStart,
+    /// cpfg `@Gc(n)` / `@Ge(n)`: a control point of the cylinder's axis;
+    /// `end` finishes the cylinder.
+    CylinderPoint { end: bool },
+    /// cpfg `@Gt(a,b)`: the tangent factors of the next Hermite segment.
+    CylinderTangents,
+    /// cpfg `?P`, `?H`, `?L`, `?U`: the turtle writes its position or frame
+    /// vector into the module's parameters (see [`crate::eval::parametric`]).
+    Query(QueryKind),
+}
+
+/// What a cpfg query module reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum QueryKind {
+    Position,
+    Heading,
+    Left,
+    Up,
 }
 
 /// A successor with its weight.
@@ -400,6 +446,16 @@ pub struct Settings {
     /// The view the file asks for, `(azimuth, elevation)` in degrees (a
     /// LinF `#: view` directive, a cpfg view file); `--view` overrides it.
     pub view: Option<(f64, f64)>,
+    /// The initial colour index (cpfg `initial color`; 0 elsewhere).
+    pub colour: usize,
+    /// What cpfg's `;` and `,` add to the colour index (`color increment`).
+    pub colour_step: f64,
+    /// What cpfg's `#` and `!` add to the line width (`line width
+    /// increment`).
+    pub width_step: f64,
+    /// Whether line widths are in turtle units (cpfg `line style: polygon`
+    /// or `cylinder`) rather than pixels.
+    pub world_widths: bool,
 }
 
 impl Default for Settings {
@@ -412,6 +468,10 @@ impl Default for Settings {
             width: 1.0,
             width_factor: 0.8,
             view: None,
+            colour: 0,
+            colour_step: 1.0,
+            width_step: 1.0,
+            world_widths: false,
         }
     }
 }
@@ -423,6 +483,8 @@ pub enum Notation {
     Pfg,
     Linf,
     Stl,
+    /// The cpfg dialect of `.l` (parametric; see [`parametric`]).
+    Cpfg,
 }
 
 /// STL structural syntax, kept as structure (see the module docs).
@@ -548,6 +610,21 @@ pub struct System {
     pub rotations: Vec<Rotation>,
     pub colours: Vec<Rgb>,
     pub structure: Option<Structure>,
+    /// A cpfg system's parametric productions, blocks and axiom. When set,
+    /// `axiom` and `productions` are unused and derivation follows
+    /// [`parametric`].
+    pub parametric: Option<Box<parametric::Parametric>>,
+    /// Surfaces drawn by [`TurtleOp::Surface`]: triangles in the surface's
+    /// own frame (x along the turtle's L, y along H, z along U), with the
+    /// contact point at the origin.
+    pub surfaces: Vec<SurfaceMesh>,
+}
+
+/// A surface the turtle can place (a cpfg `~id`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SurfaceMesh {
+    pub name: String,
+    pub triangles: Vec<[[f64; 3]; 3]>,
 }
 
 impl System {
@@ -565,6 +642,8 @@ impl System {
             rotations: Vec::new(),
             colours: Vec::new(),
             structure: None,
+            parametric: None,
+            surfaces: Vec::new(),
         };
         sys.set_interpretation(SymbolId::OPEN, TurtleOp::Push);
         sys.set_interpretation(SymbolId::CLOSE, TurtleOp::Pop);

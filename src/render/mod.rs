@@ -189,12 +189,29 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         .iter()
         .map(|p| p.points.iter().map(|&q| project(q, view)).collect())
         .collect();
+    // Discs: centre and radius in picture units; a radius in pixels is
+    // scaled after fitting.
+    let discs: Vec<([f64; 2], f64)> = g
+        .discs
+        .iter()
+        .map(|d| (project(d.centre, view), d.diameter / 2.0))
+        .collect();
     let mut min = [f64::INFINITY; 2];
     let mut max = [f64::NEG_INFINITY; 2];
+    let disc_extent: Vec<[f64; 2]> = g
+        .discs
+        .iter()
+        .zip(&discs)
+        .flat_map(|(d, (c, r))| {
+            let r = if d.pixels { 0.0 } else { *r };
+            [[c[0] - r, c[1] - r], [c[0] + r, c[1] + r]]
+        })
+        .collect();
     for p in segs
         .iter()
         .flat_map(|(a, b)| [a, b])
         .chain(polys.iter().flatten())
+        .chain(disc_extent.iter())
     {
         for k in 0..2 {
             min[k] = min[k].min(p[k]);
@@ -226,7 +243,11 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
     let mut last_end: Option<[f64; 2]> = None;
     for (&(colour, seg_width), (a, b)) in seg_style.iter().zip(&segs) {
         let (pa, pb) = (to_px(*a), to_px(*b));
-        let width = base * seg_width;
+        let width = if g.world_widths {
+            (seg_width * s).max(0.5)
+        } else {
+            base * seg_width
+        };
         let same = runs
             .last()
             .is_some_and(|r| r.colour == colour && r.width == width);
@@ -245,12 +266,24 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         }
         last_end = Some(pb);
     }
-    let polygons = g
+    let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = g
         .polygons
         .iter()
         .zip(polys)
         .map(|(p, pts)| (p.colour, pts.into_iter().map(to_px).collect()))
         .collect();
+    for (d, (c, r)) in g.discs.iter().zip(discs) {
+        let r = if d.pixels { r * base } else { r * s };
+        let c = to_px(c);
+        let n = ((r * 2.0).ceil() as usize).clamp(8, 64);
+        let pts = (0..n)
+            .map(|k| {
+                let (sn, cs) = (k as f64 * std::f64::consts::TAU / n as f64).sin_cos();
+                [c[0] + r * cs, c[1] + r * sn]
+            })
+            .collect();
+        polygons.push((d.colour, pts));
+    }
     Picture {
         width: opts.width,
         height: opts.height,

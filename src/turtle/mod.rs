@@ -13,7 +13,8 @@
 //! meets for every even angle factor.
 
 use crate::eval::Rng;
-use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
+use crate::ir::parametric::ModuleWord;
+use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp};
 use serde::Serialize;
 
 pub type Vec3 = [f64; 3];
@@ -44,11 +45,26 @@ pub struct TurtlePath {
     pub colour: Rgb,
 }
 
+/// A filled disc facing the viewer (a cpfg sphere `@O` or circle `@o`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Disc {
+    pub centre: Vec3,
+    pub diameter: f64,
+    /// Whether `diameter` is in pixels (a line width) rather than turtle
+    /// units.
+    pub pixels: bool,
+    pub colour: Rgb,
+}
+
 /// What the turtle drew.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Geometry {
     pub segments: Vec<Segment>,
     pub polygons: Vec<Polygon>,
+    pub discs: Vec<Disc>,
+    /// Whether segment widths are in turtle units rather than pixels
+    /// ([`crate::ir::Settings::world_widths`]).
+    pub world_widths: bool,
     /// Turtle paths, when asked for ([`TurtleOptions::paths`]).
     pub paths: Vec<TurtlePath>,
     /// The deepest branch nesting reached.
@@ -70,7 +86,8 @@ impl Geometry {
             .segments
             .iter()
             .flat_map(|s| [s.a, s.b])
-            .chain(self.polygons.iter().flat_map(|p| p.points.iter().copied()));
+            .chain(self.polygons.iter().flat_map(|p| p.points.iter().copied()))
+            .chain(self.discs.iter().map(|d| d.centre));
         let mut b: Option<[f64; 6]> = None;
         for p in pts {
             let bb = b.get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
@@ -86,6 +103,7 @@ impl Geometry {
     pub fn is_empty(&self) -> bool {
         self.segments.is_empty()
             && self.polygons.is_empty()
+            && self.discs.is_empty()
             && self.paths.iter().all(|p| p.points.len() < 2)
     }
 }
@@ -121,6 +139,48 @@ struct State {
     /// the history), `NO_HISTORY` when empty.
     history: u32,
     swapped: bool,
+    /// A generalized cylinder being drawn: the last control point, the
+    /// heading there, and the tangent factors of the next segment.
+    cylinder: Option<Cylinder>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Cylinder {
+    point: Vec3,
+    heading: Vec3,
+    tangents: (f64, f64),
+}
+
+fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn add_scaled(a: Vec3, b: Vec3, k: f64) -> Vec3 {
+    [a[0] + b[0] * k, a[1] + b[1] * k, a[2] + b[2] * k]
+}
+
+/// Points of the cubic Hermite curve from `p0` (tangent `t0`) to `p1`
+/// (tangent `t1`), `n` pieces, without `p0`.
+fn hermite(p0: Vec3, t0: Vec3, p1: Vec3, t1: Vec3, n: usize) -> Vec<Vec3> {
+    (1..=n)
+        .map(|k| {
+            let t = k as f64 / n as f64;
+            let (t2, t3) = (t * t, t * t * t);
+            let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+            let h10 = t3 - 2.0 * t2 + t;
+            let h01 = -2.0 * t3 + 3.0 * t2;
+            let h11 = t3 - t2;
+            std::array::from_fn(|i| h00 * p0[i] + h10 * t0[i] + h01 * p1[i] + h11 * t1[i])
+        })
+        .collect()
 }
 
 fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
@@ -194,6 +254,31 @@ pub fn interpret_with(
     seed: u64,
     options: TurtleOptions,
 ) -> Geometry {
+    run(sys, word, None, seed, options, &mut |_, _, _| {})
+}
+
+/// Interprets a parametric word (cpfg): modules' parameters set lengths,
+/// angles, widths, colours and sizes. `query` receives, for each query
+/// module (`?P`, `?H`, `?L`, `?U`), its index in `word` and the vector it
+/// asks for.
+pub fn interpret_modules(
+    sys: &System,
+    word: &ModuleWord,
+    seed: u64,
+    options: TurtleOptions,
+    query: &mut dyn FnMut(usize, QueryKind, Vec3),
+) -> Geometry {
+    run(sys, &word.symbols, Some(word), seed, options, query)
+}
+
+fn run(
+    sys: &System,
+    word: &[SymbolId],
+    params: Option<&ModuleWord>,
+    seed: u64,
+    options: TurtleOptions,
+    query: &mut dyn FnMut(usize, QueryKind, Vec3),
+) -> Geometry {
     let palette: Vec<Rgb> = if sys.colours.is_empty() {
         DEFAULT_PALETTE.to_vec()
     } else {
@@ -216,9 +301,10 @@ pub fn interpret_with(
         u: [0.0, 0.0, 1.0],
         length: sys.settings.step,
         width: sys.settings.width,
-        colour: 0,
+        colour: sys.settings.colour.min(palette.len() - 1),
         history: NO_HISTORY,
         swapped: false,
+        cylinder: None,
     };
     let mut stack: Vec<State> = Vec::new();
     // Arena of the colour histories: (previous entry, colour).
@@ -242,10 +328,18 @@ pub fn interpret_with(
         usize::MAX
     };
     let mut rotations: u32 = 0;
-    for &sym in word {
+    let top = palette.len() - 1;
+    for (i, &sym) in word.iter().enumerate() {
         let Some(op) = ops.get(sym.index()).copied().flatten() else {
             continue;
         };
+        let args: &[f64] = match params {
+            Some(w) => w.args(i),
+            None => &[],
+        };
+        // A parameter that is not a number draws nothing odd: it is
+        // treated as absent.
+        let arg = |k: usize| args.get(k).copied().filter(|v| v.is_finite());
         if rotations >= RENORMALISE_EVERY {
             st.renormalise();
             rotations = 0;
@@ -253,10 +347,11 @@ pub fn interpret_with(
         match op {
             TurtleOp::Forward { draw } => {
                 let a = st.pos;
+                let length = arg(0).unwrap_or(st.length);
                 let b = [
-                    a[0] + st.h[0] * st.length,
-                    a[1] + st.h[1] * st.length,
-                    a[2] + st.h[2] * st.length,
+                    a[0] + st.h[0] * length,
+                    a[1] + st.h[1] * length,
+                    a[2] + st.h[2] * length,
                 ];
                 st.pos = b;
                 if options.paths {
@@ -274,7 +369,10 @@ pub fn interpret_with(
                 }
             }
             TurtleOp::Rotate { axis, angle } => {
-                let a = resolve(angle);
+                let a = match (arg(0), angle) {
+                    (Some(deg), Angle::Delta(k)) => k.signum() * deg.to_radians(),
+                    _ => resolve(angle),
+                };
                 st.turn(axis, a);
                 rotations += 1;
             }
@@ -308,7 +406,18 @@ pub fn interpret_with(
                     }
                 }
             }
+            // cpfg `{(n)`: a generalized cylinder, not a polygon.
+            TurtleOp::PolygonBegin if arg(0).is_some() => {
+                st.cylinder = Some(Cylinder {
+                    point: st.pos,
+                    heading: st.h,
+                    tangents: (1.2, 1.2),
+                });
+            }
             TurtleOp::PolygonBegin => polys.push((vec![st.pos], st.colour)),
+            TurtleOp::PolygonEnd if arg(0).is_some() => {
+                cylinder_point(&mut st, &mut g, &palette, 4, true);
+            }
             TurtleOp::PolygonEnd => {
                 if let Some((pts, colour)) = polys.pop() {
                     if pts.len() >= 3 {
@@ -342,10 +451,186 @@ pub fn interpret_with(
                 st.width = width;
                 st.length = length;
             }
+            TurtleOp::ColourIndex { up } => {
+                let c = match arg(0) {
+                    Some(v) => v,
+                    None if up => st.colour as f64 + sys.settings.colour_step,
+                    None => st.colour as f64 - sys.settings.colour_step,
+                };
+                st.colour = c.round().clamp(0.0, top as f64) as usize;
+            }
+            TurtleOp::LineWidth { up } => {
+                st.width = match arg(0) {
+                    Some(v) => v.max(0.0),
+                    None if up => st.width + sys.settings.width_step,
+                    None => (st.width - sys.settings.width_step).max(0.0),
+                };
+            }
+            TurtleOp::PolygonVertex => {
+                if let Some(n) = arg(0) {
+                    let pieces = n.clamp(1.0, 64.0) as usize;
+                    cylinder_point(&mut st, &mut g, &palette, pieces, false);
+                } else if let Some((pts, _)) = polys.last_mut() {
+                    pts.push(st.pos);
+                }
+            }
+            TurtleOp::Sphere | TurtleOp::ScreenDisc => {
+                let (diameter, pixels) = match arg(0) {
+                    Some(d) => (d.abs(), false),
+                    None => (st.width, !sys.settings.world_widths),
+                };
+                g.discs.push(Disc {
+                    centre: st.pos,
+                    diameter,
+                    pixels,
+                    colour: palette[st.colour.min(top)],
+                });
+            }
+            TurtleOp::Circle => {
+                let r = arg(0).unwrap_or(st.width).abs() / 2.0;
+                let points = (0..24)
+                    .map(|k| {
+                        let (s, c) = (k as f64 * std::f64::consts::TAU / 24.0).sin_cos();
+                        add_scaled(add_scaled(st.pos, st.h, r * c), st.l, r * s)
+                    })
+                    .collect();
+                g.polygons.push(Polygon {
+                    points,
+                    colour: palette[st.colour.min(top)],
+                });
+            }
+            TurtleOp::MoveTo => {
+                for k in 0..3 {
+                    if let Some(v) = arg(k) {
+                        st.pos[k] = v;
+                    }
+                }
+                if options.paths {
+                    g.paths[path].points.push(st.pos);
+                }
+            }
+            TurtleOp::SetHeading => {
+                let v: Vec3 = [arg(0), arg(1), arg(2)].map(|x| x.unwrap_or(0.0));
+                if dot(v, v) > 0.0 {
+                    let h = normalised(v);
+                    let u: Vec3 = [arg(3), arg(4), arg(5)].map(|x| x.unwrap_or(0.0));
+                    let l = if dot(u, u) > 0.0 && dot(cross(u, h), cross(u, h)) > 1e-18 {
+                        normalised(cross(normalised(u), h))
+                    } else {
+                        // Keep L as close as it can be: remove its part
+                        // along the new heading.
+                        let l = add_scaled(st.l, h, -dot(st.l, h));
+                        if dot(l, l) > 1e-18 {
+                            normalised(l)
+                        } else {
+                            normalised(cross(st.u, h))
+                        }
+                    };
+                    st.h = h;
+                    st.l = l;
+                    st.u = cross(h, l);
+                }
+            }
+            TurtleOp::RollToVertical => {
+                let v = [0.0, 1.0, 0.0];
+                let l = cross(v, st.h);
+                if dot(l, l) > 1e-18 {
+                    st.l = normalised(l);
+                    st.u = cross(st.h, st.l);
+                }
+            }
+            TurtleOp::Surface(k) => {
+                if let Some(mesh) = sys.surfaces.get(k as usize) {
+                    let scale: Vec3 = match (arg(0), arg(1), arg(2)) {
+                        (Some(x), Some(y), Some(z)) => [x, y, z],
+                        (Some(s), _, _) => [s, s, s],
+                        _ => [1.0, 1.0, 1.0],
+                    };
+                    for tri in &mesh.triangles {
+                        let points = tri
+                            .iter()
+                            .map(|p| {
+                                let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
+                                let q = add_scaled(q, st.h, p[1] * scale[1]);
+                                add_scaled(q, st.u, p[2] * scale[2])
+                            })
+                            .collect();
+                        g.polygons.push(Polygon {
+                            points,
+                            colour: palette[st.colour.min(top)],
+                        });
+                    }
+                }
+            }
+            TurtleOp::CylinderStart => {
+                st.cylinder = Some(Cylinder {
+                    point: st.pos,
+                    heading: st.h,
+                    tangents: (1.2, 1.2),
+                });
+            }
+            TurtleOp::CylinderPoint { end } => {
+                let pieces = arg(0).unwrap_or(1.0).clamp(1.0, 64.0) as usize;
+                cylinder_point(&mut st, &mut g, &palette, pieces, end);
+            }
+            TurtleOp::CylinderTangents => {
+                if let Some(c) = st.cylinder.as_mut() {
+                    c.tangents = (arg(0).unwrap_or(1.2), arg(1).unwrap_or(1.2));
+                }
+            }
+            TurtleOp::Query(kind) => {
+                let v = match kind {
+                    QueryKind::Position => st.pos,
+                    QueryKind::Heading => st.h,
+                    QueryKind::Left => st.l,
+                    QueryKind::Up => st.u,
+                };
+                query(i, kind, v);
+            }
         }
     }
     g.paths.retain(|p| p.points.len() >= 2);
+    g.world_widths = sys.settings.world_widths;
     g
+}
+
+/// A control point of the current generalized cylinder at the turtle:
+/// the axis from the previous control point is drawn as a Hermite curve
+/// of `pieces` segments (at least 4, so that curves look like curves).
+fn cylinder_point(st: &mut State, g: &mut Geometry, palette: &[Rgb], pieces: usize, end: bool) {
+    let Some(c) = st.cylinder else {
+        return;
+    };
+    let d = {
+        let v = [
+            st.pos[0] - c.point[0],
+            st.pos[1] - c.point[1],
+            st.pos[2] - c.point[2],
+        ];
+        dot(v, v).sqrt()
+    };
+    let t0 = c.heading.map(|x| x * d * c.tangents.0);
+    let t1 = st.h.map(|x| x * d * c.tangents.1);
+    let colour = palette[st.colour.min(palette.len() - 1)];
+    let mut a = c.point;
+    for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
+        g.segments.push(Segment {
+            a,
+            b,
+            width: st.width,
+            colour,
+        });
+        a = b;
+    }
+    st.cylinder = if end {
+        None
+    } else {
+        Some(Cylinder {
+            point: st.pos,
+            heading: st.h,
+            tangents: (1.2, 1.2),
+        })
+    };
 }
 
 #[cfg(test)]

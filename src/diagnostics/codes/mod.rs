@@ -5,7 +5,8 @@
 //! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
 //! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
-//! translation (`codes/translate.rs`);
+//! translation (`codes/translate.rs`), `E083x` the cpfg L-system language
+//! (`codes/cpfg_lsystem.rs`);
 //! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation.
 
 use super::Severity;
@@ -54,9 +55,11 @@ macro_rules! codes {
     };
 }
 
+mod cpfg_lsystem;
 mod linf;
 mod stl;
 mod translate;
+pub use cpfg_lsystem::*;
 pub use linf::*;
 pub use stl::*;
 pub use translate::*;
@@ -68,6 +71,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(linf::LINF)
         .chain(stl::STL)
         .chain(translate::TRANSLATE)
+        .chain(cpfg_lsystem::CPFG_LSYSTEM)
 }
 
 codes! { GENERAL;

@@ -1,0 +1,587 @@
+//! The cpfg lexer (logos, two modes), after cpfg's own `lsys_input.l`.
+//!
+//! cpfg reads a file in two modes. In *symbol* mode (module names, contexts,
+//! successors) every character other than `< > : *` and blanks is a module
+//! symbol of its own: `FA(1)` is `F` then `A(1)`. A `(` after a symbol, a
+//! `:`, and the keywords that take a value switch to *expression* mode, where
+//! names, numbers, strings and C operators are read; the `)` closing the
+//! parameter list, `-->` and the end of a line switch back.
+//!
+//! Lines: a line break ends an item (a production, a header line) unless the
+//! next line starts with a tab (cpfg's continuation rule) or it falls inside
+//! the braces of a statement block. The turtle commands written with a
+//! prefix (`@O`, `@Gs`, `?P`, `~l`) are joined into one symbol here.
+//!
+//! Keywords are recognised in both modes and in any letter case
+//! (`Lsystem:`, `axiom:`, `Endlsystem`).
+
+use crate::diagnostics::Diagnostics;
+use crate::ir::Span;
+use logos::Logos;
+use std::fmt;
+
+/// The keywords of a cpfg L-system file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Keyword {
+    Lsystem,
+    Seed,
+    DerivationLength,
+    MaximumDepth,
+    Consider,
+    Ignore,
+    Axiom,
+    Define,
+    Ring,
+    Start,
+    End,
+    StartEach,
+    EndEach,
+    Homomorphism,
+    Decomposition,
+    NoWarnings,
+    Warnings,
+    EndLsystem,
+}
+
+impl Keyword {
+    pub fn text(self) -> &'static str {
+        match self {
+            Keyword::Lsystem => "lsystem:",
+            Keyword::Seed => "seed:",
+            Keyword::DerivationLength => "derivation length:",
+            Keyword::MaximumDepth => "maximum depth:",
+            Keyword::Consider => "consider:",
+            Keyword::Ignore => "ignore:",
+            Keyword::Axiom => "axiom:",
+            Keyword::Define => "define:",
+            Keyword::Ring => "ring lsystem",
+            Keyword::Start => "start:",
+            Keyword::End => "end:",
+            Keyword::StartEach => "starteach:",
+            Keyword::EndEach => "endeach:",
+            Keyword::Homomorphism => "homomorphism",
+            Keyword::Decomposition => "decomposition",
+            Keyword::NoWarnings => "no warnings",
+            Keyword::Warnings => "warnings",
+            Keyword::EndLsystem => "endlsystem",
+        }
+    }
+
+    /// Whether expression mode follows the keyword.
+    fn takes_expression(self) -> bool {
+        matches!(
+            self,
+            Keyword::Seed
+                | Keyword::DerivationLength
+                | Keyword::MaximumDepth
+                | Keyword::Define
+                | Keyword::Start
+                | Keyword::End
+                | Keyword::StartEach
+                | Keyword::EndEach
+        )
+    }
+}
+
+/// The tokens the parser sees.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Token {
+    Keyword(Keyword),
+    /// The end of an item.
+    Eol,
+    /// A module symbol (one character, or a prefixed turtle command).
+    Symbol(String),
+    /// `*`: an empty successor, context or condition.
+    Null,
+    Arrow,
+    /// `-o>`, cpfg's object production (not supported).
+    ObjectArrow,
+    /// `<` in symbol mode: a left-context separator.
+    LSep,
+    /// `>` in symbol mode: a right-context separator.
+    RSep,
+    Colon,
+    LParen,
+    RParen,
+    LBrace,
+    RBrace,
+    LBracket,
+    RBracket,
+    Comma,
+    Semi,
+    Question,
+    Assign,
+    Amp,
+    Not,
+    Or,
+    And,
+    EqEq,
+    Ne,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    Percent,
+    Caret,
+    Name(String),
+    Number(f64),
+    Str(String),
+}
+
+impl fmt::Display for Token {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = match self {
+            Token::Keyword(k) => return write!(f, "`{}`", k.text()),
+            Token::Eol => "end of line",
+            Token::Symbol(s) => return write!(f, "module `{s}`"),
+            Token::Name(s) => return write!(f, "name `{s}`"),
+            Token::Number(v) => return write!(f, "number `{v}`"),
+            Token::Str(_) => "string",
+            Token::Null => "`*`",
+            Token::Arrow => "`-->`",
+            Token::ObjectArrow => "`-o>`",
+            Token::LSep | Token::Lt => "`<`",
+            Token::RSep | Token::Gt => "`>`",
+            Token::Colon => "`:`",
+            Token::LParen => "`(`",
+            Token::RParen => "`)`",
+            Token::LBrace => "`{`",
+            Token::RBrace => "`}`",
+            Token::LBracket => "`[`",
+            Token::RBracket => "`]`",
+            Token::Comma => "`,`",
+            Token::Semi => "`;`",
+            Token::Question => "`?`",
+            Token::Assign => "`=`",
+            Token::Amp => "`&`",
+            Token::Not => "`!`",
+            Token::Or => "`||`",
+            Token::And => "`&&`",
+            Token::EqEq => "`==`",
+            Token::Ne => "`!=`",
+            Token::Le => "`<=`",
+            Token::Ge => "`>=`",
+            Token::Plus => "`+`",
+            Token::Minus => "`-`",
+            Token::Star => "`*`",
+            Token::Slash => "`/`",
+            Token::Percent => "`%`",
+            Token::Caret => "`^`",
+        };
+        f.write_str(s)
+    }
+}
+
+/// A token enum for one mode: the tokens shared by both modes (blanks, line
+/// breaks, comments, keywords), then the mode's own.
+macro_rules! mode_tokens {
+    ($name:ident { $($own:tt)* }) => {
+        #[derive(Logos, Clone, Debug, PartialEq)]
+        enum $name {
+        #[regex(r"[ \t\r\f]+", logos::skip)]
+        #[regex(r"/\*([^*]|\*+[^*/])*\*+/", logos::skip)]
+        #[regex(r"//[^\n]*", logos::skip, allow_greedy = true)]
+        _Skip,
+        /// A comment with no end.
+        #[token("/*")]
+        OpenComment,
+        /// A line break followed by a tab: the item goes on.
+        #[regex(r"\n\t")]
+        Continuation,
+        #[token("\n")]
+        Newline,
+        #[regex(r"(?i)lsystem[ \t]*:", |_| Keyword::Lsystem)]
+        #[regex(r"(?i)seed[ \t]*:", |_| Keyword::Seed)]
+        #[regex(r"(?i)derivation ?length[ \t]*:", |_| Keyword::DerivationLength)]
+        #[regex(r"(?i)maximum depth[ \t]*:", |_| Keyword::MaximumDepth)]
+        #[regex(r"(?i)consider[ \t]*:", |_| Keyword::Consider)]
+        #[regex(r"(?i)ignore[ \t]*:", |_| Keyword::Ignore)]
+        #[regex(r"(?i)axiom[ \t]*:", |_| Keyword::Axiom)]
+        #[regex(r"(?i)define[ \t]*:", |_| Keyword::Define)]
+        #[regex(r"(?i)ring lsystem", |_| Keyword::Ring)]
+        #[regex(r"(?i)start[ \t]*:", |_| Keyword::Start)]
+        #[regex(r"(?i)end[ \t]*:", |_| Keyword::End)]
+        #[regex(r"(?i)start ?each[ \t]*:", |_| Keyword::StartEach)]
+        #[regex(r"(?i)end ?each[ \t]*:", |_| Keyword::EndEach)]
+        #[regex(r"(?i)homomorphism[ \t]*:?", |_| Keyword::Homomorphism)]
+        #[regex(r"(?i)decomposition[ \t]*:?", |_| Keyword::Decomposition)]
+        #[regex(r"(?i)no warnings", |_| Keyword::NoWarnings)]
+        #[regex(r"(?i)warnings", |_| Keyword::Warnings)]
+        #[regex(r"(?i)endlsystem", |_| Keyword::EndLsystem)]
+        Keyword(Keyword),
+        $($own)*
+        }
+    };
+}
+
+mode_tokens!(SymTok {
+    #[token("*")]
+    Null,
+    #[token(":")]
+    Colon,
+    #[token("-->")]
+    Arrow,
+    #[token("-o>")]
+    ObjectArrow,
+    #[token("<")]
+    LSep,
+    #[token(">")]
+    RSep,
+    #[token("(")]
+    LParen,
+    #[token(")")]
+    RParen,
+    #[regex(r"[^<>:*() \t\r\f\n]")]
+    Symbol,
+});
+
+mode_tokens!(ExprTok {
+    #[token("-->")]
+    Arrow,
+    #[token("-o>")]
+    ObjectArrow,
+    #[token("=")]
+    Assign,
+    #[token("&")]
+    Amp,
+    #[token("+")]
+    Plus,
+    #[token("-")]
+    Minus,
+    #[token("*")]
+    Star,
+    #[token("/")]
+    Slash,
+    #[token("%")]
+    Percent,
+    #[token("^")]
+    Caret,
+    #[token(";")]
+    Semi,
+    #[token(",")]
+    Comma,
+    #[token("?")]
+    Question,
+    #[token(":")]
+    Colon,
+    #[token("(")]
+    LParen,
+    #[token(")")]
+    RParen,
+    #[token("[")]
+    LBracket,
+    #[token("]")]
+    RBracket,
+    #[token("<")]
+    Lt,
+    #[token(">")]
+    Gt,
+    #[token("<>")]
+    #[token("!=")]
+    Ne,
+    #[token("==")]
+    EqEq,
+    #[token("<=")]
+    Le,
+    #[token(">=")]
+    Ge,
+    #[token("!")]
+    Not,
+    #[token("&&")]
+    And,
+    #[token("||")]
+    Or,
+    #[token("{")]
+    LBrace,
+    #[token("}")]
+    RBrace,
+    #[regex(r"[A-Za-z_][A-Za-z0-9_]*")]
+    Name,
+    #[regex(r"([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?")]
+    Number,
+    #[regex(r#""[^"\n]*""#)]
+    Str,
+});
+
+/// Two-letter turtle commands after `@` (cpfg reads `@Gs` as `@`, `G`, `s`
+/// and looks ahead when drawing; graftal joins them into one symbol).
+const AT_PAIRS: [&str; 18] = [
+    "Gs", "Gc", "Ge", "Gt", "Gr", "Di", "Dd", "Tx", "Ts", "Td", "Tp", "Tf", "PS", "PC", "PD", "bo",
+    "bc", "mc",
+];
+
+/// The symbol that starts at `start` in symbol mode: one character, or a
+/// prefixed command. Returns its text's length in bytes.
+fn symbol_len(src: &str, start: usize) -> usize {
+    let rest = &src[start..];
+    let mut chars = rest.chars();
+    let first = chars.next().unwrap_or(' ');
+    let second = chars.next();
+    let blank = |c: Option<char>| c.is_none_or(|c| c.is_whitespace() || "<>:*()".contains(c));
+    match first {
+        '@' if !blank(second) => {
+            let pair = rest.get(1..3).unwrap_or("");
+            if AT_PAIRS.contains(&pair) {
+                3
+            } else {
+                1 + second.map_or(0, char::len_utf8)
+            }
+        }
+        '?' if matches!(second, Some('P' | 'H' | 'L' | 'U' | 'E')) => 2,
+        '~' if !blank(second) => 1 + second.map_or(0, char::len_utf8),
+        c => c.len_utf8(),
+    }
+}
+
+/// The tokens of a (preprocessed) cpfg text.
+pub struct Lexed {
+    pub tokens: Vec<(Token, Span)>,
+}
+
+/// Lexes `src`, switching modes as cpfg does. Characters that fit no token
+/// are reported (E0001) and dropped.
+pub fn lex(src: &str, diags: &mut Diagnostics) -> Lexed {
+    let mut tokens: Vec<(Token, Span)> = Vec::new();
+    let mut pos = 0;
+    let mut expression = false;
+    // Parenthesis nesting in expression mode (0 ends a parameter list).
+    let mut nesting: i32 = 0;
+    // Statement-brace depth: line breaks inside braces do not end an item.
+    let mut braces: i32 = 0;
+    while pos < src.len() {
+        let (tok, span, next) = if expression {
+            let mut lx = ExprTok::lexer(&src[pos..]);
+            match lx.next() {
+                None => break,
+                Some(t) => {
+                    let span = pos + lx.span().start..pos + lx.span().end;
+                    (Ok(t), span.clone(), span.end)
+                }
+            }
+        } else {
+            let mut lx = SymTok::lexer(&src[pos..]);
+            match lx.next() {
+                None => break,
+                Some(t) => {
+                    let span = pos + lx.span().start..pos + lx.span().end;
+                    (Err(t), span.clone(), span.end)
+                }
+            }
+        };
+        pos = next;
+        let text = &src[span.clone()];
+        let token = match tok {
+            Ok(Err(())) | Err(Err(())) => {
+                diags.push_invalid_character(src, span.clone());
+                continue;
+            }
+            Ok(Ok(t)) => match t {
+                ExprTok::_Skip | ExprTok::Continuation => continue,
+                ExprTok::OpenComment => {
+                    push_unterminated(diags, span);
+                    break;
+                }
+                ExprTok::Newline => {
+                    if braces > 0 {
+                        continue;
+                    }
+                    expression = false;
+                    nesting = 0;
+                    Token::Eol
+                }
+                ExprTok::Keyword(k) => {
+                    expression = k.takes_expression();
+                    nesting = 0;
+                    Token::Keyword(k)
+                }
+                ExprTok::Arrow => {
+                    expression = false;
+                    Token::Arrow
+                }
+                ExprTok::ObjectArrow => {
+                    expression = false;
+                    Token::ObjectArrow
+                }
+                ExprTok::Assign => Token::Assign,
+                ExprTok::Amp => Token::Amp,
+                ExprTok::Plus => Token::Plus,
+                ExprTok::Minus => Token::Minus,
+                ExprTok::Star => Token::Star,
+                ExprTok::Slash => Token::Slash,
+                ExprTok::Percent => Token::Percent,
+                ExprTok::Caret => Token::Caret,
+                ExprTok::Semi => Token::Semi,
+                ExprTok::Comma => Token::Comma,
+                ExprTok::Question => Token::Question,
+                ExprTok::Colon => Token::Colon,
+                ExprTok::LParen => {
+                    nesting += 1;
+                    Token::LParen
+                }
+                ExprTok::RParen => {
+                    nesting -= 1;
+                    if nesting <= 0 && braces == 0 {
+                        nesting = 0;
+                        expression = false;
+                    }
+                    Token::RParen
+                }
+                ExprTok::LBracket => Token::LBracket,
+                ExprTok::RBracket => Token::RBracket,
+                ExprTok::Lt => Token::Lt,
+                ExprTok::Gt => Token::Gt,
+                ExprTok::Ne => Token::Ne,
+                ExprTok::EqEq => Token::EqEq,
+                ExprTok::Le => Token::Le,
+                ExprTok::Ge => Token::Ge,
+                ExprTok::Not => Token::Not,
+                ExprTok::And => Token::And,
+                ExprTok::Or => Token::Or,
+                ExprTok::LBrace => {
+                    braces += 1;
+                    Token::LBrace
+                }
+                ExprTok::RBrace => {
+                    braces = (braces - 1).max(0);
+                    Token::RBrace
+                }
+                ExprTok::Name => Token::Name(text.to_string()),
+                ExprTok::Number => Token::Number(text.parse().unwrap_or(f64::NAN)),
+                ExprTok::Str => Token::Str(text[1..text.len() - 1].to_string()),
+            },
+            Err(Ok(t)) => match t {
+                SymTok::_Skip | SymTok::Continuation => continue,
+                SymTok::OpenComment => {
+                    push_unterminated(diags, span);
+                    break;
+                }
+                SymTok::Newline => {
+                    if braces > 0 {
+                        continue;
+                    }
+                    Token::Eol
+                }
+                SymTok::Keyword(k) => {
+                    expression = k.takes_expression();
+                    nesting = 0;
+                    Token::Keyword(k)
+                }
+                SymTok::Null => Token::Null,
+                SymTok::Colon => {
+                    expression = true;
+                    nesting = 1;
+                    Token::Colon
+                }
+                SymTok::Arrow => Token::Arrow,
+                SymTok::ObjectArrow => Token::ObjectArrow,
+                SymTok::LSep => Token::LSep,
+                SymTok::RSep => Token::RSep,
+                SymTok::LParen => {
+                    expression = true;
+                    nesting = 1;
+                    Token::LParen
+                }
+                SymTok::RParen => Token::RParen,
+                SymTok::Symbol => {
+                    let len = symbol_len(src, span.start);
+                    let span = span.start..span.start + len;
+                    pos = span.end;
+                    tokens.push((Token::Symbol(src[span.clone()].to_string()), span));
+                    continue;
+                }
+            },
+        };
+        tokens.push((token, span));
+    }
+    Lexed { tokens }
+}
+
+fn push_unterminated(diags: &mut Diagnostics, span: Span) {
+    diags.push(
+        crate::diagnostics::Diagnostic::at(
+            crate::diagnostics::codes::UNTERMINATED_COMMENT,
+            span,
+            "this comment is never closed",
+        )
+        .with_label("the comment starts here")
+        .with_help("close it with `*/`"),
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toks(src: &str) -> Vec<Token> {
+        let mut d = Diagnostics::default();
+        let l = lex(src, &mut d);
+        assert!(d.is_empty(), "{d:?}");
+        l.tokens.into_iter().map(|(t, _)| t).collect()
+    }
+
+    fn sym(s: &str) -> Token {
+        Token::Symbol(s.into())
+    }
+
+    #[test]
+    fn symbols_are_single_characters_and_parameters_are_expressions() {
+        assert_eq!(
+            toks("A(x) --> FA(x+1)@O(2)~l?P(a,b)\n"),
+            vec![
+                sym("A"),
+                Token::LParen,
+                Token::Name("x".into()),
+                Token::RParen,
+                Token::Arrow,
+                sym("F"),
+                sym("A"),
+                Token::LParen,
+                Token::Name("x".into()),
+                Token::Plus,
+                Token::Number(1.0),
+                Token::RParen,
+                sym("@O"),
+                Token::LParen,
+                Token::Number(2.0),
+                Token::RParen,
+                sym("~l"),
+                sym("?P"),
+                Token::LParen,
+                Token::Name("a".into()),
+                Token::Comma,
+                Token::Name("b".into()),
+                Token::RParen,
+                Token::Eol,
+            ]
+        );
+    }
+
+    #[test]
+    fn tabs_continue_lines_and_braces_hold_them_open() {
+        let t = toks("A : {x=1;\ny=2;} x<2 -->\n\tB\nC --> *\n");
+        let eols = t.iter().filter(|t| **t == Token::Eol).count();
+        assert_eq!(eols, 2, "{t:?}");
+        assert!(t.contains(&Token::Lt));
+        assert!(t.contains(&Token::Null));
+    }
+
+    #[test]
+    fn keywords_in_any_case_and_context_separators() {
+        let t = toks("Lsystem: 1\nAxiom: A\nB < A > C --> D\nEndlsystem\n");
+        assert_eq!(t[0], Token::Keyword(Keyword::Lsystem));
+        assert!(t.contains(&Token::Keyword(Keyword::Axiom)));
+        assert!(t.contains(&Token::LSep) && t.contains(&Token::RSep));
+        assert!(t.contains(&Token::Keyword(Keyword::EndLsystem)));
+    }
+
+    #[test]
+    fn two_letter_commands_are_joined() {
+        let t = toks("axiom: @Gs@Gc(2)@Ge@v@#(1)\n");
+        assert!(t.contains(&sym("@Gs")) && t.contains(&sym("@Gc")) && t.contains(&sym("@v")));
+        assert!(t.contains(&sym("@#")));
+    }
+}

@@ -1,0 +1,800 @@
+//! Lowering a cpfg AST to the IR: symbols and their turtle meaning (the
+//! manual's §6 table), variables resolved to local slots, globals and
+//! arrays, functions to [`Builtin`]s, and the file's sections in cpfg's
+//! order. Settings that live in the view file are applied by the caller
+//! ([`super::read`]).
+
+use super::ast::{self, BlockKind, ExprKind, Item, Section};
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::parametric::{
+    ArrayDecl, Builtin, Expr, ModuleCall, ParamProduction, Parametric, Pattern, Place, Stmt, Var,
+};
+use crate::ir::{Angle, Axis, Notation, QueryKind, Span, SpanTable, System, TurtleOp, Word};
+use std::collections::HashMap;
+
+/// The largest derivation length or recursion depth graftal accepts.
+pub const MAX_DEPTH: f64 = 1_000_000.0;
+/// The most elements an array may have.
+pub const MAX_ARRAY: f64 = 1_000_000.0;
+
+/// A lowered cpfg file.
+pub struct Lowered {
+    pub system: System,
+    pub spans: SpanTable,
+}
+
+/// The predefined functions: name, builtin, accepted argument counts.
+const FUNCTIONS: &[(&str, Builtin, &[usize])] = &[
+    ("sin", Builtin::Sin, &[1]),
+    ("cos", Builtin::Cos, &[1]),
+    ("tan", Builtin::Tan, &[1]),
+    ("asin", Builtin::Asin, &[1]),
+    ("acos", Builtin::Acos, &[1]),
+    ("atan", Builtin::Atan, &[1, 2]),
+    ("atan2", Builtin::Atan2, &[2]),
+    ("exp", Builtin::Exp, &[1]),
+    ("log", Builtin::Log, &[1]),
+    ("sqrt", Builtin::Sqrt, &[1]),
+    ("fabs", Builtin::Fabs, &[1]),
+    ("floor", Builtin::Floor, &[1]),
+    ("ceil", Builtin::Ceil, &[1]),
+    ("trunc", Builtin::Trunc, &[1]),
+    ("sign", Builtin::Sign, &[1]),
+    ("srand", Builtin::Srand, &[1]),
+    ("ran", Builtin::Ran, &[1]),
+    ("nran", Builtin::Nran, &[2]),
+    ("bran", Builtin::Bran, &[2]),
+    ("biran", Builtin::Biran, &[2]),
+    ("func", Builtin::Func, &[2]),
+    ("curveX", Builtin::CurveX, &[2]),
+    ("curveY", Builtin::CurveY, &[2]),
+    ("curveZ", Builtin::CurveZ, &[2]),
+    ("curveGAL", Builtin::CurveGal, &[1]),
+    ("printf", Builtin::Io, &[]),
+    ("fprintf", Builtin::Io, &[]),
+    ("fopen", Builtin::Io, &[2]),
+    ("fclose", Builtin::Io, &[1]),
+    ("fflush", Builtin::Io, &[1]),
+    ("fscanf", Builtin::Io, &[]),
+    ("stop", Builtin::Stop, &[0, 1]),
+    ("vvXmin", Builtin::ViewVolume, &[0]),
+    ("vvXmax", Builtin::ViewVolume, &[0]),
+    ("vvYmin", Builtin::ViewVolume, &[0]),
+    ("vvYmax", Builtin::ViewVolume, &[0]),
+    ("vvZmin", Builtin::ViewVolume, &[0]),
+    ("vvZmax", Builtin::ViewVolume, &[0]),
+    ("SetDerivationLength", Builtin::SetDerivationLength, &[1]),
+    ("GetDerivationLength", Builtin::GetDerivationLength, &[0]),
+];
+
+/// The turtle meaning of a cpfg module name (manual §6).
+pub fn turtle_op(name: &str) -> Option<TurtleOp> {
+    let rot = |axis, sign: f64| TurtleOp::Rotate {
+        axis,
+        angle: Angle::Delta(sign),
+    };
+    Some(match name {
+        "F" | "G" => TurtleOp::Forward { draw: true },
+        "f" | "g" => TurtleOp::Forward { draw: false },
+        // `+` turns left (counter-clockwise seen from the default view).
+        "+" => rot(Axis::Up, -1.0),
+        "-" => rot(Axis::Up, 1.0),
+        "&" => rot(Axis::Left, -1.0),
+        "^" => rot(Axis::Left, 1.0),
+        "\\" => rot(Axis::Heading, -1.0),
+        "/" => rot(Axis::Heading, 1.0),
+        "|" => TurtleOp::TurnAround,
+        "[" => TurtleOp::Push,
+        "]" => TurtleOp::Pop,
+        ";" => TurtleOp::ColourIndex { up: true },
+        "," => TurtleOp::ColourIndex { up: false },
+        "#" => TurtleOp::LineWidth { up: true },
+        "!" => TurtleOp::LineWidth { up: false },
+        "{" => TurtleOp::PolygonBegin,
+        "}" => TurtleOp::PolygonEnd,
+        "." => TurtleOp::PolygonVertex,
+        "@O" => TurtleOp::Sphere,
+        "@o" => TurtleOp::ScreenDisc,
+        "@c" => TurtleOp::Circle,
+        "@M" => TurtleOp::MoveTo,
+        "@R" => TurtleOp::SetHeading,
+        "@v" => TurtleOp::RollToVertical,
+        "@Gs" => TurtleOp::CylinderStart,
+        "@Gc" => TurtleOp::CylinderPoint { end: false },
+        "@Ge" => TurtleOp::CylinderPoint { end: true },
+        "@Gt" => TurtleOp::CylinderTangents,
+        "?P" => TurtleOp::Query(QueryKind::Position),
+        "?H" => TurtleOp::Query(QueryKind::Heading),
+        "?L" => TurtleOp::Query(QueryKind::Left),
+        "?U" => TurtleOp::Query(QueryKind::Up),
+        _ => return None,
+    })
+}
+
+/// Turtle commands graftal reads but does not draw (W0823).
+const NOT_DRAWN: &[&str] = &[
+    "@L", "@Tx", "@Ts", "@T", "@Td", "@Tp", "@Tf", "@PS", "@PC", "@PD", "@bo", "@bc",
+];
+
+/// Names bound in a production or block, resolved as they are met.
+struct Scope {
+    locals: Vec<String>,
+    /// Whether names not yet known become locals (in productions) or
+    /// globals (in Start/End blocks: every assigned name is global there).
+    global_block: bool,
+}
+
+struct Lowerer<'d> {
+    sys: System,
+    spans: SpanTable,
+    diags: &'d mut Diagnostics,
+    globals: HashMap<String, u16>,
+    arrays: HashMap<String, (u16, usize)>,
+    /// Names warned about as undefined (once each).
+    undefined: std::collections::HashSet<String>,
+    warned_not_drawn: std::collections::HashSet<String>,
+    warned_io: bool,
+    warned_env: bool,
+}
+
+impl Lowerer<'_> {
+    fn symbol(&mut self, name: &str, span: &Span) -> crate::ir::SymbolId {
+        let id = self.sys.intern(name);
+        self.spans.symbols.entry(id).or_insert_with(|| span.clone());
+        if self.sys.op(id).is_none() {
+            if let Some(op) = turtle_op(name) {
+                self.sys.set_interpretation(id, op);
+            }
+        }
+        id
+    }
+
+    fn check_module(&mut self, m: &ast::Module) {
+        if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_UNSUPPORTED,
+                    m.span.clone(),
+                    "sub-L-systems are not supported",
+                )
+                .with_label(if m.name == "$" {
+                    "`$` returns from a sub-L-system"
+                } else {
+                    "`?(n, s)` calls sub-L-system n"
+                })
+                .with_help("write the sub-L-system's productions into this L-system"),
+            );
+        } else if m.name == "?E" && !self.warned_env {
+            self.warned_env = true;
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NO_ENVIRONMENT,
+                    m.span.clone(),
+                    "`?E` modules get no answer: graftal runs no environment process",
+                )
+                .with_label("keeps the parameters the L-system gives it"),
+            );
+        } else if NOT_DRAWN.contains(&m.name.as_str())
+            && self.warned_not_drawn.insert(m.name.clone())
+        {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_DRAWN,
+                    m.span.clone(),
+                    format!("`{}` is read but not drawn", m.name),
+                )
+                .with_label("no effect on the picture"),
+            );
+        }
+    }
+
+    fn expr(&mut self, scope: &mut Scope, e: &ast::Expr) -> Expr {
+        match &e.kind {
+            ExprKind::Num(v) => Expr::Num(*v),
+            ExprKind::Str(s) => Expr::Str(s.clone()),
+            ExprKind::Name(n) | ExprKind::Address(n) => {
+                if let Some(i) = scope.locals.iter().position(|l| l == n) {
+                    return Expr::Var(Var::Local(i as u16));
+                }
+                if let Some(&g) = self.globals.get(n) {
+                    return Expr::Var(Var::Global(g));
+                }
+                if self.arrays.contains_key(n) {
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::CPFG_NOT_ARRAY,
+                            e.span.clone(),
+                            format!("array `{n}` used without subscripts"),
+                        )
+                        .with_label("needs `[i]`"),
+                    );
+                    return Expr::Num(0.0);
+                }
+                if self.undefined.insert(n.clone()) {
+                    let mut known: Vec<&str> = scope.locals.iter().map(String::as_str).collect();
+                    known.extend(self.globals.keys().map(String::as_str));
+                    let mut d = Diagnostic::at(
+                        codes::CPFG_UNDEFINED_NAME,
+                        e.span.clone(),
+                        format!("`{n}` is not defined; its value is 0"),
+                    )
+                    .with_label("not a parameter, local or global variable");
+                    if let Some(near) = nearest(n, &known).first() {
+                        d = d.with_help(format!("did you mean `{near}`?"));
+                    }
+                    self.diags.push(d);
+                }
+                scope.locals.push(n.clone());
+                Expr::Var(Var::Local((scope.locals.len() - 1) as u16))
+            }
+            ExprKind::Index(n, subs) => {
+                let subs: Vec<Expr> = subs.iter().map(|s| self.expr(scope, s)).collect();
+                match self.arrays.get(n).copied() {
+                    Some((id, dims)) if dims == subs.len() => Expr::Element(id, subs),
+                    Some((_, dims)) => {
+                        self.diags.push(
+                            Diagnostic::at(
+                                codes::CPFG_NOT_ARRAY,
+                                e.span.clone(),
+                                format!("`{n}` has {dims} dimension(s), not {}", subs.len()),
+                            )
+                            .with_label("subscripts do not match the declaration"),
+                        );
+                        Expr::Num(0.0)
+                    }
+                    None => {
+                        self.diags.push(
+                            Diagnostic::at(
+                                codes::CPFG_NOT_ARRAY,
+                                e.span.clone(),
+                                format!("`{n}` is not an array"),
+                            )
+                            .with_label("subscripted here")
+                            .with_help(format!("declare it: `define: {{ array {n}[size]; }}`")),
+                        );
+                        Expr::Num(0.0)
+                    }
+                }
+            }
+            ExprKind::Unary(op, a) => Expr::Unary(*op, Box::new(self.expr(scope, a))),
+            ExprKind::Binary(op, a, b) => Expr::Binary(
+                *op,
+                Box::new(self.expr(scope, a)),
+                Box::new(self.expr(scope, b)),
+            ),
+            ExprKind::Cond(c, a, b) => Expr::Cond(
+                Box::new(self.expr(scope, c)),
+                Box::new(self.expr(scope, a)),
+                Box::new(self.expr(scope, b)),
+            ),
+            ExprKind::Call(name, name_span, args) => {
+                let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
+                    let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
+                    let mut d = Diagnostic::at(
+                        codes::CPFG_UNKNOWN_FUNCTION,
+                        name_span.clone(),
+                        format!("unknown function `{name}`"),
+                    )
+                    .with_label("not a cpfg function");
+                    if let Some(near) = nearest(name, &names).first() {
+                        d = d.with_help(format!("did you mean `{near}`?"));
+                    }
+                    self.diags.push(d);
+                    return Expr::Num(0.0);
+                };
+                if !arities.is_empty() && !arities.contains(&args.len()) {
+                    let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::CPFG_ARITY,
+                            e.span.clone(),
+                            format!(
+                                "`{name}` takes {} argument(s), not {}",
+                                want.join(" or "),
+                                args.len()
+                            ),
+                        )
+                        .with_label("called here"),
+                    );
+                }
+                if builtin == Builtin::Io && !self.warned_io {
+                    self.warned_io = true;
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::CPFG_IO_IGNORED,
+                            name_span.clone(),
+                            format!("`{name}` does nothing in graftal"),
+                        )
+                        .with_label("no file or console output"),
+                    );
+                }
+                let args = args.iter().map(|a| self.expr(scope, a)).collect();
+                // `atan(y, x)` with two arguments is atan2.
+                let builtin = if builtin == Builtin::Atan && arities.len() > 1 {
+                    match &args {
+                        a if Vec::len(a) == 2 => Builtin::Atan2,
+                        _ => builtin,
+                    }
+                } else {
+                    builtin
+                };
+                Expr::Call(builtin, args)
+            }
+        }
+    }
+
+    fn place(&mut self, scope: &mut Scope, target: &ast::Expr) -> Option<Place> {
+        match &target.kind {
+            ExprKind::Name(n) => {
+                if let Some(i) = scope.locals.iter().position(|l| l == n) {
+                    return Some(Place::Var(Var::Local(i as u16)));
+                }
+                if let Some(&g) = self.globals.get(n) {
+                    return Some(Place::Var(Var::Global(g)));
+                }
+                if scope.global_block {
+                    // Not reached: globals are collected before lowering.
+                    return None;
+                }
+                scope.locals.push(n.clone());
+                Some(Place::Var(Var::Local((scope.locals.len() - 1) as u16)))
+            }
+            ExprKind::Index(..) => match self.expr(scope, target) {
+                Expr::Element(a, subs) => Some(Place::Element(a, subs)),
+                _ => None,
+            },
+            _ => {
+                self.diags.push(
+                    Diagnostic::at(
+                        codes::SYNTAX,
+                        target.span.clone(),
+                        "only a variable or an array element can be assigned",
+                    )
+                    .with_label("not assignable"),
+                );
+                None
+            }
+        }
+    }
+
+    fn stmts(&mut self, scope: &mut Scope, stmts: &[ast::Stmt]) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        for s in stmts {
+            match s {
+                ast::Stmt::Assign { target, value } => {
+                    let v = self.expr(scope, value);
+                    if let Some(p) = self.place(scope, target) {
+                        out.push(Stmt::Assign(p, v));
+                    }
+                }
+                ast::Stmt::Eval(e) => {
+                    let e = self.expr(scope, e);
+                    out.push(Stmt::Eval(e));
+                }
+                ast::Stmt::If(c, t, e) => {
+                    let c = self.expr(scope, c);
+                    let t = self.stmts(scope, t);
+                    let e = self.stmts(scope, e);
+                    out.push(Stmt::If(c, t, e));
+                }
+                ast::Stmt::While(c, b) => {
+                    let c = self.expr(scope, c);
+                    let b = self.stmts(scope, b);
+                    out.push(Stmt::While(c, b));
+                }
+                ast::Stmt::Do(b, c) => {
+                    let b = self.stmts(scope, b);
+                    let c = self.expr(scope, c);
+                    out.push(Stmt::Do(b, c));
+                }
+            }
+        }
+        out
+    }
+
+    fn patterns(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Vec<Pattern> {
+        let mut out = Vec::new();
+        for m in mods {
+            self.check_module(m);
+            let symbol = self.symbol(&m.name, &m.span);
+            let mut params = Vec::new();
+            for a in &m.args {
+                match &a.kind {
+                    ExprKind::Name(n) => {
+                        scope.locals.push(n.clone());
+                        params.push((scope.locals.len() - 1) as u16);
+                    }
+                    _ => {
+                        self.diags.push(
+                            Diagnostic::at(
+                                codes::CPFG_NOT_FORMAL,
+                                a.span.clone(),
+                                "a predecessor parameter must be a name",
+                            )
+                            .with_label("an expression cannot be matched")
+                            .with_help("name the parameter and test it in the condition"),
+                        );
+                        scope.locals.push(String::new());
+                        params.push((scope.locals.len() - 1) as u16);
+                    }
+                }
+            }
+            out.push(Pattern { symbol, params });
+        }
+        out
+    }
+
+    fn calls(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Vec<ModuleCall> {
+        mods.iter()
+            .map(|m| {
+                self.check_module(m);
+                let symbol = self.symbol(&m.name, &m.span);
+                let args = m.args.iter().map(|a| self.expr(scope, a)).collect();
+                ModuleCall { symbol, args }
+            })
+            .collect()
+    }
+
+    fn production(&mut self, p: &ast::Production) -> ParamProduction {
+        let mut scope = Scope {
+            locals: Vec::new(),
+            global_block: false,
+        };
+        let left = self.patterns(&mut scope, &p.left);
+        let predecessor = self.patterns(&mut scope, &p.predecessor);
+        let right = self.patterns(&mut scope, &p.right);
+        let before = self.stmts(&mut scope, &p.before);
+        let condition = p.condition.as_ref().map(|c| self.expr(&mut scope, c));
+        let after = self.stmts(&mut scope, &p.after);
+        let successor = self.calls(&mut scope, &p.successor);
+        let probability = p.probability.as_ref().map(|e| self.expr(&mut scope, e));
+        ParamProduction {
+            left,
+            predecessor,
+            right,
+            locals: scope.locals.len().min(u16::MAX as usize) as u16,
+            before,
+            condition,
+            after,
+            successor,
+            probability,
+        }
+    }
+
+    /// A constant expression (macros expanded): derivation length, depth,
+    /// array sizes, seeds.
+    fn constant(&mut self, e: &ast::Expr, what: &str, max: f64) -> Option<f64> {
+        let mut scope = Scope {
+            locals: Vec::new(),
+            global_block: false,
+        };
+        let saved = std::mem::take(&mut self.globals);
+        let x = self.expr(&mut scope, e);
+        self.globals = saved;
+        let v = crate::eval::parametric::constant(&x);
+        match v {
+            Some(v) if (0.0..=max).contains(&v) => Some(v),
+            _ => {
+                self.diags.push(
+                    Diagnostic::at(
+                        codes::CPFG_BAD_VALUE,
+                        e.span.clone(),
+                        format!("{what} must be a number from 0 to {max}"),
+                    )
+                    .with_label(match v {
+                        Some(v) => format!("this is {v}"),
+                        None => "not a constant".to_string(),
+                    }),
+                );
+                None
+            }
+        }
+    }
+}
+
+/// Names assigned in `stmts` (recursively).
+fn assigned(stmts: &[ast::Stmt], out: &mut Vec<String>) {
+    for s in stmts {
+        match s {
+            ast::Stmt::Assign { target, .. } => {
+                if let ExprKind::Name(n) = &target.kind {
+                    if !out.contains(n) {
+                        out.push(n.clone());
+                    }
+                }
+            }
+            ast::Stmt::If(_, t, e) => {
+                assigned(t, out);
+                assigned(e, out);
+            }
+            ast::Stmt::While(_, b) | ast::Stmt::Do(b, _) => assigned(b, out),
+            ast::Stmt::Eval(_) => {}
+        }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Stage {
+    Before,
+    Header,
+    Productions,
+    Decomposition,
+    Homomorphism,
+    Done,
+}
+
+/// Lowers `file` to a parametric [`System`].
+pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
+    let mut sys = System::new(Notation::Cpfg);
+    sys.settings.angle = 45.0;
+    let mut l = Lowerer {
+        sys,
+        spans: SpanTable::default(),
+        diags,
+        globals: HashMap::new(),
+        arrays: HashMap::new(),
+        undefined: Default::default(),
+        warned_not_drawn: Default::default(),
+        warned_io: false,
+        warned_env: false,
+    };
+    // The first L-system's items.
+    let first_end = file
+        .items
+        .iter()
+        .position(|i| matches!(i, Item::EndLsystem(_)))
+        .map_or(file.items.len(), |p| p + 1);
+    let items = &file.items[..first_end];
+    if let Some(Item::Lsystem { span, .. }) = file.items[first_end..]
+        .iter()
+        .find(|i| matches!(i, Item::Lsystem { .. }))
+    {
+        l.diags.push(
+            Diagnostic::at(
+                codes::CPFG_LATER_LSYSTEM,
+                span.clone(),
+                "only the first L-system of a file is read",
+            )
+            .with_label("a sub-L-system"),
+        );
+    }
+    // Globals: every name assigned in a Start/End block; arrays.
+    let mut global_names = Vec::new();
+    let mut par = Parametric::default();
+    for item in items {
+        match item {
+            Item::Block(_, stmts, _) => assigned(stmts, &mut global_names),
+            Item::Define(defs) => {
+                for d in defs {
+                    let dims: Vec<usize> = d
+                        .dims
+                        .iter()
+                        .map(|e| l.constant(e, "an array size", MAX_ARRAY).unwrap_or(0.0) as usize)
+                        .collect();
+                    let total: f64 = dims.iter().map(|&d| d as f64).product();
+                    if total > MAX_ARRAY {
+                        l.diags.push(
+                            Diagnostic::at(
+                                codes::CPFG_BAD_VALUE,
+                                d.span.clone(),
+                                format!(
+                                    "array `{}` has {total} elements, more than {MAX_ARRAY}",
+                                    d.name
+                                ),
+                            )
+                            .with_label("too large"),
+                        );
+                        continue;
+                    }
+                    let init: Vec<f64> = d
+                        .init
+                        .iter()
+                        .map(|e| l.constant(e, "an array value", f64::MAX).unwrap_or(0.0))
+                        .collect();
+                    l.arrays
+                        .insert(d.name.clone(), (par.arrays.len() as u16, dims.len()));
+                    par.arrays.push(ArrayDecl {
+                        name: d.name.clone(),
+                        dims,
+                        init,
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+    for n in global_names {
+        if !l.arrays.contains_key(&n) {
+            l.globals.insert(n.clone(), par.globals.len() as u16);
+            par.globals.push(n);
+        }
+    }
+    let mut stage = Stage::Before;
+    let mut axiom_seen = false;
+    let mut lsystem_span = None;
+    for item in items {
+        let (need, span): (&[Stage], Span) = match item {
+            Item::Lsystem { span, .. } => (&[Stage::Before], span.clone()),
+            Item::Seed(_, s) => (&[Stage::Header, Stage::Homomorphism], s.clone()),
+            Item::DerivationLength(_, s)
+            | Item::Ring(s)
+            | Item::Axiom(_, s)
+            | Item::Block(_, _, s) => (&[Stage::Header], s.clone()),
+            Item::Ignore(v) | Item::Consider(v) => {
+                (&[Stage::Header], v.first().map_or(0..0, |(_, s)| s.clone()))
+            }
+            Item::Define(d) => (&[Stage::Header], d.first().map_or(0..0, |d| d.span.clone())),
+            Item::MaximumDepth(_, s) => (&[Stage::Decomposition, Stage::Homomorphism], s.clone()),
+            Item::Section(Section::Decomposition, s) => (&[Stage::Productions], s.clone()),
+            Item::Section(Section::Homomorphism, s) => {
+                (&[Stage::Productions, Stage::Decomposition], s.clone())
+            }
+            Item::Production(p) => (
+                &[
+                    Stage::Productions,
+                    Stage::Decomposition,
+                    Stage::Homomorphism,
+                ],
+                p.span.clone(),
+            ),
+            Item::EndLsystem(s) => (
+                &[
+                    Stage::Productions,
+                    Stage::Decomposition,
+                    Stage::Homomorphism,
+                ],
+                s.clone(),
+            ),
+        };
+        if !need.contains(&stage) {
+            // A missing `lsystem:` is reported once, below; other items
+            // out of order are reported where they stand.
+            if stage != Stage::Before {
+                l.diags.push(
+                    Diagnostic::at(
+                        codes::CPFG_MISPLACED,
+                        span.clone(),
+                        "this item is out of place",
+                    )
+                    .with_label(match stage {
+                        Stage::Header => "expected after `axiom:` only productions",
+                        Stage::Productions => "the header ended at `axiom:`",
+                        Stage::Decomposition | Stage::Homomorphism => {
+                            "inside the decomposition or homomorphism"
+                        }
+                        _ => "after `endlsystem`",
+                    })
+                    .with_help("cpfg order: lsystem:, declarations, axiom:, productions, decomposition, homomorphism, endlsystem"),
+                );
+            }
+            if stage == Stage::Before {
+                continue;
+            }
+        }
+        match item {
+            Item::Lsystem { span, .. } => {
+                lsystem_span = Some(span.clone());
+                stage = Stage::Header;
+            }
+            Item::Seed(e, _) => {
+                let v = l.constant(e, "a seed", u32::MAX as f64).map(|v| v as u64);
+                if stage == Stage::Homomorphism {
+                    par.homomorphism.seed = v;
+                } else {
+                    par.seed = v.or(Some(0));
+                }
+            }
+            Item::DerivationLength(e, _) => {
+                l.sys.settings.steps = l
+                    .constant(e, "the derivation length", MAX_DEPTH)
+                    .map(|v| v as u64);
+            }
+            Item::MaximumDepth(e, _) => {
+                let d = l
+                    .constant(e, "the maximum depth", MAX_DEPTH)
+                    .map_or(1, |v| v as u32);
+                if stage == Stage::Decomposition {
+                    par.decomposition.depth = d;
+                } else {
+                    par.homomorphism.depth = d;
+                }
+            }
+            Item::Ignore(v) | Item::Consider(v) => {
+                let ids: Vec<_> = v.iter().map(|(n, s)| l.symbol(n, s)).collect();
+                l.sys.context = if matches!(item, Item::Ignore(_)) {
+                    crate::ir::ContextFilter::Ignore(ids)
+                } else {
+                    crate::ir::ContextFilter::Consider(ids)
+                };
+            }
+            Item::Axiom(mods, _) => {
+                let mut scope = Scope {
+                    locals: Vec::new(),
+                    global_block: false,
+                };
+                par.axiom = l.calls(&mut scope, mods);
+                l.spans.axiom = mods.iter().map(|m| m.span.clone()).collect();
+                axiom_seen = true;
+                stage = Stage::Productions;
+            }
+            Item::Define(_) => {}
+            Item::Ring(_) => par.ring = true,
+            Item::Block(kind, stmts, _) => {
+                let mut scope = Scope {
+                    locals: Vec::new(),
+                    global_block: true,
+                };
+                let s = l.stmts(&mut scope, stmts);
+                match kind {
+                    BlockKind::Start => par.start = s,
+                    BlockKind::StartEach => par.start_each = s,
+                    BlockKind::EndEach => par.end_each = s,
+                    BlockKind::End => par.end = s,
+                }
+            }
+            Item::Section(Section::Decomposition, _) => {
+                stage = Stage::Decomposition;
+                par.decomposition.depth = 1;
+            }
+            Item::Section(Section::Homomorphism, _) => {
+                stage = Stage::Homomorphism;
+                par.homomorphism.depth = 1;
+            }
+            Item::Production(p) => {
+                let prod = l.production(p);
+                if prod.probability.is_some() && par.seed.is_none() && stage == Stage::Productions {
+                    l.diags.push(
+                        Diagnostic::at(
+                            codes::CPFG_PROBABILITY_IGNORED,
+                            p.probability
+                                .as_ref()
+                                .map_or(p.span.clone(), |e| e.span.clone()),
+                            "a probability in a deterministic L-system",
+                        )
+                        .with_label("ignored: there is no `seed:`")
+                        .with_help(
+                            "add `seed: 1` after `lsystem:` to make the L-system stochastic",
+                        ),
+                    );
+                }
+                l.spans.productions.push(p.span.clone());
+                match stage {
+                    Stage::Decomposition => par.decomposition.productions.push(prod),
+                    Stage::Homomorphism => par.homomorphism.productions.push(prod),
+                    _ => par.productions.push(prod),
+                }
+            }
+            Item::EndLsystem(_) => stage = Stage::Done,
+        }
+    }
+    if lsystem_span.is_none() {
+        l.diags.push(
+            Diagnostic::at(
+                codes::CPFG_NO_LSYSTEM,
+                0..0,
+                "the file has no `lsystem:` line",
+            )
+            .with_label("expected `lsystem: 1` before the axiom")
+            .with_help("a cpfg L-system starts with `lsystem: 1` and ends with `endlsystem`"),
+        );
+    } else if !axiom_seen {
+        l.diags.push(
+            Diagnostic::at(
+                codes::CPFG_NO_AXIOM,
+                lsystem_span.unwrap_or(0..0),
+                "this L-system has no axiom",
+            )
+            .with_label("no `axiom:` follows")
+            .with_help("add `axiom: A` before the productions"),
+        );
+    }
+    // Plain axiom word (symbols only), for tools that look at it.
+    l.sys.axiom = Word(par.axiom.iter().map(|c| c.symbol).collect());
+    // Every symbol of the cpfg turtle table has its meaning even when
+    // only a homomorphism produces it.
+    l.sys.parametric = Some(Box::new(par));
+    Lowered {
+        system: l.sys,
+        spans: l.spans,
+    }
+}

@@ -1,0 +1,52 @@
+//! The cpfg dialect of `.l`: the L-system files of the Virtual Laboratory's
+//! cpfg (Prusinkiewicz, Hanan, Mech and others; manual in
+//! `../shared/reference/cpfg-manual.txt`).
+//!
+//! `lexer` (logos, cpfg's two modes) -> `parser` (chumsky, one item per
+//! line, recovering) -> `ast` -> `lower` (the IR, with its parametric part
+//! [`crate::ir::parametric`]).
+
+pub mod ast;
+pub mod lexer;
+pub mod lower;
+pub mod parser;
+
+pub use lower::Lowered;
+
+use crate::diagnostics::Diagnostics;
+
+/// Parses and lowers a preprocessed cpfg text.
+pub fn read(src: &str, diags: &mut Diagnostics) -> Lowered {
+    let ast = parser::parse(src, diags);
+    lower::lower(&ast, diags)
+}
+
+/// Whether `text` is written in the cpfg dialect of `.l` rather than the
+/// 1988 pfg format: it has an `lsystem:` or `endlsystem` line, or C
+/// preprocessor directives (neither occurs in pfg files).
+pub fn looks_like_cpfg(text: &str) -> bool {
+    text.lines().any(|l| {
+        let t = l.trim_start().to_ascii_lowercase();
+        t.starts_with("lsystem:")
+            || t.starts_with("lsystem :")
+            || t.starts_with("endlsystem")
+            || t.starts_with("#define")
+            || t.starts_with("#include")
+    })
+}
+
+/// Reads a cpfg `.l` file.
+pub fn read_file(file: &crate::source::SourceFile, diags: &mut Diagnostics) -> Lowered {
+    read(&file.text, diags)
+}
+
+/// Reads a cpfg text that must be free of errors (for tests).
+///
+/// # Panics
+/// When the text has errors; the message lists them.
+pub fn read_ok(src: &str) -> crate::ir::System {
+    let mut d = Diagnostics::default();
+    let l = read(src, &mut d);
+    assert!(!d.has_errors(), "{d:#?}");
+    l.system
+}

@@ -1,0 +1,93 @@
+//! Diagnostic codes of the cpfg L-system language (`E083x`, `W082x`): the
+//! parts of a cpfg `.l` file after preprocessing. The preprocessor and the
+//! side files (view, functions, surfaces) have their own codes in
+//! `codes/cpfg.rs`.
+
+use super::Code;
+
+codes! { CPFG_LSYSTEM;
+    CPFG_UNSUPPORTED = "E0830", "cpfg construct not supported",
+"graftal reads the cpfg dialect of `.l`, but not every construct of cpfg.
+This one needs something graftal does not have: sub-L-systems (`?(n,s) …
+$`) call other L-systems at run time, object productions (`-o>`) build
+instanced objects, and environmental processes (`?E` with an `.e` file)
+are separate programs. The diagnostic names the construct; the rest of the
+file is still checked.";
+
+    CPFG_NOT_FORMAL = "E0831", "a predecessor parameter must be a name",
+"The parameters of a predecessor and of its contexts are formal: names that
+take the values of the matched module's parameters. An expression there has
+nothing to match.
+
+Example:
+    A(x+1) --> B(x)     <- write A(y) : … and compute with y";
+
+    CPFG_UNKNOWN_FUNCTION = "E0832", "unknown function",
+"Only cpfg's predefined functions can be called in expressions (manual §5):
+sin cos tan asin acos atan atan2 exp log sqrt fabs floor ceil trunc sign
+srand ran nran bran biran func curveX curveY curveZ curveGAL printf fprintf
+fopen fclose fflush fscanf stop vvXmin … vvZmax SetDerivationLength
+GetDerivationLength.";
+
+    CPFG_ARITY = "E0833", "wrong number of arguments",
+"A predefined function was called with a number of arguments it does not
+take, e.g. `nran(1)` (it takes a mean and a deviation).";
+
+    CPFG_NO_AXIOM = "E0834", "no axiom",
+"A cpfg L-system needs an `axiom:` line with at least one module, after
+`lsystem:` and before the productions.";
+
+    CPFG_NOT_ARRAY = "E0835", "not an array",
+"A name was used with subscripts `[i]` but is not declared as an array in
+`define: { array name[size]; }`, or an array was used without subscripts,
+or with a different number of them than it was declared with.";
+
+    CPFG_MISPLACED = "E0836", "item out of place",
+"cpfg reads an L-system in a fixed order: `lsystem:`, the declarations
+(`seed:`, `derivation length:`, `ignore:`/`consider:`, `define:`, the
+Start/End blocks), `axiom:`, the productions, then `decomposition` and
+`homomorphism` (each with an optional `maximum depth:`), then `endlsystem`.
+This item stands where cpfg does not read it.";
+
+    CPFG_NO_LSYSTEM = "E0837", "no `lsystem:`",
+"A cpfg file holds its L-system between `lsystem: label` and `endlsystem`.
+This file has none, so there is nothing to derive.";
+
+    CPFG_BAD_VALUE = "E0838", "value out of range",
+"This value cannot be used where it stands: a derivation length, a maximum
+depth or an array size must be a number from 0 up to a limit graftal
+states, and an array subscript must lie inside the array.";
+
+    CPFG_UNDEFINED_NAME = "W0820", "name not defined",
+"The name is neither a parameter of the production, nor a variable assigned
+before it in the production, nor a global variable assigned in a Start,
+StartEach, EndEach or End block. cpfg warns and uses 0, and so does graftal.
+A misspelt name or a missing `#define` is the usual cause.";
+
+    CPFG_NO_ENVIRONMENT = "W0821", "no environment process",
+"`?E(…)` modules exchange values with an environmental process (named in
+the object's `.e` file) that cpfg starts with `-e`. graftal does not run
+environment programs: the module keeps the parameters the L-system gave it,
+so the model grows as if the environment never answered.";
+
+    CPFG_IO_IGNORED = "W0822", "file and console output not performed",
+"`printf`, `fprintf`, `fopen`, `fclose`, `fflush` and `fscanf` read or
+write files and the console in cpfg. graftal does not let a model write
+files or print into its output: the calls do nothing and return 0.";
+
+    CPFG_NOT_DRAWN = "W0823", "turtle command not drawn",
+"graftal understands this turtle command but does not draw it: labels
+(`@L`), textures (`@Tx`), tropism settings (`@T…`) and L-system-defined
+surfaces (`@PS`, `@PC`, `@PD`). The rest of the picture is drawn as cpfg
+draws it.";
+
+    CPFG_PROBABILITY_IGNORED = "W0824", "probability in a deterministic L-system",
+"The production gives a probability (`--> succ : p`) but the L-system has no
+`seed:` statement, so it is deterministic and cpfg ignores the probability.
+Add `seed: n` after `lsystem:` to make it stochastic.";
+
+    CPFG_LATER_LSYSTEM = "W0825", "a later L-system is not read",
+"The file holds more than one `lsystem:`. The first is the model; the
+others are sub-L-systems, which only `?(n,s)` modules call. graftal reads
+the first and reports sub-L-system calls as unsupported.";
+}
