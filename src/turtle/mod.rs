@@ -121,6 +121,9 @@ struct State {
     /// the history), `NO_HISTORY` when empty.
     history: u32,
     swapped: bool,
+    /// Fractint's real heading ([`TurtleOp::RotateReal`]): radians
+    /// counter-clockwise from the initial H towards the initial L.
+    real: f64,
 }
 
 fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
@@ -216,9 +219,10 @@ pub fn interpret_with(
         u: [0.0, 0.0, 1.0],
         length: sys.settings.step,
         width: sys.settings.width,
-        colour: 0,
+        colour: sys.settings.colour.min(palette.len() - 1),
         history: NO_HISTORY,
         swapped: false,
+        real: 0.0,
     };
     let mut stack: Vec<State> = Vec::new();
     // Arena of the colour histories: (previous entry, colour).
@@ -251,12 +255,19 @@ pub fn interpret_with(
             rotations = 0;
         }
         match op {
-            TurtleOp::Forward { draw } => {
+            TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. } => {
+                let (dir, draw) = match op {
+                    // Along the real heading in the plane of the initial
+                    // H = +y and L = −x.
+                    TurtleOp::ForwardReal { draw } => ([-st.real.sin(), st.real.cos(), 0.0], draw),
+                    TurtleOp::Forward { draw } => (st.h, draw),
+                    _ => unreachable!("matched above"),
+                };
                 let a = st.pos;
                 let b = [
-                    a[0] + st.h[0] * st.length,
-                    a[1] + st.h[1] * st.length,
-                    a[2] + st.h[2] * st.length,
+                    a[0] + dir[0] * st.length,
+                    a[1] + dir[1] * st.length,
+                    a[2] + dir[2] * st.length,
                 ];
                 st.pos = b;
                 if options.paths {
@@ -286,6 +297,27 @@ pub fn interpret_with(
                     st.turn(Axis::Up, -sign * k);
                     rotations += 1;
                 }
+            }
+            TurtleOp::TurnUnswapped(angle) => {
+                let a = resolve(angle);
+                let (s, c) = a.sin_cos();
+                (st.h, st.l) = rotate(st.h, st.l, c, s);
+                rotations += 1;
+            }
+            TurtleOp::RotateReal(angle) => {
+                let a = resolve(angle);
+                // Positive turns right, as `Rotate` about U does.
+                st.real -= if st.swapped { -a } else { a };
+            }
+            TurtleOp::SetColour(n) => st.colour = n as usize % palette.len(),
+            TurtleOp::ShiftColour { by, up } => {
+                let len = palette.len() as i64;
+                let by = i64::from(by) % len;
+                let mut c = (st.colour as i64 + if up { by } else { -by }).rem_euclid(len);
+                if c == 0 {
+                    c = if up { 1 } else { len - 1 };
+                }
+                st.colour = (c.min(len - 1)) as usize;
             }
             TurtleOp::TurnAround => {
                 // Not affected by swapped turns: a half turn either way.
