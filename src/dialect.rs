@@ -65,12 +65,13 @@ pub fn detect(ext: &str, text: &str) -> Dialect {
     }
 }
 
-/// A `Name {` line and no `-->`, `;` comments left out.
+/// A `Name {` line, no `-->` and no pfg header (`axiom:`, …), `;`
+/// comments left out.
 fn looks_fractint(text: &str) -> bool {
     let mut header = false;
     for line in text.lines() {
         let line = line.split(';').next().unwrap_or("");
-        if line.contains("-->") {
+        if line.contains("-->") || pfg_header(line) {
             return false;
         }
         if !header {
@@ -83,6 +84,16 @@ fn looks_fractint(text: &str) -> bool {
         }
     }
     header
+}
+
+/// A pfg header line: one of the Appendix A keywords and a colon. A
+/// Fractint reader would reject `axiom:` as an unknown keyword.
+fn pfg_header(line: &str) -> bool {
+    let l = line.trim_start().to_ascii_lowercase();
+    crate::pfg::parser::HEADERS.iter().any(|h| {
+        l.strip_prefix(h)
+            .is_some_and(|r| r.trim_start().starts_with(':'))
+    })
 }
 
 fn strip_block_comments(text: &str) -> String {
@@ -115,6 +126,8 @@ mod tests {
         assert_eq!(detect("l", pfg), Dialect::Pfg);
         // A pfg header with a brace in its value is not an entry.
         assert_eq!(detect("l", "axiom: {F}\n"), Dialect::Pfg);
+        // Nor a brace in a pfg comment, in a file without productions.
+        assert_eq!(detect("l", "/* lines {\n */\naxiom: A\n"), Dialect::Pfg);
         let cpfg = "#define N 3\nlsystem: 1\naxiom: A\nA --> B\nendlsystem\n";
         assert_eq!(detect("l", cpfg), Dialect::Cpfg);
         assert_eq!(detect("l", "/* x */\nLsystem : 1\nA-->B\n"), Dialect::Cpfg);

@@ -225,12 +225,12 @@ fn fractint_library(text: &str, entry: Option<&str>, diags: &mut Diagnostics) ->
     let mut lib = Library::default();
     let mut per_entry: Vec<(fractint::Lowered, Diagnostics)> = Vec::new();
     for (i, e) in ast.entries.iter().enumerate() {
-        let mut d = Diagnostics::default();
         if let Some(first) = ast.entries[..i]
             .iter()
             .find(|f| f.name.eq_ignore_ascii_case(&e.name))
         {
-            d.push(
+            // About the file, whichever entry is chosen.
+            diags.push(
                 Diagnostic::at(
                     codes::FR_DUPLICATE_ENTRY,
                     e.name_span.clone(),
@@ -243,6 +243,7 @@ fn fractint_library(text: &str, entry: Option<&str>, diags: &mut Diagnostics) ->
                 ),
             );
         }
+        let mut d = Diagnostics::default();
         let l = fractint::lower_entry(e, &mut d);
         per_entry.push((l, d));
     }

@@ -141,12 +141,20 @@ fn check_diagnostic(d: &Diagnostic, file: &SourceFile) -> Result<(), String> {
 
 /// Compile, check diagnostics, derive (twice), lay out, SVG, PNG.
 fn pipeline(case: &Case) -> Result<Outcome, String> {
-    let compiled = stage("driver::compile", || {
+    let mut compiled = stage("driver::compile", || {
         driver::compile(SourceFile::new(
             format!("fuzz.{}", case.ext),
             case.text.clone(),
         ))
     })?;
+    if compiled.needs_entry {
+        // A Fractint library of several entries: every entry was checked;
+        // go on with the first, as `FILE:NAME` would.
+        let first = compiled.entries[0].name.clone();
+        compiled = stage("driver::compile_entry", || {
+            driver::compile_entry(compiled.file.clone(), Some(&first))
+        })?;
+    }
     for d in compiled.diagnostics.iter() {
         check_diagnostic(d, &compiled.file)?;
     }

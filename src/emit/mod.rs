@@ -468,6 +468,41 @@ fn fractint_plain(sys: &System, spans: &SpanTable, target: Notation) -> (System,
         };
         plain.interpretation[s.index()] = new;
     }
+    // Fractint tolerates a string with unbalanced brackets (W0702); the
+    // targets do not.
+    let mut words: Vec<(&mut crate::ir::Word, Option<Span>)> =
+        vec![(&mut plain.axiom, spans.axiom.first().cloned())];
+    for (i, p) in plain.productions.iter_mut().enumerate() {
+        let span = spans.productions.get(i).cloned();
+        for a in &mut p.alternatives {
+            words.push((&mut a.successor, span.clone()));
+        }
+    }
+    for (word, span) in words {
+        let mut depth = 0usize;
+        let mut balanced = Vec::with_capacity(word.0.len());
+        for &s in &word.0 {
+            if s == SymbolId::CLOSE {
+                if depth == 0 {
+                    continue;
+                }
+                depth -= 1;
+            } else if s == SymbolId::OPEN {
+                depth += 1;
+            }
+            balanced.push(s);
+        }
+        balanced.extend(std::iter::repeat_n(SymbolId::CLOSE, depth));
+        if balanced != word.0 {
+            problems.push(Problem {
+                kind: Kind::Rule,
+                span,
+                what: format!("a string with unbalanced brackets: {to} needs every `[` closed"),
+                change: "unmatched `]` are dropped and missing `]` added at the end".into(),
+            });
+            word.0 = balanced;
+        }
+    }
     plain.colours.clear();
     plain.settings.colour = 0;
     (plain, problems)

@@ -17,7 +17,7 @@ use crate::ir::{
 pub const DEFAULT_ORDER: u64 = 2;
 
 /// The characters Fractint 19 does not allow as rule heads.
-pub const RESERVED: &str = "+-/\\@|!c<>][";
+pub const RESERVED: &str = "+-/\\@|!c<>[]";
 
 /// The colour Fractint draws with until told otherwise.
 pub const DEFAULT_COLOUR: usize = 15;

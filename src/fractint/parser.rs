@@ -110,19 +110,11 @@ fn build(src: &str, lines: Vec<Vec<Tok<'_>>>, diags: &mut Diagnostics) -> File {
                 file.entries.push(e);
                 State::Outside
             }
-            State::Entry(mut e) if opens_entry(&line) => {
-                diags.push(
-                    Diagnostic::at(
-                        codes::FR_UNCLOSED_ENTRY,
-                        e.name_span.clone(),
-                        format!("the entry `{}` is not closed with `}}`", e.name),
-                    )
-                    .with_label("this entry has no `}`")
+            State::Entry(e) if opens_entry(&line) => {
+                let d = unclosed(&e)
                     .with_secondary(start..end, "the next entry starts here")
-                    .with_help("end the entry with a line `}`"),
-                );
-                e.span.end = last_end;
-                file.entries.push(e);
+                    .with_help("end the entry with a line `}`");
+                cut_off(e, last_end, d, &mut file, diags);
                 open_block(src, &line, &mut file)
             }
             State::Entry(mut e) => {
@@ -134,20 +126,28 @@ fn build(src: &str, lines: Vec<Vec<Tok<'_>>>, diags: &mut Diagnostics) -> File {
         };
         last_end = end;
     }
-    if let State::Entry(mut e) = state {
-        diags.push(
-            Diagnostic::at(
-                codes::FR_UNCLOSED_ENTRY,
-                e.name_span.clone(),
-                format!("the entry `{}` is not closed with `}}`", e.name),
-            )
-            .with_label("this entry has no `}`")
-            .with_help("the file ends first: end the entry with a line `}`"),
-        );
-        e.span.end = last_end;
-        file.entries.push(e);
+    if let State::Entry(e) = state {
+        let d = unclosed(&e).with_help("the file ends first: end the entry with a line `}`");
+        cut_off(e, last_end, d, &mut file, diags);
     }
     file
+}
+
+/// E0701 for an entry without its `}`.
+fn unclosed(e: &Entry) -> Diagnostic {
+    Diagnostic::at(
+        codes::FR_UNCLOSED_ENTRY,
+        e.name_span.clone(),
+        format!("the entry `{}` is not closed with `}}`", e.name),
+    )
+    .with_label("this entry has no `}`")
+}
+
+/// Ends an unclosed entry at `end`, reporting `d`.
+fn cut_off(mut e: Entry, end: usize, d: Diagnostic, file: &mut File, diags: &mut Diagnostics) {
+    diags.push(d);
+    e.span.end = end;
+    file.entries.push(e);
 }
 
 /// A line outside entries: opens an entry, a block, or is ignored (as
