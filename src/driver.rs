@@ -3,9 +3,10 @@
 //! measure. The CLI is a thin layer over these; tests call them directly.
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::dialect::{self, Dialect};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::ir::parametric::ModuleWord;
-use crate::ir::{Notation, SpanTable, System, TurtleOp, Word};
+use crate::ir::{Notation, Span, SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
 use crate::turtle::{self, Geometry};
@@ -43,12 +44,65 @@ pub fn load(spec: &str) -> Result<SourceFile, LoadError> {
     SourceFile::read(Path::new(spec)).map_err(|e| LoadError(format!("cannot read `{spec}`: {e}")))
 }
 
-/// A file compiled to the IR. `system` is `None` when the file has errors.
+/// A file compiled to the IR. `system` is `None` when the file has errors,
+/// or when it is a Fractint library of several entries and none was chosen
+/// (`needs_entry`).
 pub struct Compiled {
     pub file: SourceFile,
     pub system: Option<System>,
     pub spans: SpanTable,
     pub diagnostics: Diagnostics,
+    /// The notation or `.l` dialect the file was read as.
+    pub dialect: Dialect,
+    /// A Fractint library's entries, in file order.
+    pub entries: Vec<EntryInfo>,
+    /// The entry `system` is (an index into `entries`).
+    pub chosen: Option<usize>,
+    /// Several entries and none chosen: `system` is `None` without errors.
+    pub needs_entry: bool,
+}
+
+/// One entry of a Fractint library, as `check` lists it.
+#[derive(Clone, Debug, Serialize)]
+pub struct EntryInfo {
+    pub name: String,
+    /// The name's place in the file.
+    pub span: Span,
+    pub errors: usize,
+    pub warnings: usize,
+}
+
+/// Splits `FILE:NAME` (a Fractint entry) when `FILE` exists and the whole
+/// does not; anything else is a path as it is.
+pub fn split_entry(spec: &str) -> (String, Option<String>) {
+    if !spec.starts_with("std:") && !Path::new(spec).exists() {
+        if let Some((path, name)) = spec.rsplit_once(':') {
+            if !name.is_empty() && !name.contains(['/', '\\']) && Path::new(path).is_file() {
+                return (path.to_string(), Some(name.to_string()));
+            }
+        }
+    }
+    (spec.to_string(), None)
+}
+
+/// The error for a library whose entry was not chosen (see
+/// [`Compiled::needs_entry`]), listing the entries.
+pub fn choose_entry(c: &Compiled) -> Diagnostic {
+    let names: Vec<&str> = c.entries.iter().map(|e| e.name.as_str()).collect();
+    let first = names.first().copied().unwrap_or("NAME");
+    Diagnostic::global(
+        codes::FR_CHOOSE_ENTRY,
+        format!(
+            "`{}` is a Fractint library of {} entries: choose one",
+            c.file.name,
+            names.len()
+        ),
+    )
+    .with_note(format!("entries: {}", names.join(", ")))
+    .with_help(format!(
+        "write `{}:{first}` or add `--entry {first}`; `graftal check` lists the entries",
+        c.file.name
+    ))
 }
 
 /// The largest source file read (8 MiB): L-system files are a few KB, and
@@ -57,6 +111,14 @@ pub const MAX_SOURCE_BYTES: usize = 8 << 20;
 
 /// Parses, lowers and validates `file`, collecting every diagnostic.
 pub fn compile(file: SourceFile) -> Compiled {
+    compile_entry(file, None)
+}
+
+/// [`compile`], choosing the entry `entry` of a Fractint library (names
+/// compared without regard to case). Without a choice, a library of one
+/// entry gives that entry; of several, every entry is checked and
+/// `needs_entry` is set.
+pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
     let mut diags = Diagnostics::default();
     if file.text.len() > MAX_SOURCE_BYTES {
         diags.push(
@@ -77,28 +139,52 @@ pub fn compile(file: SourceFile) -> Compiled {
             system: None,
             spans: SpanTable::default(),
             diagnostics: diags,
+            dialect: Dialect::Pfg,
+            entries: Vec::new(),
+            chosen: None,
+            needs_entry: false,
         };
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
-    let cpfg_dialect = ext == "l" && crate::cpfg::looks_like_cpfg(&file.text);
-    let (system, spans) = match ext.as_str() {
-        _ if cpfg_dialect => {
-            let lowered = crate::cpfg::read_file(&file, &mut diags);
-            (Some(lowered.system), lowered.spans)
-        }
-        "linf" => {
+    let dialect = dialect::detect(&ext, &file.text);
+    let mut library = Library::default();
+    let (system, spans) = match dialect {
+        Dialect::Linf => {
             let lowered = linf::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
-        "stl" => {
+        Dialect::Stl => {
             let lowered = crate::stl::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
-        _ => {
+        Dialect::Cpfg => {
+            let lowered = crate::cpfg::read_file(&file, &mut diags);
+            (Some(lowered.system), lowered.spans)
+        }
+        Dialect::Fractint => {
+            library = fractint_library(&file.text, entry, &mut diags);
+            match library.lowered.take() {
+                Some(l) => (Some(l.system), l.spans),
+                None => (None, SpanTable::default()),
+            }
+        }
+        Dialect::Pfg => {
             let lowered = pfg::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
     };
+    if entry.is_some() && dialect != Dialect::Fractint {
+        diags.push(
+            Diagnostic::global(
+                codes::FR_UNKNOWN_ENTRY,
+                format!(
+                    "an entry was chosen, but this file is {} and has no entries",
+                    dialect.name()
+                ),
+            )
+            .with_help("only Fractint libraries (`Name { … }` entries) have entries to choose"),
+        );
+    }
     diags.sort();
     let system = if diags.has_errors() { None } else { system };
     Compiled {
@@ -106,7 +192,117 @@ pub fn compile(file: SourceFile) -> Compiled {
         system,
         spans,
         diagnostics: diags,
+        dialect,
+        entries: library.entries,
+        chosen: library.chosen,
+        needs_entry: library.needs_entry,
     }
+}
+
+#[derive(Default)]
+struct Library {
+    entries: Vec<EntryInfo>,
+    chosen: Option<usize>,
+    needs_entry: bool,
+    lowered: Option<crate::fractint::Lowered>,
+}
+
+/// Reads a Fractint library: every entry is lowered (so each one's
+/// problems are its own); the diagnostics kept are the chosen entry's and
+/// the file's, or every entry's when none is chosen.
+fn fractint_library(text: &str, entry: Option<&str>, diags: &mut Diagnostics) -> Library {
+    use crate::fractint;
+    let mut file_diags = Diagnostics::default();
+    let ast = fractint::parse(text, &mut file_diags);
+    let mut lib = Library::default();
+    let mut per_entry: Vec<(fractint::Lowered, Diagnostics)> = Vec::new();
+    for (i, e) in ast.entries.iter().enumerate() {
+        if let Some(first) = ast.entries[..i]
+            .iter()
+            .find(|f| f.name.eq_ignore_ascii_case(&e.name))
+        {
+            // About the file, whichever entry is chosen.
+            diags.push(
+                Diagnostic::at(
+                    codes::FR_DUPLICATE_ENTRY,
+                    e.name_span.clone(),
+                    format!("a second entry named `{}`", e.name),
+                )
+                .with_label("never chosen by name")
+                .with_secondary(
+                    first.name_span.clone(),
+                    "the first, which `FILE:NAME` finds",
+                ),
+            );
+        }
+        let mut d = Diagnostics::default();
+        let l = fractint::lower_entry(e, &mut d);
+        per_entry.push((l, d));
+    }
+    // The file's diagnostics belong to the entry they are in, if any.
+    let owner = |d: &Diagnostic| {
+        let at = d.span.as_ref()?.start;
+        ast.entries
+            .iter()
+            .position(|e| e.span.start <= at && at < e.span.end.max(e.span.start + 1))
+    };
+    for d in file_diags.0 {
+        match owner(&d) {
+            Some(i) => per_entry[i].1.push(d),
+            None => diags.push(d),
+        }
+    }
+    for (e, (_, d)) in ast.entries.iter().zip(&per_entry) {
+        lib.entries.push(EntryInfo {
+            name: e.name.clone(),
+            span: e.name_span.clone(),
+            errors: d.iter().filter(|d| d.is_error()).count(),
+            warnings: d.iter().filter(|d| !d.is_error()).count(),
+        });
+    }
+    lib.chosen = match entry {
+        Some(name) => {
+            let found = ast
+                .entries
+                .iter()
+                .position(|e| e.name.eq_ignore_ascii_case(name));
+            if found.is_none() {
+                let names: Vec<&str> = ast.entries.iter().map(|e| e.name.as_str()).collect();
+                let mut d = Diagnostic::global(
+                    codes::FR_UNKNOWN_ENTRY,
+                    format!("no entry `{name}` in this file"),
+                )
+                .with_note(format!("entries: {}", names.join(", ")));
+                if let Some(n) = crate::diagnostics::nearest(name, &names).first() {
+                    d = d.with_help(format!("did you mean `{n}`?"));
+                }
+                diags.push(d);
+            }
+            found
+        }
+        None if ast.entries.len() == 1 => Some(0),
+        None => None,
+    };
+    if ast.entries.is_empty() {
+        diags.push(
+            Diagnostic::global(codes::FR_CHOOSE_ENTRY, "this Fractint file has no entries")
+                .with_help("an entry is `Name {`, its lines, and a line `}`"),
+        );
+    }
+    match lib.chosen {
+        Some(i) => {
+            let (l, d) = per_entry.swap_remove(i);
+            diags.extend(d);
+            lib.lowered = Some(l);
+        }
+        None => {
+            lib.needs_entry = entry.is_none() && ast.entries.len() > 1;
+            for (_, d) in per_entry {
+                diags.extend(d);
+            }
+        }
+    }
+    lib
 }
 
 /// A derived word as text in the notation it was read from: pfg symbols
@@ -190,7 +386,12 @@ pub fn interpret(
     let moves = word
         .0
         .iter()
-        .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
+        .filter(|&&s| {
+            matches!(
+                sys.op(s),
+                Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
+            )
+        })
         .count();
     if moves > opts.max_moves {
         return Err(Diagnostic::global(

@@ -1,7 +1,8 @@
 //! graftal: L-system notations read into one IR, evaluated, drawn,
 //! explained and translated.
 //!
-//! The pipeline: [`source`] text -> a front end ([`pfg`]) -> [`ir::System`]
+//! The pipeline: [`source`] text -> a front end ([`pfg`], [`linf`], [`stl`], [`fractint`]; [`dialect`] tells
+//! which) -> [`ir::System`]
 //! -> [`eval`] (derivation) -> [`turtle`] (geometry) -> [`render`] (PNG,
 //! SVG). Every stage reports [`diagnostics`]. [`driver`] strings the stages
 //! together for the CLI and for tests.
@@ -12,9 +13,11 @@
 pub mod cli;
 pub mod cpfg;
 pub mod diagnostics;
+pub mod dialect;
 pub mod driver;
 pub mod emit;
 pub mod eval;
+pub mod fractint;
 pub mod ir;
 pub mod linf;
 pub mod pfg;

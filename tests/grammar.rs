@@ -8,7 +8,7 @@
 //! See the top of `grammar/pfg.ebnf` for the format of the examples.
 
 use graftal::diagnostics::codes;
-use graftal::driver::{compile, Compiled};
+use graftal::driver::{compile_entry, Compiled};
 use graftal::linf::lexer::BlockKind;
 use graftal::pfg::parser::HEADERS;
 use graftal::source::SourceFile;
@@ -28,7 +28,7 @@ struct Grammar {
     range: Option<&'static str>,
 }
 
-const GRAMMARS: [Grammar; 3] = [
+const GRAMMARS: [Grammar; 4] = [
     Grammar {
         file: "pfg.ebnf",
         ext: "l",
@@ -46,6 +46,12 @@ const GRAMMARS: [Grammar; 3] = [
         ext: "stl",
         starts: &["file", "source text", "string", "entries", "shape"],
         range: Some("05"),
+    },
+    Grammar {
+        file: "fractint.ebnf",
+        ext: "l",
+        starts: &["file", "entry", "entry line", "string", "command"],
+        range: Some("07"),
     },
 ];
 
@@ -312,6 +318,7 @@ fn stl_keywords_shapes_and_reserved_names_match_the_implementation() {
         let c = run(
             &format!("SEED\nF\nENDSEED\nLAYOUT\n(clWhite) {k} (0,0), (1,0), (0,1)\nENDLAYOUT\n"),
             "stl",
+            None,
         );
         assert!(!codes_of(&c).contains(&"E0505"), "{k}");
     }
@@ -339,6 +346,8 @@ struct Example {
     /// `None` for an example, the expected code for a counterexample.
     code: Option<String>,
     text: String,
+    /// The entry chosen (`counterexample CODE entry NAME:`).
+    entry: Option<String>,
     /// 1-based line in the grammar file.
     line: usize,
 }
@@ -389,12 +398,20 @@ fn examples(src: &str) -> Vec<Example> {
         let body = line
             .strip_suffix(" *)")
             .unwrap_or_else(|| panic!("line {n}: an example must end with ` *)`"));
+        let mut entry = None;
         let (code, raw) = if let Some(raw) = body.strip_prefix("(* example: ") {
             (None, raw)
         } else if let Some(rest) = body.strip_prefix("(* counterexample ") {
             let (code, raw) = rest
                 .split_once(": ")
                 .unwrap_or_else(|| panic!("line {n}: expected `(* counterexample CODE: …`"));
+            let code = match code.split_once(" entry ") {
+                Some((code, name)) => {
+                    entry = Some(name.to_string());
+                    code
+                }
+                None => code,
+            };
             assert!(is_code(code), "line {n}: `{code}` is not a code");
             (Some(code.to_string()), raw)
         } else {
@@ -407,14 +424,15 @@ fn examples(src: &str) -> Vec<Example> {
         out.push(Example {
             code,
             text: unescape(raw, n),
+            entry,
             line: n,
         });
     }
     out
 }
 
-fn run(text: &str, ext: &str) -> Compiled {
-    compile(SourceFile::new(format!("ex.{ext}"), text))
+fn run(text: &str, ext: &str, entry: Option<&str>) -> Compiled {
+    compile_entry(SourceFile::new(format!("ex.{ext}"), text), entry)
 }
 
 fn codes_of(c: &Compiled) -> Vec<&'static str> {
@@ -489,7 +507,7 @@ fn examples_compile(g: &Grammar) {
         .filter(|e| e.code.is_none())
     {
         count += 1;
-        let c = run(&ex.text, g.ext);
+        let c = run(&ex.text, g.ext, ex.entry.as_deref());
         if c.diagnostics.has_errors() || c.system.is_none() || !c.diagnostics.is_empty() {
             failures.push(format!(
                 "line {}: {:?}\n    gave {:?}",
@@ -524,7 +542,7 @@ fn counterexamples(g: &Grammar) {
     for ex in examples(&grammar_text(g.file)) {
         let Some(code) = &ex.code else { continue };
         count += 1;
-        let c = run(&ex.text, g.ext);
+        let c = run(&ex.text, g.ext, ex.entry.as_deref());
         let got = codes_of(&c);
         let is_warning = code.starts_with('W');
         let compiled = c.system.is_some() && !c.diagnostics.has_errors();
@@ -603,6 +621,31 @@ fn constraint_codes_checked(g: &Grammar) {
         missing.is_empty(),
         "constraint codes without a counterexample: {missing:?}"
     );
+}
+
+#[test]
+fn fractint_keywords_match_the_parser() {
+    assert_eq!(
+        keyword_rule("fractint.ebnf", "keyword"),
+        graftal::fractint::parser::KEYWORDS
+    );
+}
+
+#[test]
+fn fractint_reserved_characters_match_the_reader() {
+    // The grammar's reserved list, in the W0701 line of its constraints.
+    let src = grammar_text("fractint.ebnf");
+    let line = src
+        .lines()
+        .find(|l| l.contains("W0701"))
+        .expect("a W0701 constraint");
+    let listed: String = line
+        .split('`')
+        .nth(1)
+        .expect("the reserved characters in backquotes")
+        .split(' ')
+        .collect();
+    assert_eq!(listed, graftal::fractint::RESERVED);
 }
 
 #[test]

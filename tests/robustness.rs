@@ -141,12 +141,20 @@ fn check_diagnostic(d: &Diagnostic, file: &SourceFile) -> Result<(), String> {
 
 /// Compile, check diagnostics, derive (twice), lay out, SVG, PNG.
 fn pipeline(case: &Case) -> Result<Outcome, String> {
-    let compiled = stage("driver::compile", || {
+    let mut compiled = stage("driver::compile", || {
         driver::compile(SourceFile::new(
             format!("fuzz.{}", case.ext),
             case.text.clone(),
         ))
     })?;
+    if compiled.needs_entry {
+        // A Fractint library of several entries: every entry was checked;
+        // go on with the first, as `FILE:NAME` would.
+        let first = compiled.entries[0].name.clone();
+        compiled = stage("driver::compile_entry", || {
+            driver::compile_entry(compiled.file.clone(), Some(&first))
+        })?;
+    }
     for d in compiled.diagnostics.iter() {
         check_diagnostic(d, &compiled.file)?;
     }
@@ -181,6 +189,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
                     Notation::Pfg => "l",
                     Notation::Linf => "linf",
                     Notation::Stl => "stl",
+                    Notation::Fractint => unreachable!("not a translation target"),
                 };
                 let back = stage("driver::compile of a translation", || {
                     driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()))
@@ -1061,6 +1070,189 @@ fn linf_random_strings_never_panic_or_hang() {
 #[test]
 fn linf_structured_random_files_never_panic_or_hang() {
     run_all("linf structured", 1500, 6, case(linf_structured_text()));
+}
+
+// ---------------------------------------------------------------------------
+// Fractint libraries
+// ---------------------------------------------------------------------------
+
+const FRACTINT_FRAGMENTS: &[&str] = &[
+    "Koch {",
+    "Dragon{",
+    "}",
+    "{",
+    "\n",
+    "\n",
+    "\n",
+    " ",
+    " ",
+    "\t",
+    "\r\n",
+    "\r",
+    "Angle 6",
+    "angle=4",
+    "Angle 50",
+    "Angle 3",
+    "Angle 2",
+    "Angle",
+    "Axiom F",
+    "axiom=fx",
+    "Axiom",
+    "F=F+F--F+F",
+    "x=-FX++FY-",
+    "F=",
+    "x",
+    "=",
+    "==",
+    ";",
+    "; comment",
+    "comment {",
+    "@iq2",
+    "@i0",
+    "@0",
+    "@",
+    "@99999999999999999999",
+    "\\30",
+    "/45",
+    "\\",
+    "|",
+    "!",
+    "[",
+    "]",
+    "c12",
+    "c",
+    "<1",
+    ">300",
+    "<=",
+    "D",
+    "M",
+    "G",
+    "F",
+    "f",
+    "+",
+    "-",
+    "xy=F",
+    "-->",
+    "lsystem:",
+    "é",
+    "\u{7}",
+    "(",
+    "Name (x) {",
+];
+
+/// Random Fractint-flavoured text.
+fn fractint_random_text() -> impl Strategy<Value = (String, &'static str)> {
+    let piece = prop_oneof![
+        9 => proptest::sample::select(FRACTINT_FRAGMENTS).prop_map(String::from),
+        1 => any::<char>().prop_map(String::from),
+    ];
+    prop::collection::vec(piece, 0..120).prop_map(|v| (v.concat(), "l"))
+}
+
+/// A Fractint string: commands, numbers, variables, now and then a mistake.
+fn fractint_string() -> impl Strategy<Value = String> {
+    let item = prop_oneof![
+        30 => proptest::sample::select(&["f", "g", "d", "m", "x", "y", "fx"][..]).prop_map(String::from),
+        20 => proptest::sample::select(&["+", "-", "|", "!", "++", "--"][..]).prop_map(String::from),
+        4 => Just("[+f]".to_string()),
+        4 => (0u32..400).prop_map(|a| format!("\\{a}")),
+        4 => (0u32..400).prop_map(|a| format!("/{a}.5")),
+        3 => proptest::sample::select(&["@iq2", "@q3", "@.5", "@2", "@i1.5", "@0"][..])
+            .prop_map(String::from),
+        3 => (0u32..600).prop_map(|c| format!("c{c}")),
+        2 => proptest::sample::select(&["<1", ">2", "<300", ">0"][..]).prop_map(String::from),
+        1 => proptest::sample::select(&["[", "]", "@1e9", "=", "{", "}", "é"][..]).prop_map(String::from),
+    ];
+    prop::collection::vec(item, 0..12).prop_map(|v| v.concat())
+}
+
+/// Structured Fractint libraries: mostly one entry (so the pipeline
+/// derives and draws it), sometimes several, with comment blocks, rules
+/// for one character (several for one, deletions), angles in and out of
+/// range, and now and then a mistake.
+fn fractint_structured_text() -> impl Strategy<Value = (String, &'static str)> {
+    let head = prop_oneof![
+        40 => proptest::sample::select(&["f", "x", "y", "g", "d"][..]),
+        1 => proptest::sample::select(&["<", "c", "+", "xy"][..]),
+    ];
+    let rule = (head, fractint_string(), 0u8..10).prop_map(|(h, body, k)| match k {
+        0 => format!("  {h}=\n"),
+        1 => format!("  {h} = {body}\n"),
+        _ => format!("  {h}={body}\n"),
+    });
+    let angle = prop_oneof![20 => 3u32..51, 1 => 0u32..200];
+    let entry = (
+        proptest::sample::select(&["Koch", "Dragon", "Plant", "koch", "comment", ""][..]),
+        angle,
+        fractint_string(),
+        prop::collection::vec(rule, 0..5),
+        0u8..20,
+    )
+        .prop_map(|(name, angle, axiom, rules, k)| {
+            let angle = if k == 0 {
+                String::new()
+            } else {
+                format!("  Angle {angle}\n")
+            };
+            let axiom = if k == 1 {
+                String::new()
+            } else {
+                format!("  Axiom {axiom}\n")
+            };
+            let close = if k == 2 { "" } else { "}\n" };
+            format!("{name} {{ ; entry\n{angle}{axiom}{}{close}", rules.concat())
+        });
+    let extra = prop_oneof![
+        3 => Just(String::new()),
+        1 => Just("comment {\n  prose = + [\n}\n".to_string()),
+        1 => Just("; a comment line\n".to_string()),
+    ];
+    (extra, prop::collection::vec(entry, 1..3), 0u8..4).prop_map(|(extra, entries, k)| {
+        // Mostly one entry.
+        let n = if k == 0 { entries.len() } else { 1 };
+        (format!("{extra}{}", entries[..n].concat()), "l")
+    })
+}
+
+#[test]
+fn fractint_random_strings_never_panic_or_hang() {
+    run_all("fractint random", 600, 9, case(fractint_random_text()));
+}
+
+#[test]
+fn fractint_structured_random_files_never_panic_or_hang() {
+    run_all(
+        "fractint structured",
+        800,
+        10,
+        case(fractint_structured_text()),
+    );
+}
+
+#[test]
+fn fractint_corpus_files_as_written_pass() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus/fractint");
+    for f in [
+        "fractint.l",
+        "penrose.l",
+        "tiling.l",
+        "history/fractint.l.v15.0",
+    ] {
+        let text = std::fs::read_to_string(format!("{dir}/{f}")).unwrap();
+        // Each entry alone, as a file of one entry, at a few orders.
+        let file = graftal::fractint::parse(&text, &mut Default::default());
+        for e in file.entries.iter().step_by(4) {
+            let c = Case {
+                text: text[e.span.clone()].to_string(),
+                ext: "l",
+                k: 3,
+                seed: 0,
+                view: (0.0, 0.0),
+                size: (64, 64),
+            };
+            check_case(&c).unwrap_or_else(|err| panic!("{f}:{}: {err}", e.name));
+        }
+    }
 }
 
 /// `graftal derive` through `cli::run` on files written to disk: the exit

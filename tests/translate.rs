@@ -25,6 +25,8 @@ fn ext(n: Notation) -> &'static str {
         Notation::Pfg => "l",
         Notation::Linf => "linf",
         Notation::Stl => "stl",
+        // Fractint libraries are `.l` too (told apart by content).
+        Notation::Fractint => "l",
     }
 }
 

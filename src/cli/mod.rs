@@ -40,9 +40,14 @@ enum Target {
 
 #[derive(clap::Args, Debug, Clone)]
 struct DeriveArgs {
-    /// A path, or std:NAME for a standard-library system.
+    /// A path, or std:NAME for a standard-library system; FILE:NAME
+    /// chooses an entry of a Fractint library.
     file: String,
-    /// Derivation steps (default: the file's derivation length, else 0).
+    /// The entry of a Fractint library (case-insensitive, as in Fractint).
+    #[arg(long)]
+    entry: Option<String>,
+    /// Derivation steps (default: the file's derivation length, else 0;
+    /// Fractint's order 2 for Fractint entries).
     #[arg(short = 'n', long = "steps")]
     steps: Option<u64>,
     /// Seed for stochastic productions and random angles.
@@ -58,8 +63,12 @@ struct DeriveArgs {
 
 #[derive(clap::Args, Debug, Clone)]
 struct TranslateArgs {
-    /// A path, or std:NAME for a standard-library system.
+    /// A path, or std:NAME for a standard-library system; FILE:NAME
+    /// chooses an entry of a Fractint library.
     file: String,
+    /// The entry of a Fractint library (case-insensitive, as in Fractint).
+    #[arg(long)]
+    entry: Option<String>,
     /// The target notation.
     #[arg(long, value_enum)]
     to: Target,
@@ -81,10 +90,15 @@ struct TranslateArgs {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Parse and validate files; diagnostics on stderr.
+    /// Parse and validate files; diagnostics on stderr. A Fractint library's
+    /// entries are all checked and listed on stdout (FILE:NAME or --entry
+    /// checks one).
     Check {
         #[arg(required = true)]
         files: Vec<String>,
+        /// Check only this entry of each Fractint library.
+        #[arg(long)]
+        entry: Option<String>,
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
     },
@@ -182,14 +196,22 @@ where
         }
     };
     match cli.command {
-        Command::Check { files, format } => {
+        Command::Check {
+            files,
+            entry,
+            format,
+        } => {
             let mut status = 0;
             for f in files {
-                match driver::load(&f) {
+                let (path, named) = driver::split_entry(&f);
+                match driver::load(&path) {
                     Ok(file) => {
-                        let c = driver::compile(file);
+                        let c = driver::compile_entry(file, entry.as_deref().or(named.as_deref()));
                         report(io, &c, c.diagnostics.0.iter(), format);
-                        if c.system.is_none() {
+                        if format == OutputFormat::Human {
+                            list_entries(io, &c);
+                        }
+                        if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry) {
                             status = status.max(1);
                         }
                     }
@@ -315,15 +337,9 @@ where
 /// the target cannot express, without `--lossy`) mean exit status 1 and
 /// nothing written.
 fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
-    let src = match driver::load(&a.file) {
-        Ok(f) => f,
-        Err(e) => {
-            let _ = writeln!(io.stderr, "error: {e}");
-            return 2;
-        }
+    let Some(c) = load_and_compile(io, &a.file, a.entry.as_deref(), a.format) else {
+        return 2;
     };
-    let c = driver::compile(src);
-    report(io, &c, c.diagnostics.0.iter(), a.format);
     let Some(sys) = &c.system else {
         return 1;
     };
@@ -411,17 +427,11 @@ fn with_system(
         f64,
     ) -> Result<i32, Vec<Diagnostic>>,
 ) -> i32 {
-    let file = match driver::load(&a.file) {
-        Ok(f) => f,
-        Err(e) => {
-            let _ = writeln!(io.stderr, "error: {e}");
-            return 2;
-        }
-    };
     let t = std::time::Instant::now();
-    let c = driver::compile(file);
+    let Some(c) = load_and_compile(io, &a.file, a.entry.as_deref(), a.format) else {
+        return 2;
+    };
     let parse_seconds = t.elapsed().as_secs_f64();
-    report(io, &c, c.diagnostics.0.iter(), a.format);
     let Some(sys) = &c.system else {
         return 1;
     };
@@ -437,6 +447,72 @@ fn with_system(
             report(io, &c, ds.iter(), a.format);
             1
         }
+    }
+}
+
+/// Loads `spec` (`FILE:NAME` or `--entry` choosing a Fractint entry) and
+/// compiles it, printing its diagnostics, and the error asking for an
+/// entry when a library's entry is not chosen. `None` when the file cannot
+/// be read.
+fn load_and_compile(
+    io: &mut Io<'_>,
+    spec: &str,
+    entry: Option<&str>,
+    format: OutputFormat,
+) -> Option<Compiled> {
+    let (path, named) = driver::split_entry(spec);
+    let file = match driver::load(&path) {
+        Ok(f) => f,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            return None;
+        }
+    };
+    let c = driver::compile_entry(file, entry.or(named.as_deref()));
+    report(io, &c, c.diagnostics.0.iter(), format);
+    if c.needs_entry {
+        report(io, &c, [driver::choose_entry(&c)].iter(), format);
+    }
+    Some(c)
+}
+
+/// `check`'s listing of a Fractint library: the dialect, then each entry
+/// with its line and what was found.
+fn list_entries(io: &mut Io<'_>, c: &Compiled) {
+    if c.dialect != crate::dialect::Dialect::Fractint {
+        return;
+    }
+    let _ = writeln!(
+        io.stdout,
+        "{}: dialect: Fractint, {} {} (choose one with FILE:NAME or --entry NAME; -n sets the order, default {} as in Fractint)",
+        c.file.name,
+        c.entries.len(),
+        if c.entries.len() == 1 { "entry" } else { "entries" },
+        crate::fractint::DEFAULT_ORDER
+    );
+    let width = c
+        .entries
+        .iter()
+        .map(|e| e.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    for (i, e) in c.entries.iter().enumerate() {
+        let (line, _) = c.file.line_col(e.span.start);
+        let state = match (e.errors, e.warnings) {
+            (0, 0) => "ok".to_string(),
+            (0, w) => format!("ok, {w} warning{}", if w == 1 { "" } else { "s" }),
+            (n, _) => format!("{n} error{}", if n == 1 { "" } else { "s" }),
+        };
+        let chosen = if c.chosen == Some(i) && c.entries.len() > 1 {
+            "  (chosen)"
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            io.stdout,
+            "  {:width$}  line {line:<4} {state}{chosen}",
+            e.name
+        );
     }
 }
 

@@ -21,20 +21,6 @@ pub fn read(src: &str, diags: &mut Diagnostics) -> Lowered {
     lower::lower(&ast, diags)
 }
 
-/// Whether `text` is written in the cpfg dialect of `.l` rather than the
-/// 1988 pfg format: it has an `lsystem:` or `endlsystem` line, or C
-/// preprocessor directives (neither occurs in pfg files).
-pub fn looks_like_cpfg(text: &str) -> bool {
-    text.lines().any(|l| {
-        let t = l.trim_start().to_ascii_lowercase();
-        t.starts_with("lsystem:")
-            || t.starts_with("lsystem :")
-            || t.starts_with("endlsystem")
-            || t.starts_with("#define")
-            || t.starts_with("#include")
-    })
-}
-
 /// Reads a cpfg `.l` file.
 pub fn read_file(file: &crate::source::SourceFile, diags: &mut Diagnostics) -> Lowered {
     read(&file.text, diags)

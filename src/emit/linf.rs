@@ -364,6 +364,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 );
                 String::new()
             }
+            TurtleOp::TurnUnswapped(_)
+            | TurtleOp::RotateReal(_)
+            | TurtleOp::ForwardReal { .. }
+            | TurtleOp::SetColour(_)
+            | TurtleOp::ShiftColour { .. } => super::fractint_only(e, &name, span, "LinF"),
             // cpfg's own turtle commands: parametric systems are refused
             // before any emitter runs (see `translate`).
             TurtleOp::ColourIndex { .. }

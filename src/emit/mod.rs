@@ -377,17 +377,165 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
             };
             e.finish(text)
         }
+        (Notation::Fractint, target) => {
+            let (plain, problems) = fractint_plain(sys, spans, target);
+            let mut e = Emitter::new(&plain, spans, source, req);
+            for p in problems {
+                e.problem(p.kind, p.span, p.what, p.change);
+            }
+            let text = write_productions(&mut e, target);
+            e.finish(text)
+        }
         (_, target) => {
             let mut e = Emitter::new(sys, spans, source, req);
-            let text = match target {
-                // Nothing asks for a cpfg target; pfg is its closest form.
-                Notation::Pfg | Notation::Cpfg => pfg::write(&mut e),
-                Notation::Linf => linf::write(&mut e),
-                Notation::Stl => stl::from_productions(&mut e),
-            };
+            let text = write_productions(&mut e, target);
             e.finish(text)
         }
     }
+}
+
+fn write_productions(e: &mut Emitter<'_>, target: Notation) -> String {
+    match target {
+        Notation::Pfg => pfg::write(e),
+        Notation::Linf => linf::write(e),
+        Notation::Stl => stl::from_productions(e),
+        // No Fractint or cpfg emitter: the CLI does not offer them as
+        // targets.
+        Notation::Fractint | Notation::Cpfg => String::new(),
+    }
+}
+
+/// A Fractint system with its Fractint-only operations replaced by the
+/// common ones where that means the same, and the problems where it does
+/// not: the real heading (`\n /n D M`) is the frame's heading when the
+/// entry uses only one of the two; `|` is a plain turn unless `!` swaps
+/// turns; colour indices (`Cn <n >n`) have no counterpart.
+fn fractint_plain(sys: &System, spans: &SpanTable, target: Notation) -> (System, Vec<Problem>) {
+    let to = notation_name(target);
+    let mut plain = sys.clone();
+    let mut problems = Vec::new();
+    let ops: Vec<(SymbolId, TurtleOp)> = (0..sys.symbols.len() as u32)
+        .map(SymbolId)
+        .filter_map(|s| sys.op(s).map(|op| (s, op)))
+        .collect();
+    let uses = |f: fn(&TurtleOp) -> bool| ops.iter().any(|(_, op)| f(op));
+    let two_headings =
+        uses(|op| {
+            matches!(
+                op,
+                TurtleOp::Forward { .. }
+                    | TurtleOp::Rotate { .. }
+                    | TurtleOp::TurnAround
+                    | TurtleOp::TurnUnswapped(_)
+            )
+        }) && uses(|op| matches!(op, TurtleOp::RotateReal(_) | TurtleOp::ForwardReal { .. }));
+    let swaps = uses(|op| matches!(op, TurtleOp::SwapTurns));
+    for (s, op) in ops {
+        let name = sys.symbols.name(s);
+        let span = spans.symbols.get(&s).cloned();
+        let mut problem = |kind, what: String, change: &str| {
+            problems.push(Problem {
+                kind,
+                span: span.clone(),
+                what,
+                change: change.to_string(),
+            })
+        };
+        let new = match op {
+            TurtleOp::RotateReal(_) | TurtleOp::ForwardReal { .. } => {
+                if two_headings {
+                    problem(
+                        Kind::Angle,
+                        format!("`{name}` uses Fractint's second heading (`\\n /n D M`) beside the first (`+ - | F G`): {to} has one heading"),
+                        "the two headings are merged into one",
+                    );
+                }
+                Some(match op {
+                    TurtleOp::RotateReal(angle) => TurtleOp::Rotate {
+                        axis: Axis::Up,
+                        angle,
+                    },
+                    _ => TurtleOp::Forward {
+                        draw: matches!(op, TurtleOp::ForwardReal { draw: true }),
+                    },
+                })
+            }
+            TurtleOp::TurnUnswapped(angle) => {
+                if swaps {
+                    problem(
+                        Kind::Swap,
+                        format!("`{name}` turns the same way after `!`: {to} has no such turn"),
+                        "it is written as a turn that `!` reverses",
+                    );
+                }
+                Some(TurtleOp::Rotate {
+                    axis: Axis::Up,
+                    angle,
+                })
+            }
+            TurtleOp::SetColour(_) | TurtleOp::ShiftColour { .. } => {
+                problem(
+                    Kind::Attribute,
+                    format!("the Fractint colour command `{name}`: {to} has no colour indices"),
+                    "it is dropped",
+                );
+                None
+            }
+            other => Some(other),
+        };
+        plain.interpretation[s.index()] = new;
+    }
+    // Fractint tolerates a string with unbalanced brackets (W0702); the
+    // targets do not.
+    let mut words: Vec<(&mut crate::ir::Word, Option<Span>)> =
+        vec![(&mut plain.axiom, spans.axiom.first().cloned())];
+    for (i, p) in plain.productions.iter_mut().enumerate() {
+        let span = spans.productions.get(i).cloned();
+        for a in &mut p.alternatives {
+            words.push((&mut a.successor, span.clone()));
+        }
+    }
+    for (word, span) in words {
+        let mut depth = 0usize;
+        let mut balanced = Vec::with_capacity(word.0.len());
+        for &s in &word.0 {
+            if s == SymbolId::CLOSE {
+                if depth == 0 {
+                    continue;
+                }
+                depth -= 1;
+            } else if s == SymbolId::OPEN {
+                depth += 1;
+            }
+            balanced.push(s);
+        }
+        balanced.extend(std::iter::repeat_n(SymbolId::CLOSE, depth));
+        if balanced != word.0 {
+            problems.push(Problem {
+                kind: Kind::Rule,
+                span,
+                what: format!("a string with unbalanced brackets: {to} needs every `[` closed"),
+                change: "unmatched `]` are dropped and missing `]` added at the end".into(),
+            });
+            word.0 = balanced;
+        }
+    }
+    plain.colours.clear();
+    plain.settings.colour = 0;
+    (plain, problems)
+}
+
+/// What an emitter writes for an operation only Fractint has (they are
+/// replaced before emitting, see [`fractint_plain`]): a problem, nothing
+/// written.
+pub fn fractint_only(e: &mut Emitter<'_>, name: &str, span: Option<Span>, to: &str) -> String {
+    e.problem(
+        Kind::Attribute,
+        span,
+        format!("the Fractint command `{name}`: {to} has no such command"),
+        "it is dropped",
+    );
+    String::new()
 }
 
 /// The first line of `src` that starts with the word `word` (followed by
@@ -734,6 +882,9 @@ pub fn comments(notation: Notation, src: &str) -> Vec<(Span, String)> {
                 i = end;
             }
         }
+        // The comments of a Fractint library belong to its many entries,
+        // not to the one translated: none are carried over.
+        Notation::Fractint => {}
         Notation::Linf | Notation::Stl | Notation::Cpfg => {
             let mut offset = 0;
             for line in src.split_inclusive('\n') {
@@ -889,6 +1040,7 @@ pub fn notation_name(n: Notation) -> &'static str {
         Notation::Linf => "linf",
         Notation::Stl => "stl",
         Notation::Cpfg => "cpfg",
+        Notation::Fractint => "fractint",
     }
 }
 
@@ -901,6 +1053,7 @@ pub fn banner(e: &Emitter<'_>) -> String {
             Notation::Linf => "LinF",
             Notation::Stl => "STL",
             Notation::Cpfg => "cpfg",
+            Notation::Fractint => "Fractint",
         }
     )
 }

@@ -319,6 +319,11 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 );
                 String::new()
             }
+            TurtleOp::TurnUnswapped(_)
+            | TurtleOp::RotateReal(_)
+            | TurtleOp::ForwardReal { .. }
+            | TurtleOp::SetColour(_)
+            | TurtleOp::ShiftColour { .. } => super::fractint_only(e, &name, span, "pfg"),
             // cpfg's own turtle commands: parametric systems are refused
             // before any emitter runs (see `translate`).
             TurtleOp::ColourIndex { .. }

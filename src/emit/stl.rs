@@ -310,6 +310,13 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
                 String::new()
             }
             Some(TurtleOp::Stem { .. }) => String::new(),
+            Some(
+                TurtleOp::TurnUnswapped(_)
+                | TurtleOp::RotateReal(_)
+                | TurtleOp::ForwardReal { .. }
+                | TurtleOp::SetColour(_)
+                | TurtleOp::ShiftColour { .. },
+            ) => super::fractint_only(e, &name, span, "STL"),
             // cpfg's own turtle commands: parametric systems are refused
             // before any emitter runs (see `translate`).
             Some(_) => String::new(),

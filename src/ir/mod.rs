@@ -93,6 +93,27 @@
 //! `L`/`+`, `R`/`-` are symbols interpreted as `Forward`, and rotations about
 //! [`Axis::Up`] by ∓δ.
 //!
+//! **Fractint entry** `Dragon { Angle 8  Axiom FX  F=  y=+FX--FY+ … }`
+//! (one entry of a library file, chosen by name): `Angle 8` is
+//! [`Settings::angle`] `= 360/8`; Fractint has no derivation length in the
+//! file, so [`Settings::steps`] is its default order, 2. Rules for the same
+//! character are concatenated in file order into one [`Production`]
+//! (`F=` is a production with the empty successor). Commands are lowercased
+//! symbols; those with a number are single symbols (`\30`, `@iq2`, `c12`,
+//! `<2`). Fractint's turtle has two headings: the frame's heading, turned by
+//! `+` (`Rotate { Up, Delta(−1) }`: Fractint's `+` turns counter-clockwise),
+//! `-` and `|` ([`TurtleOp::TurnUnswapped`] by ⌊N/2⌋ increments; plain
+//! [`TurtleOp::TurnAround`] for even N) and used by `F`/`G` (`Forward`);
+//! and a real heading in degrees turned by `\n`/`/n`
+//! ([`TurtleOp::RotateReal`]) and used by `D`/`M`
+//! ([`TurtleOp::ForwardReal`]). `!` is [`TurtleOp::SwapTurns`] (it swaps
+//! both registers' turns), `@n` is [`TurtleOp::ScaleLength`] (both
+//! registers' moves), `Cn`/`<n`/`>n` are [`TurtleOp::SetColour`] and
+//! [`TurtleOp::ShiftColour`] over Fractint's 256-colour palette in
+//! [`System::colours`], starting at [`Settings::colour`] 15. Both headings
+//! start along the turtle's initial H (graftal's up; Fractint's screen starts
+//! east, so pictures are a quarter turn counter-clockwise from Fractint's).
+//!
 //! **STL stem levels** (`B = 8 (1)`, `L = 40 (4)`): a stem drawn at growth
 //! level k has broadness `B − k·ΔB` and length `L − k·ΔL`. The STL front end
 //! writes a *silent* symbol ([`SymbolTable::intern_silent`]: its name is
@@ -363,6 +384,26 @@ pub enum TurtleOp {
     /// cpfg `?P`, `?H`, `?L`, `?U`: the turtle writes its position or frame
     /// vector into the module's parameters (see [`crate::eval::parametric`]).
     Query(QueryKind),
+    /// Fractint `|`: rotate about U by `angle` like [`TurtleOp::Rotate`],
+    /// but *not* negated when turns are swapped (Fractint's `!` leaves `|`
+    /// alone).
+    TurnUnswapped(Angle),
+    /// Fractint `\n` / `/n`: turn the turtle's second, *real* heading (an
+    /// angle in the plane of the initial H and L, independent of the frame)
+    /// by `angle`, positive to the right as for [`TurtleOp::Rotate`] about
+    /// U; negated when turns are swapped.
+    RotateReal(Angle),
+    /// Fractint `D` / `M`: move one step (times the current length) along
+    /// the real heading; draw a segment if `draw`.
+    ForwardReal { draw: bool },
+    /// Fractint `Cn`: set the colour index to `n` modulo the palette's
+    /// length.
+    SetColour(u32),
+    /// Fractint `<n` (`up`) / `>n`: shift the colour index by `by`, modulo
+    /// the palette's length; landing on 0 gives 1 going up and the last
+    /// colour going down (Fractint never reaches the background colour 0
+    /// this way).
+    ShiftColour { by: u32, up: bool },
 }
 
 /// What a cpfg query module reads.
@@ -446,7 +487,7 @@ pub struct Settings {
     /// The view the file asks for, `(azimuth, elevation)` in degrees (a
     /// LinF `#: view` directive, a cpfg view file); `--view` overrides it.
     pub view: Option<(f64, f64)>,
-    /// The initial colour index (cpfg `initial color`; 0 elsewhere).
+    /// The initial colour index (cpfg `initial color`, Fractint 15; 0 elsewhere).
     pub colour: usize,
     /// What cpfg's `;` and `,` add to the colour index (`color increment`).
     pub colour_step: f64,
@@ -485,6 +526,8 @@ pub enum Notation {
     Stl,
     /// The cpfg dialect of `.l` (parametric; see [`parametric`]).
     Cpfg,
+    /// A Fractint L-system library entry.
+    Fractint,
 }
 
 /// STL structural syntax, kept as structure (see the module docs).

@@ -142,6 +142,9 @@ struct State {
     /// A generalized cylinder being drawn: the last control point, the
     /// heading there, and the tangent factors of the next segment.
     cylinder: Option<Cylinder>,
+    /// Fractint's real heading ([`TurtleOp::RotateReal`]): radians
+    /// counter-clockwise from the initial H towards the initial L.
+    real: f64,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -305,6 +308,7 @@ fn run(
         history: NO_HISTORY,
         swapped: false,
         cylinder: None,
+        real: 0.0,
     };
     let mut stack: Vec<State> = Vec::new();
     // Arena of the colour histories: (previous entry, colour).
@@ -345,13 +349,20 @@ fn run(
             rotations = 0;
         }
         match op {
-            TurtleOp::Forward { draw } => {
+            TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. } => {
+                let (dir, draw) = match op {
+                    // Along the real heading in the plane of the initial
+                    // H = +y and L = −x.
+                    TurtleOp::ForwardReal { draw } => ([-st.real.sin(), st.real.cos(), 0.0], draw),
+                    TurtleOp::Forward { draw } => (st.h, draw),
+                    _ => unreachable!("matched above"),
+                };
                 let a = st.pos;
                 let length = arg(0).unwrap_or(st.length);
                 let b = [
-                    a[0] + st.h[0] * length,
-                    a[1] + st.h[1] * length,
-                    a[2] + st.h[2] * length,
+                    a[0] + dir[0] * length,
+                    a[1] + dir[1] * length,
+                    a[2] + dir[2] * length,
                 ];
                 st.pos = b;
                 if options.paths {
@@ -384,6 +395,27 @@ fn run(
                     st.turn(Axis::Up, -sign * k);
                     rotations += 1;
                 }
+            }
+            TurtleOp::TurnUnswapped(angle) => {
+                let a = resolve(angle);
+                let (s, c) = a.sin_cos();
+                (st.h, st.l) = rotate(st.h, st.l, c, s);
+                rotations += 1;
+            }
+            TurtleOp::RotateReal(angle) => {
+                let a = resolve(angle);
+                // Positive turns right, as `Rotate` about U does.
+                st.real -= if st.swapped { -a } else { a };
+            }
+            TurtleOp::SetColour(n) => st.colour = n as usize % palette.len(),
+            TurtleOp::ShiftColour { by, up } => {
+                let len = palette.len() as i64;
+                let by = i64::from(by) % len;
+                let mut c = (st.colour as i64 + if up { by } else { -by }).rem_euclid(len);
+                if c == 0 {
+                    c = if up { 1 } else { len - 1 };
+                }
+                st.colour = (c.min(len - 1)) as usize;
             }
             TurtleOp::TurnAround => {
                 // Not affected by swapped turns: a half turn either way.

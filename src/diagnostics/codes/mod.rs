@@ -5,9 +5,10 @@
 //! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
 //! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
-//! translation (`codes/translate.rs`), `E083x` the cpfg L-system language
-//! (`codes/cpfg_lsystem.rs`);
-//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation.
+//! translation (`codes/translate.rs`), `E07xx` Fractint (`codes/fractint.rs`),
+//! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`);
+//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation,
+//! `W07xx` Fractint, `W082x` cpfg.
 
 use super::Severity;
 use std::fmt;
@@ -56,10 +57,12 @@ macro_rules! codes {
 }
 
 mod cpfg_lsystem;
+mod fractint;
 mod linf;
 mod stl;
 mod translate;
 pub use cpfg_lsystem::*;
+pub use fractint::*;
 pub use linf::*;
 pub use stl::*;
 pub use translate::*;
@@ -72,15 +75,17 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(stl::STL)
         .chain(translate::TRANSLATE)
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
+        .chain(fractint::FRACTINT)
 }
 
 codes! { GENERAL;
     UNSUPPORTED_NOTATION = "E0010", "notation not supported",
-"The file's extension names a notation whose front end this version of
-graftal does not have. `.l` files are read as pfg.
+"The file is in a notation whose front end this version of graftal does
+not have. `.l` files are pfg, cpfg or Fractint files, told apart by their
+content (see `graftal check`); the cpfg dialect is not read yet.
 
 Example:
-    graftal check tree.stl";
+    graftal check anabaena.l     <- a cpfg file: `lsystem: 1` ... `endlsystem`";
 
     FILE_TOO_LARGE = "E0011", "file too large",
 "graftal reads source files of up to 8 MiB. L-system files are a few

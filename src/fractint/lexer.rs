@@ -1,0 +1,147 @@
+//! The Fractint lexers (logos).
+//!
+//! [`Token`] cuts a file into what its structure needs: line ends, `;`
+//! comments (to the end of the line), `{`, `}`, `=` and runs of other
+//! characters. Fractint separates words by spaces and tabs only, so a
+//! run is anything else. Control characters are errors.
+//!
+//! [`Command`] cuts an axiom or rule body (already lowercased, as Fractint
+//! lowercases every line) into commands: `/ \ @ c < >` take a number with up
+//! to two `q` (square root) or `i` (inverse) prefixes, `@iq2` is one
+//! command; every other character is a command or a plain symbol of its own.
+
+use crate::diagnostics::Diagnostics;
+use crate::ir::Span;
+use logos::Logos;
+
+#[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
+#[logos(skip r"[ \t\x0b\x0c]+")]
+pub enum Token<'src> {
+    /// LF, CR LF, or a lone CR.
+    #[regex(r"\r\n|\n|\r")]
+    Newline,
+    #[regex(r";[^\r\n]*", allow_greedy = true)]
+    Comment,
+    #[token("{")]
+    Open,
+    #[token("}")]
+    Close,
+    #[token("=")]
+    Eq,
+    #[regex(r"[^ \t\x0b\x0c\r\n;{}=\x00-\x08\x0e-\x1f\x7f]+")]
+    Text(&'src str),
+}
+
+impl std::fmt::Display for Token<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Token::Newline => f.write_str("end of line"),
+            Token::Comment => f.write_str("comment"),
+            Token::Open => f.write_str("`{`"),
+            Token::Close => f.write_str("`}`"),
+            Token::Eq => f.write_str("`=`"),
+            Token::Text(s) => write!(f, "`{s}`"),
+        }
+    }
+}
+
+/// The tokens of `src` without comments; invalid characters are reported
+/// (E0001) and left out.
+pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, Span)> {
+    let mut out = Vec::new();
+    for (tok, span) in Token::lexer(src).spanned() {
+        match tok {
+            Ok(Token::Comment) => {}
+            Ok(t) => out.push((t, span)),
+            Err(()) => diags.push_invalid_character(src, span),
+        }
+    }
+    out
+}
+
+/// One command of a body.
+#[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command<'src> {
+    /// `/n \n @n cn <n >n`: the command character, prefixes and number.
+    #[regex(r"[/\\@c<>][qi]{0,2}[0-9.]*")]
+    WithNumber(&'src str),
+    /// Any other character: `+ - | ! [ ] f g d m` or a plain symbol.
+    #[regex(r"(?s).", priority = 0)]
+    Char(&'src str),
+}
+
+/// The commands of `body` (lowercased) with their byte ranges in it.
+pub fn commands(body: &str) -> Vec<(&str, Span)> {
+    Command::lexer(body)
+        .spanned()
+        .filter_map(|(c, span)| match c {
+            Ok(Command::WithNumber(s) | Command::Char(s)) => Some((s, span)),
+            // Every character matches `Char`; kept total for safety.
+            Err(()) => None,
+        })
+        .collect()
+}
+
+/// The number of a command: Fractint's `getnumber` — after the command
+/// character, up to two prefixes `q` (square root) and `i` (inverse), then
+/// the longest number `atof` reads from `[0-9.]*`; a value that is not
+/// positive is 0 (Fractint 19's sanity check, before the prefixes apply).
+pub fn number(cmd: &str) -> f64 {
+    let rest = &cmd[cmd.char_indices().nth(1).map_or(cmd.len(), |(i, _)| i)..];
+    let digits_at = rest
+        .find(|c: char| c != 'q' && c != 'i')
+        .unwrap_or(rest.len());
+    let (prefix, digits) = rest.split_at(digits_at);
+    // atof: digits, at most one point, more digits.
+    let mut end = 0;
+    let mut point = false;
+    for (i, c) in digits.char_indices() {
+        if c == '.' && !point {
+            point = true;
+        } else if !c.is_ascii_digit() {
+            break;
+        }
+        end = i + 1;
+    }
+    let mut v: f64 = digits[..end].parse().unwrap_or(0.0);
+    if v.is_nan() || v <= 0.0 || v.is_infinite() {
+        return 0.0;
+    }
+    if prefix.contains('q') {
+        v = v.sqrt();
+    }
+    if prefix.contains('i') {
+        v = 1.0 / v;
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commands_take_their_numbers() {
+        let c: Vec<&str> = commands("f+\\30@iq2c12<2>1x/.5@")
+            .iter()
+            .map(|c| c.0)
+            .collect();
+        assert_eq!(
+            c,
+            ["f", "+", "\\30", "@iq2", "c12", "<2", ">1", "x", "/.5", "@"]
+        );
+    }
+
+    #[test]
+    fn numbers_follow_getnumber() {
+        assert_eq!(number("\\30"), 30.0);
+        assert_eq!(number("@q4"), 2.0);
+        assert_eq!(number("@i4"), 0.25);
+        assert!((number("@iq2") - 0.5f64.sqrt()).abs() < 1e-15);
+        assert!((number("@qi2") - 0.5f64.sqrt()).abs() < 1e-15);
+        assert_eq!(number("@1.5.3"), 1.5);
+        assert_eq!(number("@"), 0.0);
+        assert_eq!(number("@i0"), 0.0);
+        assert_eq!(number("@."), 0.0);
+    }
+}

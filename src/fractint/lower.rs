@@ -1,0 +1,436 @@
+//! Lowering one Fractint entry to the IR, with Fractint's checks.
+//!
+//! What each command does is in [`crate::ir`]'s module docs ("Fractint
+//! entry"); the numbers are Fractint's `getnumber` ([`super::lexer::number`]).
+
+use super::ast::{Body, Entry, LineKind};
+use super::lexer::{commands, number};
+use super::parser::KEYWORDS;
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::{
+    Alternative, Angle, Axis, Condition, Notation, Production, Rgb, Span, SpanTable, SymbolId,
+    System, TurtleOp, Word,
+};
+
+/// Fractint's default order (the `lsystem` type's one parameter, 2 in
+/// `fractalp.c`): the steps derived when `-n` is not given.
+pub const DEFAULT_ORDER: u64 = 2;
+
+/// The characters Fractint 19 does not allow as rule heads.
+pub const RESERVED: &str = "+-/\\@|!c<>[]";
+
+/// The colour Fractint draws with until told otherwise.
+pub const DEFAULT_COLOUR: usize = 15;
+
+/// An entry in the IR, with its spans.
+pub struct Lowered {
+    pub system: System,
+    pub spans: SpanTable,
+}
+
+/// Fractint's default 256-colour palette (the VGA default): the 16 EGA
+/// colours, a grey ramp, hue circles at three intensities and saturations,
+/// then black. graftal draws on white where Fractint draws on black, so
+/// the two ends of the EGA greys are exchanged: the default colour 15
+/// (white on Fractint's screen) is black, and colour 0 (Fractint's
+/// background) is white.
+pub fn palette() -> Vec<Rgb> {
+    const EGA: [(u8, u8, u8); 16] = [
+        (255, 255, 255),
+        (0, 0, 170),
+        (0, 170, 0),
+        (0, 170, 170),
+        (170, 0, 0),
+        (170, 0, 170),
+        (170, 85, 0),
+        (170, 170, 170),
+        (85, 85, 85),
+        (85, 85, 255),
+        (85, 255, 85),
+        (85, 255, 255),
+        (255, 85, 85),
+        (255, 85, 255),
+        (255, 255, 85),
+        (0, 0, 0),
+    ];
+    let mut p: Vec<Rgb> = EGA.iter().map(|&(r, g, b)| Rgb(r, g, b)).collect();
+    // 16..32: grey ramp (VGA levels 0..63 scaled to 0..255).
+    const GREYS: [u8; 16] = [0, 5, 8, 11, 14, 17, 20, 24, 28, 32, 36, 40, 45, 50, 56, 63];
+    p.extend(GREYS.iter().map(|&g| {
+        let v = (u16::from(g) * 255 / 63) as u8;
+        Rgb(v, v, v)
+    }));
+    // 32..248: for each intensity (high, medium, low) and saturation (full,
+    // half, low), the 24 hues of the VGA circle.
+    for (hi, lo_sat) in [(63u16, [0u16, 31, 45]), (28, [0, 14, 20]), (16, [0, 8, 11])] {
+        for lo in lo_sat {
+            // The circle: blue -> magenta -> red -> yellow -> green -> cyan -> blue.
+            let steps = [
+                lo,
+                lo + (hi - lo) / 4,
+                lo + (hi - lo) / 2,
+                lo + 3 * (hi - lo) / 4,
+                hi,
+            ];
+            let mut circle: Vec<(u16, u16, u16)> = Vec::new();
+            for &r in &steps[..4] {
+                circle.push((r, lo, hi));
+            }
+            for &b in steps[1..].iter().rev() {
+                circle.push((hi, lo, b));
+            }
+            for &g in &steps[..4] {
+                circle.push((hi, g, lo));
+            }
+            for &r in steps[1..].iter().rev() {
+                circle.push((r, hi, lo));
+            }
+            for &b in &steps[..4] {
+                circle.push((lo, hi, b));
+            }
+            for &g in steps[1..].iter().rev() {
+                circle.push((lo, g, hi));
+            }
+            let scale = |v: u16| (v * 255 / 63) as u8;
+            p.extend(
+                circle
+                    .iter()
+                    .take(24)
+                    .map(|&(r, g, b)| Rgb(scale(r), scale(g), scale(b))),
+            );
+        }
+    }
+    p.resize(256, Rgb(0, 0, 0));
+    p
+}
+
+/// What a command does (`n` is the entry's angle increments per turn).
+fn interpret(cmd: &str, n: u32) -> Option<TurtleOp> {
+    let first = cmd.chars().next()?;
+    let up = |k: f64| TurtleOp::Rotate {
+        axis: Axis::Up,
+        angle: Angle::Delta(k),
+    };
+    let colour = |v: f64| v.min(f64::from(u32::MAX)) as u32;
+    Some(match first {
+        // Fractint's `+` turns counter-clockwise: graftal's positive turns
+        // are clockwise.
+        '+' => up(-1.0),
+        '-' => up(1.0),
+        '|' if n % 2 == 0 => TurtleOp::TurnAround,
+        '|' => TurtleOp::TurnUnswapped(Angle::Delta(f64::from(n / 2))),
+        '!' => TurtleOp::SwapTurns,
+        '[' => TurtleOp::Push,
+        ']' => TurtleOp::Pop,
+        'f' => TurtleOp::Forward { draw: true },
+        'g' => TurtleOp::Forward { draw: false },
+        'd' => TurtleOp::ForwardReal { draw: true },
+        'm' => TurtleOp::ForwardReal { draw: false },
+        '\\' => TurtleOp::RotateReal(Angle::Radians(-number(cmd).to_radians())),
+        '/' => TurtleOp::RotateReal(Angle::Radians(number(cmd).to_radians())),
+        '@' => TurtleOp::ScaleLength(number(cmd)),
+        'c' => TurtleOp::SetColour(colour(number(cmd))),
+        '<' => TurtleOp::ShiftColour {
+            by: colour(number(cmd)),
+            up: true,
+        },
+        '>' => TurtleOp::ShiftColour {
+            by: colour(number(cmd)),
+            up: false,
+        },
+        _ => return None,
+    })
+}
+
+struct Cx<'a> {
+    sys: System,
+    spans: SpanTable,
+    diags: &'a mut Diagnostics,
+}
+
+impl Cx<'_> {
+    /// The symbols of a body, with their spans; warns on unbalanced
+    /// brackets.
+    fn word(&mut self, body: &Body) -> (Word, Vec<Span>) {
+        let mut word = Vec::new();
+        let mut spans = Vec::new();
+        let mut depth: i64 = 0;
+        let mut unbalanced = false;
+        for (cmd, r) in commands(&body.text) {
+            let span = body.span.start + r.start..body.span.start + r.end;
+            let id = self.sys.intern(cmd);
+            self.spans.symbols.entry(id).or_insert_with(|| span.clone());
+            match cmd {
+                "[" => depth += 1,
+                "]" => {
+                    depth -= 1;
+                    unbalanced |= depth < 0;
+                }
+                _ => {}
+            }
+            word.push(id);
+            spans.push(span);
+        }
+        if unbalanced || depth != 0 {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::FR_UNBALANCED,
+                    body.span.clone(),
+                    "unbalanced brackets in this string",
+                )
+                .with_label(if depth > 0 {
+                    "a `[` has no `]`"
+                } else {
+                    "a `]` has no `[`"
+                })
+                .with_help("Fractint draws each string's brackets on their own: balance them"),
+            );
+        }
+        (Word(word), spans)
+    }
+}
+
+/// Lowers one entry. The system is usable only when `diags` got no error.
+pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
+    let mut cx = Cx {
+        sys: System::new(Notation::Fractint),
+        spans: SpanTable::default(),
+        diags,
+    };
+    let mut axiom: Option<&Body> = None;
+    let mut axiom_seen = false;
+    let mut angle: Option<u32> = None;
+    let mut angle_seen = false;
+    // Rules in file order: (head, head span, body).
+    let mut rules: Vec<(&str, Span, Option<&Body>)> = Vec::new();
+    for line in &entry.lines {
+        match &line.kind {
+            LineKind::Axiom { keyword, body } => {
+                axiom_seen = true;
+                axiom = body.as_ref();
+                if body.is_none() {
+                    cx.diags.push(
+                        Diagnostic::at(
+                            codes::FR_NO_AXIOM,
+                            keyword.clone(),
+                            "`Axiom` without a string",
+                        )
+                        .with_label("the axiom string is missing")
+                        .with_help("write the string after the keyword, e.g. `Axiom F--F--F`"),
+                    );
+                }
+            }
+            LineKind::Angle { keyword, value } => {
+                angle_seen = true;
+                let (span, n) = match value {
+                    Some(v) => (v.span.clone(), atoi(&v.text)),
+                    None => (keyword.clone(), 0),
+                };
+                if (3..=50).contains(&n) {
+                    angle = Some(n as u32);
+                } else {
+                    let what = match value {
+                        Some(v) => format!("illegal angle `{}`", v.text),
+                        None => "`Angle` without a number".to_string(),
+                    };
+                    let mut d = Diagnostic::at(codes::FR_BAD_ANGLE, span, what)
+                        .with_label("Fractint accepts 3 to 50")
+                        .with_help(
+                            "`Angle n` turns by 360/n degrees; n is a whole number from 3 to 50",
+                        );
+                    if n > 50 && 360 % n == 0 && (3..=50).contains(&(360 / n)) {
+                        d = d.with_note(format!(
+                            "n is not in degrees: for {n} degrees write `Angle {}`",
+                            360 / n
+                        ));
+                    }
+                    cx.diags.push(d);
+                }
+            }
+            LineKind::Rule {
+                head,
+                head_span,
+                body,
+            } => {
+                if RESERVED.contains(head.as_str()) {
+                    cx.diags.push(
+                        Diagnostic::at(
+                            codes::FR_RESERVED_RULE,
+                            head_span.clone(),
+                            format!("a rule for the reserved symbol `{head}`"),
+                        )
+                        .with_label("Fractint 19 rejects this rule")
+                        .with_note(format!(
+                            "read as Fractint 16 read it: the rule rewrites every command starting with `{head}`"
+                        ))
+                        .with_help("rename the symbol if you meant a variable of your own"),
+                    );
+                }
+                rules.push((head, head_span.clone(), body.as_ref()));
+            }
+            LineKind::Unknown { word, span, rule } => {
+                let d = if *rule {
+                    Diagnostic::at(
+                        codes::FR_UNKNOWN_KEYWORD,
+                        span.clone(),
+                        format!("a rule for `{word}`: rule heads are one character"),
+                    )
+                    .with_label("several characters")
+                    .with_help("a rule rewrites one character, e.g. `x=F+F`")
+                } else {
+                    let d = Diagnostic::at(
+                        codes::FR_UNKNOWN_KEYWORD,
+                        span.clone(),
+                        format!("unknown keyword `{word}`"),
+                    )
+                    .with_label("not `Angle`, `Axiom` or a rule");
+                    match nearest(word, &KEYWORDS).first() {
+                        Some(k) => d.with_help(format!("did you mean `{}`?", capitalised(k))),
+                        None => {
+                            d.with_help("a line is `Angle n`, `Axiom STRING`, `x=STRING` or `}`")
+                        }
+                    }
+                };
+                cx.diags.push(d);
+            }
+        }
+        if let Some(x) = &line.extra {
+            let mut d = Diagnostic::at(
+                codes::FR_EXTRA_TEXT,
+                x.clone(),
+                "extra text after the command",
+            )
+            .with_label("Fractint reads one string per line");
+            let eq_body =
+                matches!(&line.kind, LineKind::Rule { body: Some(b), .. } if b.text == "=");
+            d = if eq_body {
+                d.with_help("write the rule without blanks around `=`, e.g. `x=-FX`")
+            } else {
+                d.with_help(
+                    "strings cannot contain blanks: remove them, or comment the rest out with `;`",
+                )
+            };
+            cx.diags.push(d);
+        }
+    }
+    if !axiom_seen {
+        cx.diags.push(
+            Diagnostic::at(
+                codes::FR_NO_AXIOM,
+                entry.name_span.clone(),
+                format!("the entry `{}` has no axiom", entry.name),
+            )
+            .with_label("no `Axiom` line in this entry")
+            .with_help("add a line `Axiom STRING`, the word the derivation starts from"),
+        );
+    }
+    if !angle_seen {
+        cx.diags.push(
+            Diagnostic::at(
+                codes::FR_BAD_ANGLE,
+                entry.name_span.clone(),
+                format!("the entry `{}` has no angle", entry.name),
+            )
+            .with_label("no `Angle` line in this entry")
+            .with_help("add a line `Angle n` (n from 3 to 50: turns of 360/n degrees)"),
+        );
+    }
+    let n = angle.unwrap_or(4);
+    cx.sys.settings.angle = 360.0 / f64::from(n);
+    cx.sys.settings.steps = Some(DEFAULT_ORDER);
+    cx.sys.settings.colour = DEFAULT_COLOUR;
+    cx.sys.colours = palette();
+    if let Some(b) = axiom {
+        let (w, spans) = cx.word(b);
+        cx.sys.axiom = w;
+        cx.spans.axiom = spans;
+    }
+    // Bodies in file order; rules for one character concatenate.
+    let mut heads: Vec<(&str, Span, Vec<SymbolId>, Vec<Span>)> = Vec::new();
+    for (head, span, body) in &rules {
+        let (w, spans) = match body {
+            Some(b) => cx.word(b),
+            None => (Word::default(), Vec::new()),
+        };
+        match heads.iter_mut().find(|h| h.0 == *head) {
+            Some(h) => {
+                h.2.extend(w.0);
+                h.3.extend(spans);
+                h.1 = h.1.start.min(span.start)..h.1.end.max(span.end);
+            }
+            None => heads.push((head, span.clone(), w.0, spans)),
+        }
+    }
+    for (head, span, succ, succ_spans) in heads {
+        // A reserved head (Fractint ≤ 16) rewrites every command it starts.
+        let preds: Vec<SymbolId> = if RESERVED.contains(head) {
+            cx.sys
+                .symbols
+                .iter()
+                .filter(|(_, i)| i.name.starts_with(head))
+                .map(|(id, _)| id)
+                .collect()
+        } else {
+            vec![cx.sys.intern(head)]
+        };
+        for p in preds {
+            cx.spans.symbols.entry(p).or_insert_with(|| span.clone());
+            cx.sys.productions.push(Production {
+                left: Vec::new(),
+                predecessor: vec![p],
+                right: Vec::new(),
+                condition: Condition::Always,
+                alternatives: vec![Alternative {
+                    weight: 1.0,
+                    successor: Word(succ.clone()),
+                }],
+            });
+            cx.spans.productions.push(span.clone());
+            cx.spans.successors.push(vec![succ_spans.clone()]);
+        }
+    }
+    let names: Vec<(SymbolId, String)> = cx
+        .sys
+        .symbols
+        .iter()
+        .map(|(id, i)| (id, i.name.clone()))
+        .collect();
+    for (id, name) in names {
+        if id == SymbolId::OPEN || id == SymbolId::CLOSE {
+            continue;
+        }
+        if let Some(op) = interpret(&name, n) {
+            cx.sys.set_interpretation(id, op);
+        }
+    }
+    Lowered {
+        system: cx.sys,
+        spans: cx.spans,
+    }
+}
+
+fn capitalised(k: &str) -> String {
+    let mut c = k.chars();
+    c.next()
+        .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
+        .unwrap_or_default()
+}
+
+/// C's `atoi`: optional sign, digits; anything else ends it; 0 when none.
+fn atoi(s: &str) -> i64 {
+    let (neg, digits) = match s.strip_prefix('-') {
+        Some(r) => (true, r),
+        None => (false, s.strip_prefix('+').unwrap_or(s)),
+    };
+    let mut v: i64 = 0;
+    for c in digits.chars().take_while(char::is_ascii_digit) {
+        v = v
+            .saturating_mul(10)
+            .saturating_add(i64::from(c as u8 - b'0'));
+    }
+    if neg {
+        -v
+    } else {
+        v
+    }
+}
