@@ -10,6 +10,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod cli;
+pub mod cpfg;
 pub mod diagnostics;
 pub mod driver;
 pub mod emit;

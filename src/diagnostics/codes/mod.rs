@@ -5,8 +5,9 @@
 //! are errors, `W` codes warnings. Ranges: `E00xx` lexing and parsing,
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
 //! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
-//! translation (`codes/translate.rs`);
-//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation.
+//! translation (`codes/translate.rs`), `E08xx` cpfg (`codes/cpfg.rs`);
+//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation,
+//! `W08xx` cpfg.
 
 use super::Severity;
 use std::fmt;
@@ -54,9 +55,11 @@ macro_rules! codes {
     };
 }
 
+mod cpfg;
 mod linf;
 mod stl;
 mod translate;
+pub use cpfg::*;
 pub use linf::*;
 pub use stl::*;
 pub use translate::*;
@@ -68,6 +71,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(linf::LINF)
         .chain(stl::STL)
         .chain(translate::TRANSLATE)
+        .chain(cpfg::CPFG)
 }
 
 codes! { GENERAL;
