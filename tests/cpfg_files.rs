@@ -141,3 +141,115 @@ fn pinned_expansions() {
     let systems = p.text.to_lowercase().matches("lsystem:").count();
     assert_eq!(systems, 4);
 }
+
+use graftal::cpfg::view::{find_view, is_panel, read_view, View};
+
+#[test]
+fn every_view_file_reads_without_errors() {
+    let vs = files("v");
+    assert_eq!(vs.len(), 101);
+    let mut panels = Vec::new();
+    let mut views = 0;
+    let mut default_angle = 0;
+    let mut warnings = Vec::new();
+    for v in &vs {
+        let text = read(v);
+        if is_panel(&text) {
+            panels.push(v.file_name().unwrap().to_string_lossy().into_owned());
+            continue;
+        }
+        views += 1;
+        let (view, d) = read_view(&text);
+        warnings.extend(d.iter().filter(|x| !x.is_error()).map(|x| x.code.0));
+        let errors: Vec<_> = d.iter().filter(|x| x.is_error()).collect();
+        if v.ends_with("01-Introduction-02-snowflake-exercise/fractal.v") {
+            // An exercise: the student fills in `angle increment: ?`.
+            assert_eq!(errors.len(), 1);
+            assert_eq!(errors[0].code.0, "E0812");
+            assert_eq!(&text[errors[0].span.clone().unwrap()], "?");
+            continue;
+        }
+        assert!(errors.is_empty(), "{}: {errors:#?}", v.display());
+        // The angle is the file's last angle command, else 45°.
+        let last = text
+            .lines()
+            .rfind(|l| l.starts_with("angle factor:") || l.starts_with("angle increment:"));
+        match last {
+            None => {
+                default_angle += 1;
+                assert_eq!(view.angle, 45.0, "{}", v.display());
+            }
+            Some(l) => {
+                let n: f64 = l
+                    .split(':')
+                    .nth(1)
+                    .unwrap()
+                    .split_whitespace()
+                    .next()
+                    .unwrap()
+                    .parse()
+                    .unwrap();
+                let want = if l.starts_with("angle factor") {
+                    360.0 / n
+                } else {
+                    n
+                };
+                assert!((view.angle - want).abs() < 1e-12, "{}", v.display());
+            }
+        }
+        assert!(view.scale_factor > 0.0);
+    }
+    assert_eq!(panels, ["panel.v", "panel.v", "panel.v"]);
+    assert_eq!(views, 98);
+    assert!(default_angle >= 10, "{default_angle}");
+    // No unknown commands (the one `tappered lines` is inside a comment).
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+#[test]
+fn pinned_view_values() {
+    let c = corpus();
+    let (v, _) = read_view(&read(
+        &c.join("01-Introduction-01-quadratic-Koch/fractal.v"),
+    ));
+    assert_eq!(v.angle, 90.0);
+    assert_eq!(v.initial_color, 1);
+    assert_eq!(v.scale_factor, 0.9);
+    let (v, _) = read_view(&read(&c.join("11-CPFG-TexturedSurfaces/plant.v")));
+    assert_eq!(v.surfaces.len(), 1);
+    assert_eq!(v.surfaces[0].file, "leaf.s");
+    assert_eq!(v.functions.len(), 5);
+    assert_ne!(v, View::default());
+}
+
+#[test]
+fn every_l_file_finds_its_view() {
+    let mut odd = Vec::new();
+    for l in files("l") {
+        let dir = l.parent().unwrap();
+        let name = l.file_name().unwrap().to_string_lossy().into_owned();
+        // Sedge's included sub-L-systems have no view of their own.
+        if dir.ends_with("11-CPFG-Sedge") && name != "sedge.l" {
+            continue;
+        }
+        let v = find_view(dir, &name).unwrap_or_else(|| panic!("{}", l.display()));
+        assert!(!is_panel(&read(&v)));
+        if v.file_stem() != l.file_stem() {
+            odd.push(format!(
+                "{}/{} -> {}",
+                dir.file_name().unwrap().to_string_lossy(),
+                name,
+                v.file_name().unwrap().to_string_lossy()
+            ));
+        }
+    }
+    assert_eq!(
+        odd,
+        [
+            "11-CPFG-ArticulatedLamp/lamp.l -> view.v",
+            "11-CPFG-JumpingLamp/lamp.l -> view.v",
+            "11-CPFG-Tropisms/lsystem.l -> view.v",
+            "20-EnviroPgms-CPFG-CelticKnot/lsystem.l -> viewfile.v",
+        ]
+    );
+}
