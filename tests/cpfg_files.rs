@@ -253,3 +253,96 @@ fn every_l_file_finds_its_view() {
         ]
     );
 }
+
+use graftal::cpfg::func::{read_fset, read_func, Function};
+
+/// The function's value at 0 and 1 must be its first and last control
+/// points' y (the spline is clamped), within cpfg's bisection tolerance
+/// (|Δx| ≤ 0.001) times the curve's steepness there; and x must grow along
+/// the curve when the control polygon's x does.
+fn check_function(f: &Function, what: &str) {
+    let first = f.points[0];
+    let last = f.points[f.points.len() - 1];
+    let slope = |a: [f64; 2], b: [f64; 2]| {
+        if (b[0] - a[0]).abs() < 1e-9 {
+            f64::INFINITY
+        } else {
+            ((b[1] - a[1]) / (b[0] - a[0])).abs()
+        }
+    };
+    // The curve's slope is bounded by its control polygon's (x-monotone
+    // curves): the bisection's x error turns into at most this much y error.
+    let steepest = f
+        .points
+        .windows(2)
+        .map(|w| slope(w[0], w[1]))
+        .fold(0.0, f64::max);
+    let tol0 = 0.001 * steepest * 3.0 + 1e-6;
+    let tol1 = tol0;
+    // Exact evaluation is what the endpoint property is about.
+    let mut exact = f.clone();
+    exact.set_samples(0);
+    assert!(
+        (exact.eval(0.0) - first[1]).abs() <= tol0,
+        "{what}: f(0) = {} vs {}",
+        exact.eval(0.0),
+        first[1]
+    );
+    assert!(
+        (exact.eval(1.0) - last[1]).abs() <= tol1,
+        "{what}: f(1) = {} vs {}",
+        exact.eval(1.0),
+        last[1]
+    );
+    let p0 = f.point(0.0);
+    assert!(
+        (p0[0] - first[0]).abs() < 1e-9 && (p0[1] - first[1]).abs() < 1e-9,
+        "{what}: {p0:?} vs {first:?}"
+    );
+    if f.is_monotone() {
+        let xs: Vec<f64> = (0..=200).map(|i| f.point(i as f64 / 200.0)[0]).collect();
+        assert!(xs.windows(2).all(|w| w[1] >= w[0] - 1e-12), "{what}");
+    }
+    for i in 0..=50 {
+        assert!(f.eval(i as f64 / 50.0).is_finite());
+    }
+}
+
+#[test]
+fn every_function_file_reads() {
+    let fs = files("func");
+    assert_eq!(fs.len(), 100);
+    let mut monotone = 0;
+    for p in &fs {
+        let f = read_func(&read(p)).unwrap_or_else(|d| panic!("{}: {d:#?}", p.display()));
+        check_function(&f, &p.display().to_string());
+        monotone += usize::from(f.is_monotone());
+    }
+    assert!(monotone >= 90, "{monotone}");
+    let sets = files("fset");
+    assert_eq!(sets.len(), 4);
+    let mut total = 0;
+    for p in &sets {
+        let set = read_fset(&read(p)).unwrap_or_else(|d| panic!("{}: {d:#?}", p.display()));
+        assert!(!set.is_empty());
+        for (name, f) in &set {
+            check_function(f, &format!("{} {name}", p.display()));
+        }
+        total += set.len();
+    }
+    assert!(total >= 8, "{total}");
+}
+
+#[test]
+fn pinned_function_values() {
+    let c = corpus();
+    // JumpingLamp's set: 7 functions, the first named Ang_1, 100 samples.
+    let set = read_fset(&read(&c.join("11-CPFG-JumpingLamp/functions.fset"))).unwrap();
+    assert_eq!(set.len(), 7);
+    assert_eq!(set[0].0, "Ang_1");
+    assert_eq!(set[0].1.samples, 100);
+    // internode.func: rises from 0 to about 1 with a step around x = 0.6.
+    let f = read_func(&read(&c.join("02-Mod-vis-3D-05-monopodial/internode.func"))).unwrap();
+    assert_eq!(f.samples, 10);
+    assert!(f.eval(0.1) < 0.1 && f.eval(0.95) > 0.9);
+}

@@ -245,11 +245,4 @@ Example:
 
 Write:
     tapered lines: on";
-
-    CPFG_FUNCTION_NOT_A_FUNCTION = "W0806", "function curve not monotone in x",
-"A user-defined function is a B-spline curve that must assign exactly one
-y to every x in [0,1]: its x coordinate must grow along the curve. This
-curve goes back in x, so some x has several y; cpfg's bisection then picks
-one of them, which graftal reproduces, but the result may not be what the
-editor showed.";
 }
