@@ -346,3 +346,58 @@ fn pinned_function_values() {
     assert_eq!(f.samples, 10);
     assert!(f.eval(0.1) < 0.1 && f.eval(0.95) > 0.9);
 }
+
+use graftal::cpfg::surface::read_surface;
+
+#[test]
+fn every_surface_file_reads() {
+    let ss = files("s");
+    assert_eq!(ss.len(), 23);
+    let mut patches = 0;
+    for p in &ss {
+        let text = read(p);
+        let s = read_surface(&text).unwrap_or_else(|d| panic!("{}: {d:#?}", p.display()));
+        assert_eq!(
+            s.patches.len(),
+            text.matches("TOP COLOR").count(),
+            "{}",
+            p.display()
+        );
+        for d in [1, 4] {
+            let t = s.triangles(d);
+            assert_eq!(t.len(), s.patches.len() * 2 * (d * d) as usize);
+            // Every vertex lies in the control points' bounding box (the
+            // convex-hull property of Bézier patches).
+            let cps: Vec<[f64; 3]> = s
+                .patches
+                .iter()
+                .flat_map(|q| q.points.iter().flatten().copied())
+                .collect();
+            for k in 0..3 {
+                let lo = cps.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
+                let hi = cps.iter().map(|c| c[k]).fold(f64::NEG_INFINITY, f64::max);
+                assert!(t
+                    .iter()
+                    .flatten()
+                    .all(|v| v[k] >= lo - 1e-9 && v[k] <= hi + 1e-9));
+            }
+        }
+        assert!(s.size > 0.0);
+        // The contact point is the origin of the turtle frame.
+        assert_eq!(s.to_turtle(s.contact), [0.0, 0.0, 0.0]);
+        patches += s.patches.len();
+    }
+    assert_eq!(patches, 14 + 4 * 2 + 5 * 4);
+    // A pinned file: the Sedge female spike has two patches.
+    let s = read_surface(&read(&corpus().join("11-CPFG-Sedge/female.s"))).unwrap();
+    assert_eq!(s.patches[1].name, "Patch_2");
+    assert_eq!(s.contact, [0.32, -35.0, 0.0]);
+    assert_eq!(s.size, 167.44);
+    assert_eq!(s.precision, None);
+    let s = read_surface(&read(
+        &corpus().join("04-Signaling-10-mycelis-realistic/bud.s"),
+    ))
+    .unwrap();
+    assert_eq!(s.precision, Some((5, 5)));
+    assert_eq!(s.patches.len(), 4);
+}
