@@ -2,14 +2,22 @@
 //! cpfg (Prusinkiewicz, Hanan, Mech and others; manual in
 //! `../shared/reference/cpfg-manual.txt`).
 //!
-//! `lexer` (logos, cpfg's two modes) -> `parser` (chumsky, one item per
-//! line, recovering) -> `ast` -> `lower` (the IR, with its parametric part
-//! [`crate::ir::parametric`]).
+//! Reading a cpfg object: [`preprocess`] (the C preprocessor pass cpfg runs
+//! over the `.l` file, with a map back to the original text) -> `lexer`
+//! (logos, cpfg's two modes) -> `parser` (chumsky, one item per line,
+//! recovering) -> `ast` -> `lower` (the IR, with its parametric part
+//! [`crate::ir::parametric`]). The files beside the `.l` come in through
+//! [`view`] (the `.v` view file: angle, widths, colours, surfaces,
+//! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
 pub mod ast;
+pub mod func;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
+pub mod preprocess;
+pub mod surface;
+pub mod view;
 
 pub use lower::Lowered;
 

@@ -6,9 +6,10 @@
 //! `E01xx` headers and settings, `E02xx` productions and axioms, `E03xx`
 //! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
 //! translation (`codes/translate.rs`), `E07xx` Fractint (`codes/fractint.rs`),
+//! `E080x`–`E082x` the cpfg preprocessor and side files (`codes/cpfg.rs`),
 //! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`);
 //! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation,
-//! `W07xx` Fractint, `W082x` cpfg.
+//! `W07xx` Fractint, `W080x`–`W082x` cpfg.
 
 use super::Severity;
 use std::fmt;
@@ -56,11 +57,13 @@ macro_rules! codes {
     };
 }
 
+mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
 mod linf;
 mod stl;
 mod translate;
+pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
 pub use linf::*;
@@ -74,8 +77,9 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(linf::LINF)
         .chain(stl::STL)
         .chain(translate::TRANSLATE)
-        .chain(cpfg_lsystem::CPFG_LSYSTEM)
         .chain(fractint::FRACTINT)
+        .chain(cpfg::CPFG)
+        .chain(cpfg_lsystem::CPFG_LSYSTEM)
 }
 
 codes! { GENERAL;

@@ -1,0 +1,969 @@
+//! The cpfg view file (`.v`, manual §8.1 and §9): drawing parameters (angle,
+//! line width, colours, elasticity), the view (viewpoint, projection, scale),
+//! rendering switches and the names of the surface, contour and function
+//! files. Values not given keep the manual's defaults ([`View::default`]).
+//!
+//! Lines are `command: value`; C comments (`/* */`, and `//` as some corpus
+//! files use) are ignored, later commands win. Unknown commands are warned
+//! about and skipped, as cpfg skips them; commands graftal reads but does not
+//! use (lights, textures, fonts, …) are listed in [`View::unused`].
+
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::{Rgb, Span};
+use std::path::{Path, PathBuf};
+
+/// Units of the line width.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WidthUnit {
+    /// Flat lines, width in pixels (`pixels`, `p`; the default).
+    Pixels,
+    /// Polygons or cylinders, width in world units (`shaded`, `s`, or a
+    /// `line style:` other than `pixel`).
+    World,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineStyle {
+    Pixel,
+    Polygon,
+    Cylinder,
+    /// Not in the manual, but seven vlab view files write `line style:
+    /// wireframe`; lines are then drawn like `pixel` lines.
+    Wireframe,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Projection {
+    Parallel,
+    Perspective,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderMode {
+    Filled,
+    Fast,
+    Wireframe,
+    Interpolated,
+    Flat,
+    Shaded,
+    Shadows,
+}
+
+/// A `surface:` (or `line:`) command: `surface: id file.s scale [i j] [texture]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceRef {
+    /// The character after `~` that draws it.
+    pub id: char,
+    pub file: String,
+    pub scale: f64,
+    /// Polygons along the rows and columns of a patch (0 = cpfg's default).
+    pub s_divisions: u32,
+    pub t_divisions: u32,
+    pub texture: Option<String>,
+}
+
+/// A `contour:` (`contour: id file.con`) or `curve:` (`curve: file`, id = order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContourRef {
+    pub id: u32,
+    pub file: String,
+}
+
+/// A `tropism:` or `torque:` command (manual §8.1.8).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tropism {
+    /// `T:` the tropism vector.
+    pub vector: [f64; 3],
+    /// `A:` the angle (degrees) to the vector segments try to reach.
+    pub angle: f64,
+    /// `I:` intensity.
+    pub intensity: f64,
+    /// `E:` initial elasticity.
+    pub elasticity: f64,
+    /// `S:` elasticity step.
+    pub step: f64,
+}
+
+impl Default for Tropism {
+    fn default() -> Self {
+        Tropism {
+            vector: [0.0, 1.0, 0.0],
+            angle: 0.0,
+            intensity: 1.0,
+            elasticity: 0.0,
+            step: 0.0,
+        }
+    }
+}
+
+/// Everything a view file sets. [`Default`] gives the manual's defaults.
+#[derive(Clone, Debug, PartialEq)]
+pub struct View {
+    /// The angle of `+ - & ^ \ / |`, in degrees: `angle increment: a` or
+    /// 360/n from `angle factor: n`; 45° by default.
+    pub angle: f64,
+    pub initial_line_width: f64,
+    pub line_width_unit: WidthUnit,
+    pub line_width_increment: f64,
+    pub initial_color: u32,
+    /// The optional second index of `initial color:` (back of surfaces).
+    pub initial_back_color: Option<u32>,
+    pub color_increment: u32,
+    /// `initial elasticity:` (deprecated; the tropism's `E:` in new files).
+    pub initial_elasticity: f64,
+    pub elasticity_increment: f64,
+    /// `initial scale:` of the turtle.
+    pub initial_scale: f64,
+    /// Size of the image on the screen (1 = full size).
+    pub scale_factor: f64,
+    pub viewpoint: [f64; 3],
+    pub view_reference_point: [f64; 3],
+    /// Rotation of the image on the screen, in tenths of a degree.
+    pub twist: f64,
+    pub projection: Projection,
+    /// Viewing angle of the perspective projection, degrees.
+    pub viewing_angle: f64,
+    pub front_distance: f64,
+    pub back_distance: f64,
+    /// `box:` x, y and z ranges, when given.
+    pub bounding_box: Option<[[f64; 2]; 3]>,
+    /// `tropism direction:` (deprecated form of a tropism's `T:`).
+    pub tropism_direction: Option<[f64; 3]>,
+    pub tropisms: Vec<Tropism>,
+    pub torques: Vec<Tropism>,
+    /// `function:` files in order: `func(k, x)` is `functions[k-1]`.
+    pub functions: Vec<String>,
+    /// The precomputed sample count of each `function:` (`None`: exact).
+    pub function_samples: Vec<Option<u32>>,
+    pub function_sets: Vec<String>,
+    pub surfaces: Vec<SurfaceRef>,
+    /// `line:` commands (lines drawn with a surface).
+    pub lines: Vec<SurfaceRef>,
+    pub contours: Vec<ContourRef>,
+    pub contour_sides: u32,
+    pub tapered_lines: bool,
+    pub line_style: LineStyle,
+    pub render_mode: RenderMode,
+    pub z_buffer: bool,
+    /// `interpretation past %:`.
+    pub interpret_past_cut: bool,
+    pub twist_of_cylinders: bool,
+    /// Commands read but not used by graftal (lights, textures, fonts, …),
+    /// with the span of each line.
+    pub unused: Vec<(String, Span)>,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            angle: 45.0,
+            initial_line_width: 1.0,
+            line_width_unit: WidthUnit::Pixels,
+            line_width_increment: 0.0,
+            initial_color: 128,
+            initial_back_color: None,
+            color_increment: 1,
+            initial_elasticity: 0.0,
+            elasticity_increment: 0.0,
+            initial_scale: 1.0,
+            scale_factor: 1.0,
+            viewpoint: [0.0, 0.0, 1.0],
+            view_reference_point: [0.0, 0.0, 0.0],
+            twist: 0.0,
+            projection: Projection::Parallel,
+            viewing_angle: 45.0,
+            front_distance: -100000.0,
+            back_distance: 100000.0,
+            bounding_box: None,
+            tropism_direction: None,
+            tropisms: Vec::new(),
+            torques: Vec::new(),
+            functions: Vec::new(),
+            function_samples: Vec::new(),
+            function_sets: Vec::new(),
+            surfaces: Vec::new(),
+            lines: Vec::new(),
+            contours: Vec::new(),
+            contour_sides: 3,
+            tapered_lines: true,
+            line_style: LineStyle::Pixel,
+            render_mode: RenderMode::Filled,
+            z_buffer: true,
+            interpret_past_cut: true,
+            twist_of_cylinders: false,
+            unused: Vec::new(),
+        }
+    }
+}
+
+/// Commands cpfg knows that graftal reads but does not use.
+const UNUSED: &[&str] = &[
+    "light",
+    "light direction",
+    "diffuse reflection",
+    "surface ambient",
+    "surface diffuse",
+    "shadow map",
+    "antialiasing",
+    "concave polygons",
+    "background scene",
+    "texture",
+    "font",
+    "tsurface",
+    "min zoom",
+    "max zoom",
+    "generate on view change",
+    "scale multiplier",
+    "shade mode",
+    "polygonization level",
+    "ambient light",
+    "background color",
+    "cue range",
+    "interpretation step",
+];
+
+const KNOWN: &[&str] = &[
+    "angle increment",
+    "angle factor",
+    "initial color",
+    "color increment",
+    "initial line width",
+    "line width increment",
+    "initial scale",
+    "interpretation past %",
+    "viewpoint",
+    "view reference point",
+    "twist",
+    "projection",
+    "viewing angle",
+    "front distance",
+    "back distance",
+    "scale factor",
+    "box",
+    "line style",
+    "tapered lines",
+    "line",
+    "contour",
+    "curve",
+    "contour sides",
+    "twist of cylinders",
+    "surface",
+    "function",
+    "function set",
+    "tropism",
+    "torque",
+    "tropism direction",
+    "initial elasticity",
+    "elasticity increment",
+    "render mode",
+    "z buffer",
+];
+
+/// Reads a view file. Never fails: problems are diagnostics, and the
+/// commands they concern keep their defaults.
+pub fn read_view(text: &str) -> (View, Diagnostics) {
+    let mut v = View::default();
+    let mut d = Diagnostics::default();
+    let clean = blank_comments(text);
+    let mut at = 0;
+    for line in clean.split_inclusive('\n') {
+        let start = at;
+        at += line.len();
+        let body = line.trim_end();
+        let lead = body.len() - body.trim_start().len();
+        let body = body.trim_start();
+        if body.is_empty() {
+            continue;
+        }
+        let span = start + lead..start + lead + body.len();
+        let Some(colon) = body.find(':') else {
+            d.push(
+                Diagnostic::at(
+                    codes::CPFG_UNKNOWN_VIEW_COMMAND,
+                    span,
+                    "line without `command:` is ignored",
+                )
+                .with_label("not a view command"),
+            );
+            continue;
+        };
+        let raw_name = &body[..colon];
+        let name = raw_name
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ")
+            .to_ascii_lowercase();
+        let value = body[colon + 1..].trim();
+        let vspan = {
+            let off = span.start + colon + 1;
+            let l = body[colon + 1..].len() - body[colon + 1..].trim_start().len();
+            off + l..off + l + value.len()
+        };
+        let name_span = span.start..span.start + raw_name.trim_end().len();
+        let mut bad = |d: &mut Diagnostics, what: &str| {
+            d.push(
+                Diagnostic::at(
+                    codes::CPFG_VIEW_VALUE,
+                    vspan.clone(),
+                    format!("`{name}:` expects {what}; the line is ignored"),
+                )
+                .with_label(format!("not {what}")),
+            );
+        };
+        match name.as_str() {
+            "angle increment" => match num(value) {
+                Some(a) => v.angle = a,
+                None => bad(&mut d, "a number of degrees"),
+            },
+            "angle factor" => match num(value) {
+                Some(n) if n != 0.0 => v.angle = 360.0 / n,
+                _ => bad(&mut d, "a non-zero number"),
+            },
+            "initial color" => {
+                let ns = nums(value);
+                match ns.first() {
+                    Some(&c) if c >= 0.0 => {
+                        v.initial_color = c as u32;
+                        v.initial_back_color = ns.get(1).map(|&b| b.max(0.0) as u32);
+                    }
+                    _ => bad(&mut d, "a colour index"),
+                }
+            }
+            "color increment" => match num(value) {
+                Some(c) => v.color_increment = c.max(0.0) as u32,
+                None => bad(&mut d, "a number"),
+            },
+            "initial line width" => match num(value) {
+                Some(w) => {
+                    v.initial_line_width = w;
+                    let unit = value
+                        .split_whitespace()
+                        .nth(1)
+                        .unwrap_or("")
+                        .to_ascii_lowercase();
+                    match unit.as_str() {
+                        "" => {}
+                        "p" | "pixel" | "pixels" => {
+                            v.line_width_unit = WidthUnit::Pixels;
+                            v.line_style = LineStyle::Pixel;
+                        }
+                        "s" | "shaded" | "polygon" | "polygons" => {
+                            v.line_width_unit = WidthUnit::World;
+                            v.line_style = LineStyle::Cylinder;
+                        }
+                        _ => bad(&mut d, "a width and `pixels` or `shaded`"),
+                    }
+                }
+                None => bad(&mut d, "a number"),
+            },
+            "line width increment" => set_num(&mut v.line_width_increment, value, &mut d, &mut bad),
+            "initial scale" => set_num(&mut v.initial_scale, value, &mut d, &mut bad),
+            "scale factor" => set_num(&mut v.scale_factor, value, &mut d, &mut bad),
+            "viewing angle" => set_num(&mut v.viewing_angle, value, &mut d, &mut bad),
+            "front distance" => set_num(&mut v.front_distance, value, &mut d, &mut bad),
+            "back distance" => set_num(&mut v.back_distance, value, &mut d, &mut bad),
+            "twist" => set_num(&mut v.twist, value, &mut d, &mut bad),
+            "initial elasticity" => set_num(&mut v.initial_elasticity, value, &mut d, &mut bad),
+            "elasticity increment" => set_num(&mut v.elasticity_increment, value, &mut d, &mut bad),
+            "viewpoint" => {
+                set_vec(&mut v.viewpoint, value, &mut d, &mut bad);
+            }
+            "view reference point" => {
+                set_vec(&mut v.view_reference_point, value, &mut d, &mut bad);
+            }
+            "tropism direction" => {
+                let mut t = [0.0; 3];
+                if set_vec(&mut t, value, &mut d, &mut bad) {
+                    v.tropism_direction = Some(t);
+                }
+            }
+            "projection" => match value.to_ascii_lowercase().as_str() {
+                "parallel" => v.projection = Projection::Parallel,
+                "perspective" => v.projection = Projection::Perspective,
+                _ => bad(&mut d, "`parallel` or `perspective`"),
+            },
+            "line style" => match value.to_ascii_lowercase().as_str() {
+                "pixel" | "pixels" => {
+                    v.line_style = LineStyle::Pixel;
+                    v.line_width_unit = WidthUnit::Pixels;
+                }
+                "polygon" | "polygons" => {
+                    v.line_style = LineStyle::Polygon;
+                    v.line_width_unit = WidthUnit::World;
+                }
+                "cylinder" | "cylinders" => {
+                    v.line_style = LineStyle::Cylinder;
+                    v.line_width_unit = WidthUnit::World;
+                }
+                "wireframe" => {
+                    v.line_style = LineStyle::Wireframe;
+                    v.line_width_unit = WidthUnit::Pixels;
+                }
+                _ => bad(&mut d, "`pixel`, `polygon` or `cylinder`"),
+            },
+            "render mode" => {
+                let m = match value.to_ascii_lowercase().as_str() {
+                    "filled" => Some(RenderMode::Filled),
+                    "fast" => Some(RenderMode::Fast),
+                    "wireframe" => Some(RenderMode::Wireframe),
+                    "interpolated" => Some(RenderMode::Interpolated),
+                    "flat" => Some(RenderMode::Flat),
+                    "shaded" => Some(RenderMode::Shaded),
+                    "shadows" => Some(RenderMode::Shadows),
+                    _ => None,
+                };
+                match m {
+                    Some(m) => v.render_mode = m,
+                    None => bad(&mut d, "a render mode (filled, wireframe, shaded, …)"),
+                }
+            }
+            "z buffer" => set_flag(&mut v.z_buffer, value, &mut d, &mut bad),
+            "tapered lines" => set_flag(&mut v.tapered_lines, value, &mut d, &mut bad),
+            "tappered lines" => {
+                d.push(
+                    Diagnostic::at(
+                        codes::CPFG_DEPRECATED_VIEW_SPELLING,
+                        name_span.clone(),
+                        "`tappered lines` read as `tapered lines`",
+                    )
+                    .with_label("misspelt")
+                    .with_note("old cpfg versions accepted this spelling")
+                    .with_help("write `tapered lines:`"),
+                );
+                set_flag(&mut v.tapered_lines, value, &mut d, &mut bad);
+            }
+            "twist of cylinders" => set_flag(&mut v.twist_of_cylinders, value, &mut d, &mut bad),
+            "interpretation past %" => set_flag(&mut v.interpret_past_cut, value, &mut d, &mut bad),
+            "contour sides" => match num(value) {
+                Some(n) if n >= 1.0 => v.contour_sides = n as u32,
+                _ => bad(&mut d, "a positive number"),
+            },
+            "function" => {
+                let mut w = value.split_whitespace();
+                match w.next() {
+                    Some(f) => {
+                        v.functions.push(f.to_string());
+                        v.function_samples
+                            .push(w.next().and_then(num).map(|n| n.max(0.0) as u32));
+                    }
+                    None => bad(&mut d, "a file name"),
+                }
+            }
+            "function set" => match value.split_whitespace().next() {
+                Some(f) => v.function_sets.push(f.to_string()),
+                None => bad(&mut d, "a file name"),
+            },
+            "surface" | "line" => match surface_ref(value) {
+                Some(s) if name == "surface" => v.surfaces.push(s),
+                Some(s) => v.lines.push(s),
+                None => bad(&mut d, "`id file.s scale`"),
+            },
+            "contour" => {
+                let mut w = value.split_whitespace();
+                match (w.next().and_then(num), w.next()) {
+                    (Some(id), Some(f)) => v.contours.push(ContourRef {
+                        id: id.max(0.0) as u32,
+                        file: f.to_string(),
+                    }),
+                    _ => bad(&mut d, "`id file.con`"),
+                }
+            }
+            "curve" => match value.split_whitespace().next() {
+                Some(f) => {
+                    let id = v.contours.len() as u32 + 1;
+                    v.contours.push(ContourRef {
+                        id,
+                        file: f.to_string(),
+                    })
+                }
+                None => bad(&mut d, "a file name"),
+            },
+            "tropism" | "torque" => match tropism(value) {
+                Some(t) if name == "tropism" => v.tropisms.push(t),
+                Some(t) => v.torques.push(t),
+                None => bad(&mut d, "subcommands with `T: x y z`"),
+            },
+            "box" => {
+                let subs = subcommands(value);
+                let mut b = [[0.0, 1.0]; 3];
+                let mut ok = true;
+                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                    match subs.iter().find(|(n, _)| n.eq_ignore_ascii_case(axis)) {
+                        Some((_, vals)) if vals.len() >= 2 => b[k] = [vals[0], vals[1]],
+                        Some(_) => ok = false,
+                        None => {}
+                    }
+                }
+                if ok {
+                    v.bounding_box = Some(b);
+                } else {
+                    bad(&mut d, "`x: min,max y: min,max z: min,max`");
+                }
+            }
+            n if UNUSED.contains(&n) => v.unused.push((n.to_string(), span.clone())),
+            _ => {
+                let mut all: Vec<&str> = KNOWN.to_vec();
+                all.extend_from_slice(UNUSED);
+                let mut diag = Diagnostic::at(
+                    codes::CPFG_UNKNOWN_VIEW_COMMAND,
+                    name_span.clone(),
+                    format!("unknown view command `{name}` is ignored"),
+                )
+                .with_label("not a view command");
+                if let Some(s) = nearest(&name, &all).first() {
+                    diag = diag.with_help(format!("did you mean `{s}:`?"));
+                }
+                d.push(diag);
+            }
+        }
+    }
+    (v, d)
+}
+
+fn set_num(
+    slot: &mut f64,
+    value: &str,
+    d: &mut Diagnostics,
+    bad: &mut impl FnMut(&mut Diagnostics, &str),
+) {
+    match num(value) {
+        Some(x) => *slot = x,
+        None => bad(d, "a number"),
+    }
+}
+
+fn set_vec(
+    slot: &mut [f64; 3],
+    value: &str,
+    d: &mut Diagnostics,
+    bad: &mut impl FnMut(&mut Diagnostics, &str),
+) -> bool {
+    let ns = nums(value);
+    if ns.len() >= 3 {
+        *slot = [ns[0], ns[1], ns[2]];
+        true
+    } else {
+        bad(d, "three numbers `x,y,z`");
+        false
+    }
+}
+
+fn set_flag(
+    slot: &mut bool,
+    value: &str,
+    d: &mut Diagnostics,
+    bad: &mut impl FnMut(&mut Diagnostics, &str),
+) {
+    match value
+        .split_whitespace()
+        .next()
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("on" | "yes" | "1") => *slot = true,
+        Some("off" | "no" | "0") => *slot = false,
+        _ => bad(d, "`on` or `off`"),
+    }
+}
+
+/// The leading number of a value (`2 pixels` → 2), as C's `atof` reads it
+/// but requiring at least one digit.
+fn num(s: &str) -> Option<f64> {
+    let s = s.trim_start();
+    let b = s.as_bytes();
+    let mut i = 0;
+    if matches!(b.first(), Some(b'+' | b'-')) {
+        i += 1;
+    }
+    let digits_start = i;
+    while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
+        i += 1;
+    }
+    if !b[digits_start..i].iter().any(u8::is_ascii_digit) {
+        return None;
+    }
+    if i < b.len() && matches!(b[i], b'e' | b'E') {
+        let mut j = i + 1;
+        if matches!(b.get(j), Some(b'+' | b'-')) {
+            j += 1;
+        }
+        if b.get(j).is_some_and(u8::is_ascii_digit) {
+            i = j;
+            while i < b.len() && b[i].is_ascii_digit() {
+                i += 1;
+            }
+        }
+    }
+    s[..i].parse().ok().filter(|x: &f64| x.is_finite())
+}
+
+/// All numbers of a value separated by commas or spaces.
+fn nums(s: &str) -> Vec<f64> {
+    s.split([',', ' ', '\t'])
+        .filter(|w| !w.is_empty())
+        .map_while(num)
+        .collect()
+}
+
+/// `X: a b c Y: d …` → [("X", [a, b, c]), ("Y", [d])]; `A:90` works too.
+fn subcommands(s: &str) -> Vec<(String, Vec<f64>)> {
+    let mut out: Vec<(String, Vec<f64>)> = Vec::new();
+    for w in s.split([' ', '\t', ',']).filter(|w| !w.is_empty()) {
+        let (key, rest) = match w.find(':') {
+            Some(k) => (Some(&w[..k]), &w[k + 1..]),
+            None => (None, w),
+        };
+        if let Some(k) = key {
+            out.push((k.to_string(), Vec::new()));
+        }
+        if !rest.is_empty() {
+            if let (Some(x), Some(last)) = (num(rest), out.last_mut()) {
+                last.1.push(x);
+            }
+        }
+    }
+    out
+}
+
+fn tropism(value: &str) -> Option<Tropism> {
+    let mut t = Tropism::default();
+    let mut has_t = false;
+    for (k, vals) in subcommands(value) {
+        match (k.to_ascii_uppercase().as_str(), vals.as_slice()) {
+            ("T", [x, y, z, ..]) => {
+                t.vector = [*x, *y, *z];
+                has_t = true;
+            }
+            ("A", [a, ..]) => t.angle = *a,
+            ("I", [i, ..]) => t.intensity = *i,
+            ("E", [e, ..]) => t.elasticity = *e,
+            ("S", [s, ..]) => t.step = *s,
+            _ => return None,
+        }
+    }
+    has_t.then_some(t)
+}
+
+fn surface_ref(value: &str) -> Option<SurfaceRef> {
+    let w: Vec<&str> = value.split_whitespace().collect();
+    let mut id_chars = w.first()?.chars();
+    let id = id_chars.next()?;
+    if id_chars.next().is_some() {
+        return None;
+    }
+    let file = w.get(1)?.to_string();
+    let scale = num(w.get(2)?)?;
+    let s = w.get(3).and_then(|x| num(x));
+    let t = w.get(4).and_then(|x| num(x));
+    let texture_at = 3 + usize::from(s.is_some()) + usize::from(t.is_some());
+    Some(SurfaceRef {
+        id,
+        file,
+        scale,
+        s_divisions: s.map_or(0, |x| x.max(0.0) as u32),
+        t_divisions: t.map_or(0, |x| x.max(0.0) as u32),
+        texture: w.get(texture_at).map(|x| x.to_string()),
+    })
+}
+
+/// The text with `/* */` and `//` comments replaced by spaces, byte for
+/// byte (line breaks kept).
+fn blank_comments(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut out = b.to_vec();
+    let mut i = 0;
+    while i < b.len() {
+        let end = if b[i..].starts_with(b"/*") {
+            text[i + 2..].find("*/").map_or(b.len(), |k| i + 2 + k + 2)
+        } else if b[i..].starts_with(b"//") {
+            text[i..].find('\n').map_or(b.len(), |k| i + k)
+        } else {
+            i += 1;
+            continue;
+        };
+        for c in &mut out[i..end] {
+            if *c != b'\n' {
+                *c = b' ';
+            }
+        }
+        i = end;
+    }
+    String::from_utf8(out).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
+/// Whether a `.v` file is a vlab control panel (`panel name:` …, `type:
+/// SLIDER`) rather than a view file.
+pub fn is_panel(text: &str) -> bool {
+    let first = text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty())
+        .unwrap_or("");
+    first.starts_with("panel name:")
+        || text.lines().any(|l| {
+            matches!(
+                l.trim(),
+                "type: SLIDER" | "type: BUTTON" | "type: MENU" | "type: LABEL"
+            )
+        })
+}
+
+/// The view file of the L-system `l_file` in `dir`: the `.v` with the same
+/// stem; else the `.v` named after `l_file` on the `cpfg …` line of the
+/// folder's `specifications` file; else the folder's only view file. Panel
+/// files named `*.v` are never taken.
+pub fn find_view(dir: &Path, l_file: &str) -> Option<PathBuf> {
+    let is_view = |p: &Path| {
+        std::fs::read(p)
+            .ok()
+            .is_some_and(|b| !is_panel(&String::from_utf8_lossy(&b)))
+    };
+    let stem = Path::new(l_file)
+        .file_stem()?
+        .to_string_lossy()
+        .into_owned();
+    let same = dir.join(format!("{stem}.v"));
+    if is_view(&same) {
+        return Some(same);
+    }
+    let l_name = Path::new(l_file)
+        .file_name()?
+        .to_string_lossy()
+        .into_owned();
+    if let Ok(spec) = std::fs::read(dir.join("specifications")) {
+        let spec = String::from_utf8_lossy(&spec);
+        for line in spec.lines() {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            if words.first() != Some(&"cpfg") {
+                continue;
+            }
+            if let Some(k) = words.iter().position(|w| *w == l_name) {
+                if let Some(v) = words[k + 1..].iter().find(|w| w.ends_with(".v")) {
+                    let p = dir.join(v);
+                    if is_view(&p) {
+                        return Some(p);
+                    }
+                }
+            }
+        }
+    }
+    let mut views: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "v") && is_view(p))
+        .collect();
+    views.sort();
+    (views.len() == 1).then(|| views.remove(0))
+}
+
+/// The colour map used when an object has no `.map` file.
+///
+/// cpfg draws colour indices through a 256-entry colour map (`-m file.map`).
+/// vlab's default palette could not be found, so this is a documented
+/// substitute built on what cpfg itself assumes about colour maps:
+///
+/// - index 0 is the background (manual §8.1.10: "background color … use
+///   instead: color index 0"): black, as cpfg's window is;
+/// - indices 1–15 are distinct, clearly visible colours (white, then red,
+///   green, blue, yellow, cyan, magenta, orange, …), since simple models
+///   draw with `initial color: 1` and step through low indices with `;`;
+/// - indices 16–255 are ramps of 64 entries from dark to light (cpfg's
+///   surface shading works in blocks of 64: intensity = col/64 − ⌊col/64⌋,
+///   manual §8.1.3): 16–63 greens, 64–127 browns (wood), 128–191 leaf
+///   greens, 192–255 reds to pinks (flowers). The ramp starts at 25 % so no
+///   shaded colour disappears into the background.
+pub fn default_colormap() -> [Rgb; 256] {
+    const LOW: [(u8, u8, u8); 16] = [
+        (0, 0, 0),
+        (255, 255, 255),
+        (230, 25, 25),
+        (40, 180, 60),
+        (50, 90, 230),
+        (240, 220, 40),
+        (40, 210, 220),
+        (210, 60, 210),
+        (245, 140, 30),
+        (150, 230, 90),
+        (140, 90, 50),
+        (250, 170, 190),
+        (130, 130, 130),
+        (120, 60, 180),
+        (0, 130, 130),
+        (200, 200, 120),
+    ];
+    const RAMPS: [(f64, f64, f64); 4] = [
+        (0.35, 0.85, 0.35), // 0..63 (16..63 used)
+        (0.65, 0.45, 0.25), // 64..127
+        (0.30, 0.75, 0.20), // 128..191
+        (0.95, 0.35, 0.45), // 192..255
+    ];
+    let mut map = [Rgb(0, 0, 0); 256];
+    for (i, slot) in map.iter_mut().enumerate() {
+        *slot = if i < 16 {
+            let (r, g, b) = LOW[i];
+            Rgb(r, g, b)
+        } else {
+            let (r, g, b) = RAMPS[i / 64];
+            let t = 0.25 + 0.75 * (i % 64) as f64 / 63.0;
+            let c = |x: f64| (255.0 * (x * t).min(1.0)).round() as u8;
+            Rgb(c(r), c(g), c(b))
+        };
+    }
+    map
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn codes_of(d: &Diagnostics) -> Vec<&'static str> {
+        d.iter().map(|x| x.code.0).collect()
+    }
+
+    #[test]
+    fn defaults_follow_the_manual() {
+        let (v, d) = read_view("");
+        assert!(d.is_empty());
+        assert_eq!(v, View::default());
+        assert_eq!(v.angle, 45.0);
+        assert_eq!(v.initial_color, 128);
+        assert_eq!(v.line_width_unit, WidthUnit::Pixels);
+        assert!(v.z_buffer && v.tapered_lines);
+    }
+
+    #[test]
+    fn angle_and_widths() {
+        let (v, d) = read_view("angle factor: 16 /* 22.5 */\ninitial line width: 2.0 pixels\nline width increment: 0.5\n");
+        assert!(d.is_empty(), "{d:?}");
+        assert_eq!(v.angle, 22.5);
+        assert_eq!(v.initial_line_width, 2.0);
+        assert_eq!(v.line_width_increment, 0.5);
+        // The later of angle factor / angle increment wins.
+        let (v, _) = read_view("angle factor: 16\nangle increment: 30\n");
+        assert_eq!(v.angle, 30.0);
+        let (v, _) = read_view("angle increment: 30\nangle factor: 8\n");
+        assert_eq!(v.angle, 45.0);
+        let (v, _) = read_view("initial line width: 0.1 s\n");
+        assert_eq!(
+            (v.line_width_unit, v.line_style),
+            (WidthUnit::World, LineStyle::Cylinder)
+        );
+    }
+
+    #[test]
+    fn view_vectors_and_modes() {
+        let src = "viewpoint: 0,10,30\nview reference point: 0, 5.5 ,0\ntwist: 900\nprojection: perspective\n\
+                   render mode: shaded\nz buffer: off\nline style: polygon\nbox: x: -4,4 y: -2,7 z:-4,4\n\
+                   initial color: 16 32\ncolor increment: 2\n";
+        let (v, d) = read_view(src);
+        assert!(d.is_empty(), "{d:?}");
+        assert_eq!(v.viewpoint, [0.0, 10.0, 30.0]);
+        assert_eq!(v.view_reference_point, [0.0, 5.5, 0.0]);
+        assert_eq!(v.twist, 900.0);
+        assert_eq!(v.projection, Projection::Perspective);
+        assert_eq!(v.render_mode, RenderMode::Shaded);
+        assert!(!v.z_buffer);
+        assert_eq!(v.line_style, LineStyle::Polygon);
+        assert_eq!(
+            v.bounding_box,
+            Some([[-4.0, 4.0], [-2.0, 7.0], [-4.0, 4.0]])
+        );
+        assert_eq!(
+            (v.initial_color, v.initial_back_color, v.color_increment),
+            (16, Some(32), 2)
+        );
+    }
+
+    #[test]
+    fn files_and_tropisms() {
+        let src = "function: internode.func 100\nfunction: leaf.func\nfunction set: functions.fset\n\
+                   surface: l leaf.s 1 8 4\nsurface: p petal.s 2.75\nline: L line.s .01\ncontour: 1 leaf.con\n\
+                   curve: profile.con\ntropism: T: 0.0  1.0 0.0  A:90\ntorque: T: 0,1,0 E: 0.2\n\
+                   tropism direction: 0.2,1.0,0.0\ninitial elasticity: 0.15\nelasticity increment: -0.06\n";
+        let (v, d) = read_view(src);
+        assert!(d.is_empty(), "{d:?}");
+        assert_eq!(v.functions, ["internode.func", "leaf.func"]);
+        assert_eq!(v.function_samples, [Some(100), None]);
+        assert_eq!(v.function_sets, ["functions.fset"]);
+        assert_eq!(
+            v.surfaces[0],
+            SurfaceRef {
+                id: 'l',
+                file: "leaf.s".into(),
+                scale: 1.0,
+                s_divisions: 8,
+                t_divisions: 4,
+                texture: None
+            }
+        );
+        assert_eq!((v.surfaces[1].scale, v.surfaces[1].s_divisions), (2.75, 0));
+        assert_eq!((v.lines[0].id, v.lines[0].scale), ('L', 0.01));
+        assert_eq!(
+            v.contours,
+            [
+                ContourRef {
+                    id: 1,
+                    file: "leaf.con".into()
+                },
+                ContourRef {
+                    id: 2,
+                    file: "profile.con".into()
+                }
+            ]
+        );
+        assert_eq!(
+            (v.tropisms[0].vector, v.tropisms[0].angle),
+            ([0.0, 1.0, 0.0], 90.0)
+        );
+        assert_eq!(v.torques[0].elasticity, 0.2);
+        assert_eq!(v.tropism_direction, Some([0.2, 1.0, 0.0]));
+        assert_eq!(
+            (v.initial_elasticity, v.elasticity_increment),
+            (0.15, -0.06)
+        );
+    }
+
+    #[test]
+    fn unknown_misspelt_and_unused() {
+        let src = "angel factor: 16\ntappered lines: off\nlight: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
+        let (v, d) = read_view(src);
+        assert_eq!(codes_of(&d), ["W0804", "W0805", "E0812"]);
+        assert_eq!(&src[d.0[0].span.clone().unwrap()], "angel factor");
+        assert_eq!(
+            d.0[0].help.as_deref(),
+            Some("did you mean `angle factor:`?")
+        );
+        assert_eq!(&src[d.0[1].span.clone().unwrap()], "tappered lines");
+        assert_eq!(&src[d.0[2].span.clone().unwrap()], "x");
+        assert!(!v.tapered_lines);
+        assert_eq!(v.scale_factor, 1.0);
+        assert_eq!(v.angle, 45.0);
+        assert_eq!(v.unused, [("light".to_string(), 37..52)]);
+    }
+
+    #[test]
+    fn panels_are_recognised() {
+        assert!(is_panel(
+            "panel name: Water\nbackground: 0\n\ntype: SLIDER\n"
+        ));
+        assert!(!is_panel("angle factor: 8\n"));
+    }
+
+    #[test]
+    fn colormap_background_and_distinct_low_indices() {
+        let m = default_colormap();
+        assert_eq!(m[0], Rgb(0, 0, 0));
+        for i in 1..16 {
+            assert_ne!(m[i], m[0]);
+            for j in 1..i {
+                assert_ne!(m[i], m[j], "{i} {j}");
+            }
+        }
+        // Ramps get lighter within a block of 64 and never reach black.
+        for block in [64, 128, 192] {
+            let lum = |c: Rgb| c.0 as u32 + c.1 as u32 + c.2 as u32;
+            assert!(lum(m[block]) < lum(m[block + 63]));
+            assert!(lum(m[block]) > 0);
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! Diagnostic codes of the cpfg dialect of `.l` (`E08xx`, `W08xx`).
+//!
+//! `E0801`–`E0829` and `W0801`–`W0819` belong to the files around the
+//! L-system: the C preprocessor pass ([`crate::cpfg::preprocess`]), view
+//! files, function files and surface files. `E0830` and up, `W0820` and up
+//! are the cpfg language's own.
+
+use super::Code;
+
+codes! { CPFG;
+    CPFG_UNTERMINATED_COMMENT = "E0801", "unterminated comment",
+"cpfg runs the C preprocessor over the L-system file first, and a comment
+opened with /* must be closed with */ before the end of the file; otherwise
+everything after it is swallowed by the comment.
+
+Example:
+    /* internode growth rate
+    #define RATE 1.02
+
+Close the comment:
+    /* internode growth rate */";
+
+    CPFG_UNTERMINATED_IF = "E0802", "`#if` without `#endif`",
+"Every conditional block of the preprocessor (`#if`, `#ifdef`, `#ifndef`)
+must be closed by an `#endif`. Without it the preprocessor cannot tell where
+the conditional text ends.
+
+Example:
+    #if LEAVES==1
+    L(a) --> ~l(a)
+    endlsystem
+
+Add the missing line:
+    #endif";
+
+    CPFG_STRAY_CONDITIONAL = "E0803", "`#else`, `#elif` or `#endif` without `#if`",
+"`#else`, `#elif` and `#endif` continue or close a conditional block
+opened by `#if`, `#ifdef` or `#ifndef`. This one has no open block: an
+`#endif` too many, or an `#else` after the block's own `#else`.
+
+Example:
+    #if LEAVES==1
+    ...
+    #endif
+    #endif          <- nothing left to close";
+
+    CPFG_MACRO_ARGUMENTS = "E0804", "wrong number of macro arguments",
+"A function-like macro (`#define F(a,b) ...`) must be called with as many
+arguments as it has parameters, separated by commas outside parentheses.
+The call is left unexpanded.
+
+Example:
+    #define MAX(a,b) (((a)>(b))?(a):(b))
+    A(x) --> A(MAX(x))
+
+Write:
+    A(x) --> A(MAX(x,1))";
+
+    CPFG_UNKNOWN_DIRECTIVE = "E0805", "unknown preprocessor directive",
+"A line whose first character (after spaces) is `#` is a preprocessor
+directive: #define, #undef, #include, #if, #ifdef, #ifndef, #elif, #else,
+#endif, #error, #pragma, #line. A `#` followed by a name that is none of
+these is an error. (A `#` followed by something else, like the width module
+`#(0.06)` on a continuation line of a production, is kept as text, as
+vlab's cpfg does; a strict C preprocessor would reject that too.)
+
+Example:
+    #defin RATE 1.02
+    #w(d) --> #(d*1.06)     <- `#w` read as a directive
+
+Write:
+    #define RATE 1.02
+    * < #w(d) --> #(d*1.06)  (something before the `#`)";
+
+    CPFG_MISSING_INCLUDE = "E0806", "included file not found",
+"`#include \"file\"` inserts the named file, which is looked for beside the
+L-system file. The file could not be read.
+
+Example:
+    #include \"female.l\"     <- no female.l in the object's folder
+
+Check the name (case matters on most systems) and that the file is part of
+the object.";
+
+    CPFG_RECURSIVE_INCLUDE = "E0807", "recursive or too deep `#include`",
+"A file includes itself, directly or through other files, or includes are
+nested more than 16 deep. The preprocessor would never finish, so the
+include is skipped.
+
+Example (a.l):
+    #include \"b.l\"
+and b.l:
+    #include \"a.l\"";
+
+    CPFG_UNTERMINATED_CALL = "E0808", "unterminated macro call",
+"A function-like macro name followed by `(` starts a macro call, and the
+call's closing `)` was not found before the end of the text (or before the
+next preprocessor directive). The name is left unexpanded.
+
+Example:
+    #define LEAF(a) ~l(a)
+    A --> F LEAF(2
+
+Write:
+    A --> F LEAF(2)";
+
+    CPFG_BAD_DIRECTIVE = "E0809", "malformed preprocessor directive",
+"A preprocessor directive is missing a part or has one it cannot use:
+#define needs a macro name, #include a file name in quotes, #if an integer
+constant expression (after macro expansion; names that are not macros count
+as 0, and `defined(NAME)` tests whether NAME is a macro).
+
+Example:
+    #define
+    #include female.l
+    #if LEAVES ==
+
+Write:
+    #define LEAVES 1
+    #include \"female.l\"
+    #if LEAVES == 1";
+
+    CPFG_EXPANSION_LIMIT = "E0810", "preprocessor output too large",
+"Macro expansion produced more than graftal allows (8 MiB of text, 64
+nested macro calls in arguments, or 20 million expansion steps). Macros
+that expand into several copies of other macros grow exponentially; the
+expansion is cut off here.
+
+Example:
+    #define A B B
+    #define B C C
+    #define C D D
+    ...";
+
+    CPFG_ERROR_DIRECTIVE = "E0811", "`#error`",
+"The file contains an `#error` directive in text the preprocessor keeps:
+the author made this configuration an error on purpose. The message is
+the directive's text.
+
+Example:
+    #if LEAVES > 2
+    #error only 0, 1 or 2 leaves are modelled
+    #endif";
+
+    CPFG_VIEW_VALUE = "E0812", "malformed view-file value",
+"A view-file command's value is not of the kind it takes: numbers for
+`angle factor:`, `initial line width:`, `scale factor:`, three numbers
+separated by commas for `viewpoint:`, `on`/`off` for flags, a name and a
+number for `surface:`. The command is ignored and its default kept.
+
+Example:
+    angle factor: sixteen
+    viewpoint: 0 0 1
+
+Write:
+    angle factor: 16
+    viewpoint: 0,0,1";
+
+    CPFG_FUNCTION_FILE = "E0813", "malformed function file",
+"A function file (`.func`, written by vlab's funcedit) or function set
+(`.fset`, written by the gallery) does not have the expected layout:
+
+    fver 1 1
+    name: internode
+    samples: 10
+    flip: off
+    points: 4
+    0.000000 0.000000 1
+    ...
+
+(or the older `range: 0.0 1.0` / `points: n` layout). cpfg needs at least 4
+control points, each `x y` with an optional multiplicity.";
+
+    CPFG_SURFACE_FILE = "E0814", "malformed surface file",
+"A surface file (`.s`, written by vlab's bezieredit) does not have the
+expected layout: a bounding-box line, CONTACT POINT, END POINT, HEADING,
+UP and SIZE lines, then patches, each a name, a TOP COLOR line, three
+neighbour lines (AL: A: AR: / L: R: / BL: B: BR:) and 4 rows of 4 control
+points `x y z`.
+
+Example of a patch:
+    patch
+    TOP COLOR: 0 DIFFUSE: 0.00 BOTTOM COLOR: 0 DIFFUSE: 0.00
+    AL: ~ A: ~ AR: ~
+    L: ~ R: ~
+    BL: ~ B: ~ BR: ~
+    -0.60 1.21 0.10  0.47 2.02 -0.61  -0.36 2.03 -0.61  0.75 1.23 0.16
+    ... (three more rows)";
+
+    CPFG_MACRO_REDEFINED = "W0801", "macro redefined",
+"A macro is defined again with a different body (or different parameters)
+without an `#undef` first. The C preprocessor warns and uses the later
+definition; so does graftal.
+
+Example:
+    #define in(x,y) (WIDTH*x*x+(y-R)*(y-R) <= R*R)
+    #define in(x,y) (y<0 || y>R+R || x<-R || x > R)
+
+Write `#undef in` before the second definition if this is intended.";
+
+    CPFG_STRAY_BACKSLASH = "W0802", "backslash before a line continuation",
+"A directive line ends with two backslashes `\\\\`. The last one joins the
+next line to this one; the first one would stay in the macro's text, where
+cpfg would read it as the roll module `\\`. graftal drops it, which is what
+the author meant in every file that has it.
+
+Example:
+    #define int_length(x) \\\\
+        (INT_LENGTH_SCALE * func(INT_LENGTH,x))
+
+Write a single backslash:
+    #define int_length(x) \\";
+
+    CPFG_EXTRA_TOKENS = "W0803", "extra text after a directive",
+"`#include`, `#else`, `#endif`, `#ifdef`, `#ifndef` and `#undef` take at
+most one name; the text after it is ignored, as the C preprocessor does.
+A second file name in an `#include` is not included: write one `#include`
+per file.
+
+Example:
+    #include \"female.l\" \"male.l\"
+
+Write:
+    #include \"female.l\"
+    #include \"male.l\"";
+
+    CPFG_UNKNOWN_VIEW_COMMAND = "W0804", "unknown view-file command",
+"The view file (`.v`) has a line whose command cpfg does not know (or
+that is not `command: value`). cpfg ignores such lines; so does graftal.
+Misspellings get a suggestion.
+
+Example:
+    angel factor: 16
+
+Write:
+    angle factor: 16";
+
+    CPFG_DEPRECATED_VIEW_SPELLING = "W0805", "misspelt view command accepted",
+"Some view files of the vlab distribution write `tappered lines:`, which
+old cpfg versions accepted for `tapered lines:`. graftal reads it as
+`tapered lines:` and says so.
+
+Example:
+    tappered lines: on
+
+Write:
+    tapered lines: on";
+}
