@@ -191,7 +191,8 @@ fn run_object(dir: &Path) -> Outcome {
             c.diagnostics
                 .iter()
                 .filter(|d| d.is_error())
-                .all(|d| d.span.is_some()),
+                // A problem in a file beside the `.l` names that file.
+                .all(|d| d.span.is_some() || d.message.contains(", line ")),
             "{}: an error without a span: {errors:?}",
             dir.display()
         );
@@ -224,14 +225,14 @@ fn at_least_ninety_percent_of_the_corpus_objects_render() {
     let mut refused = Vec::new();
     for d in &dirs {
         match run_object(d) {
-            Outcome::Drawn { segments, modules } => {
-                assert!(
-                    segments > 0,
-                    "{}: {modules} modules and nothing drawn",
-                    d.display()
-                );
-                drawn += 1;
-            }
+            Outcome::Drawn {
+                segments: 0,
+                modules,
+            } => refused.push(format!(
+                "{}: {modules} modules and nothing drawn",
+                d.file_name().unwrap().to_string_lossy()
+            )),
+            Outcome::Drawn { .. } => drawn += 1,
             Outcome::Refused(why) => refused.push(format!(
                 "{}: {}",
                 d.file_name().unwrap().to_string_lossy(),
@@ -245,4 +246,62 @@ fn at_least_ninety_percent_of_the_corpus_objects_render() {
         "{drawn}/95 drawn:\n{}",
         refused.join("\n")
     );
+}
+
+/// Damaged cpfg files (bytes cut, doubled or replaced at random, from
+/// real corpus files) never make graftal panic or hang: each is compiled,
+/// and what compiles is derived a few steps and drawn.
+#[test]
+fn damaged_files_never_panic() {
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, TestRunner};
+    let texts: Vec<String> = corpus()
+        .iter()
+        .filter_map(|d| main_l(d))
+        .take(40)
+        .map(|p| std::fs::read_to_string(p).unwrap_or_default())
+        .collect();
+    let mut runner = TestRunner::new(Config {
+        cases: 300,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = (
+        0..texts.len(),
+        proptest::collection::vec((any::<u16>(), 0u8..3, any::<u8>()), 1..6),
+    );
+    runner
+        .run(&strategy, |(k, edits)| {
+            let mut bytes = texts[k].clone().into_bytes();
+            for (at, kind, b) in edits {
+                if bytes.is_empty() {
+                    break;
+                }
+                let i = at as usize % bytes.len();
+                match kind {
+                    0 => {
+                        bytes.remove(i);
+                    }
+                    1 => bytes.insert(i, bytes[i]),
+                    _ => {
+                        let alphabet = b" ()[]{}:;,*<>-+=%?@~#!.0123456789Ax\n\t";
+                        bytes[i] = alphabet[b as usize % alphabet.len()];
+                    }
+                }
+            }
+            let text = String::from_utf8_lossy(&bytes).into_owned();
+            let c = compile_text(&text);
+            if let Some(sys) = c.system {
+                let opts = RunOptions {
+                    steps: Some(sys.settings.steps.unwrap_or(0).min(4)),
+                    max_symbols: 200_000,
+                    ..RunOptions::default()
+                };
+                if let Ok(w) = driver::derive_any(&sys, &opts, |_, _| {}) {
+                    let _ = driver::interpret_any(&sys, &w, &opts, false);
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
 }

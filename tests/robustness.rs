@@ -189,7 +189,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
                     Notation::Pfg => "l",
                     Notation::Linf => "linf",
                     Notation::Stl => "stl",
-                    Notation::Fractint => unreachable!("not a translation target"),
+                    Notation::Fractint | Notation::Cpfg => unreachable!("not a translation target"),
                 };
                 let back = stage("driver::compile of a translation", || {
                     driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()))

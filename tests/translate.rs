@@ -26,7 +26,7 @@ fn ext(n: Notation) -> &'static str {
         Notation::Linf => "linf",
         Notation::Stl => "stl",
         // Fractint libraries are `.l` too (told apart by content).
-        Notation::Fractint => "l",
+        Notation::Fractint | Notation::Cpfg => "l",
     }
 }
 

@@ -99,7 +99,7 @@ pub enum Item {
     Ring(Span),
     Block(BlockKind, Vec<Stmt>, Span),
     Section(Section, Span),
-    Production(Production),
+    Production(Box<Production>),
     EndLsystem(Span),
 }
 

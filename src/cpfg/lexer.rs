@@ -12,8 +12,10 @@
 //! the braces of a statement block. The turtle commands written with a
 //! prefix (`@O`, `@Gs`, `?P`, `~l`) are joined into one symbol here.
 //!
-//! Keywords are recognised in both modes and in any letter case
-//! (`Lsystem:`, `axiom:`, `Endlsystem`).
+//! Keywords are recognised in both modes, spelt as cpfg's lexer spells
+//! them: the first letter of each word in either case, the rest in lower
+//! case, the colon right after (`Lsystem:`, `axiom:`, `Endlsystem`). So
+//! `AXIOM :` is a run of module symbols, as in cpfg.
 
 use crate::diagnostics::Diagnostics;
 use crate::ir::Span;
@@ -194,24 +196,24 @@ macro_rules! mode_tokens {
         Continuation,
         #[token("\n")]
         Newline,
-        #[regex(r"(?i)lsystem[ \t]*:", |_| Keyword::Lsystem)]
-        #[regex(r"(?i)seed[ \t]*:", |_| Keyword::Seed)]
-        #[regex(r"(?i)derivation ?length[ \t]*:", |_| Keyword::DerivationLength)]
-        #[regex(r"(?i)maximum depth[ \t]*:", |_| Keyword::MaximumDepth)]
-        #[regex(r"(?i)consider[ \t]*:", |_| Keyword::Consider)]
-        #[regex(r"(?i)ignore[ \t]*:", |_| Keyword::Ignore)]
-        #[regex(r"(?i)axiom[ \t]*:", |_| Keyword::Axiom)]
-        #[regex(r"(?i)define[ \t]*:", |_| Keyword::Define)]
-        #[regex(r"(?i)ring lsystem", |_| Keyword::Ring)]
-        #[regex(r"(?i)start[ \t]*:", |_| Keyword::Start)]
-        #[regex(r"(?i)end[ \t]*:", |_| Keyword::End)]
-        #[regex(r"(?i)start ?each[ \t]*:", |_| Keyword::StartEach)]
-        #[regex(r"(?i)end ?each[ \t]*:", |_| Keyword::EndEach)]
-        #[regex(r"(?i)homomorphism[ \t]*:?", |_| Keyword::Homomorphism)]
-        #[regex(r"(?i)decomposition[ \t]*:?", |_| Keyword::Decomposition)]
-        #[regex(r"(?i)no warnings", |_| Keyword::NoWarnings)]
-        #[regex(r"(?i)warnings", |_| Keyword::Warnings)]
-        #[regex(r"(?i)endlsystem", |_| Keyword::EndLsystem)]
+        #[regex(r"[Ll]system:", |_| Keyword::Lsystem)]
+        #[regex(r"[Ss]eed:", |_| Keyword::Seed)]
+        #[regex(r"[Dd]erivation ?[Ll]ength:", |_| Keyword::DerivationLength)]
+        #[regex(r"[Mm]aximum [Dd]epth:", |_| Keyword::MaximumDepth)]
+        #[regex(r"[Cc]onsider:", |_| Keyword::Consider)]
+        #[regex(r"[Ii]gnore:", |_| Keyword::Ignore)]
+        #[regex(r"[Aa]xiom:", |_| Keyword::Axiom)]
+        #[regex(r"[Dd]efine:", |_| Keyword::Define)]
+        #[regex(r"[Rr]ing [Ll]system", |_| Keyword::Ring)]
+        #[regex(r"[Ss]tart:", |_| Keyword::Start)]
+        #[regex(r"[Ee]nd:", |_| Keyword::End)]
+        #[regex(r"[Ss]tart ?[Ee]ach:", |_| Keyword::StartEach)]
+        #[regex(r"[Ee]nd ?[Ee]ach:", |_| Keyword::EndEach)]
+        #[regex(r"[Hh]omomorphism:?", |_| Keyword::Homomorphism)]
+        #[regex(r"[Dd]ecomposition:?", |_| Keyword::Decomposition)]
+        #[token("no warnings", |_| Keyword::NoWarnings)]
+        #[token("warnings", |_| Keyword::Warnings)]
+        #[regex(r"[Ee]nd[Ll]system", |_| Keyword::EndLsystem)]
         Keyword(Keyword),
         $($own)*
         }

@@ -297,6 +297,22 @@ impl Lowerer<'_> {
                         .with_label("called here"),
                     );
                 }
+                if matches!(
+                    builtin,
+                    Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
+                ) {
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::CPFG_UNSUPPORTED,
+                            name_span.clone(),
+                            format!(
+                                "`{name}` needs contour files, which graftal does not read yet"
+                            ),
+                        )
+                        .with_label("a contour function")
+                        .with_help("replace the contour by a user function (`func`) or a formula"),
+                    );
+                }
                 if builtin == Builtin::Io && !self.warned_io {
                     self.warned_io = true;
                     self.diags.push(
@@ -464,6 +480,11 @@ impl Lowerer<'_> {
     /// A constant expression (macros expanded): derivation length, depth,
     /// array sizes, seeds.
     fn constant(&mut self, e: &ast::Expr, what: &str, max: f64) -> Option<f64> {
+        self.constant_in(e, what, 0.0, max)
+    }
+
+    /// A constant in `min..=max`.
+    fn constant_in(&mut self, e: &ast::Expr, what: &str, min: f64, max: f64) -> Option<f64> {
         let mut scope = Scope {
             locals: Vec::new(),
             global_block: false,
@@ -473,13 +494,18 @@ impl Lowerer<'_> {
         self.globals = saved;
         let v = crate::eval::parametric::constant(&x);
         match v {
-            Some(v) if (0.0..=max).contains(&v) => Some(v),
+            Some(v) if (min..=max).contains(&v) => Some(v),
             _ => {
+                let range = if min == 0.0 {
+                    format!("from 0 to {max}")
+                } else {
+                    "that is finite".to_string()
+                };
                 self.diags.push(
                     Diagnostic::at(
                         codes::CPFG_BAD_VALUE,
                         e.span.clone(),
-                        format!("{what} must be a number from 0 to {max}"),
+                        format!("{what} must be a number {range}"),
                     )
                     .with_label(match v {
                         Some(v) => format!("this is {v}"),
@@ -589,7 +615,10 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
                     let init: Vec<f64> = d
                         .init
                         .iter()
-                        .map(|e| l.constant(e, "an array value", f64::MAX).unwrap_or(0.0))
+                        .map(|e| {
+                            l.constant_in(e, "an array value", f64::MIN, f64::MAX)
+                                .unwrap_or(0.0)
+                        })
                         .collect();
                     l.arrays
                         .insert(d.name.clone(), (par.arrays.len() as u16, dims.len()));

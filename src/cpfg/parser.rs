@@ -384,7 +384,7 @@ where
             .map(|(s, e)| Item::MaximumDepth(e, s))
             .boxed(),
         kw(Keyword::Ignore)
-            .ignore_then(symbols.clone())
+            .ignore_then(symbols)
             .map(Item::Ignore)
             .boxed(),
         kw(Keyword::Consider)
@@ -408,7 +408,7 @@ where
         section(Keyword::Decomposition, Section::Decomposition),
         kw(Keyword::EndLsystem).map(Item::EndLsystem).boxed(),
         production(expr, block_p, mods)
-            .map(Item::Production)
+            .map(|p| Item::Production(Box::new(p)))
             .boxed(),
     ))
     .then_ignore(end())

@@ -383,6 +383,14 @@ impl Matcher {
         let mut j = i; // next module to look at is j - 1
         let mut steps = 0;
         for pat in pats.iter().rev() {
+            // A module the context filter does not see is not looked for
+            // (cpfg's `consider:` applies to patterns as to words).
+            if self.is_ignored(pat.symbol)
+                && pat.symbol != SymbolId::OPEN
+                && pat.symbol != SymbolId::CLOSE
+            {
+                continue;
+            }
             loop {
                 if j == 0 {
                     if self.ring && steps < n {
@@ -434,6 +442,33 @@ impl Matcher {
         let mut j = i;
         let mut steps = 0;
         for pat in pats {
+            if self.is_ignored(pat.symbol)
+                && pat.symbol != SymbolId::OPEN
+                && pat.symbol != SymbolId::CLOSE
+            {
+                continue;
+            }
+            if pat.symbol == SymbolId::CLOSE {
+                // `]` in a right context: the rest of the current branch.
+                let mut depth = 0usize;
+                loop {
+                    if j >= n {
+                        return false;
+                    }
+                    let s = word.symbols[j];
+                    if s == SymbolId::OPEN {
+                        depth += 1;
+                    } else if s == SymbolId::CLOSE {
+                        if depth == 0 {
+                            break;
+                        }
+                        depth -= 1;
+                    }
+                    j += 1;
+                }
+                j += 1;
+                continue;
+            }
             loop {
                 if j >= n {
                     if self.ring && steps < n {
@@ -519,16 +554,14 @@ struct Engine<'a> {
 }
 
 impl Engine<'_> {
-    /// Tries the productions of `group` at module `i` of `word` (context in
-    /// `ctx`, at `ctx_i`). On success appends the successor to `out` and
-    /// returns the number of modules consumed.
+    /// Tries the productions of `group` at module `i` of `word` (contexts
+    /// are matched in `ctx.0` around module `ctx.1`). On success appends the
+    /// successor to `out` and returns the number of modules consumed.
     fn apply(
         &mut self,
         group: &Group<'_>,
-        word: &ModuleWord,
-        i: usize,
-        ctx: &ModuleWord,
-        ctx_i: usize,
+        (word, i): (&ModuleWord, usize),
+        (ctx, ctx_i): (&ModuleWord, usize),
         choice: Choice,
         out: &mut ModuleWord,
     ) -> Result<Option<usize>, Halt> {
@@ -642,7 +675,7 @@ impl Engine<'_> {
         let mut out = ModuleWord::new();
         let mut i = 0;
         while i < word.len() {
-            match self.apply(group, word, i, word, i, choice, &mut out)? {
+            match self.apply(group, (word, i), (word, i), choice, &mut out)? {
                 Some(n) => i += n.max(1),
                 None => {
                     out.push(word.symbols[i], word.args(i));
@@ -673,7 +706,7 @@ impl Engine<'_> {
         let mut scratch = ModuleWord::new();
         while i < word.len() {
             scratch.clear();
-            let consumed = match self.apply(group, word, i, word, i, choice, &mut scratch)? {
+            let consumed = match self.apply(group, (word, i), (word, i), choice, &mut scratch)? {
                 Some(n) => {
                     let sub =
                         self.deeper(group, &scratch, word, i, depth.saturating_sub(1), choice)?;
@@ -718,7 +751,7 @@ impl Engine<'_> {
         let mut i = 0;
         while i < sub.len() {
             scratch.clear();
-            match self.apply(group, sub, i, ctx, at, choice, &mut scratch)? {
+            match self.apply(group, (sub, i), (ctx, at), choice, &mut scratch)? {
                 Some(n) => {
                     let deeper = self.deeper(group, &scratch, ctx, at, depth - 1, choice)?;
                     out.extend_from(&deeper, 0..deeper.len());
