@@ -511,8 +511,9 @@ mod tests {
         assert_eq!(p.before.len(), 1);
         assert!(p.condition.is_some());
         assert_eq!(p.after.len(), 1);
-        assert_eq!(p.successor.len(), 6);
-        assert_eq!(p.successor[3].name, "+");
+        assert_eq!(p.successor.len(), 5);
+        assert_eq!(p.successor[2].name, "+");
+        assert_eq!(p.successor[3].args.len(), 1);
     }
 
     #[test]
