@@ -211,7 +211,12 @@ impl Lowerer<'_> {
                     return Expr::Num(0.0);
                 }
                 if self.undefined.insert(n.clone()) {
-                    let mut known: Vec<&str> = scope.locals.iter().map(String::as_str).collect();
+                    let mut known: Vec<&str> = scope
+                        .locals
+                        .iter()
+                        .map(String::as_str)
+                        .filter(|l| !l.is_empty())
+                        .collect();
                     known.extend(self.globals.keys().map(String::as_str));
                     let mut d = Diagnostic::at(
                         codes::CPFG_UNDEFINED_NAME,

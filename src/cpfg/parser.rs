@@ -454,6 +454,24 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
             );
             continue;
         }
+        // `->` (a `-` module then `>`) where `-->` was meant.
+        let arrow = line.windows(2).find(|w| {
+            w[0].0 == Token::Symbol("-".into())
+                && w[1].0 == Token::RSep
+                && w[0].1.end == w[1].1.start
+        });
+        if let (Some(w), false) = (arrow, line.iter().any(|(t, _)| *t == Token::Arrow)) {
+            diags.push(
+                Diagnostic::at(
+                    codes::MALFORMED_ARROW,
+                    w[0].1.start..w[1].1.end,
+                    "malformed arrow `->`",
+                )
+                .with_label("cpfg writes the arrow as `-->`")
+                .with_help("replace `->` with `-->`"),
+            );
+            continue;
+        }
         let end = line.last().map_or(0, |(_, s)| s.end);
         let eoi = SimpleSpan::from(end..end);
         let (out, errors) = parser
