@@ -670,3 +670,30 @@ fn golden_derivations_of_corpus_files() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+#[test]
+fn check_says_the_dialect() {
+    let dir = std::env::temp_dir().join(format!("graftal-cpfg-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("leaf.l");
+    std::fs::write(
+        &path,
+        "Lsystem: 1\nderivation length: 2\nAxiom: A\nA --> I[+A]A\nhomomorphism\nI --> F\nendlsystem\n",
+    )
+    .unwrap();
+    let mut out = Vec::new();
+    let mut err = Vec::new();
+    let mut io = graftal::cli::Io {
+        stdout: &mut out,
+        stderr: &mut err,
+        terminal: false,
+    };
+    let code = graftal::cli::run(["graftal", "check", path.to_str().unwrap()], &mut io);
+    let out = String::from_utf8(out).unwrap();
+    assert_eq!(code, 0, "{}", String::from_utf8_lossy(&err));
+    assert!(
+        out.contains("dialect: cpfg, 1 productions, 0 decomposition, 1 homomorphism"),
+        "{out}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

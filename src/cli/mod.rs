@@ -479,6 +479,22 @@ fn load_and_compile(
 /// `check`'s listing of a Fractint library: the dialect, then each entry
 /// with its line and what was found.
 fn list_entries(io: &mut Io<'_>, c: &Compiled) {
+    if c.dialect == crate::dialect::Dialect::Cpfg {
+        // A `.l` file may be pfg, cpfg or Fractint: say which was read.
+        if let Some(p) = c.system.as_ref().and_then(|s| s.parametric.as_deref()) {
+            let _ = writeln!(
+                io.stdout,
+                "{}: dialect: cpfg, {} productions, {} decomposition, {} homomorphism",
+                c.file.name,
+                p.productions.len(),
+                p.decomposition.productions.len(),
+                p.homomorphism.productions.len()
+            );
+        } else {
+            let _ = writeln!(io.stdout, "{}: dialect: cpfg", c.file.name);
+        }
+        return;
+    }
     if c.dialect != crate::dialect::Dialect::Fractint {
         return;
     }

@@ -163,6 +163,19 @@ pub fn read_file(file: &crate::source::SourceFile, diags: &mut Diagnostics) -> L
             }
         }
     }
+    // Tropisms bend every segment in cpfg; graftal does not apply them yet,
+    // so say so rather than draw a different plant silently.
+    let bends = !view.tropisms.is_empty()
+        || (view.tropism_direction.is_some() && view.initial_elasticity != 0.0);
+    if bends {
+        diags.push(
+            crate::diagnostics::Diagnostic::global(
+                crate::diagnostics::codes::CPFG_NOT_DRAWN,
+                "the view file sets tropisms, which graftal does not apply: branches are drawn unbent",
+            )
+            .with_help("cpfg bends each segment towards the tropism vector by its elasticity"),
+        );
+    }
     // The view file's settings.
     let sys = &mut lowered.system;
     let st = &mut sys.settings;
