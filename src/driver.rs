@@ -4,6 +4,7 @@
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::dialect::{self, Dialect};
+use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::ir::parametric::ModuleWord;
 use crate::ir::{Notation, Span, SpanTable, System, TurtleOp, Word};
@@ -12,6 +13,7 @@ use crate::source::SourceFile;
 use crate::turtle::{self, Geometry};
 use crate::{linf, pfg, stdlib};
 use serde::Serialize;
+use std::io::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -313,6 +315,55 @@ pub fn word_text(sys: &System, word: &Word) -> String {
         Notation::Linf => linf::display(sys, word),
         _ => word.display(&sys.symbols),
     }
+}
+
+/// Derives and writes the word as [`Derived::text`] would, followed by a
+/// newline. A context-free deterministic pfg, Fractint or STL system is
+/// written straight from its shared derivation tree ([`Tree::walk`]), in
+/// chunks, without building the word; any other is derived, then written.
+/// `progress` is called as [`derive_any`] calls it. Write errors (a closed
+/// pipe) end the writing quietly.
+pub fn write_derived(
+    sys: &System,
+    opts: &RunOptions,
+    out: &mut dyn std::io::Write,
+    mut progress: impl FnMut(u64, usize),
+) -> Result<(), Diagnostic> {
+    let dopts = opts.derive_options(sys);
+    let tree = match sys.notation {
+        Notation::Linf => None,
+        _ if dopts.steps > MAX_TREE_DEPTH => None,
+        _ => Tree::new(sys),
+    };
+    let mut out = std::io::BufWriter::with_capacity(1 << 18, out);
+    let names: Vec<&[u8]> = sys.symbols.iter().map(|(_, i)| i.name.as_bytes()).collect();
+    if let Some(t) = tree {
+        // Checks the limit before anything is written.
+        let len = Deriver::new(sys).tree_len(&t, &dopts)?;
+        let _ = t.walk(
+            dopts.steps,
+            |s| names[s.index()],
+            |chunk| out.write_all(chunk),
+        );
+        progress(dopts.steps, len);
+    } else {
+        match derive_any(sys, opts, progress)? {
+            Derived::Plain(w) if sys.notation != Notation::Linf => {
+                // Name by name into the buffer: no text built in between.
+                for s in &w.0 {
+                    if out.write_all(names[s.index()]).is_err() {
+                        break;
+                    }
+                }
+            }
+            word => {
+                let _ = out.write_all(word.text(sys).as_bytes());
+            }
+        }
+    }
+    let _ = out.write_all(b"\n");
+    let _ = out.flush();
+    Ok(())
 }
 
 /// How many symbols of `word` are written: STL's silent stem-level markers

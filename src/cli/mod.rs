@@ -224,9 +224,17 @@ where
             status
         }
         Command::Derive(a) => with_system(io, &a, |io, _c, sys, opts, _| {
-            let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-            let text = word.text(sys);
-            let _ = writeln!(io.stdout, "{text}");
+            let bar = step_bar(io, sys, opts);
+            let r = driver::write_derived(sys, opts, io.stdout, |step, len| {
+                if let Some(bar) = &bar {
+                    bar.set_position(step);
+                    bar.set_message(format!("{len} symbols"));
+                }
+            });
+            if let Some(bar) = bar {
+                bar.finish_and_clear();
+            }
+            r.map_err(|d| vec![d])?;
             Ok(0)
         }),
         Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts, parse| {
@@ -538,10 +546,31 @@ fn derive_reporting(
     sys: &crate::ir::System,
     opts: &RunOptions,
 ) -> Result<driver::Derived, Diagnostic> {
-    let steps = opts.derive_options(sys).steps;
-    let show = io.terminal && std::env::var_os("CI").is_none() && steps > 0;
-    if !show {
+    let Some(bar) = step_bar(io, sys, opts) else {
         return driver::derive_any(sys, opts, |_, _| {});
+    };
+    let r = driver::derive_any(sys, opts, |step, len| {
+        bar.set_position(step);
+        bar.set_message(format!("{len} symbols"));
+    });
+    bar.finish_and_clear();
+    r
+}
+
+/// Whether progress is shown: on a terminal, outside CI.
+fn show_progress(io: &Io<'_>) -> bool {
+    io.terminal && std::env::var_os("CI").is_none()
+}
+
+/// A progress bar over derivation steps, when [`show_progress`].
+fn step_bar(
+    io: &Io<'_>,
+    sys: &crate::ir::System,
+    opts: &RunOptions,
+) -> Option<indicatif::ProgressBar> {
+    let steps = opts.derive_options(sys).steps;
+    if !show_progress(io) || steps == 0 {
+        return None;
     }
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
@@ -549,12 +578,7 @@ fn derive_reporting(
             .expect("valid template"),
     );
     bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    let r = driver::derive_any(sys, opts, |step, len| {
-        bar.set_position(step);
-        bar.set_message(format!("{len} symbols"));
-    });
-    bar.finish_and_clear();
-    r
+    Some(bar)
 }
 
 fn report<'d>(

@@ -14,6 +14,8 @@
 
 pub mod parametric;
 mod rng;
+mod table;
+pub mod tree;
 
 pub use rng::Rng;
 
@@ -72,6 +74,8 @@ pub struct Deriver<'a> {
     /// The longest left and right contexts of any production.
     max_left: usize,
     max_right: usize,
+    /// The look-up table of systems with one-symbol contexts.
+    table: Option<table::Table<'a>>,
 }
 
 /// The visible neighbours of the position being rewritten, found once and
@@ -95,13 +99,14 @@ impl<'a> Deriver<'a> {
                 by_first[first.index()].push(i as u32);
             }
         }
-        let ignored = (0..n).map(|i| sys.is_ignored(SymbolId(i as u32))).collect();
+        let ignored: Vec<bool> = (0..n).map(|i| sys.is_ignored(SymbolId(i as u32))).collect();
         let guards: Vec<Option<Guard>> = sys.symbols.iter().map(|(_, info)| info.guard).collect();
         let contexts = sys.productions.iter().any(|p| p.is_context_sensitive());
         let stochastic =
             sys.productions.iter().any(|p| p.is_stochastic()) || guards.iter().any(Option::is_some);
         Deriver {
             sys,
+            table: table::Table::new(sys, &ignored),
             by_first,
             guards,
             ignored,
@@ -135,11 +140,70 @@ impl<'a> Deriver<'a> {
         opts: &DeriveOptions,
         mut progress: impl FnMut(u64, usize),
     ) -> Result<Word, Diagnostic> {
+        if self.sys.axiom.len() > opts.max_symbols {
+            return Err(too_many(0, opts));
+        }
+        // A context-free deterministic system: its length is known before
+        // deriving, and its word is built from shared subtrees.
+        if opts.steps <= tree::MAX_TREE_DEPTH {
+            if let Some(t) = tree::Tree::new(self.sys) {
+                let len = self.tree_len(&t, opts)?;
+                let word = t.word(opts.steps, len);
+                progress(opts.steps, word.len());
+                return Ok(Word(word));
+            }
+        }
+        self.derive_stepwise(opts, progress)
+    }
+
+    /// The length of the word `t` derives in `opts.steps` steps, or
+    /// [`codes::TOO_MANY_SYMBOLS`] (naming the step that outgrows the limit)
+    /// before any of it is derived.
+    pub fn tree_len(&self, t: &tree::Tree, opts: &DeriveOptions) -> Result<usize, Diagnostic> {
+        t.word_len(opts.steps, opts.max_symbols as u128)
+            .map(|len| len as usize)
+            .map_err(|step| too_many(step, opts))
+    }
+
+    /// [`Deriver::derive`] by rewriting the whole word at every step, for
+    /// every kind of system (the reference the shared-subtree path of
+    /// context-free systems is tested against). Systems with one-symbol
+    /// contexts are rewritten through their look-up table, in words of
+    /// bytes when they have fewer than 256 symbols.
+    pub fn derive_stepwise(
+        &self,
+        opts: &DeriveOptions,
+        progress: impl FnMut(u64, usize),
+    ) -> Result<Word, Diagnostic> {
+        let n = self.sys.symbols.len();
+        let word = match &self.table {
+            Some(t) if n < 256 => widen(self.steps(&t.stepper::<u8>(), opts, progress)?),
+            Some(t) if n < 65536 => widen(self.steps(&t.stepper::<u16>(), opts, progress)?),
+            Some(t) => self.steps(&t.stepper::<SymbolId>(), opts, progress)?,
+            None => self.steps(&General(self), opts, progress)?,
+        };
+        Ok(Word(word))
+    }
+
+    /// Rewrites `opts.steps` steps with `stepper`, stopping early at a fixed
+    /// point and skipping confirmed cycles.
+    fn steps<S: Stepper>(
+        &self,
+        stepper: &S,
+        opts: &DeriveOptions,
+        mut progress: impl FnMut(u64, usize),
+    ) -> Result<Vec<S::Sym>, Diagnostic> {
         let mut run = Run {
             rng: Rng::new(opts.seed),
-            cur: self.sys.axiom.0.clone(),
+            cur: self
+                .sys
+                .axiom
+                .0
+                .iter()
+                .map(|&s| S::Sym::from_id(s))
+                .collect(),
             next: Vec::with_capacity(self.sys.axiom.len() * 2),
-            index: ContextIndex::default(),
+            scratch: S::Scratch::default(),
             work: 0,
         };
         if run.cur.len() > opts.max_symbols {
@@ -150,7 +214,7 @@ impl<'a> Deriver<'a> {
         let mut step = 0;
         while step < opts.steps {
             step += 1;
-            self.advance(&mut run, opts, step)?;
+            advance(stepper, &mut run, opts, step)?;
             progress(step, run.cur.len());
             if run.cur.is_empty() {
                 // The empty word rewrites to itself.
@@ -170,10 +234,10 @@ impl<'a> Deriver<'a> {
             match seen.insert(h, step) {
                 Some(earlier) if step < opts.steps => {
                     let period = step - earlier;
-                    if self.confirm_cycle(&mut run, opts, step, period)? {
+                    if confirm_cycle(stepper, &mut run, opts, step, period)? {
                         let remaining = (opts.steps - step) % period;
                         for k in 1..=remaining {
-                            self.advance(&mut run, opts, step + k)?;
+                            advance(stepper, &mut run, opts, step + k)?;
                         }
                         progress(opts.steps, run.cur.len());
                         break;
@@ -182,63 +246,7 @@ impl<'a> Deriver<'a> {
                 _ => {}
             }
         }
-        Ok(Word(run.cur))
-    }
-
-    /// Derives `period` steps from a copy of the current word; whether it
-    /// comes back to the current word.
-    fn confirm_cycle(
-        &self,
-        run: &mut Run,
-        opts: &DeriveOptions,
-        step: u64,
-        period: u64,
-    ) -> Result<bool, Diagnostic> {
-        let mut probe = Run {
-            rng: run.rng.clone(),
-            cur: run.cur.clone(),
-            next: Vec::new(),
-            index: ContextIndex::default(),
-            work: run.work,
-        };
-        for k in 1..=period {
-            self.advance(&mut probe, opts, step + k)?;
-        }
-        run.work = probe.work;
-        Ok(probe.cur == run.cur)
-    }
-
-    /// One derivation step: `run.cur` becomes the next word, `run.next` the
-    /// previous one.
-    fn advance(&self, run: &mut Run, opts: &DeriveOptions, step: u64) -> Result<(), Diagnostic> {
-        // Every step costs its word plus a constant, so that even steps on
-        // an empty or tiny word add up to the work limit.
-        run.work += run.cur.len() as u64 + STEP_COST;
-        if run.work > opts.max_work {
-            return Err(Diagnostic::global(
-                codes::TOO_MUCH_WORK,
-                format!(
-                    "the derivation would rewrite more than {} symbols in all",
-                    opts.max_work
-                ),
-            )
-            .with_note(format!("stopped at step {step} of {}", opts.steps))
-            .with_help("derive fewer steps with `-n`, or raise `--max-symbols`"));
-        }
-        if self.contexts {
-            run.index.build(&run.cur, &self.ignored);
-        }
-        run.next.clear();
-        self.step(
-            &run.cur,
-            &run.index,
-            &mut run.next,
-            &mut run.rng,
-            opts.max_symbols,
-        )
-        .map_err(|_| too_many(step, opts))?;
-        std::mem::swap(&mut run.cur, &mut run.next);
-        Ok(())
+        Ok(run.cur)
     }
 
     fn step(
@@ -267,17 +275,7 @@ impl<'a> Deriver<'a> {
                     let alt = if p.alternatives.len() == 1 {
                         &p.alternatives[0]
                     } else {
-                        let r = rng.next_f64();
-                        let mut acc = 0.0;
-                        let mut chosen = p.alternatives.last().expect("non-empty");
-                        for a in &p.alternatives {
-                            acc += a.weight;
-                            if r < acc {
-                                chosen = a;
-                                break;
-                            }
-                        }
-                        chosen
+                        &p.alternatives[choose(p.alternatives.iter().map(|a| a.weight), rng)]
                     };
                     if out.len() + alt.successor.len() > max {
                         return Err(());
@@ -344,6 +342,158 @@ impl<'a> Deriver<'a> {
     }
 }
 
+/// A symbol as words hold it while they are rewritten: a [`SymbolId`], or
+/// a narrower integer when the alphabet is small (less memory to move).
+pub(crate) trait Sym: Copy + Eq + Send + Sync {
+    fn from_id(s: SymbolId) -> Self;
+    fn index(self) -> usize;
+}
+
+impl Sym for SymbolId {
+    fn from_id(s: SymbolId) -> Self {
+        s
+    }
+    fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl Sym for u8 {
+    fn from_id(s: SymbolId) -> Self {
+        s.0 as u8
+    }
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+impl Sym for u16 {
+    fn from_id(s: SymbolId) -> Self {
+        s.0 as u16
+    }
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+fn widen<T: Sym>(w: Vec<T>) -> Vec<SymbolId> {
+    w.into_iter().map(|s| SymbolId(s.index() as u32)).collect()
+}
+
+/// One parallel rewriting step over words of `Sym`.
+trait Stepper {
+    type Sym: Sym;
+    /// What a step keeps from one step to the next.
+    type Scratch: Default;
+    /// `out` becomes the rewriting of `cur`; `Err(())` when it would grow
+    /// past `max` symbols.
+    fn step(
+        &self,
+        cur: &[Self::Sym],
+        scratch: &mut Self::Scratch,
+        out: &mut Vec<Self::Sym>,
+        rng: &mut Rng,
+        max: usize,
+    ) -> Result<(), ()>;
+}
+
+/// The general matcher: any predecessor and context lengths, guards.
+struct General<'d, 'a>(&'d Deriver<'a>);
+
+impl Stepper for General<'_, '_> {
+    type Sym = SymbolId;
+    type Scratch = ContextIndex;
+
+    fn step(
+        &self,
+        cur: &[SymbolId],
+        index: &mut ContextIndex,
+        out: &mut Vec<SymbolId>,
+        rng: &mut Rng,
+        max: usize,
+    ) -> Result<(), ()> {
+        if self.0.contexts {
+            index.build(cur, &self.0.ignored);
+        }
+        self.0.step(cur, index, out, rng, max)
+    }
+}
+
+/// One derivation step: `run.cur` becomes the next word, `run.next` the
+/// previous one.
+fn advance<S: Stepper>(
+    stepper: &S,
+    run: &mut Run<S>,
+    opts: &DeriveOptions,
+    step: u64,
+) -> Result<(), Diagnostic> {
+    // Every step costs its word plus a constant, so that even steps on an
+    // empty or tiny word add up to the work limit.
+    run.work += run.cur.len() as u64 + STEP_COST;
+    if run.work > opts.max_work {
+        return Err(Diagnostic::global(
+            codes::TOO_MUCH_WORK,
+            format!(
+                "the derivation would rewrite more than {} symbols in all",
+                opts.max_work
+            ),
+        )
+        .with_note(format!("stopped at step {step} of {}", opts.steps))
+        .with_help("derive fewer steps with `-n`, or raise `--max-symbols`"));
+    }
+    run.next.clear();
+    stepper
+        .step(
+            &run.cur,
+            &mut run.scratch,
+            &mut run.next,
+            &mut run.rng,
+            opts.max_symbols,
+        )
+        .map_err(|_| too_many(step, opts))?;
+    std::mem::swap(&mut run.cur, &mut run.next);
+    Ok(())
+}
+
+/// Derives `period` steps from a copy of the current word; whether it comes
+/// back to the current word.
+fn confirm_cycle<S: Stepper>(
+    stepper: &S,
+    run: &mut Run<S>,
+    opts: &DeriveOptions,
+    step: u64,
+    period: u64,
+) -> Result<bool, Diagnostic> {
+    let mut probe = Run {
+        rng: run.rng.clone(),
+        cur: run.cur.clone(),
+        next: Vec::new(),
+        scratch: S::Scratch::default(),
+        work: run.work,
+    };
+    for k in 1..=period {
+        advance(stepper, &mut probe, opts, step + k)?;
+    }
+    run.work = probe.work;
+    Ok(probe.cur == run.cur)
+}
+
+/// A stochastic production's alternative, given the weights in file
+/// order: one draw, compared with the cumulative weights (the last one when
+/// rounding leaves the draw past them all).
+fn choose(weights: impl ExactSizeIterator<Item = f64>, rng: &mut Rng) -> usize {
+    let n = weights.len();
+    let r = rng.next_f64();
+    let mut acc = 0.0;
+    for (i, w) in weights.enumerate() {
+        acc += w;
+        if r < acc {
+            return i;
+        }
+    }
+    n - 1
+}
+
 fn too_many(step: u64, opts: &DeriveOptions) -> Diagnostic {
     Diagnostic::global(
         codes::TOO_MANY_SYMBOLS,
@@ -364,19 +514,19 @@ const CYCLE_WORD_LIMIT: usize = 1 << 16;
 const CYCLE_TABLE_LIMIT: usize = 1 << 16;
 
 /// The state of a derivation in progress.
-struct Run {
+struct Run<S: Stepper> {
     rng: Rng,
-    cur: Vec<SymbolId>,
-    next: Vec<SymbolId>,
-    index: ContextIndex,
+    cur: Vec<S::Sym>,
+    next: Vec<S::Sym>,
+    scratch: S::Scratch,
     work: u64,
 }
 
 /// FNV-1a over the symbol ids: a fast hash to spot a word seen before.
-fn word_hash(w: &[SymbolId]) -> u64 {
+fn word_hash<T: Sym>(w: &[T]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for s in w {
-        h ^= u64::from(s.0);
+        h ^= s.index() as u64;
         h = h.wrapping_mul(0x0100_0000_01b3);
     }
     h ^ w.len() as u64
@@ -599,6 +749,96 @@ mod tests {
         let s = sys("axiom: a\na --> b\n");
         let w = derive(&s, &DeriveOptions::new(u64::MAX)).unwrap();
         assert_eq!(w.display(&s.symbols), "b");
+    }
+
+    /// Derives with the general matcher only (no table, no tree).
+    fn general(s: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
+        let d = Deriver {
+            table: None,
+            ..Deriver::new(s)
+        };
+        d.derive_stepwise(opts, |_, _| {})
+    }
+
+    #[test]
+    fn table_rewriting_matches_the_general_matcher_on_the_stdlib() {
+        let mut tabled = 0;
+        for e in crate::stdlib::ENTRIES
+            .iter()
+            .filter(|e| e.file.ends_with(".l"))
+        {
+            let s = sys(e.text);
+            if Deriver::new(&s).table.is_none() {
+                continue;
+            }
+            tabled += 1;
+            for seed in [0, 1] {
+                let opts = DeriveOptions::new(s.settings.steps.unwrap_or(4).min(40))
+                    .seed(seed)
+                    .max_symbols(400_000);
+                let fast = Deriver::new(&s).derive_stepwise(&opts, |_, _| {});
+                assert_eq!(fast.ok(), general(&s, &opts).ok(), "{}", e.name);
+            }
+        }
+        assert!(tabled >= 30, "{tabled} stdlib systems use the table");
+    }
+
+    #[test]
+    fn table_rewriting_of_big_words_is_exact() {
+        // Fig. 3.11a at 50 steps: many output chunks per step.
+        let s = sys(crate::stdlib::get("hogeweg-hesper-a").unwrap().text);
+        let opts = DeriveOptions::new(50);
+        let fast = Deriver::new(&s).derive_stepwise(&opts, |_, _| {}).unwrap();
+        assert!(fast.len() > 1 << 19, "{}", fast.len());
+        assert_eq!(fast, general(&s, &opts).unwrap());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// Random bracketed systems with one-symbol contexts and an ignore
+        /// set: the table gives the general matcher's words.
+        #[test]
+        fn table_rewriting_matches_the_general_matcher(
+            axiom in "[ab+\\[\\]]{1,12}",
+            rules in proptest::collection::vec(
+                ("[ab+*]", "[ab+]", "[ab+*]", "[ab+\\[\\]]{0,5}"), 1..6),
+            ignore_plus in proptest::bool::ANY,
+            seed in 0u64..4,
+        ) {
+            // pfg wants balanced brackets: drop the `]`s that close
+            // nothing, close what stays open.
+            let balance = |w: &str| {
+                let mut depth = 0usize;
+                let mut out = String::new();
+                for c in w.chars() {
+                    match c {
+                        '[' => depth += 1,
+                        ']' if depth == 0 => continue,
+                        ']' => depth -= 1,
+                        _ => {}
+                    }
+                    out.push(c);
+                }
+                out + &"]".repeat(depth)
+            };
+            let axiom = balance(&axiom);
+            let rules: Vec<_> = rules.iter().map(|(l, p, r, w)| (l, p, r, balance(w))).collect();
+            let mut src = format!("axiom: {axiom}\n");
+            if ignore_plus {
+                src.push_str("ignore: +\n");
+            }
+            for (l, p, r, succ) in &rules {
+                let succ = if succ.is_empty() { "*" } else { succ.as_str() };
+                src.push_str(&format!("{l} < {p} > {r} --> {succ}\n"));
+            }
+            let mut d = crate::diagnostics::Diagnostics::default();
+            let s = crate::pfg::read(&src, &mut d).system;
+            proptest::prop_assume!(!d.has_errors());
+            proptest::prop_assert!(Deriver::new(&s).table.is_some());
+            let opts = DeriveOptions::new(6).seed(seed).max_symbols(100_000);
+            let fast = Deriver::new(&s).derive_stepwise(&opts, |_, _| {});
+            proptest::prop_assert_eq!(fast.ok(), general(&s, &opts).ok(), "{}", src);
+        }
     }
 
     #[test]
