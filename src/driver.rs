@@ -10,6 +10,7 @@ use crate::ir::parametric::ModuleWord;
 use crate::ir::{Notation, Span, SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
+use crate::turtle::instanced::Instanced;
 use crate::turtle::{self, Geometry};
 use crate::{linf, pfg, stdlib};
 use serde::Serialize;
@@ -664,10 +665,44 @@ pub fn render_bytes(
     mut opts: RenderOptions,
 ) -> Result<Vec<u8>, LoadError> {
     opts.scale = sys.settings.scale;
-    let pic = render::layout(g, &opts);
+    encode(&render::layout(g, &opts), format, &opts)
+}
+
+/// Draws a context-free deterministic system from its shared derivation
+/// tree ([`Instanced::picture`]): nothing is derived or stored but the
+/// picture's polylines, and a subtree within one pixel is drawn as one
+/// line. `None` when the system or the view is not one this covers (a 2D
+/// system in one colour and width, seen face on, without splines); the
+/// caller then derives and interprets.
+pub fn render_shared(
+    sys: &System,
+    opts: &RunOptions,
+    format: Format,
+    mut ropts: RenderOptions,
+) -> Option<Result<Vec<u8>, LoadError>> {
+    let steps = opts.derive_options(sys).steps;
+    if ropts.spline || ropts.view != render::View::default() || steps > MAX_TREE_DEPTH {
+        return None;
+    }
+    let mut inst = Instanced::new(sys).filter(|i| i.can_draw() && i.fits(steps))?;
+    let whole = inst.word(steps);
+    if !whole.draws() || whole.lo[2] != whole.hi[2] {
+        return None;
+    }
+    ropts.scale = sys.settings.scale;
+    let pic = inst.picture(steps, &ropts);
+    Some(encode(&pic, format, &ropts))
+}
+
+/// A picture as bytes of `format`.
+fn encode(
+    pic: &render::Picture,
+    format: Format,
+    opts: &RenderOptions,
+) -> Result<Vec<u8>, LoadError> {
     match format {
-        Format::Svg => Ok(render::svg::write(&pic).into_bytes()),
-        Format::Png => render::png::encode(&pic)
+        Format::Svg => Ok(render::svg::write(pic).into_bytes()),
+        Format::Png => render::png::encode(pic)
             .ok_or_else(|| LoadError(format!("cannot make a {}x{} PNG", opts.width, opts.height))),
     }
 }
@@ -676,13 +711,19 @@ pub fn render_bytes(
 #[derive(Clone, Debug, Serialize)]
 pub struct Stats {
     pub steps: u64,
-    pub symbols: usize,
-    pub segments: usize,
-    pub polygons: usize,
+    pub symbols: u128,
+    pub segments: u128,
+    pub polygons: u128,
     /// `[minx, miny, minz, maxx, maxy, maxz]`, turtle units (zeros when
     /// nothing is drawn).
     pub bbox: [f64; 6],
     pub max_depth: usize,
+    /// How the figures were found: `"shared subtrees"` (context-free
+    /// systems, without deriving the word), `"streamed"` (the word's
+    /// symbols interpreted one by one as they are derived, nothing kept) or
+    /// `"derived"` (the word derived, then interpreted without keeping what
+    /// is drawn).
+    pub method: &'static str,
     /// Seconds per stage.
     pub time: StageTimes,
 }
@@ -695,24 +736,134 @@ pub struct StageTimes {
     pub interpret: f64,
 }
 
-/// Derives and interprets without drawing, and measures.
+/// A turtle sink that only counts and measures.
+#[derive(Default)]
+struct Counter {
+    segments: u128,
+    polygons: u128,
+    bbox: Option<[f64; 6]>,
+}
+
+impl Counter {
+    fn point(&mut self, p: turtle::Vec3) {
+        let b = self
+            .bbox
+            .get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
+        for k in 0..3 {
+            b[k] = b[k].min(p[k]);
+            b[k + 3] = b[k + 3].max(p[k]);
+        }
+    }
+}
+
+impl turtle::Sink for Counter {
+    fn segment(&mut self, s: turtle::Segment) {
+        self.segments += 1;
+        self.point(s.a);
+        self.point(s.b);
+    }
+    fn polygon(&mut self, p: turtle::Polygon) {
+        self.polygons += 1;
+        p.points.iter().for_each(|&q| self.point(q));
+    }
+    fn disc(&mut self, d: turtle::Disc) {
+        self.point(d.centre);
+    }
+}
+
+/// Derives and interprets without drawing, and measures; nothing drawn is
+/// kept. A context-free deterministic system is measured on its shared
+/// derivation tree ([`Instanced`]) without deriving its word, so its size
+/// is not limited by `--max-symbols`; when its turtle commands cannot be
+/// instanced, its word is streamed symbol by symbol through the turtle
+/// (memory grows with the depth, not the word). Any other system is
+/// derived (within the symbol limit), then interpreted.
 pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let t0 = Instant::now();
+    let dopts = opts.derive_options(sys);
+    let steps = dopts.steps;
+    let secs = |d: Duration| d.as_secs_f64();
+    let silent: Vec<u128> = sys
+        .symbols
+        .iter()
+        .map(|(_, i)| u128::from(!i.name.is_empty()))
+        .collect();
+    let tree = (sys.parametric.is_none() && steps <= MAX_TREE_DEPTH)
+        .then(|| Tree::new(sys))
+        .flatten();
+    if let Some(t) = &tree {
+        let symbols = t
+            .weighed(steps, &silent, u128::MAX)
+            .expect("no limit to pass");
+        if let Some(mut inst) = Instanced::new(sys).filter(|i| i.fits(steps)) {
+            let x = inst.word(steps);
+            let bbox = if x.draws() {
+                [x.lo[0], x.lo[1], x.lo[2], x.hi[0], x.hi[1], x.hi[2]]
+            } else {
+                [0.0; 6]
+            };
+            return Ok(Stats {
+                steps,
+                symbols,
+                segments: x.segments,
+                polygons: 0,
+                bbox,
+                max_depth: x.depth as usize,
+                method: "shared subtrees",
+                time: StageTimes {
+                    parse: 0.0,
+                    derive: 0.0,
+                    interpret: secs(t0.elapsed()),
+                },
+            });
+        }
+        // Streaming costs time in proportion to the word: the limit says
+        // so before it starts.
+        Deriver::new(sys).tree_len(t, &dopts)?;
+        let mut c = Counter::default();
+        let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
+        return Ok(Stats {
+            steps,
+            symbols,
+            segments: c.segments,
+            polygons: c.polygons,
+            bbox: c.bbox.unwrap_or([0.0; 6]),
+            max_depth,
+            method: "streamed",
+            time: StageTimes {
+                parse: 0.0,
+                derive: 0.0,
+                interpret: secs(t0.elapsed()),
+            },
+        });
+    }
     let word = derive_any(sys, opts, |_, _| {})?;
     let t1 = Instant::now();
-    let g = interpret_any(sys, &word, opts, false)?;
+    let (symbols, c, max_depth) = match &word {
+        Derived::Plain(w) => {
+            let mut c = Counter::default();
+            let depth = turtle::interpret_into(sys, w.0.iter().copied(), opts.seed, &mut c);
+            (written_symbols(sys, w) as u128, c, depth)
+        }
+        Derived::Modules(m) => {
+            let g = interpret_any(sys, &word, opts, false)?;
+            let c = Counter {
+                segments: g.segments.len() as u128,
+                polygons: g.polygons.len() as u128,
+                bbox: g.bbox(),
+            };
+            (m.len() as u128, c, g.max_depth)
+        }
+    };
     let t2 = Instant::now();
-    let secs = |d: Duration| d.as_secs_f64();
     Ok(Stats {
-        steps: opts.derive_options(sys).steps,
-        symbols: match &word {
-            Derived::Plain(w) => written_symbols(sys, w),
-            Derived::Modules(m) => m.len(),
-        },
-        segments: g.segments.len(),
-        polygons: g.polygons.len(),
-        bbox: g.bbox().unwrap_or([0.0; 6]),
-        max_depth: g.max_depth,
+        steps,
+        symbols,
+        segments: c.segments,
+        polygons: c.polygons,
+        bbox: c.bbox.unwrap_or([0.0; 6]),
+        max_depth,
+        method: "derived",
         time: StageTimes {
             parse: 0.0,
             derive: secs(t1 - t0),

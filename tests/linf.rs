@@ -116,7 +116,7 @@ fn a_linf_file_and_its_pfg_twin_have_the_same_bounding_box() {
         let a = driver::stats(&linf, &opts).unwrap();
         let b = driver::stats(&pfg, &opts).unwrap();
         assert_eq!(a.segments, b.segments);
-        assert_eq!(a.segments, 3 * 4usize.pow(n as u32));
+        assert_eq!(a.segments, 3 * 4u128.pow(n as u32));
         let size = (b.bbox[3] - b.bbox[0]).max(b.bbox[4] - b.bbox[1]);
         for k in 0..6 {
             assert!(

@@ -252,8 +252,8 @@ where
                     let b = s.bbox;
                     let _ = writeln!(
                         io.stdout,
-                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
-                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.time.parse, s.time.derive, s.time.interpret
+                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
+                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
                     );
                 }
             }
@@ -275,14 +275,6 @@ where
                 return 2;
             };
             with_system(io, &args, |io, c, sys, opts, _| {
-                let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let mut g = driver::interpret_any(sys, &word, opts, spline).map_err(|d| vec![d])?;
-                if !no_layout {
-                    driver::add_layout(sys, &mut g);
-                }
-                if g.is_empty() {
-                    report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
-                }
                 let view = view.or(sys.settings.view).unwrap_or((0.0, 0.0));
                 let ropts = RenderOptions {
                     width: size.0,
@@ -294,18 +286,22 @@ where
                     spline,
                     ..RenderOptions::default()
                 };
-                let bytes = match driver::render_bytes(sys, &g, format, ropts) {
-                    Ok(b) => b,
-                    Err(e) => {
-                        let _ = writeln!(io.stderr, "error: {e}");
-                        return Ok(2);
-                    }
-                };
-                if let Err(e) = std::fs::write(&output, bytes) {
-                    let _ = writeln!(io.stderr, "error: cannot write `{output}`: {e}");
-                    return Ok(2);
+                if let Some(bytes) = driver::render_shared(sys, opts, format, ropts) {
+                    return Ok(write_picture(io, &output, bytes));
                 }
-                Ok(0)
+                let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+                let mut g = driver::interpret_any(sys, &word, opts, spline).map_err(|d| vec![d])?;
+                if !no_layout {
+                    driver::add_layout(sys, &mut g);
+                }
+                if g.is_empty() {
+                    report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
+                }
+                Ok(write_picture(
+                    io,
+                    &output,
+                    driver::render_bytes(sys, &g, format, ropts),
+                ))
             })
         }
         Command::Translate(a) => translate(io, &a),
@@ -538,6 +534,22 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
             e.name
         );
     }
+}
+
+/// Writes a rendered picture to `output`; the exit status.
+fn write_picture(io: &mut Io<'_>, output: &str, bytes: Result<Vec<u8>, driver::LoadError>) -> i32 {
+    let bytes = match bytes {
+        Ok(b) => b,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            return 2;
+        }
+    };
+    if let Err(e) = std::fs::write(output, bytes) {
+        let _ = writeln!(io.stderr, "error: cannot write `{output}`: {e}");
+        return 2;
+    }
+    0
 }
 
 /// Derives with a progress bar on a terminal (never in pipes or CI).

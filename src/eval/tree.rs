@@ -88,8 +88,14 @@ impl<'a> Tree<'a> {
     /// `steps × (symbols + successor lengths)`; the caller keeps `steps` at
     /// most [`MAX_TREE_DEPTH`].
     pub fn word_len(&self, steps: u64, max: u128) -> Result<u128, u64> {
+        self.weighed(steps, &vec![1; self.succ.len()], max)
+    }
+
+    /// [`Tree::word_len`] with each symbol counted `weight[s]` times
+    /// (0 for symbols that are not written).
+    pub fn weighed(&self, steps: u64, weight: &[u128], max: u128) -> Result<u128, u64> {
         let n = self.succ.len();
-        let mut len = vec![1u128; n];
+        let mut len = weight.to_vec();
         let mut next = vec![0u128; n];
         let axiom_len = |len: &[u128]| -> u128 {
             self.axiom
@@ -102,7 +108,7 @@ impl<'a> Tree<'a> {
         for d in 1..=steps {
             for (s, out) in next.iter_mut().enumerate() {
                 *out = match self.succ[s] {
-                    None => 1,
+                    None => weight[s],
                     Some(w) => w
                         .iter()
                         .fold(0u128, |acc, c| acc.saturating_add(len[c.index()])),

@@ -58,12 +58,15 @@ pub fn draw(pic: &Picture) -> Option<Pixmap> {
             for q in &line[1..] {
                 pb.line_to(q[0] as f32, q[1] as f32);
                 count += 1;
-            }
-            if count >= CHUNK {
-                if let Some(path) = std::mem::take(&mut pb).finish() {
-                    pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+                if count >= CHUNK {
+                    // A long polyline goes on in a new path from the same
+                    // point: round caps meet as a round join would.
+                    if let Some(path) = std::mem::take(&mut pb).finish() {
+                        pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+                    }
+                    pb.move_to(q[0] as f32, q[1] as f32);
+                    count = 0;
                 }
-                count = 0;
             }
         }
         if let Some(path) = pb.finish() {

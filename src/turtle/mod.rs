@@ -12,6 +12,8 @@
 //! follows the book's definition (§2.3: `R_U(180°)`), which the listing
 //! meets for every even angle factor.
 
+pub mod instanced;
+
 use crate::eval::Rng;
 use crate::ir::parametric::ModuleWord;
 use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp};
@@ -250,6 +252,26 @@ pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
     interpret_with(sys, word, seed, TurtleOptions::default())
 }
 
+/// Where the turtle's drawing goes: stored ([`Geometry`]), counted, or
+/// drawn straight into a picture.
+pub trait Sink {
+    fn segment(&mut self, s: Segment);
+    fn polygon(&mut self, p: Polygon);
+    fn disc(&mut self, d: Disc);
+}
+
+impl Sink for Geometry {
+    fn segment(&mut self, s: Segment) {
+        self.segments.push(s);
+    }
+    fn polygon(&mut self, p: Polygon) {
+        self.polygons.push(p);
+    }
+    fn disc(&mut self, d: Disc) {
+        self.discs.push(d);
+    }
+}
+
 /// [`interpret`], recording what `options` asks for.
 pub fn interpret_with(
     sys: &System,
@@ -257,7 +279,40 @@ pub fn interpret_with(
     seed: u64,
     options: TurtleOptions,
 ) -> Geometry {
-    run(sys, word, None, seed, options, &mut |_, _, _| {})
+    let mut g = Geometry::default();
+    let info = run(
+        sys,
+        word.iter().copied(),
+        None,
+        seed,
+        options,
+        &mut |_, _, _| {},
+        &mut g,
+    );
+    g.paths = info.paths;
+    g.max_depth = info.max_depth;
+    g.world_widths = info.world_widths;
+    g
+}
+
+/// Interprets the symbols of `word` one by one, giving what is drawn to
+/// `sink` (nothing is kept); returns the deepest branch nesting.
+pub fn interpret_into(
+    sys: &System,
+    word: impl Iterator<Item = SymbolId>,
+    seed: u64,
+    sink: &mut dyn Sink,
+) -> usize {
+    run(
+        sys,
+        word,
+        None,
+        seed,
+        TurtleOptions::default(),
+        &mut |_, _, _| {},
+        sink,
+    )
+    .max_depth
 }
 
 /// Interprets a parametric word (cpfg): modules' parameters set lengths,
@@ -271,16 +326,30 @@ pub fn interpret_modules(
     options: TurtleOptions,
     query: &mut dyn FnMut(usize, QueryKind, Vec3),
 ) -> Geometry {
-    run(sys, &word.symbols, Some(word), seed, options, query)
+    let mut g = Geometry::default();
+    let info = run(
+        sys,
+        word.symbols.iter().copied(),
+        Some(word),
+        seed,
+        options,
+        query,
+        &mut g,
+    );
+    g.paths = info.paths;
+    g.max_depth = info.max_depth;
+    g.world_widths = info.world_widths;
+    g
 }
 
 fn run(
     sys: &System,
-    word: &[SymbolId],
+    word: impl Iterator<Item = SymbolId>,
     params: Option<&ModuleWord>,
     seed: u64,
     options: TurtleOptions,
     query: &mut dyn FnMut(usize, QueryKind, Vec3),
+    sink: &mut dyn Sink,
 ) -> Geometry {
     let palette: Vec<Rgb> = if sys.colours.is_empty() {
         DEFAULT_PALETTE.to_vec()
@@ -333,7 +402,7 @@ fn run(
     };
     let mut rotations: u32 = 0;
     let top = palette.len() - 1;
-    for (i, &sym) in word.iter().enumerate() {
+    for (i, sym) in word.enumerate() {
         let Some(op) = ops.get(sym.index()).copied().flatten() else {
             continue;
         };
@@ -371,7 +440,7 @@ fn run(
                 if let Some((pts, _)) = polys.last_mut() {
                     pts.push(b);
                 } else if draw {
-                    g.segments.push(Segment {
+                    sink.segment(Segment {
                         a,
                         b,
                         width: st.width,
@@ -448,12 +517,12 @@ fn run(
             }
             TurtleOp::PolygonBegin => polys.push((vec![st.pos], st.colour)),
             TurtleOp::PolygonEnd if arg(0).is_some() => {
-                cylinder_point(&mut st, &mut g, &palette, 4, true);
+                cylinder_point(&mut st, sink, &palette, 4, true);
             }
             TurtleOp::PolygonEnd => {
                 if let Some((pts, colour)) = polys.pop() {
                     if pts.len() >= 3 {
-                        g.polygons.push(Polygon {
+                        sink.polygon(Polygon {
                             points: pts,
                             colour: palette[colour.min(palette.len() - 1)],
                         });
@@ -501,7 +570,7 @@ fn run(
             TurtleOp::PolygonVertex => {
                 if let Some(n) = arg(0) {
                     let pieces = n.clamp(1.0, 64.0) as usize;
-                    cylinder_point(&mut st, &mut g, &palette, pieces, false);
+                    cylinder_point(&mut st, sink, &palette, pieces, false);
                 } else if let Some((pts, _)) = polys.last_mut() {
                     pts.push(st.pos);
                 }
@@ -511,7 +580,7 @@ fn run(
                     Some(d) => (d.abs(), false),
                     None => (st.width, !sys.settings.world_widths),
                 };
-                g.discs.push(Disc {
+                sink.disc(Disc {
                     centre: st.pos,
                     diameter,
                     pixels,
@@ -526,7 +595,7 @@ fn run(
                         add_scaled(add_scaled(st.pos, st.h, r * c), st.l, r * s)
                     })
                     .collect();
-                g.polygons.push(Polygon {
+                sink.polygon(Polygon {
                     points,
                     colour: palette[st.colour.min(top)],
                 });
@@ -587,7 +656,7 @@ fn run(
                                 add_scaled(q, st.u, p[2] * scale[2])
                             })
                             .collect();
-                        g.polygons.push(Polygon {
+                        sink.polygon(Polygon {
                             points,
                             colour: palette[st.colour.min(top)],
                         });
@@ -603,7 +672,7 @@ fn run(
             }
             TurtleOp::CylinderPoint { end } => {
                 let pieces = arg(0).unwrap_or(1.0).clamp(1.0, 64.0) as usize;
-                cylinder_point(&mut st, &mut g, &palette, pieces, end);
+                cylinder_point(&mut st, sink, &palette, pieces, end);
             }
             TurtleOp::CylinderTangents => {
                 if let Some(c) = st.cylinder.as_mut() {
@@ -629,7 +698,7 @@ fn run(
 /// A control point of the current generalized cylinder at the turtle:
 /// the axis from the previous control point is drawn as a Hermite curve
 /// of `pieces` segments (at least 4, so that curves look like curves).
-fn cylinder_point(st: &mut State, g: &mut Geometry, palette: &[Rgb], pieces: usize, end: bool) {
+fn cylinder_point(st: &mut State, sink: &mut dyn Sink, palette: &[Rgb], pieces: usize, end: bool) {
     let Some(c) = st.cylinder else {
         return;
     };
@@ -646,7 +715,7 @@ fn cylinder_point(st: &mut State, g: &mut Geometry, palette: &[Rgb], pieces: usi
     let colour = palette[st.colour.min(palette.len() - 1)];
     let mut a = c.point;
     for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
-        g.segments.push(Segment {
+        sink.segment(Segment {
             a,
             b,
             width: st.width,
