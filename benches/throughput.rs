@@ -36,91 +36,17 @@ use graftal::eval::Rng;
 use graftal::ir::{System, Word};
 use graftal::render::{self, RenderOptions};
 use graftal::turtle::{self, Geometry};
-use std::alloc::{GlobalAlloc, Layout, System as SystemAlloc};
 use std::collections::HashMap;
 use std::hint::black_box;
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::OnceLock;
 use std::time::Duration;
 
-// ---------------------------------------------------------------------------
-// Counting allocator
-
-/// Live heap bytes, and the most live at once since the last reset.
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-struct Counting;
-
-fn grew(bytes: usize) {
-    let now = CURRENT.fetch_add(bytes, Relaxed) + bytes;
-    PEAK.fetch_max(now, Relaxed);
-}
-
-fn shrank(bytes: usize) {
-    CURRENT.fetch_sub(bytes, Relaxed);
-}
-
-// SAFETY: every call is forwarded unchanged to `System`; only counters are
-// updated besides.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { SystemAlloc.alloc(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { SystemAlloc.alloc_zeroed(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { SystemAlloc.dealloc(ptr, layout) };
-        shrank(layout.size());
-    }
-
-    // Forwarded (not alloc + copy + dealloc) so growing a buffer in place is
-    // not counted twice; a moving realloc's brief overlap is not counted.
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { SystemAlloc.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            if new_size >= layout.size() {
-                grew(new_size - layout.size());
-            } else {
-                shrank(layout.size() - new_size);
-            }
-        }
-        p
-    }
-}
+#[path = "common/alloc.rs"]
+mod alloc;
+use alloc::{mib, peak_during};
 
 #[global_allocator]
-static ALLOC: Counting = Counting;
-
-/// Runs `f` once; returns its result and the peak of live heap bytes during
-/// the call above those live before it (the result itself included).
-fn peak_during<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let base = CURRENT.load(Relaxed);
-    PEAK.store(base, Relaxed);
-    let out = f();
-    let peak = PEAK.load(Relaxed).saturating_sub(base);
-    (out, peak)
-}
-
-fn mib(bytes: usize) -> String {
-    let m = bytes as f64 / (1024.0 * 1024.0);
-    if m >= 0.1 {
-        format!("{m:.1} MiB")
-    } else {
-        format!("{:.1} KiB", bytes as f64 / 1024.0)
-    }
-}
+static ALLOC: alloc::Counting = alloc::Counting;
 
 // ---------------------------------------------------------------------------
 // Baselines

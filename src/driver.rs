@@ -446,15 +446,8 @@ pub fn interpret(
         })
         .count();
     if moves > opts.max_moves {
-        return Err(Diagnostic::global(
-            codes::TOO_MUCH_GEOMETRY,
-            format!(
-                "the word moves the turtle {moves} times, more than can be drawn ({})",
-                opts.max_moves
-            ),
-        )
-        .with_note(format!("the derived word has {} symbols", word.len()))
-        .with_help("draw fewer steps with `-n`; `derive` has no such limit"));
+        return Err(too_much_geometry(moves, opts.max_moves)
+            .with_note(format!("the derived word has {} symbols", word.len())));
     }
     Ok(turtle::interpret_with(
         sys,
@@ -579,14 +572,7 @@ pub fn interpret_any(
                 .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
                 .count();
             if moves > opts.max_moves {
-                return Err(Diagnostic::global(
-                    codes::TOO_MUCH_GEOMETRY,
-                    format!(
-                        "the word moves the turtle {moves} times, more than can be drawn ({})",
-                        opts.max_moves
-                    ),
-                )
-                .with_help("draw fewer steps with `-n`; `derive` has no such limit"));
+                return Err(too_much_geometry(moves, opts.max_moves));
             }
             Ok(turtle::interpret_modules(
                 sys,
@@ -662,10 +648,56 @@ pub fn render_bytes(
     sys: &System,
     g: &Geometry,
     format: Format,
+    opts: RenderOptions,
+) -> Result<Vec<u8>, LoadError> {
+    render_bytes_with(sys, g, format, opts, &mut |_, _| {})
+}
+
+/// [`render_bytes`], calling `progress(drawn, total)` as segments are
+/// drawn.
+pub fn render_bytes_with(
+    sys: &System,
+    g: &Geometry,
+    format: Format,
     mut opts: RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
     opts.scale = sys.settings.scale;
-    encode(&render::layout(g, &opts), format, &opts)
+    encode(&render::layout(g, &opts), format, &opts, progress)
+}
+
+/// Refuses, before deriving, to draw a context-free deterministic system
+/// whose word would move the turtle more than [`RunOptions::max_moves`]
+/// times when it must be drawn segment by segment (its moves are counted
+/// on the shared derivation tree).
+pub fn check_moves_up_front(sys: &System, opts: &RunOptions) -> Result<(), Diagnostic> {
+    let steps = opts.derive_options(sys).steps;
+    let Some(t) = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten() else {
+        return Ok(());
+    };
+    let moves: Vec<u128> = (0..sys.symbols.len() as u32)
+        .map(|i| {
+            u128::from(matches!(
+                sys.op(crate::ir::SymbolId(i)),
+                Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
+            ))
+        })
+        .collect();
+    let max = opts.max_moves as u128;
+    match t.weighed(steps, &moves, max) {
+        Ok(_) => Ok(()),
+        Err(step) => Err(too_much_geometry(max, opts.max_moves).with_note(format!(
+            "known before deriving: the word of step {step} of {steps} already moves it more"
+        ))),
+    }
+}
+
+fn too_much_geometry(moves: impl std::fmt::Display, max: usize) -> Diagnostic {
+    Diagnostic::global(
+        codes::TOO_MUCH_GEOMETRY,
+        format!("the word moves the turtle {moves} times, more than can be drawn ({max})"),
+    )
+    .with_help("draw fewer steps with `-n`; `derive` and `stats` have no such limit")
 }
 
 /// Draws a context-free deterministic system from its shared derivation
@@ -678,7 +710,19 @@ pub fn render_shared(
     sys: &System,
     opts: &RunOptions,
     format: Format,
+    ropts: RenderOptions,
+) -> Option<Result<Vec<u8>, LoadError>> {
+    render_shared_with(sys, opts, format, ropts, &mut |_, _| {})
+}
+
+/// [`render_shared`], calling `progress(drawn, total)` as segments are
+/// drawn.
+pub fn render_shared_with(
+    sys: &System,
+    opts: &RunOptions,
+    format: Format,
     mut ropts: RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
 ) -> Option<Result<Vec<u8>, LoadError>> {
     let steps = opts.derive_options(sys).steps;
     if ropts.spline || ropts.view != render::View::default() || steps > MAX_TREE_DEPTH {
@@ -691,7 +735,7 @@ pub fn render_shared(
     }
     ropts.scale = sys.settings.scale;
     let pic = inst.picture(steps, &ropts);
-    Some(encode(&pic, format, &ropts))
+    Some(encode(&pic, format, &ropts, progress))
 }
 
 /// A picture as bytes of `format`.
@@ -699,10 +743,11 @@ fn encode(
     pic: &render::Picture,
     format: Format,
     opts: &RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
     match format {
         Format::Svg => Ok(render::svg::write(pic).into_bytes()),
-        Format::Png => render::png::encode(pic)
+        Format::Png => render::png::encode_with(pic, progress)
             .ok_or_else(|| LoadError(format!("cannot make a {}x{} PNG", opts.width, opts.height))),
     }
 }
@@ -795,47 +840,37 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         let symbols = t
             .weighed(steps, &silent, u128::MAX)
             .expect("no limit to pass");
-        if let Some(mut inst) = Instanced::new(sys).filter(|i| i.fits(steps)) {
-            let x = inst.word(steps);
-            let bbox = if x.draws() {
-                [x.lo[0], x.lo[1], x.lo[2], x.hi[0], x.hi[1], x.hi[2]]
-            } else {
-                [0.0; 6]
-            };
-            return Ok(Stats {
-                steps,
-                symbols,
-                segments: x.segments,
-                polygons: 0,
-                bbox,
-                max_depth: x.depth as usize,
-                method: "shared subtrees",
-                time: StageTimes {
-                    parse: 0.0,
-                    derive: 0.0,
-                    interpret: secs(t0.elapsed()),
-                },
-            });
-        }
-        // Streaming costs time in proportion to the word: the limit says
-        // so before it starts.
-        Deriver::new(sys).tree_len(t, &dopts)?;
-        let mut c = Counter::default();
-        let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
-        return Ok(Stats {
+        let measured = |c: Counter, max_depth: usize, method: &'static str| Stats {
             steps,
             symbols,
             segments: c.segments,
             polygons: c.polygons,
             bbox: c.bbox.unwrap_or([0.0; 6]),
             max_depth,
-            method: "streamed",
+            method,
             time: StageTimes {
                 parse: 0.0,
                 derive: 0.0,
                 interpret: secs(t0.elapsed()),
             },
-        });
+        };
+        if let Some(mut inst) = Instanced::new(sys).filter(|i| i.fits(steps)) {
+            let x = inst.word(steps);
+            let c = Counter {
+                segments: x.segments,
+                polygons: 0,
+                bbox: x
+                    .draws()
+                    .then(|| [x.lo[0], x.lo[1], x.lo[2], x.hi[0], x.hi[1], x.hi[2]]),
+            };
+            return Ok(measured(c, x.depth as usize, "shared subtrees"));
+        }
+        // Streaming costs time in proportion to the word: the limit says
+        // so before it starts.
+        Deriver::new(sys).tree_len(t, &dopts)?;
+        let mut c = Counter::default();
+        let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
+        return Ok(measured(c, max_depth, "streamed"));
     }
     let word = derive_any(sys, opts, |_, _| {})?;
     let t1 = Instant::now();

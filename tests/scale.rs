@@ -14,48 +14,23 @@ use graftal::ir::System;
 use graftal::render::RenderOptions;
 use graftal::source::SourceFile;
 use graftal::turtle;
-use std::alloc::{GlobalAlloc, Layout, System as SystemAlloc};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::Mutex;
 use std::time::Instant;
 
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-struct Counting;
-
-// SAFETY: every call is forwarded unchanged to `System`; only counters are
-// updated besides.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { SystemAlloc.alloc(layout) };
-        if !p.is_null() {
-            let now = CURRENT.fetch_add(layout.size(), Relaxed) + layout.size();
-            PEAK.fetch_max(now, Relaxed);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { SystemAlloc.dealloc(ptr, layout) };
-        CURRENT.fetch_sub(layout.size(), Relaxed);
-    }
-}
+#[path = "../benches/common/alloc.rs"]
+mod alloc;
 
 #[global_allocator]
-static ALLOC: Counting = Counting;
+static ALLOC: alloc::Counting = alloc::Counting;
 
 /// Tests that measure memory run one at a time.
 static ALONE: Mutex<()> = Mutex::new(());
 
-/// Runs `f`; its result and the most heap it had live at once, above what
-/// was live before (other tests' threads included, so tests that measure
-/// hold [`ALONE`]).
+/// The most heap `f` had live at once (other tests' threads included, so
+/// tests that measure hold [`ALONE`]).
 fn peak<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let base = CURRENT.load(Relaxed);
-    PEAK.store(base, Relaxed);
-    let out = f();
-    (out, PEAK.load(Relaxed).saturating_sub(base))
+    alloc::peak_during(f)
 }
 
 fn std_system(name: &str) -> System {
@@ -296,4 +271,36 @@ fn limits_are_said_before_the_work_starts() {
     assert!(o.stderr.contains("step 9 of 12"), "{}", o.stderr);
     assert!(o.stdout.is_empty());
     assert!(t.elapsed().as_secs_f64() < 1.0);
+}
+
+#[test]
+fn a_picture_too_big_to_draw_segment_by_segment_is_refused_before_deriving() {
+    // A colour change keeps it off the shared-subtree renderer; 2^26 · 2
+    // moves are over the drawing limit, and the tree knows it at once.
+    let f = temp("big.l");
+    std::fs::write(&f, "axiom: F'F\nF --> FF\n").unwrap();
+    let out = temp("big.png");
+    let t = Instant::now();
+    let o = graftal(&[
+        "render",
+        f.to_str().unwrap(),
+        "-n",
+        "26",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status, 1, "{}", o.stderr);
+    assert!(o.stderr.contains("E0303"), "{}", o.stderr);
+    assert!(o.stderr.contains("known before deriving"), "{}", o.stderr);
+    assert!(t.elapsed().as_secs_f64() < 1.0);
+    // A polygon keeps `stats` off shared subtrees: the word is streamed
+    // through the turtle, nothing kept.
+    let f = temp("polygon.l");
+    std::fs::write(&f, "axiom: F{F+F+F}\nF --> FF\n").unwrap();
+    let o = graftal(&["stats", f.to_str().unwrap(), "-n", "12", "--format", "json"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["method"], "streamed");
+    assert_eq!(v["segments"], 4096);
+    assert_eq!(v["polygons"], 1);
 }

@@ -286,9 +286,22 @@ where
                     spline,
                     ..RenderOptions::default()
                 };
-                if let Some(bytes) = driver::render_shared(sys, opts, format, ropts) {
+                let bar = draw_bar(io);
+                let mut progress = |drawn: u64, total: u64| {
+                    if let Some(bar) = &bar {
+                        bar.set_length(total);
+                        bar.set_position(drawn);
+                    }
+                };
+                if let Some(bytes) =
+                    driver::render_shared_with(sys, opts, format, ropts, &mut progress)
+                {
+                    if let Some(bar) = &bar {
+                        bar.finish_and_clear();
+                    }
                     return Ok(write_picture(io, &output, bytes));
                 }
+                driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
                 let mut g = driver::interpret_any(sys, &word, opts, spline).map_err(|d| vec![d])?;
                 if !no_layout {
@@ -297,11 +310,11 @@ where
                 if g.is_empty() {
                     report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
                 }
-                Ok(write_picture(
-                    io,
-                    &output,
-                    driver::render_bytes(sys, &g, format, ropts),
-                ))
+                let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
+                if let Some(bar) = &bar {
+                    bar.finish_and_clear();
+                }
+                Ok(write_picture(io, &output, bytes))
             })
         }
         Command::Translate(a) => translate(io, &a),
@@ -572,6 +585,21 @@ fn derive_reporting(
 /// Whether progress is shown: on a terminal, outside CI.
 fn show_progress(io: &Io<'_>) -> bool {
     io.terminal && std::env::var_os("CI").is_none()
+}
+
+/// A progress bar over segments drawn, when [`show_progress`]; its length
+/// is set when drawing starts.
+fn draw_bar(io: &Io<'_>) -> Option<indicatif::ProgressBar> {
+    if !show_progress(io) {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("drawing {bar:30} {pos}/{len} segments")
+            .expect("valid template"),
+    );
+    bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
+    Some(bar)
 }
 
 /// A progress bar over derivation steps, when [`show_progress`].

@@ -35,10 +35,11 @@ const CHUNK: usize = 4096;
 /// rewrites, so every position looks up exactly one rule.
 pub(super) struct Table<'a> {
     sys: &'a System,
-    /// Per symbol: where its cells start, and whether context decides (a
-    /// block of `(n + 1)²` cells indexed by `l · (n + 1) + r`, `n` meaning
-    /// "no visible symbol") or not (one cell).
-    entry: Vec<(u32, bool)>,
+    /// Per symbol: where its cells start, and a mask saying whether context
+    /// decides (all ones: a block of `(n + 1)²` cells indexed by
+    /// `l · (n + 1) + r`, `n` meaning "no visible symbol") or not (zero: one
+    /// cell).
+    entry: Vec<(u32, usize)>,
     /// The rule for each cell.
     cells: Vec<u32>,
     /// `n + 1`: the stride of `l` in a block.
@@ -84,11 +85,15 @@ impl<T: Sym> Left<T> {
     /// Moves past symbol `s` of class `class`.
     #[inline]
     fn pass(&mut self, s: T, class: u8, none: T) {
-        match class {
-            VISIBLE => self.last = s,
-            OPEN => self.stack.push(self.last),
-            CLOSE => self.last = self.stack.pop().unwrap_or(none),
-            _ => {}
+        // A select, not a branch, for the common classes: which of them
+        // comes next is unpredictable.
+        self.last = if class == VISIBLE { s } else { self.last };
+        if class >= OPEN {
+            if class == OPEN {
+                self.stack.push(self.last);
+            } else {
+                self.last = self.stack.pop().unwrap_or(none);
+            }
         }
     }
 }
@@ -121,7 +126,7 @@ impl<'a> Table<'a> {
                     .filter(move |(_, p)| p.predecessor[0].index() == s)
             };
             let contextual = mine().next().is_some_and(|(_, p)| p.is_context_sensitive());
-            entry.push((cells.len() as u32, contextual));
+            entry.push((cells.len() as u32, if contextual { usize::MAX } else { 0 }));
             if !contextual {
                 cells.push(mine().next().map_or(identity, |(pi, _)| pi as u32));
                 continue;
@@ -268,14 +273,15 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         let mut next = none;
         let mut stack: Vec<T> = Vec::new();
         for (r, &s) in right.iter_mut().zip(w).rev() {
-            match self.table.class[s.index()] {
-                VISIBLE => next = s,
-                CLOSE => {
+            let class = self.table.class[s.index()];
+            next = if class == VISIBLE { s } else { next };
+            if class >= OPEN {
+                if class == CLOSE {
                     stack.push(next);
                     next = none;
+                } else {
+                    next = stack.pop().unwrap_or(none);
                 }
-                OPEN => next = stack.pop().unwrap_or(none),
-                _ => {}
             }
             *r = next;
         }
@@ -311,12 +317,9 @@ impl<T: Sym> TableStepper<'_, '_, T> {
             let dst = &mut out[..];
             for &s in chunk {
                 let si = s.index();
-                let (base, contextual) = entry[si];
-                let cell = if contextual {
-                    left.last.index() * side + right[at + 1].index()
-                } else {
-                    0
-                };
+                // Context-free symbols have one cell: the mask is zero.
+                let (base, mask) = entry[si];
+                let cell = (left.last.index() * side + right[at + 1].index()) & mask;
                 let rule = cells[base as usize + cell] as usize;
                 at += 1;
                 left.pass(s, class[si], none);

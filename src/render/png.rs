@@ -21,6 +21,19 @@ fn paint(c: Rgb) -> Paint<'static> {
 /// Draws the picture; `None` only if the size is zero or too large for
 /// tiny-skia.
 pub fn draw(pic: &Picture) -> Option<Pixmap> {
+    draw_with(pic, &mut |_, _| {})
+}
+
+/// [`draw`], calling `progress(drawn, total)` with the segments stroked so
+/// far as it goes.
+pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pixmap> {
+    let total: u64 = pic
+        .runs
+        .iter()
+        .flat_map(|r| &r.lines)
+        .map(|l| l.len().saturating_sub(1) as u64)
+        .sum();
+    let mut drawn = 0u64;
     let mut pixmap = Pixmap::new(pic.width, pic.height)?;
     pixmap.fill(Color::WHITE);
     for (colour, pts) in &pic.polygons {
@@ -65,6 +78,8 @@ pub fn draw(pic: &Picture) -> Option<Pixmap> {
                         pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
                     }
                     pb.move_to(q[0] as f32, q[1] as f32);
+                    drawn += count as u64;
+                    progress(drawn, total);
                     count = 0;
                 }
             }
@@ -72,11 +87,18 @@ pub fn draw(pic: &Picture) -> Option<Pixmap> {
         if let Some(path) = pb.finish() {
             pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
         }
+        drawn += count as u64;
+        progress(drawn, total);
     }
     Some(pixmap)
 }
 
 /// The picture as PNG bytes.
 pub fn encode(pic: &Picture) -> Option<Vec<u8>> {
-    draw(pic)?.encode_png().ok()
+    encode_with(pic, &mut |_, _| {})
+}
+
+/// [`encode`], reporting progress as [`draw_with`] does.
+pub fn encode_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Vec<u8>> {
+    draw_with(pic, progress)?.encode_png().ok()
 }
