@@ -43,6 +43,8 @@ use std::time::Duration;
 
 #[path = "common/alloc.rs"]
 mod alloc;
+#[path = "common/hogeweg.rs"]
+mod hogeweg;
 use alloc::{mib, peak_during};
 
 #[global_allocator]
@@ -104,126 +106,6 @@ fn baseline_stochastic(
     cur
 }
 
-/// `ignore: +-F` of hogeweg-hesper-a.
-fn hh_ignored(c: u8) -> bool {
-    matches!(c, b'+' | b'-' | b'F')
-}
-
-/// The left context of position `i`: walk left over ignored symbols and `[`
-/// (into the parent branch), skipping whole branches `[...]` that end there.
-fn hh_left(w: &[u8], i: usize) -> Option<u8> {
-    let mut j = i;
-    while j > 0 {
-        let c = w[j - 1];
-        if c == b'[' || hh_ignored(c) {
-            j -= 1;
-        } else if c == b']' {
-            // Scan back to the matching `[`, then go on left of it.
-            let mut k = j - 1;
-            let mut depth = 0usize;
-            loop {
-                match w[k] {
-                    b']' => depth += 1,
-                    b'[' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            break;
-                        }
-                    }
-                    _ => {}
-                }
-                if k == 0 {
-                    return None;
-                }
-                k -= 1;
-            }
-            j = k;
-        } else {
-            return Some(c);
-        }
-    }
-    None
-}
-
-/// The right context after position `i`: walk right over ignored symbols,
-/// skipping whole branches; the end of the current branch has none.
-fn hh_right(w: &[u8], i: usize) -> Option<u8> {
-    let mut j = i + 1;
-    while j < w.len() {
-        let c = w[j];
-        if c == b'[' {
-            // Scan forward to the matching `]`, then go on right of it.
-            let mut depth = 0usize;
-            loop {
-                match w.get(j) {
-                    None => return None,
-                    Some(b'[') => depth += 1,
-                    Some(b']') => {
-                        depth -= 1;
-                        if depth == 0 {
-                            break;
-                        }
-                    }
-                    Some(_) => {}
-                }
-                j += 1;
-            }
-            j += 1;
-        } else if c == b']' {
-            return None;
-        } else if hh_ignored(c) {
-            j += 1;
-        } else {
-            return Some(c);
-        }
-    }
-    None
-}
-
-/// The rules of hogeweg-hesper-a, `left < pred > right --> successor`.
-fn hh_rule(left: u8, pred: u8, right: u8) -> Option<&'static str> {
-    Some(match (left, pred, right) {
-        (b'0', b'0', b'0') => "0",
-        (b'0', b'0', b'1') => "1[+F1F1]",
-        (b'0', b'1', b'0') => "1",
-        (b'0', b'1', b'1') => "1",
-        (b'1', b'0', b'0') => "0",
-        (b'1', b'0', b'1') => "1F1",
-        (b'1', b'1', b'0') => "0",
-        (b'1', b'1', b'1') => "0",
-        _ => return None,
-    })
-}
-
-/// Context-sensitive, bracketed: a naive scan of the string for each
-/// symbol's contexts (no bracket table, no symbol interning).
-fn baseline_hogeweg(axiom: &str, steps: u64) -> String {
-    let mut cur = axiom.to_string();
-    for _ in 0..steps {
-        let w = cur.as_bytes();
-        let mut next = String::new();
-        for (i, &c) in w.iter().enumerate() {
-            match c {
-                b'0' | b'1' => {
-                    let succ = match (hh_left(w, i), hh_right(w, i)) {
-                        (Some(l), Some(r)) => hh_rule(l, c, r),
-                        _ => None,
-                    };
-                    match succ {
-                        Some(s) => next.push_str(s),
-                        None => next.push(c as char),
-                    }
-                }
-                b'+' => next.push('-'),
-                b'-' => next.push('+'),
-                _ => next.push(c as char),
-            }
-        }
-        cur = next;
-    }
-    cur
-}
-
 enum Baseline {
     ContextFree {
         axiom: &'static str,
@@ -233,9 +115,8 @@ enum Baseline {
         axiom: &'static str,
         rules: HashMap<char, Vec<(f64, String)>>,
     },
-    Hogeweg {
-        axiom: &'static str,
-    },
+    /// `benches/common/hogeweg.rs`, from the axiom `F1F1F1`.
+    Hogeweg,
 }
 
 impl Baseline {
@@ -243,7 +124,10 @@ impl Baseline {
         match self {
             Baseline::ContextFree { axiom, rules } => baseline_context_free(axiom, rules, steps),
             Baseline::Stochastic { axiom, rules } => baseline_stochastic(axiom, rules, steps, SEED),
-            Baseline::Hogeweg { axiom } => baseline_hogeweg(axiom, steps),
+            Baseline::Hogeweg => hogeweg::plain_hogeweg(steps)
+                .into_iter()
+                .map(char::from)
+                .collect(),
         }
     }
 }
@@ -284,7 +168,7 @@ fn families() -> &'static [Family] {
                 name: "hogeweg-hesper-a",
                 steps: &[20, 30, 40],
                 sys: load("hogeweg-hesper-a"),
-                baseline: Baseline::Hogeweg { axiom: "F1F1F1" },
+                baseline: Baseline::Hogeweg,
             },
             Family {
                 name: "stochastic-bush",

@@ -350,10 +350,17 @@ pub fn write_derived(
     } else {
         match derive_any(sys, opts, progress)? {
             Derived::Plain(w) if sys.notation != Notation::Linf => {
-                // Name by name into the buffer: no text built in between.
-                for s in &w.0 {
-                    if out.write_all(names[s.index()]).is_err() {
-                        break;
+                if names.iter().all(|n| n.len() == 1) {
+                    // One byte per symbol: a table look-up per symbol.
+                    let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
+                    let text: Vec<u8> = w.0.iter().map(|s| byte[s.index()]).collect();
+                    let _ = out.write_all(&text);
+                } else {
+                    // Name by name into the buffer: no text built in between.
+                    for s in &w.0 {
+                        if out.write_all(names[s.index()]).is_err() {
+                            break;
+                        }
                     }
                 }
             }

@@ -252,6 +252,8 @@ fn koch_island_at_8_steps_renders_in_bounded_time_and_memory() {
     });
     let secs = t.elapsed().as_secs_f64();
     assert_eq!(o.status, 0, "{}", o.stderr);
+    // No progress bar in a pipe.
+    assert!(o.stderr.is_empty(), "{}", o.stderr);
     assert!(secs < 10.0, "{secs} s");
     assert!(bytes < 400 << 20, "{bytes} bytes");
     let inked = dark(&std::fs::read(&out).unwrap())
@@ -303,4 +305,28 @@ fn a_picture_too_big_to_draw_segment_by_segment_is_refused_before_deriving() {
     assert_eq!(v["method"], "streamed");
     assert_eq!(v["segments"], 4096);
     assert_eq!(v["polygons"], 1);
+}
+
+#[test]
+fn derive_prints_the_word_of_step_by_step_rewriting() {
+    // Written from the shared tree (Koch), through the look-up table
+    // (Fig. 3.11a) and by the general matcher (a two-symbol predecessor).
+    let ab = temp("ab.l");
+    std::fs::write(&ab, "axiom: ab\nab --> aab\na --> b\n").unwrap();
+    for (file, n) in [
+        ("std:koch-island", 4),
+        ("std:hogeweg-hesper-a", 30),
+        (ab.to_str().unwrap(), 6),
+    ] {
+        let c = compile(driver::load(file).unwrap());
+        let sys = c.system.unwrap();
+        let d = graftal::eval::Deriver::new(&sys);
+        let want = d
+            .derive_stepwise(&graftal::eval::DeriveOptions::new(n), |_, _| {})
+            .unwrap()
+            .display(&sys.symbols);
+        let o = graftal(&["derive", file, "-n", &n.to_string()]);
+        assert_eq!(o.status, 0, "{}", o.stderr);
+        assert_eq!(o.stdout, format!("{want}\n"), "{file}");
+    }
 }
