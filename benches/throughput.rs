@@ -12,7 +12,7 @@
 //!     bytes (skipping ignored symbols and whole branches, entering parents),
 //!     with the file's eight rules written out as a `match`;
 //!   - stochastic `stochastic-bush`: a `HashMap<char, Vec<(weight, String)>>`
-//!     expansion drawing from graftal's own `eval::Rng`, in word order, so it
+//!     expansion drawing from graftal's own `random::Rng` (the derivation stream), in word order, so it
 //!     makes the very same word as graftal for the same seed.
 //!
 //!   Before timing, every baseline's word is checked to be identical to
@@ -32,7 +32,7 @@ use criterion::{
     criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
 use graftal::driver::{self, RunOptions};
-use graftal::eval::Rng;
+use graftal::random::{Rng, Stream};
 use graftal::ir::{System, Word};
 use graftal::render::{self, RenderOptions};
 use graftal::turtle::{self, Geometry};
@@ -78,7 +78,7 @@ fn baseline_stochastic(
     steps: u64,
     seed: u64,
 ) -> String {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::new(seed, Stream::Derivation);
     let mut cur = axiom.to_string();
     for _ in 0..steps {
         let mut next = String::new();

@@ -90,7 +90,7 @@ fn looks_fractint(text: &str) -> bool {
 /// Fractint reader would reject `axiom:` as an unknown keyword.
 fn pfg_header(line: &str) -> bool {
     let l = line.trim_start().to_ascii_lowercase();
-    crate::pfg::parser::HEADERS.iter().any(|h| {
+    crate::front::pfg::parser::HEADERS.iter().any(|h| {
         l.strip_prefix(h)
             .is_some_and(|r| r.trim_start().starts_with(':'))
     })

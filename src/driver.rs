@@ -12,7 +12,8 @@ use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
 use crate::turtle::instanced::Instanced;
 use crate::turtle::{self, Geometry};
-use crate::{linf, pfg, stdlib};
+use crate::front::{linf, pfg};
+use crate::stdlib;
 use serde::Serialize;
 use std::io::Write as _;
 use std::path::Path;
@@ -157,11 +158,11 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
             (Some(lowered.system), lowered.spans)
         }
         Dialect::Stl => {
-            let lowered = crate::stl::read(&file.text, &mut diags);
+            let lowered = crate::front::stl::read(&file.text, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
         Dialect::Cpfg => {
-            let lowered = crate::cpfg::read_file(&file, &mut diags);
+            let lowered = crate::front::cpfg::read_file(&file, &mut diags);
             (Some(lowered.system), lowered.spans)
         }
         Dialect::Fractint => {
@@ -207,14 +208,14 @@ struct Library {
     entries: Vec<EntryInfo>,
     chosen: Option<usize>,
     needs_entry: bool,
-    lowered: Option<crate::fractint::Lowered>,
+    lowered: Option<crate::front::fractint::Lowered>,
 }
 
 /// Reads a Fractint library: every entry is lowered (so each one's
 /// problems are its own); the diagnostics kept are the chosen entry's and
 /// the file's, or every entry's when none is chosen.
 fn fractint_library(text: &str, entry: Option<&str>, diags: &mut Diagnostics) -> Library {
-    use crate::fractint;
+    use crate::front::fractint;
     let mut file_diags = Diagnostics::default();
     let ast = fractint::parse(text, &mut file_diags);
     let mut lib = Library::default();
@@ -608,11 +609,11 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
         .layout
         .iter()
         .map(|s| turtle::Polygon {
-            points: crate::stl::layout::outline(s)
+            points: crate::front::stl::layout::outline(s)
                 .into_iter()
                 .map(|p| [p[0], p[1], 0.0])
                 .collect(),
-            colour: crate::stl::layout::colour(s),
+            colour: crate::front::stl::layout::colour(s),
         })
         .filter(|p| p.points.len() >= 3)
         .collect();

@@ -2,7 +2,7 @@
 //! objects): every L-system file preprocesses, every view, function and
 //! surface file reads, with pinned values from real files.
 
-use graftal::cpfg::preprocess::preprocess;
+use graftal::front::cpfg::preprocess::preprocess;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -36,7 +36,7 @@ fn read(p: &Path) -> String {
     String::from_utf8_lossy(&fs::read(p).unwrap()).into_owned()
 }
 
-fn preprocess_file(path: &Path) -> graftal::cpfg::preprocess::Preprocessed {
+fn preprocess_file(path: &Path) -> graftal::front::cpfg::preprocess::Preprocessed {
     let dir = path.parent().unwrap().to_path_buf();
     preprocess(&read(path), &mut |name| {
         fs::read(dir.join(name))
@@ -142,7 +142,7 @@ fn pinned_expansions() {
     assert_eq!(systems, 4);
 }
 
-use graftal::cpfg::view::{find_view, is_panel, read_view, View};
+use graftal::front::cpfg::view::{find_view, is_panel, read_view, View};
 
 #[test]
 fn every_view_file_reads_without_errors() {
@@ -254,7 +254,7 @@ fn every_l_file_finds_its_view() {
     );
 }
 
-use graftal::cpfg::func::{read_fset, read_func, Function};
+use graftal::front::cpfg::func::{read_fset, read_func, Function};
 
 /// The function's value at 0 and 1 must be its first and last control
 /// points' y (the spline is clamped), within cpfg's bisection tolerance
@@ -347,7 +347,7 @@ fn pinned_function_values() {
     assert!(f.eval(0.1) < 0.1 && f.eval(0.95) > 0.9);
 }
 
-use graftal::cpfg::surface::read_surface;
+use graftal::front::cpfg::surface::read_surface;
 
 #[test]
 fn every_surface_file_reads() {

@@ -357,7 +357,7 @@ fn colours_follow_fractints_rules() {
     let g = turtle::interpret(&sys, &sys.axiom.0, 0);
     assert_eq!(g.segments[0].colour, graftal::ir::Rgb(0, 0, 0));
     assert_eq!(
-        graftal::fractint::palette()[0],
+        graftal::front::fractint::palette()[0],
         graftal::ir::Rgb(255, 255, 255)
     );
     // With a palette of distinct colours the indices show: >1 from 1

@@ -9,8 +9,8 @@
 
 use graftal::diagnostics::codes;
 use graftal::driver::{compile_entry, Compiled};
-use graftal::linf::lexer::BlockKind;
-use graftal::pfg::parser::HEADERS;
+use graftal::front::linf::lexer::BlockKind;
+use graftal::front::pfg::parser::HEADERS;
 use graftal::source::SourceFile;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -302,12 +302,12 @@ fn linf_block_keywords_match_the_lexer() {
 fn stl_keywords_shapes_and_reserved_names_match_the_implementation() {
     assert_eq!(
         keyword_rule("stl.ebnf", "keyword"),
-        graftal::stl::parser::KEYWORDS.to_vec()
+        graftal::front::stl::parser::KEYWORDS.to_vec()
     );
     let shapes = keyword_rule("stl.ebnf", "shape name");
     assert_eq!(shapes, ["Rectangle", "RoundRect", "Ellipse", "Polygon"]);
     let reserved = keyword_rule("stl.ebnf", "reserved name");
-    for r in graftal::stl::parser::RESERVED {
+    for r in graftal::front::stl::parser::RESERVED {
         assert!(
             reserved.contains(&r.to_string()),
             "`{r}` is reserved but not in the grammar"
@@ -627,7 +627,7 @@ fn constraint_codes_checked(g: &Grammar) {
 fn fractint_keywords_match_the_parser() {
     assert_eq!(
         keyword_rule("fractint.ebnf", "keyword"),
-        graftal::fractint::parser::KEYWORDS
+        graftal::front::fractint::parser::KEYWORDS
     );
 }
 
@@ -645,7 +645,7 @@ fn fractint_reserved_characters_match_the_reader() {
         .expect("the reserved characters in backquotes")
         .split(' ')
         .collect();
-    assert_eq!(listed, graftal::fractint::RESERVED);
+    assert_eq!(listed, graftal::front::fractint::RESERVED);
 }
 
 #[test]

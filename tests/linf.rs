@@ -3,7 +3,7 @@
 
 use graftal::driver::{self, RunOptions};
 use graftal::ir::{Rgb, System};
-use graftal::linf::read_ok;
+use graftal::front::linf::read_ok;
 use graftal::render::{self, RenderOptions, View};
 use graftal::turtle::{Geometry, Vec3};
 
@@ -107,7 +107,7 @@ fn sign_runs_named_angles_and_swapped_turns() {
 fn a_linf_file_and_its_pfg_twin_have_the_same_bounding_box() {
     // LinF `+` turns left (counter-clockwise), pfg `+` right.
     let linf = read_ok("lines f\nangles (0, pi/3)\naxiom f--f--f\nrules f = f+f--f+f\n");
-    let pfg = graftal::pfg::read_ok("angle factor: 6\naxiom: F++F++F\nF --> F-F++F-F\n");
+    let pfg = graftal::front::pfg::read_ok("angle factor: 6\naxiom: F++F++F\nF --> F-F++F-F\n");
     for n in 0..5 {
         let opts = RunOptions {
             steps: Some(n),

@@ -26,7 +26,7 @@
 
 use graftal::diagnostics::{codes, render_human, to_json, Diagnostic};
 use graftal::driver::{self, RunOptions};
-use graftal::emit::{self, Request};
+use graftal::back::{self, Request};
 use graftal::ir::Notation;
 use graftal::render::{self, RenderOptions, View};
 use graftal::source::SourceFile;
@@ -178,8 +178,8 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
                 lossy,
                 steps: Some(case.k.min(3)),
             };
-            let t = stage(&format!("emit::translate to {to:?}"), || {
-                emit::translate(sys, &compiled.spans, &compiled.file.text, &req)
+            let t = stage(&format!("back::translate to {to:?}"), || {
+                back::translate(sys, &compiled.spans, &compiled.file.text, &req)
             })?;
             for d in t.diagnostics.iter() {
                 check_diagnostic(d, &compiled.file)?;
@@ -1240,7 +1240,7 @@ fn fractint_corpus_files_as_written_pass() {
     ] {
         let text = std::fs::read_to_string(format!("{dir}/{f}")).unwrap();
         // Each entry alone, as a file of one entry, at a few orders.
-        let file = graftal::fractint::parse(&text, &mut Default::default());
+        let file = graftal::front::fractint::parse(&text, &mut Default::default());
         for e in file.entries.iter().step_by(4) {
             let c = Case {
                 text: text[e.span.clone()].to_string(),

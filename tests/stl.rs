@@ -5,7 +5,7 @@
 use graftal::diagnostics::Diagnostics;
 use graftal::driver::{self, RunOptions};
 use graftal::ir::System;
-use graftal::stl;
+use graftal::front::stl;
 use graftal::turtle::Geometry;
 
 /// The derived string (the expanded drawing components) of an STL text.
@@ -333,7 +333,7 @@ fn growth_stops_at_the_resemblance_count_and_at_levels() {
 fn the_grown_bed_reads_back_to_the_same_stems() {
     for strategy in ["BFS", "DFS"] {
         let sys = grown(strategy);
-        let bed = graftal::emit::stl::write(&sys).unwrap();
+        let bed = graftal::back::stl::write(&sys).unwrap();
         assert!(bed.contains("R1{") && bed.contains('~'), "{bed}");
         let back = stl::read_ok(&bed);
         let (a, b) = (geometry(&sys), geometry(&back));
@@ -345,7 +345,7 @@ fn the_grown_bed_reads_back_to_the_same_stems() {
             );
         }
         // Written again, the BED is unchanged (a fixed point).
-        assert_eq!(graftal::emit::stl::write(&back).unwrap(), bed);
+        assert_eq!(graftal::back::stl::write(&back).unwrap(), bed);
     }
 }
 
@@ -424,7 +424,7 @@ fn a_counted_rule_of_a_literal_string_grows_and_round_trips() {
     let sys = stl::read_ok(src);
     let g = geometry(&sys);
     assert_eq!(g.segments.len(), 1 + 2 + 4 + 8);
-    let bed = graftal::emit::stl::write(&sys).unwrap();
+    let bed = graftal::back::stl::write(&sys).unwrap();
     assert!(
         bed.contains("Rc_unit = [-F][+F]") && bed.contains("F Rc_unit{Rc_unit{Rc_unit{}"),
         "{bed}"

@@ -130,7 +130,7 @@ fn render_draws_the_layout_under_the_tree_unless_told_not_to() {
 
 #[test]
 fn render_draws_widths_from_b() {
-    let sys = graftal::stl::read_ok("B = 8 (3)\nR1 = [F][+F]\nSEED\nF R1\nENDSEED\n");
+    let sys = graftal::front::stl::read_ok("B = 8 (3)\nR1 = [F][+F]\nSEED\nF R1\nENDSEED\n");
     let g = driver::geometry(&sys, &RunOptions::default()).unwrap().1;
     let opts = RenderOptions {
         width: 600,

@@ -94,12 +94,12 @@ fn pipeline(text: String) -> Result<Option<usize>, String> {
     // Translation to pfg and LinF: never a panic, and what is written
     // reads back without errors.
     for target in [graftal::ir::Notation::Pfg, graftal::ir::Notation::Linf] {
-        let req = graftal::emit::Request {
+        let req = graftal::back::Request {
             target,
             lossy: true,
             steps: None,
         };
-        let t = graftal::emit::translate(sys, &c.spans, &c.file.text, &req);
+        let t = graftal::back::translate(sys, &c.spans, &c.file.text, &req);
         for d in t.diagnostics.iter() {
             check_diagnostic(d, &c.file)?;
         }
@@ -118,7 +118,7 @@ fn pipeline(text: String) -> Result<Option<usize>, String> {
             }
         }
     }
-    let bed = graftal::emit::stl::write(sys).ok_or("no BED for an STL system")?;
+    let bed = graftal::back::stl::write(sys).ok_or("no BED for an STL system")?;
     let back = driver::compile(SourceFile::new("bed.stl", bed.clone()));
     let Some(back_sys) = &back.system else {
         return Err(format!(

@@ -9,7 +9,7 @@
 //! written, pass `check`, and carry one warning per approximation.
 
 use graftal::driver::{self, Compiled, RunOptions};
-use graftal::emit::{self, Request, Translation};
+use graftal::back::{self, Request, Translation};
 use graftal::ir::{Notation, System};
 use graftal::source::SourceFile;
 use graftal::stdlib::ENTRIES;
@@ -36,7 +36,7 @@ fn compile(name: &str, text: &str) -> Compiled {
 
 fn translate(c: &Compiled, to: Notation, lossy: bool) -> Translation {
     let sys = c.system.as_ref().expect("compiles");
-    emit::translate(
+    back::translate(
         sys,
         &c.spans,
         &c.file.text,
@@ -205,8 +205,8 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
             *exact
                 .entry(format!(
                     "{} -> {}",
-                    emit::notation_name(from),
-                    emit::notation_name(to)
+                    back::notation_name(from),
+                    back::notation_name(to)
                 ))
                 .or_default() += 1;
             // Back again: the same strings (pfg and LinF), the same drawing.

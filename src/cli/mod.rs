@@ -365,12 +365,12 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
         Target::Linf => crate::ir::Notation::Linf,
         Target::Stl => crate::ir::Notation::Stl,
     };
-    let req = crate::emit::Request {
+    let req = crate::back::Request {
         target,
         lossy: a.lossy,
         steps: a.steps,
     };
-    let t = crate::emit::translate(sys, &c.spans, &c.file.text, &req);
+    let t = crate::back::translate(sys, &c.spans, &c.file.text, &req);
     report(io, &c, t.diagnostics.0.iter(), a.format);
     if a.format == OutputFormat::Json {
         let span = |s: &Option<crate::ir::Span>| {
@@ -399,8 +399,8 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
             .collect();
         let mut doc = serde_json::json!({
             "file": c.file.name,
-            "from": crate::emit::notation_name(sys.notation),
-            "to": crate::emit::notation_name(target),
+            "from": crate::back::notation_name(sys.notation),
+            "to": crate::back::notation_name(target),
             "exact": t.is_exact(),
             "written": t.text.is_some(),
             "output": a.output,
@@ -521,7 +521,7 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
         c.file.name,
         c.entries.len(),
         if c.entries.len() == 1 { "entry" } else { "entries" },
-        crate::fractint::DEFAULT_ORDER
+        crate::front::fractint::DEFAULT_ORDER
     );
     let width = c
         .entries

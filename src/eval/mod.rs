@@ -13,11 +13,11 @@
 //! memory or run without end.
 
 pub mod parametric;
-mod rng;
+
 mod table;
 pub mod tree;
 
-pub use rng::Rng;
+use crate::random::{Rng, Stream};
 
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::{Guard, SymbolId, System, Word};
@@ -194,7 +194,7 @@ impl<'a> Deriver<'a> {
         mut progress: impl FnMut(u64, usize),
     ) -> Result<Vec<S::Sym>, Diagnostic> {
         let mut run = Run {
-            rng: Rng::new(opts.seed),
+            rng: Rng::new(opts.seed, Stream::Derivation),
             cur: self
                 .sys
                 .axiom
@@ -633,7 +633,7 @@ pub fn derive(sys: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pfg::read_ok as sys;
+    use crate::front::pfg::read_ok as sys;
 
     fn run(src: &str, n: u64) -> String {
         let s = sys(src);
@@ -832,7 +832,7 @@ mod tests {
                 src.push_str(&format!("{l} < {p} > {r} --> {succ}\n"));
             }
             let mut d = crate::diagnostics::Diagnostics::default();
-            let s = crate::pfg::read(&src, &mut d).system;
+            let s = crate::front::pfg::read(&src, &mut d).system;
             proptest::prop_assume!(!d.has_errors());
             proptest::prop_assert!(Deriver::new(&s).table.is_some());
             let opts = DeriveOptions::new(6).seed(seed).max_symbols(100_000);

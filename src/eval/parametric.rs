@@ -7,7 +7,8 @@
 //! work (modules rewritten, loop iterations, recursion) by
 //! [`DeriveOptions::max_work`], so no model runs without end.
 
-use super::{DeriveOptions, Rng};
+use super::DeriveOptions;
+use crate::random::{Rng, Stream};
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::parametric::{
     BinOp, Builtin, Expr, ModuleWord, ParamProduction, Parametric, Pattern, Place, Stmt, UnOp, Var,
@@ -90,7 +91,7 @@ impl<'p> Machine<'p> {
                     v
                 })
                 .collect(),
-            rng: Rng::new(seed.wrapping_add(par.seed.unwrap_or(0))),
+            rng: Rng::new(seed.wrapping_add(par.seed.unwrap_or(0)), Stream::Derivation),
             run_seed: seed,
             work: 0,
             max_work,
@@ -219,7 +220,7 @@ impl<'p> Machine<'p> {
                 }
             }
             Builtin::Srand => {
-                self.rng = Rng::new((x as i64 as u64).wrapping_add(self.run_seed));
+                self.rng = Rng::new((x as i64 as u64).wrapping_add(self.run_seed), Stream::Derivation);
                 0.0
             }
             Builtin::Ran => x * self.rng.next_f64(),
@@ -926,7 +927,7 @@ pub fn homomorphism(
     let group = Group::new(&par.homomorphism.productions, sys.symbols.len());
     let seed = par.homomorphism.seed.unwrap_or(0).wrapping_add(opts.seed);
     let mut m = Machine::new(par, seed, opts.max_work);
-    m.rng = Rng::for_stream(seed, 2);
+    m.rng = Rng::new(seed, Stream::Homomorphism);
     let mut e = Engine {
         m,
         matcher: matcher(sys, par),

@@ -284,7 +284,7 @@ impl Iterator for Symbols<'_> {
 mod tests {
     use super::*;
     use crate::eval::{DeriveOptions, Deriver};
-    use crate::pfg::read_ok as sys;
+    use crate::front::pfg::read_ok as sys;
 
     /// Step-by-step rewriting, the reference.
     fn stepwise(s: &System, n: u64) -> Vec<SymbolId> {

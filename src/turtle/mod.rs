@@ -14,7 +14,7 @@
 
 pub mod instanced;
 
-use crate::eval::Rng;
+use crate::random::{Rng, Stream};
 use crate::ir::parametric::ModuleWord;
 use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp};
 use serde::Serialize;
@@ -360,7 +360,7 @@ fn run(
         .map(|i| sys.op(SymbolId(i as u32)))
         .collect();
     let delta = sys.settings.angle.to_radians();
-    let mut rng = Rng::for_stream(seed, 1);
+    let mut rng = Rng::new(seed, Stream::Turtle);
     let mut resolve = |a: Angle| match a {
         Angle::Delta(f) => f * delta,
         Angle::Radians(r) => r,
@@ -738,7 +738,7 @@ fn cylinder_point(st: &mut State, sink: &mut dyn Sink, palette: &[Rgb], pieces: 
 mod tests {
     use super::*;
     use crate::ir::Word;
-    use crate::pfg::read_ok;
+    use crate::front::pfg::read_ok;
 
     fn draw(src: &str) -> Geometry {
         let sys = read_ok(src);
@@ -842,7 +842,7 @@ mod tests {
     /// The frame after `n` rotations by an irrational (torsion, curvature)
     /// pair, read off three unit segments drawn along t, n and −b.
     fn frame_after_rotations(n: usize) -> [Vec3; 3] {
-        let mut sys = crate::linf::read_ok(
+        let mut sys = crate::front::linf::read_ok(
             "lines f\nangles w = (0.7311, 1.1234) q = (0, pi/2) p = (pi/2, pi/2)\nrules x = +w f+q+p",
         );
         let [f, w, q, p] = ["f", "+w", "+q", "+p"].map(|s| sys.symbols.get(s).unwrap());

@@ -1,7 +1,7 @@
 //! Diagnostic codes of the cpfg dialect of `.l` (`E08xx`, `W08xx`).
 //!
 //! `E0801`–`E0829` and `W0801`–`W0819` belong to the files around the
-//! L-system: the C preprocessor pass ([`crate::cpfg::preprocess`]), view
+//! L-system: the C preprocessor pass ([`crate::front::cpfg::preprocess`]), view
 //! files, function files and surface files. `E0830` and up, `W0820` and up
 //! are the cpfg language's own.
 

@@ -7,7 +7,7 @@
 //! (the paper's Language Analyzer; for an Outline Description it runs
 //! `growth`, the Graphics Developer, over the `layout` shapes) -> IR. The
 //! lowered seed is always a Branch-Expansion Description, which
-//! [`crate::emit::stl`] writes back out.
+//! [`crate::back::stl`] writes back out.
 
 pub mod ast;
 pub mod growth;

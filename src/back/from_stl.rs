@@ -23,7 +23,7 @@
 
 use super::{Kind, Problem};
 use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
-use crate::stl::lower::{per_level, MAX_DRAWN_WIDTH};
+use crate::front::stl::lower::{per_level, MAX_DRAWN_WIDTH};
 use std::collections::HashMap;
 
 struct Builder<'a> {

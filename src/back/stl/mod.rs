@@ -159,7 +159,7 @@ fn shape(s: &Shape) -> String {
 }
 
 /// How many components the STL reader expands at most.
-const MAX_COMPONENTS: u64 = crate::stl::lower::MAX_EXPANSION as u64;
+const MAX_COMPONENTS: u64 = crate::front::stl::lower::MAX_EXPANSION as u64;
 
 /// A pfg or LinF system as STL. STL has no derivation: the steps are
 /// written into the rules. Symbol `s` after `k` steps is the macro `Sk`,
@@ -400,7 +400,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     }
 
     // Rule names.
-    let reserved: Vec<&str> = crate::stl::parser::RESERVED.to_vec();
+    let reserved: Vec<&str> = crate::front::stl::parser::RESERVED.to_vec();
     let mut names = super::Names::new(&reserved);
     let mut base_name: HashMap<SymbolId, String> = HashMap::new();
     let mut rule_name = |s: SymbolId, names: &mut super::Names| -> String {
