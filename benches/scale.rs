@@ -118,7 +118,8 @@ fn bench_print(c: &mut Criterion) {
     for n in [5u64, 6, 7] {
         let print = |out: &mut Vec<u8>| {
             out.clear();
-            driver::write_derived(&sys, &steps(n), out, |_, _| {}).unwrap();
+            driver::write_derived(&graftal::front::pfg::Pfg, &sys, &steps(n), out, |_, _| {})
+                .unwrap();
         };
         let plain = |out: &mut Vec<u8>| {
             out.clear();

@@ -32,8 +32,8 @@ use criterion::{
     criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
 use graftal::driver::{self, RunOptions};
-use graftal::random::{Rng, Stream};
 use graftal::ir::{System, Word};
+use graftal::random::{Rng, Stream};
 use graftal::render::{self, RenderOptions};
 use graftal::turtle::{self, Geometry};
 use std::collections::HashMap;

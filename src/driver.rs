@@ -2,18 +2,18 @@
 //! compile it to the IR with its diagnostics, derive, interpret, render,
 //! measure. The CLI is a thin layer over these; tests call them directly.
 
+use crate::back;
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
-use crate::dialect::{self, Dialect};
 use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
+use crate::front::{self, Front, Library};
 use crate::ir::parametric::ModuleWord;
-use crate::ir::{Notation, Span, SpanTable, System, TurtleOp, Word};
+use crate::ir::{SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
+use crate::stdlib;
 use crate::turtle::instanced::Instanced;
 use crate::turtle::{self, Geometry};
-use crate::front::{linf, pfg};
-use crate::stdlib;
 use serde::Serialize;
 use std::io::Write as _;
 use std::path::Path;
@@ -49,34 +49,32 @@ pub fn load(spec: &str) -> Result<SourceFile, LoadError> {
 }
 
 /// A file compiled to the IR. `system` is `None` when the file has errors,
-/// or when it is a Fractint library of several entries and none was chosen
-/// (`needs_entry`).
+/// or when it is a library of several entries and none was chosen
+/// (`library.needs_entry`).
 pub struct Compiled {
     pub file: SourceFile,
     pub system: Option<System>,
     pub spans: SpanTable,
     pub diagnostics: Diagnostics,
-    /// The notation or `.l` dialect the file was read as.
-    pub dialect: Dialect,
-    /// A Fractint library's entries, in file order.
-    pub entries: Vec<EntryInfo>,
-    /// The entry `system` is (an index into `entries`).
-    pub chosen: Option<usize>,
+    /// The notation the file was read as.
+    pub front: &'static dyn Front,
+    /// A library's entries, and which was read.
+    pub library: Option<Library>,
+}
+
+impl Compiled {
     /// Several entries and none chosen: `system` is `None` without errors.
-    pub needs_entry: bool,
+    pub fn needs_entry(&self) -> bool {
+        self.library.as_ref().is_some_and(|l| l.needs_entry)
+    }
+
+    /// The derived word as text in the notation the file was read in.
+    pub fn word_text(&self, sys: &System, word: &Word) -> String {
+        self.front.word_text(sys, word)
+    }
 }
 
-/// One entry of a Fractint library, as `check` lists it.
-#[derive(Clone, Debug, Serialize)]
-pub struct EntryInfo {
-    pub name: String,
-    /// The name's place in the file.
-    pub span: Span,
-    pub errors: usize,
-    pub warnings: usize,
-}
-
-/// Splits `FILE:NAME` (a Fractint entry) when `FILE` exists and the whole
+/// Splits `FILE:NAME` (a library entry) when `FILE` exists and the whole
 /// does not; anything else is a path as it is.
 pub fn split_entry(spec: &str) -> (String, Option<String>) {
     if !spec.starts_with("std:") && !Path::new(spec).exists() {
@@ -92,21 +90,21 @@ pub fn split_entry(spec: &str) -> (String, Option<String>) {
 /// The error for a library whose entry was not chosen (see
 /// [`Compiled::needs_entry`]), listing the entries.
 pub fn choose_entry(c: &Compiled) -> Diagnostic {
-    let names: Vec<&str> = c.entries.iter().map(|e| e.name.as_str()).collect();
-    let first = names.first().copied().unwrap_or("NAME");
-    Diagnostic::global(
-        codes::FR_CHOOSE_ENTRY,
-        format!(
-            "`{}` is a Fractint library of {} entries: choose one",
-            c.file.name,
-            names.len()
-        ),
-    )
-    .with_note(format!("entries: {}", names.join(", ")))
-    .with_help(format!(
-        "write `{}:{first}` or add `--entry {first}`; `graftal check` lists the entries",
-        c.file.name
-    ))
+    let empty = Library::default();
+    let lib = c.library.as_ref().unwrap_or(&empty);
+    front::choose_entry(&c.file.name, c.front.title(), lib)
+}
+
+/// Translates the system `sys` of `c` as `req` asks: the emitter learns
+/// from the source's front end what it knows of the source (comments, the
+/// angle increment it states).
+pub fn translate(c: &Compiled, sys: &System, req: &back::Request) -> back::Translation {
+    let origin = back::Origin {
+        title: c.front.title(),
+        comments: c.front.comments(&c.file.text),
+        angle_divisions: c.front.angle_divisions(sys),
+    };
+    back::translate(sys, &c.spans, &c.file.text, &origin, req)
 }
 
 /// The largest source file read (8 MiB): L-system files are a few KB, and
@@ -118,13 +116,16 @@ pub fn compile(file: SourceFile) -> Compiled {
     compile_entry(file, None)
 }
 
-/// [`compile`], choosing the entry `entry` of a Fractint library (names
-/// compared without regard to case). Without a choice, a library of one
-/// entry gives that entry; of several, every entry is checked and
-/// `needs_entry` is set.
+/// [`compile`], choosing the entry `entry` of a library (names compared
+/// without regard to case). Without a choice, a library of one entry gives
+/// that entry; of several, every entry is checked and
+/// [`Compiled::needs_entry`] holds.
 pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
     let mut diags = Diagnostics::default();
     if file.text.len() > MAX_SOURCE_BYTES {
+        // Not read, so not told apart either: the first front end stands
+        // for it.
+        let front = front::FRONTS[0];
         diags.push(
             Diagnostic::global(
                 codes::FILE_TOO_LARGE,
@@ -143,199 +144,60 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
             system: None,
             spans: SpanTable::default(),
             diagnostics: diags,
-            dialect: Dialect::Pfg,
-            entries: Vec::new(),
-            chosen: None,
-            needs_entry: false,
+            front,
+            library: None,
         };
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
-    let dialect = dialect::detect(&ext, &file.text);
-    let mut library = Library::default();
-    let (system, spans) = match dialect {
-        Dialect::Linf => {
-            let lowered = linf::read(&file.text, &mut diags);
-            (Some(lowered.system), lowered.spans)
-        }
-        Dialect::Stl => {
-            let lowered = crate::front::stl::read(&file.text, &mut diags);
-            (Some(lowered.system), lowered.spans)
-        }
-        Dialect::Cpfg => {
-            let lowered = crate::front::cpfg::read_file(&file, &mut diags);
-            (Some(lowered.system), lowered.spans)
-        }
-        Dialect::Fractint => {
-            library = fractint_library(&file.text, entry, &mut diags);
-            match library.lowered.take() {
-                Some(l) => (Some(l.system), l.spans),
-                None => (None, SpanTable::default()),
-            }
-        }
-        Dialect::Pfg => {
-            let lowered = pfg::read(&file.text, &mut diags);
-            (Some(lowered.system), lowered.spans)
-        }
-    };
-    if entry.is_some() && dialect != Dialect::Fractint {
+    let front = front::detect(&ext, &file.text);
+    let read = front.read(&file, entry, &mut diags);
+    if entry.is_some() && read.library.is_none() {
         diags.push(
             Diagnostic::global(
                 codes::FR_UNKNOWN_ENTRY,
                 format!(
                     "an entry was chosen, but this file is {} and has no entries",
-                    dialect.name()
+                    front.title()
                 ),
             )
             .with_help("only Fractint libraries (`Name { … }` entries) have entries to choose"),
         );
     }
     diags.sort();
+    let (system, spans) = match read.lowered {
+        Some(l) => (Some(l.system), l.spans),
+        None => (None, SpanTable::default()),
+    };
     let system = if diags.has_errors() { None } else { system };
     Compiled {
         file,
         system,
         spans,
         diagnostics: diags,
-        dialect,
-        entries: library.entries,
-        chosen: library.chosen,
-        needs_entry: library.needs_entry,
-    }
-}
-
-#[derive(Default)]
-struct Library {
-    entries: Vec<EntryInfo>,
-    chosen: Option<usize>,
-    needs_entry: bool,
-    lowered: Option<crate::front::fractint::Lowered>,
-}
-
-/// Reads a Fractint library: every entry is lowered (so each one's
-/// problems are its own); the diagnostics kept are the chosen entry's and
-/// the file's, or every entry's when none is chosen.
-fn fractint_library(text: &str, entry: Option<&str>, diags: &mut Diagnostics) -> Library {
-    use crate::front::fractint;
-    let mut file_diags = Diagnostics::default();
-    let ast = fractint::parse(text, &mut file_diags);
-    let mut lib = Library::default();
-    let mut per_entry: Vec<(fractint::Lowered, Diagnostics)> = Vec::new();
-    for (i, e) in ast.entries.iter().enumerate() {
-        if let Some(first) = ast.entries[..i]
-            .iter()
-            .find(|f| f.name.eq_ignore_ascii_case(&e.name))
-        {
-            // About the file, whichever entry is chosen.
-            diags.push(
-                Diagnostic::at(
-                    codes::FR_DUPLICATE_ENTRY,
-                    e.name_span.clone(),
-                    format!("a second entry named `{}`", e.name),
-                )
-                .with_label("never chosen by name")
-                .with_secondary(
-                    first.name_span.clone(),
-                    "the first, which `FILE:NAME` finds",
-                ),
-            );
-        }
-        let mut d = Diagnostics::default();
-        let l = fractint::lower_entry(e, &mut d);
-        per_entry.push((l, d));
-    }
-    // The file's diagnostics belong to the entry they are in, if any.
-    let owner = |d: &Diagnostic| {
-        let at = d.span.as_ref()?.start;
-        ast.entries
-            .iter()
-            .position(|e| e.span.start <= at && at < e.span.end.max(e.span.start + 1))
-    };
-    for d in file_diags.0 {
-        match owner(&d) {
-            Some(i) => per_entry[i].1.push(d),
-            None => diags.push(d),
-        }
-    }
-    for (e, (_, d)) in ast.entries.iter().zip(&per_entry) {
-        lib.entries.push(EntryInfo {
-            name: e.name.clone(),
-            span: e.name_span.clone(),
-            errors: d.iter().filter(|d| d.is_error()).count(),
-            warnings: d.iter().filter(|d| !d.is_error()).count(),
-        });
-    }
-    lib.chosen = match entry {
-        Some(name) => {
-            let found = ast
-                .entries
-                .iter()
-                .position(|e| e.name.eq_ignore_ascii_case(name));
-            if found.is_none() {
-                let names: Vec<&str> = ast.entries.iter().map(|e| e.name.as_str()).collect();
-                let mut d = Diagnostic::global(
-                    codes::FR_UNKNOWN_ENTRY,
-                    format!("no entry `{name}` in this file"),
-                )
-                .with_note(format!("entries: {}", names.join(", ")));
-                if let Some(n) = crate::diagnostics::nearest(name, &names).first() {
-                    d = d.with_help(format!("did you mean `{n}`?"));
-                }
-                diags.push(d);
-            }
-            found
-        }
-        None if ast.entries.len() == 1 => Some(0),
-        None => None,
-    };
-    if ast.entries.is_empty() {
-        diags.push(
-            Diagnostic::global(codes::FR_CHOOSE_ENTRY, "this Fractint file has no entries")
-                .with_help("an entry is `Name {`, its lines, and a line `}`"),
-        );
-    }
-    match lib.chosen {
-        Some(i) => {
-            let (l, d) = per_entry.swap_remove(i);
-            diags.extend(d);
-            lib.lowered = Some(l);
-        }
-        None => {
-            lib.needs_entry = entry.is_none() && ast.entries.len() > 1;
-            for (_, d) in per_entry {
-                diags.extend(d);
-            }
-        }
-    }
-    lib
-}
-
-/// A derived word as text in the notation it was read from: pfg symbols
-/// side by side; LinF names side by side where that reads back the same
-/// (see [`linf::display`]).
-pub fn word_text(sys: &System, word: &Word) -> String {
-    match sys.notation {
-        Notation::Linf => linf::display(sys, word),
-        _ => word.display(&sys.symbols),
+        front,
+        library: read.library,
     }
 }
 
 /// Derives and writes the word as [`Derived::text`] would, followed by a
-/// newline. A context-free deterministic pfg, Fractint or STL system is
-/// written straight from its shared derivation tree ([`Tree::walk`]), in
-/// chunks, without building the word; any other is derived, then written.
+/// newline. A context-free deterministic system whose notation spells words
+/// by their symbols' names ([`Front::spells_words_by_name`]) is written
+/// straight from its shared derivation tree ([`Tree::walk`]), in chunks,
+/// without building the word; any other is derived, then written.
 /// `progress` is called as [`derive_any`] calls it. Write errors (a closed
 /// pipe) end the writing quietly.
 pub fn write_derived(
+    front: &dyn Front,
     sys: &System,
     opts: &RunOptions,
     out: &mut dyn std::io::Write,
     mut progress: impl FnMut(u64, usize),
 ) -> Result<(), Diagnostic> {
     let dopts = opts.derive_options(sys);
-    let tree = match sys.notation {
-        Notation::Linf => None,
-        _ if dopts.steps > MAX_TREE_DEPTH => None,
-        _ => Tree::new(sys),
+    let by_name = front.spells_words_by_name();
+    let tree = match by_name && dopts.steps <= MAX_TREE_DEPTH {
+        true => Tree::new(sys),
+        false => None,
     };
     let mut out = std::io::BufWriter::with_capacity(1 << 18, out);
     let names: Vec<&[u8]> = sys.symbols.iter().map(|(_, i)| i.name.as_bytes()).collect();
@@ -350,7 +212,7 @@ pub fn write_derived(
         progress(dopts.steps, len);
     } else {
         match derive_any(sys, opts, progress)? {
-            Derived::Plain(w) if sys.notation != Notation::Linf => {
+            Derived::Plain(w) if by_name => {
                 if names.iter().all(|n| n.len() == 1) {
                     // One byte per symbol: a table look-up per symbol.
                     let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
@@ -366,7 +228,7 @@ pub fn write_derived(
                 }
             }
             word => {
-                let _ = out.write_all(word.text(sys).as_bytes());
+                let _ = out.write_all(word.text(front, sys).as_bytes());
             }
         }
     }
@@ -485,10 +347,11 @@ impl Derived {
         self.len() == 0
     }
 
-    /// The word as text in its notation (modules as `A(1,2.5)`).
-    pub fn text(&self, sys: &System) -> String {
+    /// The word as text in the notation of `front` (modules as
+    /// `A(1,2.5)`).
+    pub fn text(&self, front: &dyn Front, sys: &System) -> String {
         match self {
-            Derived::Plain(w) => word_text(sys, w),
+            Derived::Plain(w) => front.word_text(sys, w),
             Derived::Modules(m) => modules_text(sys, m),
         }
     }

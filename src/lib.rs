@@ -14,7 +14,6 @@
 pub mod back;
 pub mod cli;
 pub mod diagnostics;
-pub mod dialect;
 pub mod driver;
 pub mod eval;
 pub mod front;

@@ -19,7 +19,7 @@ fn derive_text(src: &str, steps: u64) -> String {
     };
     driver::derive_any(&sys, &opts, |_, _| {})
         .unwrap()
-        .text(&sys)
+        .text(&graftal::front::cpfg::Cpfg, &sys)
 }
 
 #[test]
@@ -649,7 +649,7 @@ fn golden_derivations_of_corpus_files() {
         };
         let ours = driver::derive_any(&sys, &opts, |_, _| {})
             .unwrap()
-            .text(&sys);
+            .text(&graftal::front::cpfg::Cpfg, &sys);
         // Joined prefixed commands (`@O`) print as the characters cpfg reads.
         let theirs = independent_derivation(&src, steps);
         assert_eq!(

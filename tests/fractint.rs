@@ -8,7 +8,6 @@
 //! when the front end agrees with the independent rewriter below, so a bug
 //! in the front end cannot be blessed.
 
-use graftal::dialect::Dialect;
 use graftal::driver::{self, compile, compile_entry, Compiled, RunOptions};
 use graftal::source::SourceFile;
 use graftal::turtle::{self, Segment};
@@ -55,11 +54,12 @@ fn every_corpus_entry_checks_derives_and_renders() {
     let mut total = 0;
     for (file, count) in FILES {
         let c = compile(load(file));
-        assert_eq!(c.dialect, Dialect::Fractint, "{file}");
-        assert_eq!(c.entries.len(), count, "{file}");
-        assert!(c.needs_entry);
+        assert_eq!(c.front.name(), "fractint", "{file}");
+        let lib = c.library.as_ref().expect("a library");
+        assert_eq!(lib.entries.len(), count, "{file}");
+        assert!(c.needs_entry());
         assert!(!c.diagnostics.has_errors(), "{file}: {:#?}", c.diagnostics);
-        for e in &c.entries {
+        for e in &lib.entries {
             let one = entry(file, &e.name);
             let sys = one.system.as_ref().unwrap();
             // Fractint's default order, then one more step.
@@ -229,7 +229,7 @@ fn golden_words_agree_with_an_independent_derivation() {
         let c = entry(file, name);
         let sys = c.system.as_ref().unwrap();
         let word = driver::derive(sys, &run(steps as u64)).unwrap();
-        let text = driver::word_text(sys, &word);
+        let text = c.word_text(sys, &word);
         let naive = naive_derive(&c.file.text, name, steps);
         assert_eq!(text, naive, "{file}:{name} after {steps} steps");
         assert!(text.len() > 20, "{file}:{name}: too short to mean much");
@@ -469,7 +469,7 @@ fn translate_a_simple_entry_to_pfg_exactly() {
     );
     // The pfg reads back and draws the same picture.
     let back = compile(SourceFile::new("k.l", o.stdout.clone()));
-    assert_eq!(back.dialect, Dialect::Pfg);
+    assert_eq!(back.front.name(), "pfg");
     let pfg = back.system.expect("the translation compiles");
     let c = entry("fractint.l", "Koch1");
     let sys = c.system.as_ref().unwrap();

@@ -26,6 +26,7 @@ fn golden_words_and_svgs() {
         let c = compile(SourceFile::new(name, text));
         let sys = c
             .system
+            .clone()
             .unwrap_or_else(|| panic!("{stem}: {:#?}", c.diagnostics));
         let opts = RunOptions {
             seed: 42,
@@ -40,7 +41,7 @@ fn golden_words_and_svgs() {
             g.polygons.len(),
             g.max_depth,
             b[0], b[1], b[2], b[3], b[4], b[5],
-            graftal::driver::word_text(&sys, &word)
+            c.word_text(&sys, &word)
         );
         let (azimuth, elevation) = sys.settings.view.unwrap_or((0.0, 0.0));
         let ropts = RenderOptions {

@@ -2,8 +2,8 @@
 //! colours, lengths), 3D pictures, and agreement with pfg.
 
 use graftal::driver::{self, RunOptions};
-use graftal::ir::{Rgb, System};
 use graftal::front::linf::read_ok;
+use graftal::ir::{Rgb, System};
 use graftal::render::{self, RenderOptions, View};
 use graftal::turtle::{Geometry, Vec3};
 
@@ -22,7 +22,7 @@ fn word(sys: &System, steps: u64, seed: u64) -> String {
         seed,
         ..RunOptions::default()
     };
-    driver::word_text(sys, &driver::derive(sys, &opts).expect("derives"))
+    graftal::front::linf::display(sys, &driver::derive(sys, &opts).expect("derives"))
 }
 
 fn dir(g: &Geometry, k: usize) -> Vec3 {

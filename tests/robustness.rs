@@ -24,10 +24,9 @@
 // Derivation errors are `Diagnostic`s returned by value, as in the library.
 #![allow(clippy::result_large_err)]
 
+use graftal::back::{self, Request};
 use graftal::diagnostics::{codes, render_human, to_json, Diagnostic};
 use graftal::driver::{self, RunOptions};
-use graftal::back::{self, Request};
-use graftal::ir::Notation;
 use graftal::render::{self, RenderOptions, View};
 use graftal::source::SourceFile;
 use graftal::stdlib::ENTRIES;
@@ -147,10 +146,12 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
             case.text.clone(),
         ))
     })?;
-    if compiled.needs_entry {
+    if compiled.needs_entry() {
         // A Fractint library of several entries: every entry was checked;
         // go on with the first, as `FILE:NAME` would.
-        let first = compiled.entries[0].name.clone();
+        let first = compiled.library.as_ref().expect("a library").entries[0]
+            .name
+            .clone();
         compiled = stage("driver::compile_entry", || {
             driver::compile_entry(compiled.file.clone(), Some(&first))
         })?;
@@ -171,7 +172,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
     }
     // Translation to every notation, exact or lossy: never a panic, spans
     // inside the file, and whatever is written reads back without errors.
-    for to in [Notation::Pfg, Notation::Linf, Notation::Stl] {
+    for &to in back::BACKS {
         for lossy in [false, true] {
             let req = Request {
                 target: to,
@@ -179,18 +180,13 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
                 steps: Some(case.k.min(3)),
             };
             let t = stage(&format!("back::translate to {to:?}"), || {
-                back::translate(sys, &compiled.spans, &compiled.file.text, &req)
+                driver::translate(&compiled, sys, &req)
             })?;
             for d in t.diagnostics.iter() {
                 check_diagnostic(d, &compiled.file)?;
             }
             if let Some(text) = &t.text {
-                let ext = match to {
-                    Notation::Pfg => "l",
-                    Notation::Linf => "linf",
-                    Notation::Stl => "stl",
-                    Notation::Fractint | Notation::Cpfg => unreachable!("not a translation target"),
-                };
+                let ext = to.extension();
                 let back = stage("driver::compile of a translation", || {
                     driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()))
                 })?;
@@ -1327,7 +1323,7 @@ fn cli_derive_on_mutated_files() {
                         ..RunOptions::default()
                     },
                 )
-                .map(|w| driver::word_text(sys, &w))
+                .map(|w| compiled.word_text(sys, &w))
                 .map_err(|_| ()),
             };
             let stdout = String::from_utf8_lossy(&stdout);

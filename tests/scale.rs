@@ -122,6 +122,8 @@ fn stats_agree_with_interpreting_the_derived_word_for_fractint_entries() {
     for file in ["fractint.l", "penrose.l", "tiling.l"] {
         let path = dir.join(file);
         let names: Vec<String> = compile(SourceFile::read(&path).unwrap())
+            .library
+            .expect("a library")
             .entries
             .iter()
             .map(|e| e.name.clone())

@@ -4,8 +4,8 @@
 
 use graftal::diagnostics::Diagnostics;
 use graftal::driver::{self, RunOptions};
-use graftal::ir::System;
 use graftal::front::stl;
+use graftal::ir::System;
 use graftal::turtle::Geometry;
 
 /// The derived string (the expanded drawing components) of an STL text.

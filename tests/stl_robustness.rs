@@ -93,22 +93,18 @@ fn pipeline(text: String) -> Result<Option<usize>, String> {
     driver::render_bytes(sys, &g, Format::Png, opts).map_err(|e| e.to_string())?;
     // Translation to pfg and LinF: never a panic, and what is written
     // reads back without errors.
-    for target in [graftal::ir::Notation::Pfg, graftal::ir::Notation::Linf] {
+    for target in ["pfg", "linf"].map(|n| graftal::back::by_name(n).unwrap()) {
         let req = graftal::back::Request {
             target,
             lossy: true,
             steps: None,
         };
-        let t = graftal::back::translate(sys, &c.spans, &c.file.text, &req);
+        let t = driver::translate(&c, sys, &req);
         for d in t.diagnostics.iter() {
             check_diagnostic(d, &c.file)?;
         }
         if let Some(text) = &t.text {
-            let ext = if target == graftal::ir::Notation::Pfg {
-                "l"
-            } else {
-                "linf"
-            };
+            let ext = target.extension();
             let back = driver::compile(SourceFile::new(format!("out.{ext}"), text.clone()));
             if back.diagnostics.has_errors() {
                 return Err(format!(

@@ -8,9 +8,9 @@
 //! each construct (E06xx) and write nothing; under `--lossy` they are
 //! written, pass `check`, and carry one warning per approximation.
 
-use graftal::driver::{self, Compiled, RunOptions};
 use graftal::back::{self, Request, Translation};
-use graftal::ir::{Notation, System};
+use graftal::driver::{self, Compiled, RunOptions};
+use graftal::ir::System;
 use graftal::source::SourceFile;
 use graftal::stdlib::ENTRIES;
 use graftal::turtle::Geometry;
@@ -18,28 +18,28 @@ use graftal::turtle::Geometry;
 mod common;
 use common::{graftal, temp};
 
-const TARGETS: [Notation; 3] = [Notation::Pfg, Notation::Linf, Notation::Stl];
+/// A notation graftal writes.
+type Target = &'static dyn back::Back;
 
-fn ext(n: Notation) -> &'static str {
-    match n {
-        Notation::Pfg => "l",
-        Notation::Linf => "linf",
-        Notation::Stl => "stl",
-        // Fractint libraries are `.l` too (told apart by content).
-        Notation::Fractint | Notation::Cpfg => "l",
-    }
+const TARGETS: &[Target] = back::BACKS;
+
+fn target(name: &str) -> Target {
+    back::by_name(name).expect("a registered emitter")
+}
+
+fn ext(n: Target) -> &'static str {
+    n.extension()
 }
 
 fn compile(name: &str, text: &str) -> Compiled {
     driver::compile(SourceFile::new(name, text))
 }
 
-fn translate(c: &Compiled, to: Notation, lossy: bool) -> Translation {
+fn translate(c: &Compiled, to: Target, lossy: bool) -> Translation {
     let sys = c.system.as_ref().expect("compiles");
-    back::translate(
+    driver::translate(
+        c,
         sys,
-        &c.spans,
-        &c.file.text,
         &Request {
             target: to,
             lossy,
@@ -90,12 +90,7 @@ fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
 
 /// Checks what every translation must satisfy, returning the compiled
 /// output when it was written. An exact translation must draw the same.
-fn check_translation(
-    name: &str,
-    c: &Compiled,
-    to: Notation,
-    seed: u64,
-) -> Option<(bool, Compiled)> {
+fn check_translation(name: &str, c: &Compiled, to: Target, seed: u64) -> Option<(bool, Compiled)> {
     let t = translate(c, to, false);
     let out_name = format!("{name}.{}", ext(to));
     match &t.text {
@@ -110,7 +105,7 @@ fn check_translation(
             assert!(
                 out.diagnostics
                     .iter()
-                    .all(|d| d.code.0 == "W0502" && to == Notation::Stl),
+                    .all(|d| d.code.0 == "W0502" && to.name() == "stl"),
                 "{name} -> {to:?}: the translation does not pass check: {:#?}\n{text}",
                 out.diagnostics
             );
@@ -194,8 +189,8 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
     for e in ENTRIES {
         let c = compile(e.file, e.text);
         assert!(c.system.is_some(), "{}", e.name);
-        let from = c.system.as_ref().unwrap().notation;
-        for to in TARGETS {
+        let from = target(c.front.name());
+        for &to in TARGETS {
             let Some((is_exact, out)) = check_translation(e.name, &c, to, 0) else {
                 continue;
             };
@@ -203,11 +198,7 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
                 continue;
             }
             *exact
-                .entry(format!(
-                    "{} -> {}",
-                    back::notation_name(from),
-                    back::notation_name(to)
-                ))
+                .entry(format!("{} -> {}", from.name(), to.name()))
                 .or_default() += 1;
             // Back again: the same strings (pfg and LinF), the same drawing.
             let back = translate(&out, from, false);
@@ -231,12 +222,12 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
                 .names
                 .iter()
                 .all(|(_, t)| !t.contains(' '));
-            if from != Notation::Stl && to != Notation::Stl && one_to_one {
+            if from.name() != "stl" && to.name() != "stl" && one_to_one {
                 let wa = driver::derive(sa, &RunOptions::default()).unwrap();
                 let wb = driver::derive(sb, &RunOptions::default()).unwrap();
                 same_up_to_renaming(sa, &wa, sb, &wb)
                     .unwrap_or_else(|err| panic!("{} -> {to:?} -> back: {err}\n{text}", e.name));
-                if from == Notation::Pfg {
+                if from.name() == "pfg" {
                     assert_eq!(
                         wa.display(&sa.symbols),
                         wb.display(&sb.symbols),
@@ -393,7 +384,7 @@ fn random_systems_translate_exactly_or_say_why() {
         if c.system.is_none() {
             continue;
         }
-        for to in TARGETS {
+        for &to in TARGETS {
             tried += 1;
             let seed = i as u64;
             if let Some((true, _)) = check_translation(&format!("{name}\n{text}"), &c, to, seed) {
@@ -409,7 +400,7 @@ fn random_systems_translate_exactly_or_say_why() {
 fn three_d_pfg_turns_become_linf_rotation_pairs_that_draw_the_same() {
     let src = "derivation length: 3\nangle factor: 8\nscale factor: 100\naxiom: F\nignore:\nF --> F[&F][^F][\\F/F]F[+&F]|F\n";
     let c = compile("t.l", src);
-    let t = translate(&c, Notation::Linf, false);
+    let t = translate(&c, target("linf"), false);
     let text = t.text.clone().expect("pfg's 3D turtle is LinF pairs");
     let out = compile("t.linf", &text);
     assert!(out.diagnostics.is_empty(), "{:?}\n{text}", out.diagnostics);
@@ -422,13 +413,13 @@ fn three_d_pfg_turns_become_linf_rotation_pairs_that_draw_the_same() {
     assert!(bb[5] - bb[2] > 0.5, "the test system is really 3D: {bb:?}");
     // Rolls and turns come back as pfg's own symbols; a pitch comes back
     // as the roll, turn and roll LinF wrote, which draws the same.
-    let back = translate(&out, Notation::Pfg, false).text.unwrap();
+    let back = translate(&out, target("pfg"), false).text.unwrap();
     assert!(back.contains("[\\F/F]"), "{back}");
     assert!(back.contains("|F"), "{back}");
     let again = compile("t2.l", &back);
     same_drawing(&a, &geometry(again.system.as_ref().unwrap(), 0)).unwrap();
     // STL cannot draw it.
-    let stl = translate(&c, Notation::Stl, false);
+    let stl = translate(&c, target("stl"), false);
     assert!(stl.text.is_none());
     assert!(stl.diagnostics.iter().all(|d| d.code.0 == "E0605"));
     assert_eq!(stl.diagnostics.len(), 4, "one per 3D symbol: & ^ \\ /");
@@ -438,7 +429,7 @@ fn three_d_pfg_turns_become_linf_rotation_pairs_that_draw_the_same() {
 fn several_linf_line_symbols_become_markers_before_pfg_f() {
     let src = "lines f g\nblanks b h\nangles (0, pi/2)\naxiom f g\nrules\n  f = f+g b\n  g = g-f h f\n#: steps 4\n";
     let c = compile("t.linf", src);
-    let t = translate(&c, Notation::Pfg, false);
+    let t = translate(&c, target("pfg"), false);
     let text = t.text.expect("exact");
     assert!(text.contains("* < F > * --> *"), "{text}");
     assert!(text.contains("* < f > * --> *"), "{text}");
@@ -519,7 +510,7 @@ fn linf_randomness_is_an_error_for_pfg_and_stl() {
             .text,
     );
     for seed in [0, 7] {
-        let t = translate(&c, Notation::Linf, false);
+        let t = translate(&c, target("linf"), false);
         let out = compile("b2.linf", t.text.as_ref().unwrap());
         same_drawing(
             &geometry(c.system.as_ref().unwrap(), seed),
@@ -609,11 +600,11 @@ fn json_reports_each_construct_with_its_span() {
 fn comments_are_carried_over_where_they_attach() {
     let src = "/* A bush. */\nderivation length: 2\nangle factor: 8\naxiom: X\n/* the stem doubles */\nF --> FF\nX --> F[+X][-X]FX /* apex */\n";
     let c = compile("bush.l", src);
-    let linf = translate(&c, Notation::Linf, false).text.unwrap();
+    let linf = translate(&c, target("linf"), false).text.unwrap();
     assert!(linf.contains("# A bush."), "{linf}");
     assert!(linf.contains("# the stem doubles\n  F = FF"), "{linf}");
     assert!(linf.contains("X = F[+X][-X]FX  # apex"), "{linf}");
-    let pfg = translate(&c, Notation::Pfg, false).text.unwrap();
+    let pfg = translate(&c, target("pfg"), false).text.unwrap();
     assert!(
         pfg.contains("/* the stem doubles */\n* < F > * --> FF"),
         "{pfg}"
@@ -624,7 +615,7 @@ fn comments_are_carried_over_where_they_attach() {
     );
     // Formatting is canonical: translating the output again changes nothing
     // but the first line.
-    let again = translate(&compile("b2.l", &pfg), Notation::Pfg, false)
+    let again = translate(&compile("b2.l", &pfg), target("pfg"), false)
         .text
         .unwrap();
     assert_eq!(pfg, again);
@@ -642,10 +633,10 @@ fn stl_structure_becomes_bracketed_productions() {
             .text,
     );
     // Fig. 6 narrows its stems per level (B = 6 (2)): LinF has no widths.
-    let t = translate(&c, Notation::Linf, false);
+    let t = translate(&c, target("linf"), false);
     assert!(t.text.is_none());
     assert!(t.diagnostics.iter().all(|d| d.code.0 == "E0608"));
-    let t = translate(&c, Notation::Linf, true);
+    let t = translate(&c, target("linf"), true);
     let text = t.text.expect("written with --lossy");
     assert!(t.diagnostics.iter().all(|d| d.code.0 == "W0608"));
     assert!(text.contains("R1 = "), "{text}");
@@ -654,12 +645,12 @@ fn stl_structure_becomes_bracketed_productions() {
     let word = driver::derive(out.system.as_ref().unwrap(), &RunOptions::default()).unwrap();
     let src_word = driver::derive(c.system.as_ref().unwrap(), &RunOptions::default()).unwrap();
     assert_eq!(
-        driver::word_text(c.system.as_ref().unwrap(), &src_word),
+        c.word_text(c.system.as_ref().unwrap(), &src_word),
         "F[F[F][+F][-F]][+F[++F][-F]][-F[F][+F][-F]]"
     );
     // The LinF word, drawing symbols only, reads as STL's with the turns
     // written LinF's way.
-    let linf_word = driver::word_text(out.system.as_ref().unwrap(), &word);
+    let linf_word = out.word_text(out.system.as_ref().unwrap(), &word);
     let drawn: String = linf_word.chars().filter(|c| "F[]+-".contains(*c)).collect();
     assert_eq!(drawn.matches('F').count(), 12, "{linf_word}");
     same_drawing(
@@ -676,14 +667,14 @@ fn stl_structure_becomes_bracketed_productions() {
             .unwrap()
             .text,
     );
-    let t = translate(&od, Notation::Linf, false);
+    let t = translate(&od, target("linf"), false);
     assert!(t.text.is_none());
     assert!(
         t.diagnostics.iter().any(|d| d.code.0 == "E0610"),
         "{:?}",
         t.diagnostics
     );
-    let lossy = translate(&od, Notation::Linf, true);
+    let lossy = translate(&od, target("linf"), true);
     let out = compile("od.linf", lossy.text.as_ref().unwrap());
     assert!(!out.diagnostics.has_errors());
     let a = geometry(od.system.as_ref().unwrap(), 0);
@@ -748,9 +739,7 @@ fn translations_and_their_diagnostics_match_their_snapshots() {
     for path in files {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let target = match name.split("--").nth(1).and_then(|t| t.split('.').next()) {
-            Some("pfg") => Notation::Pfg,
-            Some("linf") => Notation::Linf,
-            Some("stl") => Notation::Stl,
+            Some(t @ ("pfg" | "linf" | "stl")) => target(t),
             other => panic!("{name}: no target in the name ({other:?})"),
         };
         let c = compile(&name, &std::fs::read_to_string(&path).unwrap());

@@ -22,8 +22,8 @@
 //!   wide, that is reported, as is a layout.
 
 use super::{Kind, Problem};
-use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
 use crate::front::stl::lower::{per_level, MAX_DRAWN_WIDTH};
+use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
 use std::collections::HashMap;
 
 struct Builder<'a> {

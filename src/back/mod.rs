@@ -36,14 +36,64 @@ pub mod stl;
 
 use crate::diagnostics::codes::{self, Code};
 use crate::diagnostics::{Diagnostic, Diagnostics};
-use crate::ir::{Angle, Axis, Notation, Production, Span, SpanTable, SymbolId, System, TurtleOp};
+use crate::ir::{Angle, Axis, Production, Span, SpanTable, SymbolId, System, TurtleOp};
 use serde::Serialize;
 use std::collections::{HashMap, HashSet};
+
+/// Every notation graftal writes.
+pub static BACKS: &[&dyn Back] = &[&pfg::Pfg, &linf::Linf, &stl::Stl];
+
+/// A notation graftal writes.
+pub trait Back: Sync {
+    /// The name as the command line spells it (`pfg`, `linf`, `stl`).
+    fn name(&self) -> &'static str;
+    /// The extension of its files, without the dot.
+    fn extension(&self) -> &'static str;
+    /// Writes the system's productions, reporting to `e` what cannot be
+    /// said exactly.
+    fn write(&self, e: &mut Emitter<'_>) -> String;
+    /// Writes a system with a growth structure (named rules and branching
+    /// terms) as that structure, when the notation has one; `None` makes
+    /// the structure productions first.
+    fn write_structure(&self, _sys: &System) -> Option<String> {
+        None
+    }
+    /// How many branching terms a structure may have before its
+    /// productions are spelled out without a symbol per term (pfg's
+    /// alphabet is about 80 characters).
+    fn term_symbols(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl std::fmt::Debug for dyn Back {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The emitter registered as `name`.
+pub fn by_name(name: &str) -> Option<&'static dyn Back> {
+    BACKS.iter().copied().find(|b| b.name() == name)
+}
+
+/// What an emitter knows of the source besides the system: its
+/// notation's name, its comments, and the angle increment it states.
+#[derive(Clone, Debug, Default)]
+pub struct Origin {
+    /// The source notation as people write its name (`LinF`).
+    pub title: &'static str,
+    /// (span, text) of each comment that can be carried over.
+    pub comments: Vec<(Span, String)>,
+    /// The turn divided into whole increments as the source states it,
+    /// kept by a translation when it fits.
+    pub angle_divisions: Option<u64>,
+}
 
 /// What to translate to.
 #[derive(Clone, Debug)]
 pub struct Request {
-    pub target: Notation,
+    pub target: &'static dyn Back,
     /// Approximate what the target cannot express, with a warning each.
     pub lossy: bool,
     /// Steps (the file's derivation length when `None`): written as the
@@ -152,9 +202,9 @@ impl Translation {
 pub struct Emitter<'a> {
     pub sys: &'a System,
     pub spans: &'a SpanTable,
-    /// The source text (for comments) and its notation.
+    /// The source text (for comments) and what is known of its notation.
     pub source: &'a str,
-    pub source_notation: Notation,
+    pub origin: &'a Origin,
     pub lossy: bool,
     pub steps: u64,
     problems: Vec<Problem>,
@@ -164,12 +214,18 @@ pub struct Emitter<'a> {
 }
 
 impl<'a> Emitter<'a> {
-    pub fn new(sys: &'a System, spans: &'a SpanTable, source: &'a str, req: &Request) -> Self {
+    pub fn new(
+        sys: &'a System,
+        spans: &'a SpanTable,
+        source: &'a str,
+        origin: &'a Origin,
+        req: &Request,
+    ) -> Self {
         Emitter {
             sys,
             spans,
             source,
-            source_notation: sys.notation,
+            origin,
             lossy: req.lossy,
             steps: req.steps.or(sys.settings.steps).unwrap_or(0),
             problems: Vec::new(),
@@ -315,7 +371,13 @@ impl<'a> Emitter<'a> {
 }
 
 /// Translates `sys` (read from `source`, with `spans`) to `req.target`.
-pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -> Translation {
+pub fn translate(
+    sys: &System,
+    spans: &SpanTable,
+    source: &str,
+    origin: &Origin,
+    req: &Request,
+) -> Translation {
     if sys.parametric.is_some() {
         let mut diagnostics = crate::diagnostics::Diagnostics::default();
         diagnostics.push(
@@ -332,86 +394,72 @@ pub fn translate(sys: &System, spans: &SpanTable, source: &str, req: &Request) -
             diagnostics,
         };
     }
-    match (sys.notation, req.target) {
-        (Notation::Stl, Notation::Stl) => {
-            let mut e = Emitter::new(sys, spans, source, req);
-            let text = stl::write(sys).unwrap_or_default();
+    let target = req.target;
+    if sys.structure.is_some() {
+        if let Some(text) = target.write_structure(sys) {
+            let mut e = Emitter::new(sys, spans, source, origin, req);
             e.exact("the STL file, as a Branch-Expansion Description", None, "");
-            e.finish(text)
+            return e.finish(text);
         }
-        (Notation::Stl, target) => {
-            // pfg has about 80 characters for symbols.
-            let explicit = target == Notation::Pfg && from_stl::term_count(sys) > 60;
-            let (flat, problems) = from_stl::productions(sys, explicit);
-            // Where things are: STL keeps no spans past lowering, so they
-            // are found by the lines that define them.
-            let mut where_ = SpanTable::default();
-            for (id, info) in flat.symbols.iter() {
-                let line = match flat.op(id) {
-                    Some(TurtleOp::ScaleLength(_)) => line_starting(source, "L"),
-                    _ => info
-                        .name
-                        .split('_')
-                        .next()
-                        .and_then(|rule| line_starting(source, rule)),
-                };
-                if let Some(span) = line {
-                    where_.symbols.insert(id, span);
-                }
-            }
-            let mut req2 = req.clone();
-            req2.steps = flat.settings.steps;
-            let mut e = Emitter::new(&flat, &where_, source, &req2);
-            e.source_notation = Notation::Stl;
-            for p in problems {
-                let span = p.span.or_else(|| match p.kind {
-                    Kind::Layout => line_starting(source, "LAYOUT"),
-                    Kind::Attribute => line_starting(source, "B"),
-                    _ => None,
-                });
-                e.problem(p.kind, span, p.what, p.change);
-            }
-            let text = match target {
-                Notation::Pfg => pfg::write(&mut e),
-                _ => linf::write(&mut e),
-            };
-            e.finish(text)
-        }
-        (Notation::Fractint, target) => {
-            let (plain, problems) = fractint_plain(sys, spans, target);
-            let mut e = Emitter::new(&plain, spans, source, req);
-            for p in problems {
-                e.problem(p.kind, p.span, p.what, p.change);
-            }
-            let text = write_productions(&mut e, target);
-            e.finish(text)
-        }
-        (_, target) => {
-            let mut e = Emitter::new(sys, spans, source, req);
-            let text = write_productions(&mut e, target);
-            e.finish(text)
-        }
+        return translate_structure(sys, source, origin, req);
     }
+    let (plain, problems) = common_operations(sys, spans, target.name());
+    let mut e = Emitter::new(&plain, spans, source, origin, req);
+    for p in problems {
+        e.problem(p.kind, p.span, p.what, p.change);
+    }
+    let text = target.write(&mut e);
+    e.finish(text)
 }
 
-fn write_productions(e: &mut Emitter<'_>, target: Notation) -> String {
-    match target {
-        Notation::Pfg => pfg::write(e),
-        Notation::Linf => linf::write(e),
-        Notation::Stl => stl::from_productions(e),
-        // No Fractint or cpfg emitter: the CLI does not offer them as
-        // targets.
-        Notation::Fractint | Notation::Cpfg => String::new(),
+/// A system with a growth structure, for a target without one: the
+/// structure as productions ([`from_stl`]), then the target's emitter.
+fn translate_structure(sys: &System, source: &str, origin: &Origin, req: &Request) -> Translation {
+    let explicit = req
+        .target
+        .term_symbols()
+        .is_some_and(|n| from_stl::term_count(sys) > n);
+    let (flat, problems) = from_stl::productions(sys, explicit);
+    // Where things are: STL keeps no spans past lowering, so they
+    // are found by the lines that define them.
+    let mut where_ = SpanTable::default();
+    for (id, info) in flat.symbols.iter() {
+        let line = match flat.op(id) {
+            Some(TurtleOp::ScaleLength(_)) => line_starting(source, "L"),
+            _ => info
+                .name
+                .split('_')
+                .next()
+                .and_then(|rule| line_starting(source, rule)),
+        };
+        if let Some(span) = line {
+            where_.symbols.insert(id, span);
+        }
     }
+    let mut req2 = req.clone();
+    req2.steps = flat.settings.steps;
+    let mut e = Emitter::new(&flat, &where_, source, origin, &req2);
+    for p in problems {
+        let span = p.span.or_else(|| match p.kind {
+            Kind::Layout => line_starting(source, "LAYOUT"),
+            Kind::Attribute => line_starting(source, "B"),
+            _ => None,
+        });
+        e.problem(p.kind, span, p.what, p.change);
+    }
+    let text = req.target.write(&mut e);
+    e.finish(text)
 }
 
-/// A Fractint system with its Fractint-only operations replaced by the
+/// A system with the operations no target has (Fractint's) replaced by the
 /// common ones where that means the same, and the problems where it does
 /// not: the real heading (`\n /n D M`) is the frame's heading when the
-/// entry uses only one of the two; `|` is a plain turn unless `!` swaps
-/// turns; colour indices (`Cn <n >n`) have no counterpart.
-fn fractint_plain(sys: &System, spans: &SpanTable, target: Notation) -> (System, Vec<Problem>) {
-    let to = notation_name(target);
+/// system uses only one of the two; `|` is a plain turn unless `!` swaps
+/// turns; colour indices (`Cn <n >n`) and an indexed palette that starts
+/// past its first colour have no counterpart; strings with unbalanced
+/// brackets are balanced. For a system with none of these, the same
+/// system and no problem.
+fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<Problem>) {
     let mut plain = sys.clone();
     let mut problems = Vec::new();
     let ops: Vec<(SymbolId, TurtleOp)> = (0..sys.symbols.len() as u32)
@@ -520,8 +568,10 @@ fn fractint_plain(sys: &System, spans: &SpanTable, target: Notation) -> (System,
             word.0 = balanced;
         }
     }
-    plain.colours.clear();
-    plain.settings.colour = 0;
+    if plain.settings.colour != 0 {
+        plain.colours.clear();
+        plain.settings.colour = 0;
+    }
     (plain, problems)
 }
 
@@ -756,11 +806,8 @@ pub fn odd_angle(angles: &[(SymbolId, f64)]) -> Option<SymbolId> {
 /// own factor when it is pfg and fits, else the smallest that fits; when
 /// none does, a problem at the first angle that breaks it, and 360.
 pub fn angle_factor(e: &mut Emitter<'_>, by_symbol: &[(SymbolId, f64)], target: &str) -> u64 {
-    let sys = e.sys;
     let angles: Vec<f64> = by_symbol.iter().map(|x| x.1).collect();
-    let prefer = (e.source_notation == Notation::Pfg && sys.settings.angle > 0.0)
-        .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
-        .map(|n| n.min(i64::MAX as u64));
+    let prefer = e.origin.angle_divisions.map(|n| n.min(i64::MAX as u64));
     if let Some(n) = increment(&angles, prefer) {
         return n;
     }
@@ -866,42 +913,6 @@ impl Names {
 // Comments
 // ---------------------------------------------------------------------
 
-/// The comments of a source: (span, text without the delimiters).
-pub fn comments(notation: Notation, src: &str) -> Vec<(Span, String)> {
-    let mut out = Vec::new();
-    match notation {
-        Notation::Pfg => {
-            let mut i = 0;
-            while let Some(k) = src[i..].find("/*") {
-                let start = i + k;
-                let (end, body_end) = match src[start + 2..].find("*/") {
-                    Some(e) => (start + 2 + e + 2, start + 2 + e),
-                    None => (src.len(), src.len()),
-                };
-                out.push((start..end, src[start + 2..body_end].to_string()));
-                i = end;
-            }
-        }
-        // The comments of a Fractint library belong to its many entries,
-        // not to the one translated: none are carried over.
-        Notation::Fractint => {}
-        Notation::Linf | Notation::Stl | Notation::Cpfg => {
-            let mut offset = 0;
-            for line in src.split_inclusive('\n') {
-                if let Some(k) = line.find('#') {
-                    let body = line[k + 1..].trim_end_matches(['\n', '\r']);
-                    // LinF `#:` lines are directives, not comments.
-                    if !(notation == Notation::Linf && body.starts_with(':')) {
-                        out.push((offset + k..offset + line.len(), body.to_string()));
-                    }
-                }
-                offset += line.len();
-            }
-        }
-    }
-    out
-}
-
 /// A comment's lines, trimmed and with common decoration removed.
 pub fn comment_lines(text: &str) -> Vec<String> {
     // A lone CR ends a line too (it would end a LinF or STL comment).
@@ -930,11 +941,10 @@ pub fn comment_lines(text: &str) -> Vec<String> {
 }
 
 /// The comment that opens the file (before anything else), if any.
-pub fn file_comment(notation: Notation, src: &str) -> Option<Vec<String>> {
-    let cs = comments(notation, src);
+pub fn file_comment(cs: &[(Span, String)], src: &str) -> Option<Vec<String>> {
     let mut lines = Vec::new();
     let mut pos = 0;
-    for (span, text) in &cs {
+    for (span, text) in cs {
         if !src[pos..span.start].trim().is_empty() {
             break;
         }
@@ -964,12 +974,12 @@ pub enum Attached {
 /// The comment attached to the item at `span`: on the same line after it,
 /// else on the lines right above it (no blank line between), not counting
 /// the file's opening comment.
-pub fn attached(notation: Notation, src: &str, span: &Span) -> Option<Attached> {
-    let lines = attached_comment(notation, src, span)?;
+pub fn attached(cs: &[(Span, String)], src: &str, span: &Span) -> Option<Attached> {
+    let lines = attached_comment(cs, src, span)?;
     let line_end = src[span.end.min(src.len())..]
         .find('\n')
         .map_or(src.len(), |k| span.end + k);
-    let trailing = comments(notation, src)
+    let trailing = cs
         .iter()
         .any(|(s, _)| s.start >= span.end && s.start <= line_end);
     Some(if trailing && lines.len() == 1 {
@@ -980,11 +990,10 @@ pub fn attached(notation: Notation, src: &str, span: &Span) -> Option<Attached> 
 }
 
 /// The lines of the comment [`attached`] to the item at `span`.
-pub fn attached_comment(notation: Notation, src: &str, span: &Span) -> Option<Vec<String>> {
-    let cs = comments(notation, src);
+pub fn attached_comment(cs: &[(Span, String)], src: &str, span: &Span) -> Option<Vec<String>> {
     let opening_end = {
         let mut pos = 0;
-        for (s, _) in &cs {
+        for (s, _) in cs {
             if !src[pos..s.start].trim().is_empty() {
                 break;
             }
@@ -996,7 +1005,7 @@ pub fn attached_comment(notation: Notation, src: &str, span: &Span) -> Option<Ve
         .find('\n')
         .map_or(src.len(), |k| span.end + k);
     // Trailing: a comment starting on the item's last line.
-    for (s, text) in &cs {
+    for (s, text) in cs {
         if s.start >= span.end && s.start <= line_end {
             let l = comment_lines(text);
             if !l.is_empty() {
@@ -1033,34 +1042,15 @@ pub fn attached_comment(notation: Notation, src: &str, span: &Span) -> Option<Ve
     (!lines.is_empty()).then_some(lines)
 }
 
-/// The name of a notation as the CLI spells it.
-pub fn notation_name(n: Notation) -> &'static str {
-    match n {
-        Notation::Pfg => "pfg",
-        Notation::Linf => "linf",
-        Notation::Stl => "stl",
-        Notation::Cpfg => "cpfg",
-        Notation::Fractint => "fractint",
-    }
-}
-
 /// The first line every translation starts with.
 pub fn banner(e: &Emitter<'_>) -> String {
-    format!(
-        "Translated by graftal from {}",
-        match e.source_notation {
-            Notation::Pfg => "pfg",
-            Notation::Linf => "LinF",
-            Notation::Stl => "STL",
-            Notation::Cpfg => "cpfg",
-            Notation::Fractint => "Fractint",
-        }
-    )
+    format!("Translated by graftal from {}", e.origin.title)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::front::Front;
 
     #[test]
     fn increment_finds_the_largest_common_angle() {
@@ -1088,20 +1078,21 @@ mod tests {
             let k = src.find(s).unwrap();
             k..k + s.len()
         };
-        assert_eq!(file_comment(Notation::Pfg, src), Some(vec!["file".into()]));
+        let cs = crate::front::pfg::Pfg.comments(src);
+        assert_eq!(file_comment(&cs, src), Some(vec!["file".into()]));
         assert_eq!(
-            attached_comment(Notation::Pfg, src, &at("F --> FF")),
+            attached_comment(&cs, src, &at("F --> FF")),
             Some(vec!["doubles".into()])
         );
         assert_eq!(
-            attached_comment(Notation::Pfg, src, &at("G --> G")),
+            attached_comment(&cs, src, &at("G --> G")),
             Some(vec!["stays".into()])
         );
-        assert_eq!(attached_comment(Notation::Pfg, src, &at("H --> H")), None);
+        assert_eq!(attached_comment(&cs, src, &at("H --> H")), None);
         let linf = "# top\nrules\n  # grows\n  f = ff  # twice\n";
         let k = linf.find("f = ff").unwrap();
         assert_eq!(
-            attached_comment(Notation::Linf, linf, &(k..k + 6)),
+            attached_comment(&crate::front::linf::Linf.comments(linf), linf, &(k..k + 6)),
             Some(vec!["twice".into()])
         );
     }

@@ -30,12 +30,9 @@ enum OutputFormat {
     Json,
 }
 
-/// Notations `translate` writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum Target {
-    Pfg,
-    Linf,
-    Stl,
+/// Notations `translate` writes: the emitters' names.
+fn targets() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(crate::back::BACKS.iter().map(|b| b.name()))
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -70,8 +67,8 @@ struct TranslateArgs {
     #[arg(long)]
     entry: Option<String>,
     /// The target notation.
-    #[arg(long, value_enum)]
-    to: Target,
+    #[arg(long, value_parser = targets())]
+    to: String,
     /// Output file (default: stdout).
     #[arg(short = 'o', long = "output")]
     output: Option<String>,
@@ -211,7 +208,7 @@ where
                         if format == OutputFormat::Human {
                             list_entries(io, &c);
                         }
-                        if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry) {
+                        if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry()) {
                             status = status.max(1);
                         }
                     }
@@ -223,9 +220,9 @@ where
             }
             status
         }
-        Command::Derive(a) => with_system(io, &a, |io, _c, sys, opts, _| {
+        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts, _| {
             let bar = step_bar(io, sys, opts);
-            let r = driver::write_derived(sys, opts, io.stdout, |step, len| {
+            let r = driver::write_derived(c.front, sys, opts, io.stdout, |step, len| {
                 if let Some(bar) = &bar {
                     bar.set_position(step);
                     bar.set_message(format!("{len} symbols"));
@@ -360,17 +357,15 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
     let Some(sys) = &c.system else {
         return 1;
     };
-    let target = match a.to {
-        Target::Pfg => crate::ir::Notation::Pfg,
-        Target::Linf => crate::ir::Notation::Linf,
-        Target::Stl => crate::ir::Notation::Stl,
+    let Some(target) = crate::back::by_name(&a.to) else {
+        return 2;
     };
     let req = crate::back::Request {
         target,
         lossy: a.lossy,
         steps: a.steps,
     };
-    let t = crate::back::translate(sys, &c.spans, &c.file.text, &req);
+    let t = driver::translate(&c, sys, &req);
     report(io, &c, t.diagnostics.0.iter(), a.format);
     if a.format == OutputFormat::Json {
         let span = |s: &Option<crate::ir::Span>| {
@@ -399,8 +394,8 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
             .collect();
         let mut doc = serde_json::json!({
             "file": c.file.name,
-            "from": crate::back::notation_name(sys.notation),
-            "to": crate::back::notation_name(target),
+            "from": c.front.name(),
+            "to": target.name(),
             "exact": t.is_exact(),
             "written": t.text.is_some(),
             "output": a.output,
@@ -487,56 +482,38 @@ fn load_and_compile(
     };
     let c = driver::compile_entry(file, entry.or(named.as_deref()));
     report(io, &c, c.diagnostics.0.iter(), format);
-    if c.needs_entry {
+    if c.needs_entry() {
         report(io, &c, [driver::choose_entry(&c)].iter(), format);
     }
     Some(c)
 }
 
-/// `check`'s listing of a Fractint library: the dialect, then each entry
-/// with its line and what was found.
+/// `check`'s listing: which notation a file shared by several was read
+/// as (`FILE: dialect: …`), then a library's entries with their lines and
+/// what was found.
 fn list_entries(io: &mut Io<'_>, c: &Compiled) {
-    if c.dialect == crate::dialect::Dialect::Cpfg {
-        // A `.l` file may be pfg, cpfg or Fractint: say which was read.
-        if let Some(p) = c.system.as_ref().and_then(|s| s.parametric.as_deref()) {
-            let _ = writeln!(
-                io.stdout,
-                "{}: dialect: cpfg, {} productions, {} decomposition, {} homomorphism",
-                c.file.name,
-                p.productions.len(),
-                p.decomposition.productions.len(),
-                p.homomorphism.productions.len()
-            );
-        } else {
-            let _ = writeln!(io.stdout, "{}: dialect: cpfg", c.file.name);
-        }
-        return;
+    let summary = match &c.library {
+        Some(lib) => Some(lib.summary.clone()),
+        None => c.front.describe(c.system.as_ref()),
+    };
+    if let Some(summary) = summary {
+        let _ = writeln!(io.stdout, "{}: dialect: {summary}", c.file.name);
     }
-    if c.dialect != crate::dialect::Dialect::Fractint {
-        return;
-    }
-    let _ = writeln!(
-        io.stdout,
-        "{}: dialect: Fractint, {} {} (choose one with FILE:NAME or --entry NAME; -n sets the order, default {} as in Fractint)",
-        c.file.name,
-        c.entries.len(),
-        if c.entries.len() == 1 { "entry" } else { "entries" },
-        crate::front::fractint::DEFAULT_ORDER
-    );
-    let width = c
+    let Some(lib) = &c.library else { return };
+    let width = lib
         .entries
         .iter()
         .map(|e| e.name.chars().count())
         .max()
         .unwrap_or(0);
-    for (i, e) in c.entries.iter().enumerate() {
+    for (i, e) in lib.entries.iter().enumerate() {
         let (line, _) = c.file.line_col(e.span.start);
         let state = match (e.errors, e.warnings) {
             (0, 0) => "ok".to_string(),
             (0, w) => format!("ok, {w} warning{}", if w == 1 { "" } else { "s" }),
             (n, _) => format!("{n} error{}", if n == 1 { "" } else { "s" }),
         };
-        let chosen = if c.chosen == Some(i) && c.entries.len() > 1 {
+        let chosen = if lib.chosen == Some(i) && lib.entries.len() > 1 {
             "  (chosen)"
         } else {
             ""

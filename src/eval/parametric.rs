@@ -8,12 +8,12 @@
 //! [`DeriveOptions::max_work`], so no model runs without end.
 
 use super::DeriveOptions;
-use crate::random::{Rng, Stream};
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::parametric::{
     BinOp, Builtin, Expr, ModuleWord, ParamProduction, Parametric, Pattern, Place, Stmt, UnOp, Var,
 };
 use crate::ir::{SymbolId, System};
+use crate::random::{Rng, Stream};
 
 /// The value of an expression that uses no variables, or `None`.
 pub fn constant(e: &Expr) -> Option<f64> {
@@ -220,7 +220,10 @@ impl<'p> Machine<'p> {
                 }
             }
             Builtin::Srand => {
-                self.rng = Rng::new((x as i64 as u64).wrapping_add(self.run_seed), Stream::Derivation);
+                self.rng = Rng::new(
+                    (x as i64 as u64).wrapping_add(self.run_seed),
+                    Stream::Derivation,
+                );
                 0.0
             }
             Builtin::Ran => x * self.rng.next_f64(),

@@ -1,7 +1,288 @@
-//! Front ends: one folder per notation.
+//! Front ends: one folder per notation, each behind [`Front`], all listed in
+//! [`FRONTS`]. A front end reads a source file into the one IR
+//! ([`crate::ir::System`]) with its spans and diagnostics; nothing after it
+//! knows which notation a system came from.
+//!
+//! Adding a notation is a folder here (lexer, parser, AST, lowering, and a
+//! unit struct implementing [`Front`]) and one line in [`FRONTS`]. Choosing
+//! the front for a file is [`detect`]: by extension where only one front
+//! claims it, by content where several share it (`.l` is pfg, cpfg and
+//! Fractint). The content rule, from the survey of the three `.l` dialects'
+//! corpora: with `;` comments removed, a line `Name {` and no `-->`
+//! anywhere is Fractint (pfg and cpfg productions always have `-->`,
+//! Fractint never does); otherwise a line starting with `lsystem:`,
+//! `endlsystem` or a `#define`/`#include`/`#if` directive is cpfg;
+//! everything else is pfg, graftal's oldest front end.
 
 pub mod cpfg;
 pub mod fractint;
 pub mod linf;
 pub mod pfg;
 pub mod stl;
+
+use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::ir::{Lowered, Span, System, Word};
+use crate::source::SourceFile;
+use serde::Serialize;
+
+/// Every notation graftal reads. The order breaks ties in [`detect`].
+pub static FRONTS: &[&dyn Front] = &[
+    &pfg::Pfg,
+    &linf::Linf,
+    &stl::Stl,
+    &cpfg::Cpfg,
+    &fractint::Fractint,
+];
+
+/// How sure a front end is that a text is in its notation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Confidence {
+    /// Not this notation (or not told by content at all).
+    No,
+    /// This notation when no other claims the text.
+    Fallback,
+    /// Marks of this notation.
+    Likely,
+    /// Marks no other notation has.
+    Certain,
+}
+
+/// A notation graftal reads.
+pub trait Front: Sync {
+    /// The name as the command line and the registry spell it (`pfg`,
+    /// `linf`, …).
+    fn name(&self) -> &'static str;
+    /// The name shown to people (`LinF`, `STL`, `Fractint`, …).
+    fn title(&self) -> &'static str;
+    /// File extensions (lowercase, without the dot) of this notation.
+    fn extensions(&self) -> &'static [&'static str];
+    /// How sure this front end is, from the text alone, that `text` is its
+    /// notation (only asked when several front ends share an extension,
+    /// or none claims it).
+    fn detect(&self, _text: &str) -> Confidence {
+        Confidence::No
+    }
+    /// Reads `file` into the IR. `entry` chooses an entry of a library
+    /// (only notations with [`Read::library`] have entries).
+    fn read(&self, file: &SourceFile, entry: Option<&str>, diags: &mut Diagnostics) -> Read;
+    /// A derived word as text in this notation: symbols side by side, and
+    /// a module's parameters in parentheses.
+    fn word_text(&self, sys: &System, word: &Word) -> String {
+        word.display(&sys.symbols)
+    }
+    /// Whether [`Front::word_text`] is the symbols' names side by side, so
+    /// that a word can be written name by name as it is derived.
+    fn spells_words_by_name(&self) -> bool {
+        true
+    }
+    /// The comments of a source text: (span, text without the delimiters),
+    /// for emitters that carry comments over.
+    fn comments(&self, _src: &str) -> Vec<(Span, String)> {
+        Vec::new()
+    }
+    /// What `check` says about a file of this notation beyond its
+    /// diagnostics (after `FILE: dialect: `), if anything.
+    fn describe(&self, _sys: Option<&System>) -> Option<String> {
+        None
+    }
+    /// The turn divided into whole angle increments as the source states
+    /// it (pfg's `angle factor`), which a translation keeps when it fits.
+    fn angle_divisions(&self, _sys: &System) -> Option<u64> {
+        None
+    }
+}
+
+/// What a front end read: the system (`None` for a library whose entry
+/// was not chosen, or when nothing could be lowered) and, for a library,
+/// its entries.
+pub struct Read {
+    pub lowered: Option<Lowered>,
+    pub library: Option<Library>,
+}
+
+impl From<Lowered> for Read {
+    fn from(lowered: Lowered) -> Self {
+        Read {
+            lowered: Some(lowered),
+            library: None,
+        }
+    }
+}
+
+/// A file of several systems (a Fractint library).
+#[derive(Clone, Debug, Default)]
+pub struct Library {
+    pub entries: Vec<EntryInfo>,
+    /// The entry read (an index into `entries`).
+    pub chosen: Option<usize>,
+    /// Several entries and none chosen: no system, and no error yet.
+    pub needs_entry: bool,
+    /// What `check` prints after `FILE: dialect: ` (the notation, the
+    /// number of entries, how to choose).
+    pub summary: String,
+}
+
+/// One entry of a library, as `check` lists it.
+#[derive(Clone, Debug, Serialize)]
+pub struct EntryInfo {
+    pub name: String,
+    /// The name's place in the file.
+    pub span: Span,
+    pub errors: usize,
+    pub warnings: usize,
+}
+
+/// The front end for a file with extension `ext` (any case, without the
+/// dot) and content `text`: the one front end that claims the extension,
+/// else the most confident of those that share it (or, for an extension
+/// none claims, of all), earlier in [`FRONTS`] on a tie.
+pub fn detect(ext: &str, text: &str) -> &'static dyn Front {
+    let ext = ext.to_ascii_lowercase();
+    let claiming: Vec<&'static dyn Front> = FRONTS
+        .iter()
+        .copied()
+        .filter(|f| f.extensions().contains(&ext.as_str()))
+        .collect();
+    if let [only] = claiming.as_slice() {
+        return *only;
+    }
+    let candidates = if claiming.is_empty() {
+        FRONTS.to_vec()
+    } else {
+        claiming
+    };
+    let mut best = candidates[0];
+    let mut best_confidence = best.detect(text);
+    for f in &candidates[1..] {
+        let c = f.detect(text);
+        if c > best_confidence {
+            (best, best_confidence) = (*f, c);
+        }
+    }
+    best
+}
+
+/// The front end registered as `name`.
+pub fn by_name(name: &str) -> Option<&'static dyn Front> {
+    FRONTS.iter().copied().find(|f| f.name() == name)
+}
+
+/// The error for a library whose entry was not chosen (see
+/// [`Library::needs_entry`]), listing the entries.
+pub fn choose_entry(file_name: &str, title: &str, lib: &Library) -> Diagnostic {
+    let names: Vec<&str> = lib.entries.iter().map(|e| e.name.as_str()).collect();
+    let first = names.first().copied().unwrap_or("NAME");
+    Diagnostic::global(
+        codes::FR_CHOOSE_ENTRY,
+        format!(
+            "`{file_name}` is a {title} library of {} entries: choose one",
+            names.len()
+        ),
+    )
+    .with_note(format!("entries: {}", names.join(", ")))
+    .with_help(format!(
+        "write `{file_name}:{first}` or add `--entry {first}`; `graftal check` lists the entries"
+    ))
+}
+
+/// Text with `/* … */` comments removed (an unclosed one runs to the end).
+pub(crate) fn strip_block_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(k) = rest.find("/*") {
+        out.push_str(&rest[..k]);
+        match rest[k + 2..].find("*/") {
+            Some(e) => rest = &rest[k + 2 + e + 2..],
+            None => rest = "",
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// `/* … */` comments of `src` with their spans (an unclosed one runs to
+/// the end).
+pub(crate) fn block_comments(src: &str) -> Vec<(Span, String)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while let Some(k) = src[i..].find("/*") {
+        let start = i + k;
+        let (end, body_end) = match src[start + 2..].find("*/") {
+            Some(e) => (start + 2 + e + 2, start + 2 + e),
+            None => (src.len(), src.len()),
+        };
+        out.push((start..end, src[start + 2..body_end].to_string()));
+        i = end;
+    }
+    out
+}
+
+/// `#` comments to the end of the line of `src` with their spans, except
+/// lines whose comment starts with one of `directives` (LinF's `#:`).
+pub(crate) fn line_comments(src: &str, directive: Option<char>) -> Vec<(Span, String)> {
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for line in src.split_inclusive('\n') {
+        if let Some(k) = line.find('#') {
+            let body = line[k + 1..].trim_end_matches(['\n', '\r']);
+            if !directive.is_some_and(|d| body.starts_with(d)) {
+                out.push((offset + k..offset + line.len(), body.to_string()));
+            }
+        }
+        offset += line.len();
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn named(ext: &str, text: &str) -> &'static str {
+        detect(ext, text).name()
+    }
+
+    #[test]
+    fn tells_the_l_dialects_apart_by_content() {
+        let fr = "; comment\nKoch1 { ; by X\n  Angle 6\n  Axiom F--F--F\n  F=F+F--F+F\n}\n";
+        assert_eq!(named("l", fr), "fractint");
+        assert_eq!(named("l", "Lars1{\nangle 4\naxiom f\n}"), "fractint");
+        let pfg = "derivation length: 2\naxiom: {f+f}F\nF --> F+F\n";
+        assert_eq!(named("l", pfg), "pfg");
+        // A pfg header with a brace in its value is not an entry.
+        assert_eq!(named("l", "axiom: {F}\n"), "pfg");
+        // Nor a brace in a pfg comment, in a file without productions.
+        assert_eq!(named("l", "/* lines {\n */\naxiom: A\n"), "pfg");
+        let cpfg = "#define N 3\nlsystem: 1\naxiom: A\nA --> B\nendlsystem\n";
+        assert_eq!(named("l", cpfg), "cpfg");
+        assert_eq!(named("l", "/* x */\nLsystem : 1\nA-->B\n"), "cpfg");
+        // cpfg blocks `{ … }` come with productions.
+        assert_eq!(
+            named("l", "lsystem: 1\nA --> B\nS {\n}\nendlsystem\n"),
+            "cpfg"
+        );
+        assert_eq!(named("linf", fr), "linf");
+        assert_eq!(named("stl", fr), "stl");
+        assert_eq!(named("l", ""), "pfg");
+    }
+
+    #[test]
+    fn one_claiming_extension_decides() {
+        assert_eq!(named("linf", "Koch1 {\n}\n"), "linf");
+        assert_eq!(named("STL", "axiom: F\n"), "stl");
+        // An extension nobody claims is told by content, as `.l` is.
+        assert_eq!(named("txt", "axiom: F\nF --> F+F\n"), "pfg");
+    }
+
+    #[test]
+    fn every_front_has_a_distinct_name_and_an_extension() {
+        let mut names: Vec<&str> = FRONTS.iter().map(|f| f.name()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), FRONTS.len());
+        for f in FRONTS {
+            assert!(!f.extensions().is_empty(), "{}", f.name());
+            assert_eq!(by_name(f.name()).map(|g| g.title()), Some(f.title()));
+        }
+    }
+}

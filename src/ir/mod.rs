@@ -517,19 +517,6 @@ impl Default for Settings {
     }
 }
 
-/// The notation a system was read from (for printing derived words and for
-/// choosing a default emitter).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub enum Notation {
-    Pfg,
-    Linf,
-    Stl,
-    /// The cpfg dialect of `.l` (parametric; see [`parametric`]).
-    Cpfg,
-    /// A Fractint L-system library entry.
-    Fractint,
-}
-
 /// STL structural syntax, kept as structure (see the module docs).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Structure {
@@ -641,7 +628,6 @@ pub struct SpanTable {
 /// An L-system in graftal's IR: what every front end produces.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct System {
-    pub notation: Notation,
     pub symbols: SymbolTable,
     /// `interpretation[s]` is what the turtle does for symbol `s`.
     pub interpretation: Vec<Option<TurtleOp>>,
@@ -663,6 +649,14 @@ pub struct System {
     pub surfaces: Vec<SurfaceMesh>,
 }
 
+/// What a front end makes of a source: the system and where its parts
+/// came from. The system is usable only when reading gave no error.
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub system: System,
+    pub spans: SpanTable,
+}
+
 /// A surface the turtle can place (a cpfg `~id`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SurfaceMesh {
@@ -670,11 +664,16 @@ pub struct SurfaceMesh {
     pub triangles: Vec<[[f64; 3]; 3]>,
 }
 
+impl Default for System {
+    fn default() -> Self {
+        System::new()
+    }
+}
+
 impl System {
-    /// An empty system of `notation` with `[` and `]` already interpreted.
-    pub fn new(notation: Notation) -> Self {
+    /// An empty system with `[` and `]` already interpreted.
+    pub fn new() -> Self {
         let mut sys = System {
-            notation,
             symbols: SymbolTable::new(),
             interpretation: Vec::new(),
             axiom: Word::default(),

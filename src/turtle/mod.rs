@@ -14,9 +14,9 @@
 
 pub mod instanced;
 
-use crate::random::{Rng, Stream};
 use crate::ir::parametric::ModuleWord;
 use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp};
+use crate::random::{Rng, Stream};
 use serde::Serialize;
 
 pub type Vec3 = [f64; 3];
@@ -737,8 +737,8 @@ fn cylinder_point(st: &mut State, sink: &mut dyn Sink, palette: &[Rgb], pieces: 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::Word;
     use crate::front::pfg::read_ok;
+    use crate::ir::Word;
 
     fn draw(src: &str) -> Geometry {
         let sys = read_ok(src);

@@ -25,6 +25,21 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
 
+/// The Linf emitter in the registry.
+pub struct Linf;
+
+impl super::Back for Linf {
+    fn name(&self) -> &'static str {
+        "linf"
+    }
+    fn extension(&self) -> &'static str {
+        "linf"
+    }
+    fn write(&self, e: &mut super::Emitter<'_>) -> String {
+        write(e)
+    }
+}
+
 const RESERVED: &[&str] = &[
     "lines", "blanks", "angles", "axiom", "rules", "colors", "pi",
 ];
@@ -438,7 +453,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         let span = e.production_span(i);
         match span
             .as_ref()
-            .and_then(|sp| attached(e.source_notation, e.source, sp))
+            .and_then(|sp| attached(&e.origin.comments, e.source, sp))
         {
             Some(Attached::After(c)) => {
                 let _ = write!(line, "  # {c}");
@@ -474,7 +489,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
 
     let mut out = String::new();
     out.push_str(&format!("# {}\n", banner(e)));
-    if let Some(c) = file_comment(e.source_notation, e.source) {
+    if let Some(c) = file_comment(&e.origin.comments, e.source) {
         out.push_str("#\n");
         for l in c {
             out.push_str(&comment_line(&l));

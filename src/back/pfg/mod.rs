@@ -30,6 +30,24 @@ use crate::ir::{Axis, ContextFilter, SymbolId, TurtleOp};
 use std::collections::HashMap;
 use std::fmt::Write;
 
+/// The Pfg emitter in the registry.
+pub struct Pfg;
+
+impl super::Back for Pfg {
+    fn name(&self) -> &'static str {
+        "pfg"
+    }
+    fn extension(&self) -> &'static str {
+        "l"
+    }
+    fn write(&self, e: &mut super::Emitter<'_>) -> String {
+        write(e)
+    }
+    fn term_symbols(&self) -> Option<usize> {
+        Some(60)
+    }
+}
+
 /// Characters pfg gives a meaning, or uses in its syntax.
 const RESERVED: &[&str] = &[
     "F", "f", "+", "-", "&", "^", "\\", "/", "|", "{", "}", "!", "'", "[", "]", "*", "<", ">", ":",
@@ -430,7 +448,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         let head = format!("{} < {} > {} -->", star(lc), pred, star(rc));
         let comment = span
             .as_ref()
-            .and_then(|s| attached(e.source_notation, e.source, s));
+            .and_then(|s| attached(&e.origin.comments, e.source, s));
         if let Some(Attached::Above(c)) = &comment {
             lines.push(comment_block(c));
         }
@@ -535,7 +553,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
 
     let mut out = String::new();
     let mut head = vec![banner(e)];
-    if let Some(c) = file_comment(e.source_notation, e.source) {
+    if let Some(c) = file_comment(&e.origin.comments, e.source) {
         head.push(String::new());
         head.extend(c);
     }

@@ -18,6 +18,24 @@
 use crate::ir::{BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word};
 use std::fmt::Write;
 
+/// The Stl emitter in the registry.
+pub struct Stl;
+
+impl super::Back for Stl {
+    fn name(&self) -> &'static str {
+        "stl"
+    }
+    fn extension(&self) -> &'static str {
+        "stl"
+    }
+    fn write(&self, e: &mut super::Emitter<'_>) -> String {
+        from_productions(e)
+    }
+    fn write_structure(&self, sys: &crate::ir::System) -> Option<String> {
+        Some(write(sys).unwrap_or_default())
+    }
+}
+
 /// Writes `sys` (which must come from the STL front end) as a BED; `None`
 /// for a system without STL structure.
 pub fn write(sys: &System) -> Option<String> {
@@ -527,7 +545,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
 
     let mut out = String::new();
     out.push_str(&format!("# {}\n", super::banner(e)));
-    if let Some(c) = super::file_comment(e.source_notation, e.source) {
+    if let Some(c) = super::file_comment(&e.origin.comments, e.source) {
         out.push_str("#\n");
         for l in c {
             out.push_str(&format!(

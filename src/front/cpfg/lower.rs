@@ -9,7 +9,7 @@ use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::parametric::{
     ArrayDecl, Builtin, Expr, ModuleCall, ParamProduction, Parametric, Pattern, Place, Stmt, Var,
 };
-use crate::ir::{Angle, Axis, Notation, QueryKind, Span, SpanTable, System, TurtleOp, Word};
+use crate::ir::{Angle, Axis, QueryKind, Span, SpanTable, System, TurtleOp, Word};
 use std::collections::HashMap;
 
 /// The largest derivation length or recursion depth graftal accepts.
@@ -17,11 +17,7 @@ pub const MAX_DEPTH: f64 = 1_000_000.0;
 /// The most elements an array may have.
 pub const MAX_ARRAY: f64 = 1_000_000.0;
 
-/// A lowered cpfg file.
-pub struct Lowered {
-    pub system: System,
-    pub spans: SpanTable,
-}
+pub use crate::ir::Lowered;
 
 /// The predefined functions: name, builtin, accepted argument counts.
 const FUNCTIONS: &[(&str, Builtin, &[usize])] = &[
@@ -556,7 +552,7 @@ enum Stage {
 
 /// Lowers `file` to a parametric [`System`].
 pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
-    let mut sys = System::new(Notation::Cpfg);
+    let mut sys = System::new();
     sys.settings.angle = 45.0;
     let mut l = Lowerer {
         sys,

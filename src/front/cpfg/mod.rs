@@ -19,9 +19,68 @@ pub mod preprocess;
 pub mod surface;
 pub mod view;
 
-pub use lower::Lowered;
+pub use crate::ir::Lowered;
 
 use crate::diagnostics::Diagnostics;
+use crate::front::{line_comments, strip_block_comments, Confidence, Front, Read};
+use crate::ir::{Span, System};
+use crate::source::SourceFile;
+
+/// The cpfg dialect of `.l` in the registry.
+pub struct Cpfg;
+
+impl Front for Cpfg {
+    fn name(&self) -> &'static str {
+        "cpfg"
+    }
+    fn title(&self) -> &'static str {
+        "cpfg"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["l"]
+    }
+    /// A line starting with `lsystem:`, `endlsystem` or a `#define`,
+    /// `#include` or `#if` directive (outside `/* */` comments): marks of
+    /// cpfg that neither pfg nor Fractint has.
+    fn detect(&self, text: &str) -> Confidence {
+        let text = strip_block_comments(text);
+        let marked = text.lines().any(|l| {
+            let l = l.trim_start().to_ascii_lowercase();
+            let word = |w: &str| {
+                l.strip_prefix(w)
+                    .is_some_and(|r| r.trim_start().starts_with(':'))
+            };
+            word("lsystem")
+                || l.starts_with("endlsystem")
+                || ["define", "include", "if"].iter().any(|d| {
+                    l.strip_prefix('#')
+                        .is_some_and(|r| r.trim_start().starts_with(d))
+                })
+        });
+        if marked {
+            Confidence::Certain
+        } else {
+            Confidence::No
+        }
+    }
+    fn read(&self, file: &SourceFile, _entry: Option<&str>, diags: &mut Diagnostics) -> Read {
+        read_file(file, diags).into()
+    }
+    fn comments(&self, src: &str) -> Vec<(Span, String)> {
+        line_comments(src, None)
+    }
+    fn describe(&self, sys: Option<&System>) -> Option<String> {
+        Some(match sys.and_then(|s| s.parametric.as_deref()) {
+            Some(p) => format!(
+                "cpfg, {} productions, {} decomposition, {} homomorphism",
+                p.productions.len(),
+                p.decomposition.productions.len(),
+                p.homomorphism.productions.len()
+            ),
+            None => "cpfg".to_string(),
+        })
+    }
+}
 
 /// Parses and lowers a preprocessed cpfg text.
 pub fn read(src: &str, diags: &mut Diagnostics) -> Lowered {
@@ -63,7 +122,7 @@ fn side_file(
 /// file (found as [`view::find_view`] says) sets the angle, widths, colours
 /// and view, and brings in user functions and surfaces. Diagnostics point
 /// into the original `.l` text; problems in the other files name the file.
-pub fn read_file(file: &crate::source::SourceFile, diags: &mut Diagnostics) -> Lowered {
+pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     use std::path::Path;
     let path = Path::new(&file.name);
     let dir = path.parent().filter(|d| d.is_dir());

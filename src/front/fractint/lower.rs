@@ -8,8 +8,8 @@ use super::lexer::{commands, number};
 use super::parser::KEYWORDS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Axis, Condition, Notation, Production, Rgb, Span, SpanTable, SymbolId,
-    System, TurtleOp, Word,
+    Alternative, Angle, Axis, Condition, Production, Rgb, Span, SpanTable, SymbolId, System,
+    TurtleOp, Word,
 };
 
 /// Fractint's default order (the `lsystem` type's one parameter, 2 in
@@ -22,11 +22,7 @@ pub const RESERVED: &str = "+-/\\@|!c<>[]";
 /// The colour Fractint draws with until told otherwise.
 pub const DEFAULT_COLOUR: usize = 15;
 
-/// An entry in the IR, with its spans.
-pub struct Lowered {
-    pub system: System,
-    pub spans: SpanTable,
-}
+pub use crate::ir::Lowered;
 
 /// Fractint's default 256-colour palette (the VGA default): the 16 EGA
 /// colours, a grey ramp, hue circles at three intensities and saturations,
@@ -193,7 +189,7 @@ impl Cx<'_> {
 /// Lowers one entry. The system is usable only when `diags` got no error.
 pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
     let mut cx = Cx {
-        sys: System::new(Notation::Fractint),
+        sys: System::new(),
         spans: SpanTable::default(),
         diags,
     };

@@ -11,10 +11,173 @@ pub mod lexer;
 pub mod lower;
 pub mod parser;
 
-pub use lower::{lower_entry, palette, Lowered, DEFAULT_ORDER, RESERVED};
+pub use lower::{lower_entry, palette, DEFAULT_ORDER, RESERVED};
 pub use parser::parse;
 
-use crate::diagnostics::Diagnostics;
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::{Confidence, EntryInfo, Front, Library, Read};
+pub use crate::ir::Lowered;
+use crate::source::SourceFile;
+
+/// Fractint's L-system libraries in the registry.
+pub struct Fractint;
+
+impl Front for Fractint {
+    fn name(&self) -> &'static str {
+        "fractint"
+    }
+    fn title(&self) -> &'static str {
+        "Fractint"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["l"]
+    }
+    /// A line `Name {` and no `-->` (`;` comments left out).
+    fn detect(&self, text: &str) -> Confidence {
+        if looks_fractint(text) {
+            Confidence::Likely
+        } else {
+            Confidence::No
+        }
+    }
+    fn read(&self, file: &SourceFile, entry: Option<&str>, diags: &mut Diagnostics) -> Read {
+        let (library, lowered) = read_library(&file.text, entry, diags);
+        Read {
+            lowered,
+            library: Some(library),
+        }
+    }
+    // The comments of a library belong to its many entries, not to the
+    // one translated: none are carried over (the default).
+}
+
+/// A `Name {` line and no `-->`, `;` comments left out.
+fn looks_fractint(text: &str) -> bool {
+    let mut header = false;
+    for line in text.lines() {
+        let line = line.split(';').next().unwrap_or("");
+        if line.contains("-->") {
+            return false;
+        }
+        if !header {
+            let t = line.trim_start();
+            let name_end = t
+                .find(|c: char| c.is_whitespace() || c == '(' || c == '{')
+                .unwrap_or(t.len());
+            let (name, rest) = t.split_at(name_end);
+            header = !name.is_empty() && !name.contains(':') && rest.contains('{');
+        }
+    }
+    header
+}
+
+/// Reads a Fractint library: every entry is lowered (so each one's
+/// problems are its own); the diagnostics kept are the chosen entry's and
+/// the file's, or every entry's when none is chosen.
+fn read_library(
+    text: &str,
+    entry: Option<&str>,
+    diags: &mut Diagnostics,
+) -> (Library, Option<Lowered>) {
+    let mut file_diags = Diagnostics::default();
+    let ast = parse(text, &mut file_diags);
+    let mut lib = Library::default();
+    let mut lowered = None;
+    let mut per_entry: Vec<(Lowered, Diagnostics)> = Vec::new();
+    for (i, e) in ast.entries.iter().enumerate() {
+        if let Some(first) = ast.entries[..i]
+            .iter()
+            .find(|f| f.name.eq_ignore_ascii_case(&e.name))
+        {
+            // About the file, whichever entry is chosen.
+            diags.push(
+                Diagnostic::at(
+                    codes::FR_DUPLICATE_ENTRY,
+                    e.name_span.clone(),
+                    format!("a second entry named `{}`", e.name),
+                )
+                .with_label("never chosen by name")
+                .with_secondary(
+                    first.name_span.clone(),
+                    "the first, which `FILE:NAME` finds",
+                ),
+            );
+        }
+        let mut d = Diagnostics::default();
+        let l = lower_entry(e, &mut d);
+        per_entry.push((l, d));
+    }
+    // The file's diagnostics belong to the entry they are in, if any.
+    let owner = |d: &Diagnostic| {
+        let at = d.span.as_ref()?.start;
+        ast.entries
+            .iter()
+            .position(|e| e.span.start <= at && at < e.span.end.max(e.span.start + 1))
+    };
+    for d in file_diags.0 {
+        match owner(&d) {
+            Some(i) => per_entry[i].1.push(d),
+            None => diags.push(d),
+        }
+    }
+    for (e, (_, d)) in ast.entries.iter().zip(&per_entry) {
+        lib.entries.push(EntryInfo {
+            name: e.name.clone(),
+            span: e.name_span.clone(),
+            errors: d.iter().filter(|d| d.is_error()).count(),
+            warnings: d.iter().filter(|d| !d.is_error()).count(),
+        });
+    }
+    lib.chosen = match entry {
+        Some(name) => {
+            let found = ast
+                .entries
+                .iter()
+                .position(|e| e.name.eq_ignore_ascii_case(name));
+            if found.is_none() {
+                let names: Vec<&str> = ast.entries.iter().map(|e| e.name.as_str()).collect();
+                let mut d = Diagnostic::global(
+                    codes::FR_UNKNOWN_ENTRY,
+                    format!("no entry `{name}` in this file"),
+                )
+                .with_note(format!("entries: {}", names.join(", ")));
+                if let Some(n) = nearest(name, &names).first() {
+                    d = d.with_help(format!("did you mean `{n}`?"));
+                }
+                diags.push(d);
+            }
+            found
+        }
+        None if ast.entries.len() == 1 => Some(0),
+        None => None,
+    };
+    if ast.entries.is_empty() {
+        diags.push(
+            Diagnostic::global(codes::FR_CHOOSE_ENTRY, "this Fractint file has no entries")
+                .with_help("an entry is `Name {`, its lines, and a line `}`"),
+        );
+    }
+    match lib.chosen {
+        Some(i) => {
+            let (l, d) = per_entry.swap_remove(i);
+            diags.extend(d);
+            lowered = Some(l);
+        }
+        None => {
+            lib.needs_entry = entry.is_none() && ast.entries.len() > 1;
+            for (_, d) in per_entry {
+                diags.extend(d);
+            }
+        }
+    }
+    lib.summary = format!(
+        "Fractint, {} {} (choose one with FILE:NAME or --entry NAME; -n sets the order, default {} as in Fractint)",
+        lib.entries.len(),
+        if lib.entries.len() == 1 { "entry" } else { "entries" },
+        DEFAULT_ORDER
+    );
+    (lib, lowered)
+}
 
 /// Reads the first entry of a Fractint text that must be free of errors
 /// (for tests and examples).

@@ -26,16 +26,12 @@ use super::ast::{
 use super::lexer::BlockKind;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Condition, Notation, Production, Rgb, Rotation, RotationId, Span,
-    SpanTable, SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Condition, Production, Rgb, Rotation, RotationId, Span, SpanTable,
+    SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
-/// The IR of a file and its spans.
-pub struct Lowered {
-    pub system: System,
-    pub spans: SpanTable,
-}
+pub use crate::ir::Lowered;
 
 /// What a declared name is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,7 +80,7 @@ struct Cx<'a> {
 /// Lowers `file`, reporting problems to `diags`. The system is usable only
 /// when no error was reported.
 pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
-    let mut sys = System::new(Notation::Linf);
+    let mut sys = System::new();
     sys.settings.angle = 0.0;
     let mut cx = Cx {
         diags,

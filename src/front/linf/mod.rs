@@ -9,10 +9,43 @@ pub mod lexer;
 pub mod lower;
 pub mod parser;
 
-pub use lower::{lower, Lowered};
+pub use crate::ir::Lowered;
+pub use lower::lower;
 pub use parser::parse;
 
 use crate::diagnostics::Diagnostics;
+use crate::front::{line_comments, Front, Read};
+use crate::ir::{Span, System, Word};
+use crate::source::SourceFile;
+
+/// The LinF notation in the registry.
+pub struct Linf;
+
+impl Front for Linf {
+    fn name(&self) -> &'static str {
+        "linf"
+    }
+    fn title(&self) -> &'static str {
+        "LinF"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["linf"]
+    }
+    fn read(&self, file: &SourceFile, _entry: Option<&str>, diags: &mut Diagnostics) -> Read {
+        read(&file.text, diags).into()
+    }
+    fn word_text(&self, sys: &System, word: &Word) -> String {
+        display(sys, word)
+    }
+    /// Names of several characters are set apart by spaces.
+    fn spells_words_by_name(&self) -> bool {
+        false
+    }
+    /// `#` to the end of the line; `#:` lines are directives, not comments.
+    fn comments(&self, src: &str) -> Vec<(Span, String)> {
+        line_comments(src, Some(':'))
+    }
+}
 
 /// Parses and lowers LinF source text: the IR (usable only when `diags` got
 /// no error) and its spans.

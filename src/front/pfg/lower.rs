@@ -4,8 +4,8 @@ use super::ast::{File, Header, Item, Production as AstProduction, Symbols};
 use super::parser::HEADERS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Axis, Condition, ContextFilter, Notation, Production, Span, SpanTable,
-    SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Axis, Condition, ContextFilter, Production, Span, SpanTable, SymbolId,
+    System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -63,12 +63,7 @@ pub const TURTLE_SYMBOLS: &[(&str, TurtleOp)] = &[
     ("'", TurtleOp::NextColour),
 ];
 
-/// A lowered pfg file: the IR and where its parts came from.
-#[derive(Clone, Debug)]
-pub struct Lowered {
-    pub system: System,
-    pub spans: SpanTable,
-}
+pub use crate::ir::Lowered;
 
 struct Ctx<'a> {
     sys: System,
@@ -97,7 +92,7 @@ impl Ctx<'_> {
 /// Lowers a parsed file. Problems are pushed to `diags`; the result is
 /// usable only if no error was pushed.
 pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
-    let mut sys = System::new(Notation::Pfg);
+    let mut sys = System::new();
     for (name, op) in TURTLE_SYMBOLS {
         let id = sys.intern(name);
         sys.set_interpretation(id, *op);

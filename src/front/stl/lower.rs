@@ -32,8 +32,8 @@ use super::layout::{self, Outline};
 use super::parser::RESERVED;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Angle, Axis, BranchEntry, BranchTerm, Growth, Notation, SeedItem, Shape, Span, SpanTable,
-    StlRule, StlRuleId, Structure, System, TurtleOp, Word,
+    Angle, Axis, BranchEntry, BranchTerm, Growth, SeedItem, Shape, Span, SpanTable, StlRule,
+    StlRuleId, Structure, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -49,12 +49,7 @@ pub const MAX_EXPANSION: usize = 8_000_000;
 /// picture). Growth uses B as given; only the picture is capped.
 pub const MAX_DRAWN_WIDTH: f64 = 200.0;
 
-/// A lowered STL file: the IR and where its parts came from.
-#[derive(Clone, Debug)]
-pub struct Lowered {
-    pub system: System,
-    pub spans: SpanTable,
-}
+pub use crate::ir::Lowered;
 
 /// A branching term during lowering.
 #[derive(Clone, Debug)]
@@ -1105,7 +1100,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
         }
     }
 
-    let mut system = System::new(Notation::Stl);
+    let mut system = System::new();
     system.settings.angle = st.angle;
     system.settings.step = st.l.0;
     system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);

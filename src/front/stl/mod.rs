@@ -16,10 +16,35 @@ pub mod lexer;
 pub mod lower;
 pub mod parser;
 
-pub use lower::{lower, Lowered};
+pub use crate::ir::Lowered;
+pub use lower::lower;
 pub use parser::parse;
 
 use crate::diagnostics::Diagnostics;
+use crate::front::{line_comments, Front, Read};
+use crate::ir::Span;
+use crate::source::SourceFile;
+
+/// The STL notation in the registry.
+pub struct Stl;
+
+impl Front for Stl {
+    fn name(&self) -> &'static str {
+        "stl"
+    }
+    fn title(&self) -> &'static str {
+        "STL"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["stl"]
+    }
+    fn read(&self, file: &SourceFile, _entry: Option<&str>, diags: &mut Diagnostics) -> Read {
+        read(&file.text, diags).into()
+    }
+    fn comments(&self, src: &str) -> Vec<(Span, String)> {
+        line_comments(src, None)
+    }
+}
 
 /// Parses and lowers STL source text: the IR (usable only when `diags` got
 /// no error) and its spans.
