@@ -19,7 +19,7 @@ use common::{graftal, temp};
 
 fn corpus(file: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/corpus/fractint")
+        .join("tests/corpus/fractint")
         .join(file)
 }
 
