@@ -1,10 +1,13 @@
 //! The cpfg dialect of `.l`: parametric derivation checked by hand, and the
-//! 95 objects of `../shared/corpus/cpfg` read, derived and drawn.
+//! 95 objects of `tests/corpus/cpfg` read, derived and drawn.
 
 use graftal::diagnostics::Diagnostic;
 use graftal::driver::{self, Derived, RunOptions};
 use graftal::source::SourceFile;
 use std::path::{Path, PathBuf};
+
+mod common;
+use common::check_golden;
 
 fn compile_text(src: &str) -> driver::Compiled {
     driver::compile(SourceFile::new("test.l", src))
@@ -138,9 +141,12 @@ fn errors_have_codes_and_spans_and_all_are_reported() {
 }
 
 /// The `.l` file of a corpus object: the one its `specifications` names
-/// on the `cpfg` line, else the only one.
+/// on the `cpfg` line, else the only one. Every object has a
+/// `specifications` file; a missing one fails the test.
 fn main_l(dir: &Path) -> Option<PathBuf> {
-    let spec = std::fs::read_to_string(dir.join("specifications")).unwrap_or_default();
+    let spec_path = dir.join("specifications");
+    let spec = std::fs::read_to_string(&spec_path)
+        .unwrap_or_else(|e| panic!("{}: {e}", spec_path.display()));
     for line in spec.lines() {
         let words: Vec<&str> = line.split_whitespace().collect();
         if words.first() == Some(&"cpfg") {
@@ -159,9 +165,9 @@ fn main_l(dir: &Path) -> Option<PathBuf> {
 }
 
 fn corpus() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/cpfg");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/cpfg");
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(&root)
-        .expect("../shared/corpus/cpfg beside the repository")
+        .unwrap_or_else(|e| panic!("{}: {e}", root.display()))
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.is_dir())
         .collect();
@@ -271,7 +277,7 @@ fn damaged_files_never_panic() {
         .iter()
         .filter_map(|d| main_l(d))
         .take(40)
-        .map(|p| std::fs::read_to_string(p).unwrap_or_default())
+        .map(|p| std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display())))
         .collect();
     let mut runner = TestRunner::new(Config {
         cases: 300,
@@ -637,7 +643,7 @@ fn golden_derivations_of_corpus_files() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut failures = Vec::new();
     for (file, steps) in GOLDEN {
-        let path = root.join("../shared/corpus/cpfg").join(file);
+        let path = root.join("tests/corpus/cpfg").join(file);
         let src = std::fs::read_to_string(&path).unwrap();
         let c = driver::compile(SourceFile::read(&path).unwrap());
         let sys = c
@@ -658,14 +664,10 @@ fn golden_derivations_of_corpus_files() {
         );
         let name = file.split('/').next().unwrap();
         let golden = root.join("tests/out/cpfg").join(format!("{name}.txt"));
-        let text = format!("{ours}\n");
-        if std::env::var_os("GRAFTAL_BLESS").is_some() {
-            std::fs::write(&golden, &text).unwrap();
-        } else if std::fs::read_to_string(&golden).ok().as_deref() != Some(text.as_str()) {
-            failures.push(format!(
-                "{} differs (GRAFTAL_BLESS=1 rewrites it)",
-                golden.display()
-            ));
+        // Blessed only after the assertion above: never a golden the
+        // independent derivation disagrees with.
+        if let Err(e) = check_golden(&golden, &format!("{ours}\n")) {
+            failures.push(e);
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -1,4 +1,4 @@
-//! The cpfg readers over the whole vlab corpus (shared/corpus/cpfg: 95
+//! The cpfg readers over the whole vlab corpus (tests/corpus/cpfg: 95
 //! objects): every L-system file preprocesses, every view, function and
 //! surface file reads, with pinned values from real files.
 
@@ -7,16 +7,15 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 fn corpus() -> PathBuf {
-    PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/corpus/cpfg"
-    ))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/corpus/cpfg"))
 }
 
 /// Every file of the corpus with extension `ext`, sorted.
 fn files(ext: &str) -> Vec<PathBuf> {
     let mut out = Vec::new();
-    for dir in fs::read_dir(corpus()).expect("shared/corpus/cpfg beside the repository") {
+    let root = corpus();
+    let dirs = fs::read_dir(&root).unwrap_or_else(|e| panic!("{}: {e}", root.display()));
+    for dir in dirs {
         let dir = dir.unwrap().path();
         if !dir.is_dir() {
             continue;

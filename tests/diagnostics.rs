@@ -7,6 +7,9 @@ use graftal::driver::compile;
 use graftal::source::SourceFile;
 use std::path::{Path, PathBuf};
 
+mod common;
+use common::check_golden;
+
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/diagnostics")
 }
@@ -25,20 +28,8 @@ fn inputs() -> Vec<PathBuf> {
 }
 
 fn check_snapshot(path: &Path, actual: &str, failures: &mut Vec<String>) {
-    if std::env::var_os("GRAFTAL_BLESS").is_some() {
-        std::fs::write(path, actual).unwrap();
-        return;
-    }
-    match std::fs::read_to_string(path) {
-        Ok(expected) if expected == actual => {}
-        Ok(expected) => failures.push(format!(
-            "{} differs:\n--- expected\n{expected}\n--- actual\n{actual}",
-            path.display()
-        )),
-        Err(_) => failures.push(format!(
-            "{} is missing (GRAFTAL_BLESS=1 writes it)",
-            path.display()
-        )),
+    if let Err(e) = check_golden(path, actual) {
+        failures.push(e);
     }
 }
 

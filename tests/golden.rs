@@ -8,6 +8,9 @@ use graftal::render::RenderOptions;
 use graftal::source::SourceFile;
 use std::path::Path;
 
+mod common;
+use common::check_golden;
+
 #[test]
 fn golden_words_and_svgs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
@@ -17,7 +20,6 @@ fn golden_words_and_svgs() {
         .collect();
     inputs.sort();
     assert!(inputs.len() >= 7);
-    let bless = std::env::var_os("GRAFTAL_BLESS").is_some();
     let mut failures = Vec::new();
     for input in inputs {
         let stem = input.file_stem().unwrap().to_string_lossy().to_string();
@@ -53,13 +55,8 @@ fn golden_words_and_svgs() {
         let svg = String::from_utf8(render_bytes(&sys, &g, Format::Svg, ropts).unwrap()).unwrap();
         for (ext, actual) in [("txt", txt), ("svg", svg)] {
             let out = root.join("out").join(format!("{stem}.{ext}"));
-            if bless {
-                std::fs::write(&out, &actual).unwrap();
-            } else if std::fs::read_to_string(&out).ok().as_deref() != Some(actual.as_str()) {
-                failures.push(format!(
-                    "{} differs (GRAFTAL_BLESS=1 regenerates)",
-                    out.display()
-                ));
+            if let Err(e) = check_golden(&out, &actual) {
+                failures.push(e);
             }
         }
     }

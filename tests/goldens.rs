@@ -1,4 +1,4 @@
-//! The 34 derivations of shared/corpus/goldens/goldens.json, transcribed from
+//! The 34 derivations of tests/corpus/goldens/goldens.json, transcribed from
 //! four independent L-system libraries, each written as a pfg file and
 //! derived by graftal: the strings must match character for character.
 
@@ -9,9 +9,9 @@ use serde_json::Value;
 fn corpus() -> Vec<Value> {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/corpus/goldens/goldens.json"
+        "/tests/corpus/goldens/goldens.json"
     );
-    let text = std::fs::read_to_string(path).expect("shared/corpus beside the repository");
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     serde_json::from_str::<Value>(&text)
         .expect("valid JSON")
         .as_array()

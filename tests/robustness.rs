@@ -1227,7 +1227,7 @@ fn fractint_structured_random_files_never_panic_or_hang() {
 
 #[test]
 fn fractint_corpus_files_as_written_pass() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus/fractint");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/corpus/fractint");
     for f in [
         "fractint.l",
         "penrose.l",

@@ -116,7 +116,7 @@ fn stats_agree_with_interpreting_the_derived_word_for_every_stdlib_system() {
 
 #[test]
 fn stats_agree_with_interpreting_the_derived_word_for_fractint_entries() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus/fractint");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/fractint");
     let mut shared = 0;
     let mut checked = 0;
     for file in ["fractint.l", "penrose.l", "tiling.l"] {

@@ -16,7 +16,7 @@ use graftal::stdlib::ENTRIES;
 use graftal::turtle::Geometry;
 
 mod common;
-use common::{graftal, temp};
+use common::{check_golden, graftal, temp};
 
 /// A notation graftal writes.
 type Target = &'static dyn back::Back;
@@ -772,21 +772,8 @@ fn translations_and_their_diagnostics_match_their_snapshots() {
                 None => snap.push_str("----- nothing written -----\n"),
             }
         }
-        let snap_path = path.with_extension("txt");
-        if std::env::var_os("GRAFTAL_BLESS").is_some() {
-            std::fs::write(&snap_path, &snap).unwrap();
-            continue;
-        }
-        match std::fs::read_to_string(&snap_path) {
-            Ok(expected) if expected == snap => {}
-            Ok(expected) => failures.push(format!(
-                "{} differs:\n--- expected\n{expected}\n--- actual\n{snap}",
-                snap_path.display()
-            )),
-            Err(_) => failures.push(format!(
-                "{} is missing (GRAFTAL_BLESS=1 writes it)",
-                snap_path.display()
-            )),
+        if let Err(e) = check_golden(&path.with_extension("txt"), &snap) {
+            failures.push(e);
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));

@@ -1,7 +1,11 @@
-//! What the command-line tests share: running `graftal` in-process and a
-//! temporary directory per test binary.
+//! What the test binaries share: running `graftal` in-process, a
+//! temporary directory per test binary, and golden files.
+//!
+//! Each binary that says `mod common;` uses part of this.
+#![allow(dead_code)]
 
 use graftal::cli::{run, Io};
+use std::path::Path;
 
 /// What one run printed, and its exit status.
 pub struct Out {
@@ -38,4 +42,84 @@ pub fn temp(name: &str) -> std::path::PathBuf {
     ));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
+}
+
+/// Whether this run rewrites golden files instead of checking them:
+/// `GRAFTAL_BLESS=1` (any other value, or none, checks).
+pub fn blessing() -> bool {
+    std::env::var_os("GRAFTAL_BLESS").is_some_and(|v| v == "1")
+}
+
+/// Texts up to this size are shown whole when they differ.
+const SHOW_WHOLE: usize = 4096;
+
+/// Checks `actual` against the golden file `path`, byte for byte. With
+/// `GRAFTAL_BLESS=1` the file is written instead (only when it differs)
+/// and the check passes. Otherwise a missing or different golden is an
+/// error saying which file, where it first differs, and how to rewrite it
+/// on purpose.
+///
+/// A test that must only bless what it has verified (an independent
+/// derivation, say) asserts that before calling this.
+pub fn check_golden(path: &Path, actual: &str) -> Result<(), String> {
+    let expected = std::fs::read(path);
+    if blessing() {
+        if expected.ok().as_deref() != Some(actual.as_bytes()) {
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir).unwrap();
+            }
+            std::fs::write(path, actual).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            eprintln!("blessed {}", path.display());
+        }
+        return Ok(());
+    }
+    let expected = match expected {
+        Ok(bytes) => bytes,
+        Err(e) => {
+            return Err(format!(
+                "{} is missing ({e}); GRAFTAL_BLESS=1 writes it",
+                path.display()
+            ))
+        }
+    };
+    if expected == actual.as_bytes() {
+        return Ok(());
+    }
+    let mut message = format!(
+        "{} differs from the output (GRAFTAL_BLESS=1 rewrites it): {} bytes expected, {} actual",
+        path.display(),
+        expected.len(),
+        actual.len()
+    );
+    let expected = String::from_utf8_lossy(&expected);
+    if expected.len() <= SHOW_WHOLE && actual.len() <= SHOW_WHOLE {
+        message.push_str(&format!("\n--- expected\n{expected}\n--- actual\n{actual}"));
+    } else {
+        let mut e = expected.split_inclusive('\n');
+        let mut a = actual.split_inclusive('\n');
+        let mut line = 1;
+        loop {
+            match (e.next(), a.next()) {
+                (x, y) if x == y && x.is_some() => line += 1,
+                (x, y) => {
+                    message.push_str(&format!(
+                        "; first at line {line}:\n--- expected\n{}\n--- actual\n{}",
+                        shorten(x.unwrap_or("(end of file)")),
+                        shorten(y.unwrap_or("(end of file)"))
+                    ));
+                    break;
+                }
+            }
+        }
+    }
+    Err(message)
+}
+
+/// One line of a golden, without its newline, cut to a readable length.
+fn shorten(line: &str) -> String {
+    let line = line.trim_end_matches('\n');
+    match line.char_indices().nth(300) {
+        Some((at, _)) => format!("{}...", &line[..at]),
+        None => line.to_string(),
+    }
 }
