@@ -605,7 +605,7 @@ pub fn render_shared_with(
         return None;
     }
     ropts.scale = sys.settings.scale;
-    let pic = inst.picture(steps, &ropts);
+    let pic = render::shared::picture(sys, &mut inst, steps, &ropts);
     Some(encode(&pic, format, &ropts, progress))
 }
 

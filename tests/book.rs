@@ -196,7 +196,7 @@ fn fig_3_11_data_files_as_printed() {
         assert!(!text.contains("/*"), "printed files have no comments");
         let sys = c.system.unwrap();
         assert_eq!(sys.settings.steps, Some(steps));
-        assert!((sys.settings.angle - 360.0 / factor as f64).abs() < 1e-12);
+        assert!((sys.settings.delta - (360.0 / factor as f64).to_radians()).abs() < 1e-12);
         assert_eq!(sys.productions.len(), 10);
         let g = geometry(&sys, &RunOptions::default()).unwrap().1;
         assert!(g.segments.len() > 100, "{name} draws a plant");

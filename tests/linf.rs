@@ -273,10 +273,7 @@ fn three_d_views_are_fitted_to_the_projected_box() {
         let opts = RenderOptions {
             width: 200,
             height: 100,
-            view: View {
-                azimuth: az,
-                elevation: el,
-            },
+            view: View::degrees(az, el),
             ..RenderOptions::default()
         };
         let pic = render::layout(&g, &opts);
@@ -337,10 +334,7 @@ fn nearer_segments_cover_farther_ones_in_the_png() {
         front.0 > front.1 + 100,
         "seen from +z the red bar is nearer: {front:?}"
     );
-    let back = centre(View {
-        azimuth: 180.0,
-        elevation: 0.0,
-    });
+    let back = centre(View::degrees(180.0, 0.0));
     assert!(
         back.1 > back.0 + 100,
         "seen from −z the blue bar is nearer: {back:?}"

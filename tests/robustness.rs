@@ -230,10 +230,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
         let ropts = RenderOptions {
             width: case.size.0,
             height: case.size.1,
-            view: View {
-                azimuth: case.view.0,
-                elevation: case.view.1,
-            },
+            view: View::degrees(case.view.0, case.view.1),
             scale: sys.settings.scale,
             ..RenderOptions::default()
         };

@@ -24,8 +24,15 @@ mod alloc;
 #[global_allocator]
 static ALLOC: alloc::Counting = alloc::Counting;
 
-/// Tests that measure memory run one at a time.
+/// The tests of this file run one at a time: the allocator's peak counts
+/// every thread's allocations, so a test drawing pictures beside one that
+/// measures would be measured too.
 static ALONE: Mutex<()> = Mutex::new(());
+
+/// Holds [`ALONE`] (also after another test failed while holding it).
+fn alone() -> std::sync::MutexGuard<'static, ()> {
+    ALONE.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// The most heap `f` had live at once (other tests' threads included, so
 /// tests that measure hold [`ALONE`]).
@@ -95,6 +102,7 @@ fn check_stats(what: &str, sys: &System, n: u64) -> Option<&'static str> {
 
 #[test]
 fn stats_agree_with_interpreting_the_derived_word_for_every_stdlib_system() {
+    let _one = alone();
     let mut shared = 0;
     let mut checked = 0;
     for name in graftal::stdlib::names() {
@@ -116,6 +124,7 @@ fn stats_agree_with_interpreting_the_derived_word_for_every_stdlib_system() {
 
 #[test]
 fn stats_agree_with_interpreting_the_derived_word_for_fractint_entries() {
+    let _one = alone();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/fractint");
     let mut shared = 0;
     let mut checked = 0;
@@ -154,6 +163,7 @@ fn koch_island(n: u32) -> (u128, f64, f64) {
 
 #[test]
 fn the_koch_island_closed_form_is_what_the_turtle_draws() {
+    let _one = alone();
     let sys = std_system("koch-island");
     for n in 0..=5 {
         let (segments, lo, hi) = koch_island(n);
@@ -169,7 +179,7 @@ fn the_koch_island_closed_form_is_what_the_turtle_draws() {
 
 #[test]
 fn koch_island_at_12_steps_is_counted_and_boxed_exactly_in_little_time_and_memory() {
-    let _one = ALONE.lock().unwrap();
+    let _one = alone();
     let sys = std_system("koch-island");
     let t = Instant::now();
     let (s, bytes) = peak(|| driver::stats(&sys, &steps(12)).unwrap());
@@ -215,6 +225,7 @@ fn render_both(name: &str, n: u64, size: u32) -> (Vec<u8>, Vec<u8>) {
 
 #[test]
 fn pictures_from_shared_subtrees_match_pictures_of_every_segment() {
+    let _one = alone();
     // Segments of several pixels: nothing is within a pixel, the same
     // polylines are drawn.
     for (name, n) in [("koch-island", 3), ("dragon", 8), ("hilbert", 4)] {
@@ -239,7 +250,7 @@ fn pictures_from_shared_subtrees_match_pictures_of_every_segment() {
 
 #[test]
 fn koch_island_at_8_steps_renders_in_bounded_time_and_memory() {
-    let _one = ALONE.lock().unwrap();
+    let _one = alone();
     let out = temp("koch8.png");
     let t = Instant::now();
     let (o, bytes) = peak(|| {
@@ -267,6 +278,7 @@ fn koch_island_at_8_steps_renders_in_bounded_time_and_memory() {
 
 #[test]
 fn limits_are_said_before_the_work_starts() {
+    let _one = alone();
     // 8 · 10¹⁰ symbols: the exact length is known before deriving.
     let t = Instant::now();
     let o = graftal(&["derive", "std:koch-island", "-n", "12"]);
@@ -279,6 +291,7 @@ fn limits_are_said_before_the_work_starts() {
 
 #[test]
 fn a_picture_too_big_to_draw_segment_by_segment_is_refused_before_deriving() {
+    let _one = alone();
     // A colour change keeps it off the shared-subtree renderer; 2^26 · 2
     // moves are over the drawing limit, and the tree knows it at once.
     let f = temp("big.l");
@@ -311,6 +324,7 @@ fn a_picture_too_big_to_draw_segment_by_segment_is_refused_before_deriving() {
 
 #[test]
 fn derive_prints_the_word_of_step_by_step_rewriting() {
+    let _one = alone();
     // Written from the shared tree (Koch), through the look-up table
     // (Fig. 3.11a) and by the general matcher (a two-symbol predecessor).
     let ab = temp("ab.l");

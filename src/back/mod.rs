@@ -724,7 +724,7 @@ pub enum Turns {
 /// Resolves an angle in radians for a system; `None` for intervals.
 pub fn radians(sys: &System, a: Angle) -> Option<f64> {
     match a {
-        Angle::Delta(k) => Some(k * sys.settings.angle.to_radians()),
+        Angle::Delta(k) => Some(k * sys.settings.delta),
         Angle::Radians(r) => Some(r),
         Angle::Uniform { .. } => None,
     }
@@ -863,6 +863,16 @@ pub fn repeated(e: &mut Emitter<'_>, s: SymbolId, c: char, k: i64) -> String {
 }
 
 /// `x` as a short decimal that reads back as the same `f64`.
+/// An angle in radians as the degrees people write: the shortest decimal
+/// whose conversion to radians gives the angle back exactly.
+pub fn degrees(radians: f64) -> String {
+    let deg = radians.to_degrees();
+    (0..=17)
+        .map(|digits| format!("{deg:.digits$}").parse::<f64>().unwrap_or(deg))
+        .find(|d| d.to_radians() == radians)
+        .map_or_else(|| number(deg), number)
+}
+
 pub fn number(x: f64) -> String {
     let s = format!("{x}");
     if s.contains('e') || s.contains("inf") || s.contains("NaN") {

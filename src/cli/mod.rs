@@ -272,14 +272,18 @@ where
                 return 2;
             };
             with_system(io, &args, |io, c, sys, opts, _| {
-                let view = view.or(sys.settings.view).unwrap_or((0.0, 0.0));
+                // `--view` is in degrees, the file's view in radians.
+                let view = view
+                    .map(|(az, el)| View::degrees(az, el))
+                    .or(sys.settings.view.map(|(az, el)| View {
+                        azimuth: az,
+                        elevation: el,
+                    }))
+                    .unwrap_or_default();
                 let ropts = RenderOptions {
                     width: size.0,
                     height: size.1,
-                    view: View {
-                        azimuth: view.0,
-                        elevation: view.1,
-                    },
+                    view,
                     spline,
                     ..RenderOptions::default()
                 };

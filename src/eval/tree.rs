@@ -24,7 +24,7 @@
 //! The words are exactly those of step-by-step parallel rewriting
 //! ([`super::Deriver`]); the tests check it.
 
-use crate::ir::{SymbolId, System};
+use crate::ir::{D0l, SymbolId, System};
 
 /// The most levels a tree is used for: deeper derivations of systems that
 /// do not grow are left to step-by-step rewriting, which skips cycles.
@@ -46,27 +46,12 @@ pub struct Tree<'a> {
 
 impl<'a> Tree<'a> {
     /// The tree of `sys`, or `None` when `sys` is not context-free and
-    /// deterministic (contexts, several predecessor symbols, stochastic
-    /// alternatives, guarded symbols, parameters).
+    /// deterministic ([`D0l::of`]).
     pub fn new(sys: &'a System) -> Option<Self> {
-        if sys.parametric.is_some() || sys.symbols.iter().any(|(_, i)| i.guard.is_some()) {
-            return None;
-        }
-        let mut succ: Vec<Option<&[SymbolId]>> = vec![None; sys.symbols.len()];
-        for p in &sys.productions {
-            if p.is_context_sensitive() || p.predecessor.len() != 1 || p.is_stochastic() {
-                return None;
-            }
-            let alt = p.alternatives.first()?;
-            let s = p.predecessor[0].index();
-            // The first production in file order wins.
-            if succ[s].is_none() {
-                succ[s] = Some(&alt.successor.0);
-            }
-        }
+        let d = D0l::of(sys)?;
         Some(Tree {
-            axiom: &sys.axiom.0,
-            succ,
+            axiom: d.axiom,
+            succ: d.successors,
         })
     }
 

@@ -122,7 +122,10 @@
 //! which sets the turtle's line width and step length for what follows in
 //! the branch (push/pop restore them like the rest of the state).
 
+pub mod d0l;
 pub mod parametric;
+
+pub use d0l::D0l;
 
 use serde::Serialize;
 use std::collections::HashMap;
@@ -474,8 +477,9 @@ pub enum ContextFilter {
 pub struct Settings {
     /// Derivation length from the file (`derivation length:`), if given.
     pub steps: Option<u64>,
-    /// Angle increment δ in degrees.
-    pub angle: f64,
+    /// Angle increment δ in radians (every angle in the IR is in
+    /// radians; degrees and `360/n` are the front ends' affair).
+    pub delta: f64,
     /// Initial step length, in turtle units.
     pub step: f64,
     /// Share of the picture the figure fills, 0..=100 (pfg `scale factor`).
@@ -484,7 +488,7 @@ pub struct Settings {
     pub width: f64,
     /// Factor applied to the width by [`TurtleOp::DecrementWidth`].
     pub width_factor: f64,
-    /// The view the file asks for, `(azimuth, elevation)` in degrees (a
+    /// The view the file asks for, `(azimuth, elevation)` in radians (a
     /// LinF `#: view` directive, a cpfg view file); `--view` overrides it.
     pub view: Option<(f64, f64)>,
     /// The initial colour index (cpfg `initial color`, Fractint 15; 0 elsewhere).
@@ -503,7 +507,7 @@ impl Default for Settings {
     fn default() -> Self {
         Settings {
             steps: None,
-            angle: 90.0,
+            delta: std::f64::consts::FRAC_PI_2,
             step: 1.0,
             scale: 100.0,
             width: 1.0,

@@ -3,17 +3,28 @@
 //! or SVG ([`svg`]).
 
 pub mod png;
+pub mod shared;
 pub mod svg;
 
 use crate::ir::Rgb;
 use crate::turtle::{Geometry, Vec3};
 
 /// A view direction: azimuth about the y axis, then elevation about the x
-/// axis, in degrees. (0, 0) looks down −z with x to the right and y up.
+/// axis, in radians. (0, 0) looks down −z with x to the right and y up.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct View {
     pub azimuth: f64,
     pub elevation: f64,
+}
+
+impl View {
+    /// The view of `azimuth` and `elevation` given in degrees.
+    pub fn degrees(azimuth: f64, elevation: f64) -> Self {
+        View {
+            azimuth: azimuth.to_radians(),
+            elevation: elevation.to_radians(),
+        }
+    }
 }
 
 /// Picture settings.
@@ -64,8 +75,8 @@ pub struct Picture {
 /// How near `p` is to the viewer (larger is nearer): the coordinate along
 /// the view direction, towards the eye.
 fn depth(p: Vec3, view: View) -> f64 {
-    let (sa, ca) = view.azimuth.to_radians().sin_cos();
-    let (se, ce) = view.elevation.to_radians().sin_cos();
+    let (sa, ca) = view.azimuth.sin_cos();
+    let (se, ce) = view.elevation.sin_cos();
     let z = -p[0] * sa + p[2] * ca;
     p[1] * se + z * ce
 }
@@ -102,8 +113,8 @@ fn depth_order(g: &Geometry, view: View) -> Option<Vec<usize>> {
 }
 
 fn project(p: Vec3, view: View) -> [f64; 2] {
-    let (sa, ca) = view.azimuth.to_radians().sin_cos();
-    let (se, ce) = view.elevation.to_radians().sin_cos();
+    let (sa, ca) = view.azimuth.sin_cos();
+    let (se, ce) = view.elevation.sin_cos();
     let x = p[0] * ca + p[2] * sa;
     let z = -p[0] * sa + p[2] * ca;
     let y = p[1] * ce - z * se;

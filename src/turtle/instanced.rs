@@ -2,7 +2,7 @@
 //! deterministic systems without deriving their words.
 //!
 //! Bekaert & Willems ("Ray tracing 3D linear graftals") draw a graftal by
-//! instancing: every node `(s, n)` of the derivation tree ([`Tree`]) is
+//! instancing: every node `(s, n)` of the derivation tree ([`D0l`]) is
 //! the same object wherever it occurs, placed by the turtle state it starts
 //! in. The turtle is relative: what a subtree draws, seen from its start,
 //! depends only on the frame it starts in (and whether turns are swapped),
@@ -27,10 +27,8 @@
 //! polygons, discs, two headings — is left to the streaming turtle (see
 //! [`crate::driver::stats`]); [`Instanced::new`] says `None`.
 
-use super::{rotate, Vec3, DEFAULT_PALETTE};
-use crate::eval::tree::Tree;
-use crate::ir::{Angle, Axis, SymbolId, System, TurtleOp};
-use crate::render::{Picture, RenderOptions, Run};
+use super::{rotate, Vec3};
+use crate::ir::{Angle, Axis, D0l, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 
 /// A subtree whose box is smaller than this many pixels across is drawn
@@ -113,7 +111,7 @@ impl Summary {
 /// A system prepared for instanced interpretation.
 pub struct Instanced<'a> {
     sys: &'a System,
-    tree: Tree<'a>,
+    tree: D0l<'a>,
     acts: Vec<Act>,
     turns: Vec<Rotation>,
     frames: Vec<Frame>,
@@ -181,8 +179,8 @@ impl<'a> Instanced<'a> {
         if sys.structure.is_some() {
             return None;
         }
-        let tree = Tree::new(sys)?;
-        let delta = sys.settings.angle.to_radians();
+        let tree = D0l::of(sys)?;
+        let delta = sys.settings.delta;
         let fixed = |a: Angle| match a {
             Angle::Delta(f) => Some(f * delta),
             Angle::Radians(r) => Some(r),
@@ -462,46 +460,15 @@ impl<'a> Instanced<'a> {
         !self.styled
     }
 
-    /// The picture of the word after `steps` steps, seen face on (the
-    /// default view), fitted as [`crate::render::layout`] fits it; a
-    /// subtree within one pixel is one line from its start to its end.
-    pub fn picture(&mut self, steps: u64, opts: &RenderOptions) -> Picture {
-        let whole = self.word(steps);
-        let (w, h) = (opts.width as f64, opts.height as f64);
-        let fill = 0.9 * opts.scale.clamp(1.0, 100.0) / 100.0;
-        let (bw, bh) = (whole.hi[0] - whole.lo[0], whole.hi[1] - whole.lo[1]);
-        let fit = |size: f64, extent: f64| {
-            if extent > 0.0 {
-                size * fill / extent
-            } else {
-                f64::INFINITY
-            }
-        };
-        let mut s = fit(w, bw).min(fit(h, bh));
-        if !s.is_finite() {
-            s = 1.0;
-        }
-        let (cx, cy) = (
-            (whole.lo[0] + whole.hi[0]) / 2.0,
-            (whole.lo[1] + whole.hi[1]) / 2.0,
-        );
-        let to_px = |p: Vec3| [w / 2.0 + (p[0] - cx) * s, h / 2.0 - (p[1] - cy) * s];
-        let base = (w.min(h) / 600.0).max(1.0);
-        let settings = &self.sys.settings;
-        let palette = if self.sys.colours.is_empty() {
-            DEFAULT_PALETTE.to_vec()
-        } else {
-            self.sys.colours.clone()
-        };
-        let mut pen = Pen {
-            lines: Vec::new(),
-            at: None,
-        };
-        let step = settings.step;
+    /// Walks the word after `steps` steps as lines through the shared
+    /// subtrees, seen face on: a subtree whose box is within half a pixel
+    /// (`pixels` per turtle unit) goes to `out` as one line from its start
+    /// to its end, in turtle units; larger subtrees are walked into.
+    pub fn lines(&mut self, steps: u64, pixels: f64, out: &mut dyn Lines) {
         let mut t = Turtle {
             pos: [0.0; 3],
             state: 0,
-            scale: step,
+            scale: self.sys.settings.step,
         };
         let mut branches: Vec<Turtle> = Vec::new();
         let mut stack: Vec<(&[SymbolId], u64)> = vec![(self.tree.axiom(), steps)];
@@ -521,7 +488,7 @@ impl<'a> Instanced<'a> {
                 (Act::Pop, None) => {
                     if let Some(b) = branches.pop() {
                         t = b;
-                        pen.at = None;
+                        out.lift();
                     }
                     continue;
                 }
@@ -529,7 +496,7 @@ impl<'a> Instanced<'a> {
             }
             let x = self.summary(c, d, t.state);
             let extent = (0..2)
-                .map(|i| (x.hi[i] - x.lo[i]) * t.scale * s)
+                .map(|i| (x.hi[i] - x.lo[i]) * t.scale * pixels)
                 .fold(0.0, f64::max);
             if let Some(w) = rewritten {
                 if x.draws() && extent >= WITHIN {
@@ -543,60 +510,29 @@ impl<'a> Instanced<'a> {
                 t.pos[2] + t.scale * x.end[2],
             ];
             if x.draws() {
-                pen.line(to_px(t.pos), to_px(end));
+                out.line(t.pos, end);
             } else if end != t.pos {
-                pen.at = None;
+                out.lift();
             }
             t.pos = end;
             t.state = x.state;
             t.scale *= x.scale;
         }
-        let colour = palette[settings.colour.min(palette.len() - 1)];
-        let width = if settings.world_widths {
-            (settings.width * s).max(0.5)
-        } else {
-            base * settings.width
-        };
-        Picture {
-            width: opts.width,
-            height: opts.height,
-            runs: vec![Run {
-                colour,
-                width,
-                lines: pen.lines,
-            }],
-            polygons: Vec::new(),
-        }
     }
 }
 
-/// Where the walk of [`Instanced::picture`] is: position, state, step.
+/// Where [`Instanced::lines`] draws.
+pub trait Lines {
+    /// A line from `a` to `b` (turtle units).
+    fn line(&mut self, a: Vec3, b: Vec3);
+    /// The turtle moved without drawing: the next line starts anew.
+    fn lift(&mut self);
+}
+
+/// Where the walk of [`Instanced::lines`] is: position, state, step.
 #[derive(Clone, Copy)]
 struct Turtle {
     pos: Vec3,
     state: u32,
     scale: f64,
-}
-
-/// Polylines in pixels, joined where one line starts at the last's end,
-/// with points closer than a tenth of a pixel to the previous one left out.
-struct Pen {
-    lines: Vec<Vec<[f64; 2]>>,
-    at: Option<[f64; 2]>,
-}
-
-impl Pen {
-    fn line(&mut self, a: [f64; 2], b: [f64; 2]) {
-        match (self.at, self.lines.last_mut()) {
-            (Some(p), Some(line)) if p == a => {
-                let last = line[line.len() - 1];
-                if (b[0] - last[0]).abs() >= 0.1 || (b[1] - last[1]).abs() >= 0.1 || line.len() < 2
-                {
-                    line.push(b);
-                }
-            }
-            _ => self.lines.push(vec![a, b]),
-        }
-        self.at = Some(b);
-    }
 }

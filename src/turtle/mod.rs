@@ -359,7 +359,7 @@ fn run(
     let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
         .map(|i| sys.op(SymbolId(i as u32)))
         .collect();
-    let delta = sys.settings.angle.to_radians();
+    let delta = sys.settings.delta;
     let mut rng = Rng::new(seed, Stream::Turtle);
     let mut resolve = |a: Angle| match a {
         Angle::Delta(f) => f * delta,

@@ -271,7 +271,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             e.rename(&r.name, &name);
         }
         let fix = |a: Angle| match a {
-            Angle::Delta(k) => Angle::Radians(k * sys.settings.angle.to_radians()),
+            Angle::Delta(k) => Angle::Radians(k * sys.settings.delta),
             other => other,
         };
         own.insert(id, rot.decls.len());
@@ -317,7 +317,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             }
             TurtleOp::Rotate { axis, angle } => {
                 let a = match angle {
-                    Angle::Delta(k) => Angle::Radians(k * sys.settings.angle.to_radians()),
+                    Angle::Delta(k) => Angle::Radians(k * sys.settings.delta),
                     other => other,
                 };
                 let (mag, negative) = match a {
@@ -497,7 +497,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     }
     let _ = writeln!(out, "#: steps {}", e.steps);
     if let Some((az, el)) = sys.settings.view {
-        let _ = writeln!(out, "#: view {},{}", number(az), number(el));
+        let _ = writeln!(out, "#: view {},{}", super::degrees(az), super::degrees(el));
     }
     if !lines_block.is_empty() {
         let _ = writeln!(out, "lines {}", lines_block.join(" "));

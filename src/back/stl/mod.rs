@@ -48,7 +48,7 @@ pub fn write(sys: &System) -> Option<String> {
         .any(|r| r.name.chars().all(|c| matches!(c, 'F' | 'L' | 'R')));
     let mut out = String::new();
     out.push_str("# Branch-Expansion Description written by graftal\n");
-    let _ = writeln!(out, "ANGLE {}", sys.settings.angle);
+    let _ = writeln!(out, "ANGLE {}", super::degrees(sys.settings.delta));
     let _ = writeln!(out, "B = {} ({})", st.broadness.0, st.broadness.1);
     let _ = writeln!(out, "L = {} ({})", st.length.0, st.length.1);
     let _ = writeln!(

@@ -553,7 +553,7 @@ enum Stage {
 /// Lowers `file` to a parametric [`System`].
 pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
     let mut sys = System::new();
-    sys.settings.angle = 45.0;
+    sys.settings.delta = 45f64.to_radians();
     let mut l = Lowerer {
         sys,
         spans: SpanTable::default(),

@@ -238,7 +238,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     // The view file's settings.
     let sys = &mut lowered.system;
     let st = &mut sys.settings;
-    st.angle = view.angle;
+    st.delta = view.angle.to_radians();
     st.width = view.initial_line_width;
     st.width_step = view.line_width_increment;
     st.world_widths = view.line_width_unit == view::WidthUnit::World;
@@ -252,10 +252,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     ];
     let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
     if len > 0.0 && (d[0].abs() > 1e-12 || d[1].abs() > 1e-12) {
-        st.view = Some((
-            d[0].atan2(d[2]).to_degrees(),
-            (d[1] / len).asin().to_degrees(),
-        ));
+        st.view = Some((d[0].atan2(d[2]), (d[1] / len).asin()));
     }
     // cpfg draws on black, graftal on white: the colour map's white
     // (index 1, the usual foreground) is drawn black.

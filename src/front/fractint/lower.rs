@@ -332,7 +332,7 @@ pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
         );
     }
     let n = angle.unwrap_or(4);
-    cx.sys.settings.angle = 360.0 / f64::from(n);
+    cx.sys.settings.delta = (360.0 / f64::from(n)).to_radians();
     cx.sys.settings.steps = Some(DEFAULT_ORDER);
     cx.sys.settings.colour = DEFAULT_COLOUR;
     cx.sys.colours = palette();

@@ -81,7 +81,7 @@ struct Cx<'a> {
 /// when no error was reported.
 pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     let mut sys = System::new();
-    sys.settings.angle = 0.0;
+    sys.settings.delta = 0.0;
     let mut cx = Cx {
         diags,
         sys,
@@ -172,7 +172,7 @@ fn directives(file: &File, cx: &mut Cx<'_>) {
                     .collect();
                 match parts[..] {
                     [Some(az), Some(el)] => {
-                        cx.sys.settings.view = Some((az, el));
+                        cx.sys.settings.view = Some((az.to_radians(), el.to_radians()));
                         true
                     }
                     _ => false,

@@ -261,7 +261,7 @@ fn lower_header(cx: &mut Ctx<'_>, idx: usize, h: &Header) {
                 .push(bad_value(span, &text, "a whole number of steps")),
         },
         1 => match int {
-            Ok(n) if n > 0 => cx.sys.settings.angle = 360.0 / n as f64,
+            Ok(n) if n > 0 => cx.sys.settings.delta = (360.0 / n as f64).to_radians(),
             _ => {
                 let mut d = Diagnostic::at(
                     codes::BAD_ANGLE_FACTOR,

@@ -50,8 +50,11 @@ impl Front for Pfg {
         block_comments(src)
     }
     fn angle_divisions(&self, sys: &System) -> Option<u64> {
-        (sys.settings.angle > 0.0)
-            .then(|| (360.0 / sys.settings.angle).round().min(i64::MAX as f64) as u64)
+        (sys.settings.delta > 0.0).then(|| {
+            (std::f64::consts::TAU / sys.settings.delta)
+                .round()
+                .min(i64::MAX as f64) as u64
+        })
     }
 }
 

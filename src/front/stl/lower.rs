@@ -1101,7 +1101,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     }
 
     let mut system = System::new();
-    system.settings.angle = st.angle;
+    system.settings.delta = st.angle.to_radians();
     system.settings.step = st.l.0;
     system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);
     let mut structure = Structure {
