@@ -222,7 +222,7 @@ fn cases() -> Vec<Case> {
         .flat_map(|family| {
             family.steps.iter().map(move |&steps| {
                 let word = graftal_derive(&family.sys, steps);
-                let geometry = turtle::interpret(&family.sys, &word.0, SEED);
+                let geometry = turtle::interpret(&family.sys, &word, SEED);
                 Case {
                     family,
                     steps,
@@ -288,7 +288,7 @@ fn bench_interpret(c: &mut Criterion) {
     let mut group = c.benchmark_group("interpret");
     for case in &cases {
         let sys = &case.family.sys;
-        let (g, peak) = peak_during(|| turtle::interpret(sys, &case.word.0, SEED));
+        let (g, peak) = peak_during(|| turtle::interpret(sys, &case.word, SEED));
         println!(
             "peak memory: interpret {}: {}, {} segments",
             case.label(),
@@ -300,7 +300,7 @@ fn bench_interpret(c: &mut Criterion) {
         group.bench_with_input(
             BenchmarkId::new(case.family.name, case.steps),
             &case.word,
-            |b, word| b.iter(|| turtle::interpret(sys, black_box(&word.0), SEED)),
+            |b, word| b.iter(|| turtle::interpret(sys, black_box(word), SEED)),
         );
     }
     group.finish();

@@ -5,9 +5,8 @@
 use crate::back;
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
-use crate::eval::{DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
+use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::front::{self, Front, Library};
-use crate::ir::parametric::ModuleWord;
 use crate::ir::{SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
 use crate::source::SourceFile;
@@ -179,12 +178,12 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
     }
 }
 
-/// Derives and writes the word as [`Derived::text`] would, followed by a
+/// Derives and writes the word as [`Front::word_text`] would, followed by a
 /// newline. A context-free deterministic system whose notation spells words
 /// by their symbols' names ([`Front::spells_words_by_name`]) is written
 /// straight from its shared derivation tree ([`Tree::walk`]), in chunks,
 /// without building the word; any other is derived, then written.
-/// `progress` is called as [`derive_any`] calls it. Write errors (a closed
+/// `progress` is called as [`derive_with_progress`] calls it. Write errors (a closed
 /// pipe) end the writing quietly.
 pub fn write_derived(
     front: &dyn Front,
@@ -211,8 +210,9 @@ pub fn write_derived(
         );
         progress(dopts.steps, len);
     } else {
-        match derive_any(sys, opts, progress)? {
-            Derived::Plain(w) if by_name => {
+        let w = derive_with_progress(sys, opts, progress)?;
+        if by_name && !w.has_params() {
+            {
                 if names.iter().all(|n| n.len() == 1) {
                     // One byte per symbol: a table look-up per symbol.
                     let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
@@ -227,9 +227,8 @@ pub fn write_derived(
                     }
                 }
             }
-            word => {
-                let _ = out.write_all(word.text(front, sys).as_bytes());
-            }
+        } else {
+            let _ = out.write_all(front.word_text(sys, &w).as_bytes());
         }
     }
     let _ = out.write_all(b"\n");
@@ -284,7 +283,13 @@ pub fn derive_with_progress(
     opts: &RunOptions,
     progress: impl FnMut(u64, usize),
 ) -> Result<Word, Diagnostic> {
-    Deriver::new(sys).derive(&opts.derive_options(sys), progress)
+    let dopts = opts.derive_options(sys);
+    if sys.rewrites_modules() {
+        return eval::parametric::derive(sys, &dopts, progress, &mut |w| {
+            answer_queries(sys, w, opts)
+        });
+    }
+    Deriver::new(sys).derive(&dopts, progress)
 }
 
 /// Derives the word.
@@ -298,13 +303,34 @@ pub fn derive(sys: &System, opts: &RunOptions) -> Result<Word, Diagnostic> {
 pub const MAX_MOVES: usize = 30_000_000;
 
 /// Interprets `word`, refusing words whose geometry would not fit in memory
-/// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too.
+/// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too. A
+/// system whose rewriting needs modules draws its word through its
+/// homomorphism.
 pub fn interpret(
     sys: &System,
     word: &Word,
     opts: &RunOptions,
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
+    let options = turtle::TurtleOptions { paths };
+    if sys.rewrites_modules() {
+        let (drawn, _) = eval::parametric::homomorphism(sys, word, &opts.derive_options(sys))?;
+        let moves = drawn
+            .0
+            .iter()
+            .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
+            .count();
+        if moves > opts.max_moves {
+            return Err(too_much_geometry(moves, opts.max_moves));
+        }
+        return Ok(turtle::interpret_with(
+            sys,
+            &drawn,
+            opts.seed,
+            options,
+            &mut |_, _, _| {},
+        ));
+    }
     let moves = word
         .0
         .iter()
@@ -321,72 +347,22 @@ pub fn interpret(
     }
     Ok(turtle::interpret_with(
         sys,
-        &word.0,
+        word,
         opts.seed,
-        turtle::TurtleOptions { paths },
+        options,
+        &mut |_, _, _| {},
     ))
-}
-
-/// A derived word: plain symbols, or modules with parameters (cpfg).
-#[derive(Clone, Debug)]
-pub enum Derived {
-    Plain(Word),
-    Modules(ModuleWord),
-}
-
-impl Derived {
-    /// Symbols or modules in the word.
-    pub fn len(&self) -> usize {
-        match self {
-            Derived::Plain(w) => w.len(),
-            Derived::Modules(m) => m.len(),
-        }
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The word as text in the notation of `front` (modules as
-    /// `A(1,2.5)`).
-    pub fn text(&self, front: &dyn Front, sys: &System) -> String {
-        match self {
-            Derived::Plain(w) => front.word_text(sys, w),
-            Derived::Modules(m) => modules_text(sys, m),
-        }
-    }
-}
-
-/// A parametric word as cpfg writes it: `F(1.5)A(2,3)[+B]`.
-pub fn modules_text(sys: &System, word: &ModuleWord) -> String {
-    use std::fmt::Write as _;
-    let mut out = String::with_capacity(word.len() * 3);
-    for i in 0..word.len() {
-        out.push_str(sys.symbols.name(word.symbols[i]));
-        let args = word.args(i);
-        if !args.is_empty() {
-            out.push('(');
-            for (k, a) in args.iter().enumerate() {
-                if k > 0 {
-                    out.push(',');
-                }
-                let _ = write!(out, "{a}");
-            }
-            out.push(')');
-        }
-    }
-    out
 }
 
 /// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
 /// finds there, drawing the word through the homomorphism.
-fn answer_queries(sys: &System, word: &mut ModuleWord, opts: &RunOptions) {
+fn answer_queries(sys: &System, word: &mut Word, opts: &RunOptions) {
     let dopts = opts.derive_options(sys);
-    let Ok((drawn, origins)) = crate::eval::parametric::homomorphism(sys, word, &dopts) else {
+    let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, &dopts) else {
         return;
     };
     let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
-    turtle::interpret_modules(
+    turtle::interpret_with(
         sys,
         &drawn,
         opts.seed,
@@ -397,62 +373,10 @@ fn answer_queries(sys: &System, word: &mut ModuleWord, opts: &RunOptions) {
         // Only a query module the homomorphism kept writes back.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;
-        if word.symbols.get(o) != drawn.symbols.get(i) {
+        if word.0.get(o) != drawn.0.get(i) {
             continue;
         }
-        let (a, b) = (word.starts[o] as usize, word.starts[o + 1] as usize);
-        for (slot, x) in word.params[a..b].iter_mut().zip(v) {
-            *slot = x;
-        }
-    }
-}
-
-/// Derives any system, reporting progress after each step.
-pub fn derive_any(
-    sys: &System,
-    opts: &RunOptions,
-    progress: impl FnMut(u64, usize),
-) -> Result<Derived, Diagnostic> {
-    if sys.parametric.is_some() {
-        let dopts = opts.derive_options(sys);
-        let w = crate::eval::parametric::derive(sys, &dopts, progress, &mut |w| {
-            answer_queries(sys, w, opts)
-        })?;
-        Ok(Derived::Modules(w))
-    } else {
-        derive_with_progress(sys, opts, progress).map(Derived::Plain)
-    }
-}
-
-/// Interprets any derived word (a parametric one through its
-/// homomorphism), with the same limits as [`interpret`].
-pub fn interpret_any(
-    sys: &System,
-    word: &Derived,
-    opts: &RunOptions,
-    paths: bool,
-) -> Result<Geometry, Diagnostic> {
-    match word {
-        Derived::Plain(w) => interpret(sys, w, opts, paths),
-        Derived::Modules(m) => {
-            let (drawn, _) =
-                crate::eval::parametric::homomorphism(sys, m, &opts.derive_options(sys))?;
-            let moves = drawn
-                .symbols
-                .iter()
-                .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
-                .count();
-            if moves > opts.max_moves {
-                return Err(too_much_geometry(moves, opts.max_moves));
-            }
-            Ok(turtle::interpret_modules(
-                sys,
-                &drawn,
-                opts.seed,
-                turtle::TurtleOptions { paths },
-                &mut |_, _, _| {},
-            ))
-        }
+        word.set_args(o, &v);
     }
 }
 
@@ -484,7 +408,7 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
 }
 
 /// The warning for a picture with nothing in it.
-pub fn nothing_drawn(word: &Derived) -> Diagnostic {
+pub fn nothing_drawn(word: &Word) -> Diagnostic {
     Diagnostic::global(
         codes::NOTHING_DRAWN,
         "nothing is drawn: the picture is empty",
@@ -704,9 +628,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         .iter()
         .map(|(_, i)| u128::from(!i.name.is_empty()))
         .collect();
-    let tree = (sys.parametric.is_none() && steps <= MAX_TREE_DEPTH)
-        .then(|| Tree::new(sys))
-        .flatten();
+    let tree = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten();
     if let Some(t) = &tree {
         let symbols = t
             .weighed(steps, &silent, u128::MAX)
@@ -743,23 +665,21 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
         return Ok(measured(c, max_depth, "streamed"));
     }
-    let word = derive_any(sys, opts, |_, _| {})?;
+    let w = derive(sys, opts)?;
     let t1 = Instant::now();
-    let (symbols, c, max_depth) = match &word {
-        Derived::Plain(w) => {
-            let mut c = Counter::default();
-            let depth = turtle::interpret_into(sys, w.0.iter().copied(), opts.seed, &mut c);
-            (written_symbols(sys, w) as u128, c, depth)
-        }
-        Derived::Modules(m) => {
-            let g = interpret_any(sys, &word, opts, false)?;
-            let c = Counter {
-                segments: g.segments.len() as u128,
-                polygons: g.polygons.len() as u128,
-                bbox: g.bbox(),
-            };
-            (m.len() as u128, c, g.max_depth)
-        }
+    let (symbols, c, max_depth) = if sys.rewrites_modules() {
+        // Drawn through the homomorphism, which may need the whole word.
+        let g = interpret(sys, &w, opts, false)?;
+        let c = Counter {
+            segments: g.segments.len() as u128,
+            polygons: g.polygons.len() as u128,
+            bbox: g.bbox(),
+        };
+        (w.len() as u128, c, g.max_depth)
+    } else {
+        let mut c = Counter::default();
+        let depth = turtle::interpret_into(sys, w.0.iter().copied(), opts.seed, &mut c);
+        (written_symbols(sys, &w) as u128, c, depth)
     };
     let t2 = Instant::now();
     Ok(Stats {

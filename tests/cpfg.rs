@@ -2,7 +2,8 @@
 //! 95 objects of `tests/corpus/cpfg` read, derived and drawn.
 
 use graftal::diagnostics::Diagnostic;
-use graftal::driver::{self, Derived, RunOptions};
+use graftal::driver::{self, RunOptions};
+use graftal::front::Front;
 use graftal::source::SourceFile;
 use std::path::{Path, PathBuf};
 
@@ -20,9 +21,7 @@ fn derive_text(src: &str, steps: u64) -> String {
         steps: Some(steps),
         ..RunOptions::default()
     };
-    driver::derive_any(&sys, &opts, |_, _| {})
-        .unwrap()
-        .text(&graftal::front::cpfg::Cpfg, &sys)
+    graftal::front::cpfg::Cpfg.word_text(&sys, &driver::derive(&sys, &opts).unwrap())
 }
 
 #[test]
@@ -79,8 +78,8 @@ endlsystem
         steps: Some(2),
         ..RunOptions::default()
     };
-    let w = driver::derive_any(&sys, &opts, |_, _| {}).unwrap();
-    let g = driver::interpret_any(&sys, &w, &opts, false).unwrap();
+    let w = driver::derive_with_progress(&sys, &opts, |_, _| {}).unwrap();
+    let g = driver::interpret(&sys, &w, &opts, false).unwrap();
     assert_eq!(g.segments.len(), 1);
     let s = &g.segments[0];
     let len = (0..3)
@@ -106,8 +105,8 @@ fn plus_turns_left_and_parameters_set_angles_and_lengths() {
     let c = compile_text(src);
     let sys = c.system.unwrap();
     let opts = RunOptions::default();
-    let w = driver::derive_any(&sys, &opts, |_, _| {}).unwrap();
-    let g = driver::interpret_any(&sys, &w, &opts, false).unwrap();
+    let w = driver::derive_with_progress(&sys, &opts, |_, _| {}).unwrap();
+    let g = driver::interpret(&sys, &w, &opts, false).unwrap();
     let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9);
     assert!(close(g.segments[0].b, [0.0, 2.0, 0.0]));
     // +(90) turns left: towards −x.
@@ -210,15 +209,15 @@ fn run_object(dir: &Path) -> Outcome {
         max_symbols: 2_000_000,
         ..RunOptions::default()
     };
-    let w = match driver::derive_any(&sys, &opts, |_, _| {}) {
+    let w = match driver::derive_with_progress(&sys, &opts, |_, _| {}) {
         Ok(w) => w,
         Err(d) => return Outcome::Refused(vec![format!("{} {}", d.code, d.message)]),
     };
-    let g = match driver::interpret_any(&sys, &w, &opts, false) {
+    let g = match driver::interpret(&sys, &w, &opts, false) {
         Ok(g) => g,
         Err(d) => return Outcome::Refused(vec![format!("{} {}", d.code, d.message)]),
     };
-    let _: &Derived = &w;
+    let _: &graftal::ir::Word = &w;
     let drawn = g.segments.len() + g.polygons.len() + g.discs.len();
     if drawn == 0 {
         // Nothing drawn is never silent: a warning points at the cause
@@ -315,8 +314,8 @@ fn damaged_files_never_panic() {
                     max_symbols: 200_000,
                     ..RunOptions::default()
                 };
-                if let Ok(w) = driver::derive_any(&sys, &opts, |_, _| {}) {
-                    let _ = driver::interpret_any(&sys, &w, &opts, false);
+                if let Ok(w) = driver::derive_with_progress(&sys, &opts, |_, _| {}) {
+                    let _ = driver::interpret(&sys, &w, &opts, false);
                 }
             }
             Ok(())
@@ -653,9 +652,8 @@ fn golden_derivations_of_corpus_files() {
             steps: Some(steps),
             ..RunOptions::default()
         };
-        let ours = driver::derive_any(&sys, &opts, |_, _| {})
-            .unwrap()
-            .text(&graftal::front::cpfg::Cpfg, &sys);
+        let ours =
+            graftal::front::cpfg::Cpfg.word_text(&sys, &driver::derive(&sys, &opts).unwrap());
         // Joined prefixed commands (`@O`) print as the characters cpfg reads.
         let theirs = independent_derivation(&src, steps);
         assert_eq!(

@@ -97,18 +97,14 @@ impl Builder<'_> {
         self.terms.insert(k, id);
         // The parent's production comes before its children's.
         let slot = self.out.productions.len();
-        self.out.productions.push(crate::ir::Production {
-            left: Vec::new(),
-            predecessor: vec![id],
-            right: Vec::new(),
-            condition: crate::ir::Condition::Always,
-            alternatives: vec![crate::ir::Alternative {
-                weight: 1.0,
-                successor: Word::default(),
-            }],
-        });
+        self.out.productions.push(crate::ir::Production::new(
+            Vec::new(),
+            vec![id],
+            Vec::new(),
+            vec![crate::ir::Alternative::new(1.0, Word::default())],
+        ));
         let succ = self.expand(t, level);
-        self.out.productions[slot].alternatives[0].successor = Word(succ);
+        self.out.productions[slot].alternatives[0].successor = Word::from(succ);
         id
     }
 
@@ -203,7 +199,14 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
     out.settings.width = 1.0;
     let silent = |s: &SymbolId| sys.symbols.name(*s).is_empty();
     let Some(st) = &sys.structure else {
-        out.axiom = Word(sys.axiom.0.iter().copied().filter(|s| !silent(s)).collect());
+        out.axiom = Word::from(
+            sys.axiom
+                .0
+                .iter()
+                .copied()
+                .filter(|s| !silent(s))
+                .collect::<Vec<_>>(),
+        );
         out.settings.steps = Some(0);
         return (out, problems);
     };
@@ -273,7 +276,7 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         }
     }
     let mut out = b.out;
-    out.axiom = Word(axiom);
+    out.axiom = Word::from(axiom);
     out.settings.steps = Some(if explicit { 0 } else { max_depth as u64 });
     (out, problems)
 }

@@ -378,7 +378,7 @@ pub fn translate(
     origin: &Origin,
     req: &Request,
 ) -> Translation {
-    if sys.parametric.is_some() {
+    if sys.rewrites_modules() {
         let mut diagnostics = crate::diagnostics::Diagnostics::default();
         diagnostics.push(
             crate::diagnostics::Diagnostic::global(

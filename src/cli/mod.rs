@@ -304,7 +304,7 @@ where
                 }
                 driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
                 let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let mut g = driver::interpret_any(sys, &word, opts, spline).map_err(|d| vec![d])?;
+                let mut g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
                 if !no_layout {
                     driver::add_layout(sys, &mut g);
                 }
@@ -551,11 +551,11 @@ fn derive_reporting(
     io: &Io<'_>,
     sys: &crate::ir::System,
     opts: &RunOptions,
-) -> Result<driver::Derived, Diagnostic> {
+) -> Result<crate::ir::Word, Diagnostic> {
     let Some(bar) = step_bar(io, sys, opts) else {
-        return driver::derive_any(sys, opts, |_, _| {});
+        return driver::derive_with_progress(sys, opts, |_, _| {});
     };
-    let r = driver::derive_any(sys, opts, |step, len| {
+    let r = driver::derive_with_progress(sys, opts, |step, len| {
         bar.set_position(step);
         bar.set_message(format!("{len} symbols"));
     });

@@ -150,7 +150,7 @@ impl<'a> Deriver<'a> {
                 let len = self.tree_len(&t, opts)?;
                 let word = t.word(opts.steps, len);
                 progress(opts.steps, word.len());
-                return Ok(Word(word));
+                return Ok(Word::from(word));
             }
         }
         self.derive_stepwise(opts, progress)
@@ -182,7 +182,7 @@ impl<'a> Deriver<'a> {
             Some(t) => self.steps(&t.stepper::<SymbolId>(), opts, progress)?,
             None => self.steps(&General(self), opts, progress)?,
         };
-        Ok(Word(word))
+        Ok(Word::from(word))
     }
 
     /// Rewrites `opts.steps` steps with `stepper`, stopping early at a fixed

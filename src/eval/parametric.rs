@@ -1,7 +1,9 @@
-//! Derivation of parametric (cpfg) systems, as [`crate::ir::parametric`]
-//! specifies: productions with formal parameters, contexts, statements and
-//! conditions; stochastic choice; `%` cuts; decomposition after each step;
-//! the homomorphism for drawing; Start/StartEach/EndEach/End blocks.
+//! Module rewriting: systems whose productions bind parameters, test
+//! conditions or run statements ([`crate::ir::System::rewrites_modules`]),
+//! as the IR specifies: contexts matched with parameters, weighted choice
+//! among applicable productions, `%` cuts, the decomposition phase after
+//! each step, the homomorphism for drawing, and the program's statements
+//! around the derivation.
 //!
 //! Bounds: the word is limited by [`DeriveOptions::max_symbols`], and all
 //! work (modules rewritten, loop iterations, recursion) by
@@ -9,37 +11,9 @@
 
 use super::DeriveOptions;
 use crate::diagnostics::{codes, Diagnostic};
-use crate::ir::parametric::{
-    BinOp, Builtin, Expr, ModuleWord, ParamProduction, Parametric, Pattern, Place, Stmt, UnOp, Var,
-};
-use crate::ir::{SymbolId, System};
+use crate::ir::program::{truth, BinOp, Builtin, Expr, Place, Program, Stmt, Var};
+use crate::ir::{Alternative, Formals, Production, RulePolicy, SymbolId, System, Word};
 use crate::random::{Rng, Stream};
-
-/// The value of an expression that uses no variables, or `None`.
-pub fn constant(e: &Expr) -> Option<f64> {
-    let par = Parametric::default();
-    let mut m = Machine::new(&par, 0, u64::MAX);
-    if uses_variables(e) {
-        return None;
-    }
-    m.eval(e, &mut []).ok()
-}
-
-fn uses_variables(e: &Expr) -> bool {
-    match e {
-        Expr::Num(_) | Expr::Str(_) => false,
-        Expr::Var(_) | Expr::Element(..) => true,
-        Expr::Unary(_, a) => uses_variables(a),
-        Expr::Binary(_, a, b) => uses_variables(a) || uses_variables(b),
-        Expr::Cond(a, b, c) => uses_variables(a) || uses_variables(b) || uses_variables(c),
-        Expr::Call(f, args) => {
-            matches!(
-                f,
-                Builtin::Ran | Builtin::Nran | Builtin::Bran | Builtin::Biran | Builtin::Func
-            ) || args.iter().any(uses_variables)
-        }
-    }
-}
 
 /// Why evaluation stopped early.
 #[derive(Debug)]
@@ -50,7 +24,7 @@ enum Halt {
 
 /// Variables, arrays, the random stream and the work budget.
 struct Machine<'p> {
-    par: &'p Parametric,
+    par: &'p Program,
     globals: Vec<f64>,
     arrays: Vec<Vec<f64>>,
     rng: Rng,
@@ -64,20 +38,11 @@ struct Machine<'p> {
 /// The most iterations of one loop statement.
 const MAX_LOOP: u64 = 10_000_000;
 
-fn truth(v: f64) -> bool {
-    v != 0.0
-}
-
-fn b(v: bool) -> f64 {
-    if v {
-        1.0
-    } else {
-        0.0
-    }
-}
-
 impl<'p> Machine<'p> {
-    fn new(par: &'p Parametric, seed: u64, max_work: u64) -> Self {
+    /// The machine of `sys`'s program; its random stream starts from the
+    /// run's seed plus the file's own.
+    fn new(sys: &'p System, seed: u64, max_work: u64) -> Self {
+        let par = &sys.program;
         Machine {
             par,
             globals: vec![0.0; par.globals.len()],
@@ -91,7 +56,10 @@ impl<'p> Machine<'p> {
                     v
                 })
                 .collect(),
-            rng: Rng::new(seed.wrapping_add(par.seed.unwrap_or(0)), Stream::Derivation),
+            rng: Rng::new(
+                seed.wrapping_add(sys.settings.seed.unwrap_or(0)),
+                Stream::Derivation,
+            ),
             run_seed: seed,
             work: 0,
             max_work,
@@ -138,39 +106,17 @@ impl<'p> Machine<'p> {
                 Some(i) => self.arrays[*a as usize][i],
                 None => 0.0,
             },
-            Expr::Unary(UnOp::Neg, a) => -self.eval(a, locals)?,
-            Expr::Unary(UnOp::Not, a) => b(!truth(self.eval(a, locals)?)),
-            Expr::Binary(BinOp::And, x, y) => {
-                b(truth(self.eval(x, locals)?) && truth(self.eval(y, locals)?))
-            }
-            Expr::Binary(BinOp::Or, x, y) => {
-                b(truth(self.eval(x, locals)?) || truth(self.eval(y, locals)?))
-            }
+            Expr::Unary(op, a) => op.apply(self.eval(a, locals)?),
+            // `&&` and `||` evaluate their right side only when needed.
+            Expr::Binary(BinOp::And, x, y) => f64::from(u8::from(
+                truth(self.eval(x, locals)?) && truth(self.eval(y, locals)?),
+            )),
+            Expr::Binary(BinOp::Or, x, y) => f64::from(u8::from(
+                truth(self.eval(x, locals)?) || truth(self.eval(y, locals)?),
+            )),
             Expr::Binary(op, x, y) => {
                 let (x, y) = (self.eval(x, locals)?, self.eval(y, locals)?);
-                match op {
-                    BinOp::Eq => b(x == y),
-                    BinOp::Ne => b(x != y),
-                    BinOp::Lt => b(x < y),
-                    BinOp::Le => b(x <= y),
-                    BinOp::Gt => b(x > y),
-                    BinOp::Ge => b(x >= y),
-                    BinOp::Add => x + y,
-                    BinOp::Sub => x - y,
-                    BinOp::Mul => x * y,
-                    BinOp::Div => x / y,
-                    // cpfg computes `%` on integers.
-                    BinOp::Rem => {
-                        let (a, m) = (x as i64, y as i64);
-                        if m == 0 {
-                            0.0
-                        } else {
-                            a.wrapping_rem(m) as f64
-                        }
-                    }
-                    BinOp::Pow => x.powf(y),
-                    BinOp::And | BinOp::Or => unreachable!("handled above"),
-                }
+                op.apply(x, y)
             }
             Expr::Cond(c, x, y) => {
                 if truth(self.eval(c, locals)?) {
@@ -194,31 +140,10 @@ impl<'p> Machine<'p> {
 
     fn call(&mut self, f: Builtin, v: [f64; 2], n: usize) -> f64 {
         let [x, y] = v;
-        let deg = std::f64::consts::PI / 180.0;
+        if let Some(value) = f.pure(x, y) {
+            return value;
+        }
         match f {
-            Builtin::Sin => (x * deg).sin(),
-            Builtin::Cos => (x * deg).cos(),
-            Builtin::Tan => (x * deg).tan(),
-            Builtin::Asin => x.asin() / deg,
-            Builtin::Acos => x.acos() / deg,
-            Builtin::Atan => x.atan() / deg,
-            Builtin::Atan2 => x.atan2(y) / deg,
-            Builtin::Exp => x.exp(),
-            Builtin::Log => x.ln(),
-            Builtin::Sqrt => x.sqrt(),
-            Builtin::Fabs => x.abs(),
-            Builtin::Floor => x.floor(),
-            Builtin::Ceil => x.ceil(),
-            Builtin::Trunc => x.trunc(),
-            Builtin::Sign => {
-                if x > 0.0 {
-                    1.0
-                } else if x < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                }
-            }
             Builtin::Srand => {
                 self.rng = Rng::new(
                     (x as i64 as u64).wrapping_add(self.run_seed),
@@ -255,12 +180,9 @@ impl<'p> Machine<'p> {
                 0.0
             }
             Builtin::GetDerivationLength => self.steps as f64,
-            Builtin::CurveX
-            | Builtin::CurveY
-            | Builtin::CurveZ
-            | Builtin::CurveGal
-            | Builtin::Io
-            | Builtin::ViewVolume => {
+            // The pure functions returned above; curves, I/O and the view
+            // volume are 0 (graftal performs no I/O for a model).
+            _ => {
                 let _ = n;
                 0.0
             }
@@ -353,6 +275,15 @@ impl<'p> Machine<'p> {
     }
 }
 
+/// A context: its symbols and their formal parameters.
+type Patterns<'p> = (&'p [SymbolId], &'p [Vec<u16>]);
+
+/// One module of a context pattern.
+struct Pattern<'p> {
+    symbol: SymbolId,
+    params: &'p [u16],
+}
+
 /// Which productions to try for a symbol, and how context is matched.
 struct Matcher {
     ignored: Vec<bool>,
@@ -364,16 +295,18 @@ impl Matcher {
         self.ignored.get(s.index()).copied().unwrap_or(false)
     }
 
-    /// Binds `pat`'s parameters from module `i` of `word`.
-    fn bind(word: &ModuleWord, i: usize, pat: &Pattern, locals: &mut [f64]) -> bool {
-        if word.symbols[i] != pat.symbol {
+    /// Binds the formal parameters `params` of a pattern module `symbol`
+    /// to module `i` of `word`, which must be the same symbol with as many
+    /// parameters.
+    fn bind(word: &Word, i: usize, symbol: SymbolId, params: &[u16], locals: &mut [f64]) -> bool {
+        if word.0[i] != symbol {
             return false;
         }
         let args = word.args(i);
-        if args.len() != pat.params.len() {
+        if args.len() != params.len() {
             return false;
         }
-        for (slot, v) in pat.params.iter().zip(args) {
+        for (slot, v) in params.iter().zip(args) {
             if let Some(l) = locals.get_mut(*slot as usize) {
                 *l = *v;
             }
@@ -382,11 +315,15 @@ impl Matcher {
     }
 
     /// Left context ending just before module `i`.
-    fn left(&self, word: &ModuleWord, i: usize, pats: &[Pattern], locals: &mut [f64]) -> bool {
+    fn left(&self, word: &Word, i: usize, pats: Patterns<'_>, locals: &mut [f64]) -> bool {
         let n = word.len();
         let mut j = i; // next module to look at is j - 1
         let mut steps = 0;
-        for pat in pats.iter().rev() {
+        for (k, &symbol) in pats.0.iter().enumerate().rev() {
+            let pat = Pattern {
+                symbol,
+                params: Formals::of(pats.1, k),
+            };
             // A module the context filter does not see is not looked for
             // (cpfg's `consider:` applies to patterns as to words).
             if self.is_ignored(pat.symbol)
@@ -408,7 +345,7 @@ impl Matcher {
                 if steps > 2 * n + 2 {
                     return false;
                 }
-                let s = word.symbols[j];
+                let s = word.0[j];
                 if s == pat.symbol {
                     break;
                 }
@@ -420,9 +357,9 @@ impl Matcher {
                             return false;
                         }
                         j -= 1;
-                        if word.symbols[j] == SymbolId::CLOSE {
+                        if word.0[j] == SymbolId::CLOSE {
                             depth += 1;
-                        } else if word.symbols[j] == SymbolId::OPEN {
+                        } else if word.0[j] == SymbolId::OPEN {
                             depth -= 1;
                         }
                     }
@@ -433,7 +370,7 @@ impl Matcher {
                 }
                 return false;
             }
-            if !Self::bind(word, j, pat, locals) {
+            if !Self::bind(word, j, pat.symbol, pat.params, locals) {
                 return false;
             }
         }
@@ -441,11 +378,15 @@ impl Matcher {
     }
 
     /// Right context starting at module `i`.
-    fn right(&self, word: &ModuleWord, i: usize, pats: &[Pattern], locals: &mut [f64]) -> bool {
+    fn right(&self, word: &Word, i: usize, pats: Patterns<'_>, locals: &mut [f64]) -> bool {
         let n = word.len();
         let mut j = i;
         let mut steps = 0;
-        for pat in pats {
+        for (k, &symbol) in pats.0.iter().enumerate() {
+            let pat = Pattern {
+                symbol,
+                params: Formals::of(pats.1, k),
+            };
             if self.is_ignored(pat.symbol)
                 && pat.symbol != SymbolId::OPEN
                 && pat.symbol != SymbolId::CLOSE
@@ -459,7 +400,7 @@ impl Matcher {
                     if j >= n {
                         return false;
                     }
-                    let s = word.symbols[j];
+                    let s = word.0[j];
                     if s == SymbolId::OPEN {
                         depth += 1;
                     } else if s == SymbolId::CLOSE {
@@ -485,7 +426,7 @@ impl Matcher {
                 if steps > 2 * n + 2 {
                     return false;
                 }
-                let s = word.symbols[j];
+                let s = word.0[j];
                 if s == pat.symbol {
                     break;
                 }
@@ -496,9 +437,9 @@ impl Matcher {
                         if j >= n {
                             return false;
                         }
-                        if word.symbols[j] == SymbolId::OPEN {
+                        if word.0[j] == SymbolId::OPEN {
                             depth += 1;
-                        } else if word.symbols[j] == SymbolId::CLOSE {
+                        } else if word.0[j] == SymbolId::CLOSE {
                             depth -= 1;
                         }
                         j += 1;
@@ -514,7 +455,7 @@ impl Matcher {
                 }
                 return false;
             }
-            if !Self::bind(word, j, pat, locals) {
+            if !Self::bind(word, j, pat.symbol, pat.params, locals) {
                 return false;
             }
             j += 1;
@@ -525,29 +466,22 @@ impl Matcher {
 
 /// The productions of a group, indexed by their first predecessor symbol.
 struct Group<'p> {
-    prods: &'p [ParamProduction],
+    prods: &'p [Production],
     by_first: Vec<Vec<u32>>,
 }
 
 impl<'p> Group<'p> {
-    fn new(prods: &'p [ParamProduction], symbols: usize) -> Self {
+    fn new(prods: &'p [Production], symbols: usize) -> Self {
         let mut by_first = vec![Vec::new(); symbols];
         for (k, p) in prods.iter().enumerate() {
             if let Some(first) = p.predecessor.first() {
-                if let Some(v) = by_first.get_mut(first.symbol.index()) {
+                if let Some(v) = by_first.get_mut(first.index()) {
                     v.push(k as u32);
                 }
             }
         }
         Group { prods, by_first }
     }
-}
-
-/// Stochastic, deterministic: how a production is chosen.
-#[derive(Clone, Copy, PartialEq)]
-enum Choice {
-    First,
-    Weighted,
 }
 
 struct Engine<'a> {
@@ -558,53 +492,59 @@ struct Engine<'a> {
 }
 
 impl Engine<'_> {
+    /// Binds the strict predecessor of `p` at module `i` of `word` and
+    /// matches its contexts in `ctx` around module `ctx_i`.
+    fn matches(
+        &mut self,
+        p: &Production,
+        (word, i): (&Word, usize),
+        (ctx, ctx_i): (&Word, usize),
+    ) -> bool {
+        let len = p.predecessor.len();
+        if i + len > word.len() {
+            return false;
+        }
+        self.locals.clear();
+        self.locals.resize(p.formals.locals as usize, 0.0);
+        for (o, &symbol) in p.predecessor.iter().enumerate() {
+            let params = Formals::of(&p.formals.predecessor, o);
+            if !Matcher::bind(word, i + o, symbol, params, &mut self.locals) {
+                return false;
+            }
+        }
+        let ctx_end = if std::ptr::eq(word, ctx) {
+            ctx_i + len
+        } else {
+            ctx_i + 1
+        };
+        let left = (p.left.as_slice(), p.formals.left.as_slice());
+        if !p.left.is_empty() && !self.matcher.left(ctx, ctx_i, left, &mut self.locals) {
+            return false;
+        }
+        let right = (p.right.as_slice(), p.formals.right.as_slice());
+        !(!p.right.is_empty() && !self.matcher.right(ctx, ctx_end, right, &mut self.locals))
+    }
+
     /// Tries the productions of `group` at module `i` of `word` (contexts
     /// are matched in `ctx.0` around module `ctx.1`). On success appends the
     /// successor to `out` and returns the number of modules consumed.
     fn apply(
         &mut self,
         group: &Group<'_>,
-        (word, i): (&ModuleWord, usize),
-        (ctx, ctx_i): (&ModuleWord, usize),
-        choice: Choice,
-        out: &mut ModuleWord,
+        at: (&Word, usize),
+        context: (&Word, usize),
+        choice: RulePolicy,
+        out: &mut Word,
     ) -> Result<Option<usize>, Halt> {
-        let Some(cands) = group.by_first.get(word.symbols[i].index()) else {
+        let Some(cands) = group.by_first.get(at.0 .0[at.1].index()) else {
             return Ok(None);
         };
-        if cands.is_empty() {
-            return Ok(None);
-        }
-        let mut applicable: Vec<(u32, f64, Vec<f64>)> = Vec::new();
+        // Candidates: (production, alternative, weight, locals).
+        let mut applicable: Vec<(u32, usize, f64, Vec<f64>)> = Vec::new();
         for &k in cands {
             let p = &group.prods[k as usize];
             self.m.charge(1)?;
-            let len = p.predecessor.len();
-            if i + len > word.len() {
-                continue;
-            }
-            self.locals.clear();
-            self.locals.resize(p.locals as usize, 0.0);
-            let mut ok = true;
-            for (o, pat) in p.predecessor.iter().enumerate() {
-                if !Matcher::bind(word, i + o, pat, &mut self.locals) {
-                    ok = false;
-                    break;
-                }
-            }
-            if !ok {
-                continue;
-            }
-            let ctx_end = if std::ptr::eq(word, ctx) {
-                ctx_i + len
-            } else {
-                ctx_i + 1
-            };
-            if !p.left.is_empty() && !self.matcher.left(ctx, ctx_i, &p.left, &mut self.locals) {
-                continue;
-            }
-            if !p.right.is_empty() && !self.matcher.right(ctx, ctx_end, &p.right, &mut self.locals)
-            {
+            if !self.matches(p, at, context) {
                 continue;
             }
             let mut locals = std::mem::take(&mut self.locals);
@@ -617,72 +557,87 @@ impl Engine<'_> {
                 self.locals = locals;
                 continue;
             }
-            if choice == Choice::First {
-                self.emit(p, &mut locals, out)?;
+            if choice == RulePolicy::FirstMatch {
+                let alt = self.alternative(p);
+                self.emit(p, alt, &mut locals, out)?;
                 self.locals = locals;
-                return Ok(Some(len));
+                return Ok(Some(p.predecessor.len()));
             }
-            let w = match &p.probability {
-                Some(e) => self.m.eval(e, &mut locals)?,
-                None => 1.0,
-            };
-            applicable.push((k, w.max(0.0), locals));
+            for (a, alt) in p.alternatives.iter().enumerate() {
+                let w = match &alt.computed_weight {
+                    Some(e) => self.m.eval(e, &mut locals)?,
+                    None => alt.weight,
+                };
+                applicable.push((k, a, w.max(0.0), locals.clone()));
+            }
         }
         if applicable.is_empty() {
             return Ok(None);
         }
-        let total: f64 = applicable.iter().map(|a| a.1).sum();
-        let mut pick = applicable.len() - 1;
+        let weights: Vec<f64> = applicable.iter().map(|a| a.2).collect();
+        let pick = self.pick(&weights);
+        let (k, a, _, mut locals) = applicable.swap_remove(pick);
+        let p = &group.prods[k as usize];
+        self.emit(p, &p.alternatives[a], &mut locals, out)?;
+        Ok(Some(p.predecessor.len()))
+    }
+
+    /// An index drawn with probability proportional to `weights` (the
+    /// last when they add up to nothing usable).
+    fn pick(&mut self, weights: &[f64]) -> usize {
+        let total: f64 = weights.iter().sum();
         if total > 0.0 && total.is_finite() {
             let r = self.m.rng.next_f64() * total;
             let mut acc = 0.0;
-            for (n, a) in applicable.iter().enumerate() {
-                acc += a.1;
+            for (n, w) in weights.iter().enumerate() {
+                acc += w;
                 if r < acc {
-                    pick = n;
-                    break;
+                    return n;
                 }
             }
         }
-        let (k, _, mut locals) = applicable.swap_remove(pick);
-        let p = &group.prods[k as usize];
-        self.emit(p, &mut locals, out)?;
-        Ok(Some(p.predecessor.len()))
+        weights.len() - 1
+    }
+
+    /// The alternative of a production chosen first-match: its only one,
+    /// or one drawn by the fixed weights.
+    fn alternative<'p>(&mut self, p: &'p Production) -> &'p Alternative {
+        if p.alternatives.len() == 1 {
+            return &p.alternatives[0];
+        }
+        let weights: Vec<f64> = p.alternatives.iter().map(|a| a.weight).collect();
+        &p.alternatives[self.pick(&weights)]
     }
 
     fn emit(
         &mut self,
-        p: &ParamProduction,
+        p: &Production,
+        alt: &Alternative,
         locals: &mut [f64],
-        out: &mut ModuleWord,
+        out: &mut Word,
     ) -> Result<(), Halt> {
         self.m.run(&p.after, locals)?;
         let mut args: Vec<f64> = Vec::new();
-        for call in &p.successor {
+        for (k, &symbol) in alt.successor.0.iter().enumerate() {
             args.clear();
-            for a in &call.args {
+            for a in alt.args.get(k).map_or(&[][..], |v| v.as_slice()) {
                 args.push(self.m.eval(a, locals)?);
             }
-            out.push(call.symbol, &args);
+            out.push(symbol, &args);
         }
-        self.m.charge(p.successor.len() as u64)?;
+        self.m.charge(alt.successor.len() as u64)?;
         Ok(())
     }
 
     /// One parallel rewriting of `word` with `group`.
-    fn step(
-        &mut self,
-        group: &Group<'_>,
-        word: &ModuleWord,
-        choice: Choice,
-    ) -> Result<ModuleWord, Halt> {
-        let mut out = ModuleWord::new();
+    fn step(&mut self, group: &Group<'_>, word: &Word, choice: RulePolicy) -> Result<Word, Halt> {
+        let mut out = Word::new();
         let mut i = 0;
         while i < word.len() {
             match self.apply(group, (word, i), (word, i), choice, &mut out)? {
                 Some(n) => i += n.max(1),
                 None => {
-                    out.push(word.symbols[i], word.args(i));
+                    out.push(word.0[i], word.args(i));
                     i += 1;
                 }
             }
@@ -700,14 +655,14 @@ impl Engine<'_> {
     fn recursive(
         &mut self,
         group: &Group<'_>,
-        word: &ModuleWord,
+        word: &Word,
         depth: u32,
-        choice: Choice,
+        choice: RulePolicy,
         mut origins: Option<&mut Vec<u32>>,
-    ) -> Result<ModuleWord, Halt> {
-        let mut out = ModuleWord::new();
+    ) -> Result<Word, Halt> {
+        let mut out = Word::new();
         let mut i = 0;
-        let mut scratch = ModuleWord::new();
+        let mut scratch = Word::new();
         while i < word.len() {
             scratch.clear();
             let consumed = match self.apply(group, (word, i), (word, i), choice, &mut scratch)? {
@@ -721,7 +676,7 @@ impl Engine<'_> {
                     n.max(1)
                 }
                 None => {
-                    out.push(word.symbols[i], word.args(i));
+                    out.push(word.0[i], word.args(i));
                     if let Some(o) = origins.as_deref_mut() {
                         o.push(i as u32);
                     }
@@ -741,17 +696,17 @@ impl Engine<'_> {
     fn deeper(
         &mut self,
         group: &Group<'_>,
-        sub: &ModuleWord,
-        ctx: &ModuleWord,
+        sub: &Word,
+        ctx: &Word,
         at: usize,
         depth: u32,
-        choice: Choice,
-    ) -> Result<ModuleWord, Halt> {
+        choice: RulePolicy,
+    ) -> Result<Word, Halt> {
         if depth == 0 {
             return Ok(sub.clone());
         }
-        let mut out = ModuleWord::new();
-        let mut scratch = ModuleWord::new();
+        let mut out = Word::new();
+        let mut scratch = Word::new();
         let mut i = 0;
         while i < sub.len() {
             scratch.clear();
@@ -762,7 +717,7 @@ impl Engine<'_> {
                     i += n.max(1);
                 }
                 None => {
-                    out.push(sub.symbols[i], sub.args(i));
+                    out.push(sub.0[i], sub.args(i));
                     i += 1;
                 }
             }
@@ -775,19 +730,19 @@ impl Engine<'_> {
 }
 
 /// Removes each `%` and the rest of its branch.
-fn cut(word: &mut ModuleWord, cut: SymbolId) {
-    if !word.symbols.contains(&cut) {
+fn cut(word: &mut Word, cut: SymbolId) {
+    if !word.0.contains(&cut) {
         return;
     }
-    let mut out = ModuleWord::new();
+    let mut out = Word::new();
     let mut i = 0;
     while i < word.len() {
-        let s = word.symbols[i];
+        let s = word.0[i];
         if s == cut {
             let mut depth = 0usize;
             i += 1;
             while i < word.len() {
-                let t = word.symbols[i];
+                let t = word.0[i];
                 if t == SymbolId::OPEN {
                     depth += 1;
                 } else if t == SymbolId::CLOSE {
@@ -824,89 +779,89 @@ fn halt_error(h: Halt, opts: &DeriveOptions, len: usize) -> Diagnostic {
     }
 }
 
-fn matcher(sys: &System, par: &Parametric) -> Matcher {
+fn matcher(sys: &System) -> Matcher {
     let ignored = (0..sys.symbols.len())
         .map(|i| sys.is_ignored(SymbolId(i as u32)))
         .collect();
     Matcher {
         ignored,
-        ring: par.ring,
+        ring: sys.ring,
     }
 }
 
-/// Derives a parametric system: `opts.steps` steps from the axiom, with
-/// `progress` called after each step. `query` is called before each step
-/// when the system has query modules, to fill their parameters.
+/// The axiom with its parameters evaluated (after the start block ran).
+fn axiom(sys: &System, m: &mut Machine<'_>) -> Result<Word, Halt> {
+    let mut word = Word::new();
+    let mut args = Vec::new();
+    for (k, &symbol) in sys.axiom.0.iter().enumerate() {
+        args.clear();
+        for a in sys.axiom_args.get(k).map_or(&[][..], |v| v.as_slice()) {
+            args.push(m.eval(a, &mut [])?);
+        }
+        word.push(symbol, &args);
+    }
+    Ok(word)
+}
+
+/// Derives a system by module rewriting: `opts.steps` steps from the
+/// axiom, with `progress` called after each step. `query` is called before
+/// each step when the system has query modules, to fill their parameters.
 pub fn derive(
     sys: &System,
     opts: &DeriveOptions,
     mut progress: impl FnMut(u64, usize),
-    query: &mut dyn FnMut(&mut ModuleWord),
-) -> Result<ModuleWord, Diagnostic> {
-    let par = sys
-        .parametric
-        .as_deref()
-        .expect("derive_parametric is called for parametric systems");
+    query: &mut dyn FnMut(&mut Word),
+) -> Result<Word, Diagnostic> {
     let n = sys.symbols.len();
-    let main = Group::new(&par.productions, n);
-    let decomposition = Group::new(&par.decomposition.productions, n);
-    let stochastic = if par.seed.is_some() {
-        Choice::Weighted
-    } else {
-        Choice::First
-    };
+    let main = Group::new(&sys.productions, n);
+    let decomposition = Group::new(&sys.decomposition.productions, n);
+    let choice = sys.policy;
     let mut e = Engine {
-        m: Machine::new(par, opts.seed, opts.max_work),
-        matcher: matcher(sys, par),
+        m: Machine::new(sys, opts.seed, opts.max_work),
+        matcher: matcher(sys),
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
     };
     e.m.steps = opts.steps;
-    let cut_symbol = sys.symbols.get("%");
+    let cut_symbol = sys.cut;
     let has_query = sys
         .symbols
         .iter()
         .any(|(id, _)| matches!(sys.op(id), Some(crate::ir::TurtleOp::Query(_))));
+    let program = &sys.program;
     let mut len = 0;
-    let result: Result<ModuleWord, Halt> = (|| {
-        e.m.run(&par.start, &mut [])?;
-        let mut word = ModuleWord::new();
-        for call in &par.axiom {
-            let mut args = Vec::new();
-            for a in &call.args {
-                args.push(e.m.eval(a, &mut [])?);
-            }
-            word.push(call.symbol, &args);
-        }
+    let result: Result<Word, Halt> = (|| {
+        e.m.run(&program.start, &mut [])?;
+        let mut word = axiom(sys, &mut e.m)?;
         let mut step = 0;
         while step < e.m.steps {
             if has_query {
                 query(&mut word);
             }
-            e.m.run(&par.start_each, &mut [])?;
-            let mut next = e.step(&main, &word, stochastic)?;
+            e.m.run(&program.start_each, &mut [])?;
+            let mut next = e.step(&main, &word, choice)?;
             if let Some(c) = cut_symbol {
                 cut(&mut next, c);
             }
-            if !par.decomposition.productions.is_empty() {
+            if !sys.decomposition.productions.is_empty() {
                 next = e.recursive(
                     &decomposition,
                     &next,
-                    par.decomposition.depth.max(1),
-                    stochastic,
+                    sys.decomposition.depth.max(1),
+                    choice,
                     None,
                 )?;
             }
             word = next;
             len = word.len();
-            e.m.run(&par.end_each, &mut [])?;
+            e.m.run(&program.end_each, &mut [])?;
             step += 1;
             progress(step, word.len());
             if e.m.stop {
                 break;
             }
         }
-        e.m.run(&par.end, &mut [])?;
+        e.m.run(&program.end, &mut [])?;
         if has_query {
             query(&mut word);
         }
@@ -920,35 +875,30 @@ pub fn derive(
 /// came from.
 pub fn homomorphism(
     sys: &System,
-    word: &ModuleWord,
+    word: &Word,
     opts: &DeriveOptions,
-) -> Result<(ModuleWord, Vec<u32>), Diagnostic> {
-    let par = sys.parametric.as_deref().expect("a parametric system");
-    if par.homomorphism.productions.is_empty() {
+) -> Result<(Word, Vec<u32>), Diagnostic> {
+    let phase = &sys.homomorphism;
+    if phase.productions.is_empty() {
         return Ok((word.clone(), (0..word.len() as u32).collect()));
     }
-    let group = Group::new(&par.homomorphism.productions, sys.symbols.len());
-    let seed = par.homomorphism.seed.unwrap_or(0).wrapping_add(opts.seed);
-    let mut m = Machine::new(par, seed, opts.max_work);
+    let group = Group::new(&phase.productions, sys.symbols.len());
+    let seed = phase.seed.unwrap_or(0).wrapping_add(opts.seed);
+    let mut m = Machine::new(sys, seed, opts.max_work);
     m.rng = Rng::new(seed, Stream::Homomorphism);
     let mut e = Engine {
         m,
-        matcher: matcher(sys, par),
+        matcher: matcher(sys),
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
-    };
-    let choice = if par.seed.is_some() {
-        Choice::Weighted
-    } else {
-        Choice::First
     };
     let mut origins = Vec::new();
     let out = e
         .recursive(
             &group,
             word,
-            par.homomorphism.depth.max(1),
-            choice,
+            phase.depth.max(1),
+            sys.policy,
             Some(&mut origins),
         )
         .map_err(|h| halt_error(h, opts, word.len()))?;

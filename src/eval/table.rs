@@ -103,7 +103,7 @@ impl<'a> Table<'a> {
     /// module handles or the table would be too big.
     pub(super) fn new(sys: &'a System, ignored: &[bool]) -> Option<Self> {
         let n = sys.symbols.len();
-        if sys.parametric.is_some() || sys.symbols.iter().any(|(_, i)| i.guard.is_some()) {
+        if sys.rewrites_modules() || sys.symbols.iter().any(|(_, i)| i.guard.is_some()) {
             return None;
         }
         if sys

@@ -316,7 +316,7 @@ mod tests {
                 .unwrap();
                 assert_eq!(
                     String::from_utf8(text).unwrap(),
-                    Word(want).display(&s.symbols)
+                    Word::from(want).display(&s.symbols)
                 );
             }
         }

@@ -18,7 +18,7 @@ impl<'a> D0l<'a> {
     /// deterministic (contexts, several predecessor symbols, stochastic
     /// alternatives, guarded symbols, parameters).
     pub fn of(sys: &'a System) -> Option<Self> {
-        if sys.parametric.is_some() || sys.symbols.iter().any(|(_, i)| i.guard.is_some()) {
+        if sys.rewrites_modules() || sys.symbols.iter().any(|(_, i)| i.guard.is_some()) {
             return None;
         }
         let mut successors: Vec<Option<&[SymbolId]>> = vec![None; sys.symbols.len()];

@@ -123,9 +123,10 @@
 //! the branch (push/pop restore them like the rest of the state).
 
 pub mod d0l;
-pub mod parametric;
+pub mod program;
 
 pub use d0l::D0l;
+use program::{Expr, Program, Stmt};
 
 use serde::Serialize;
 use std::collections::HashMap;
@@ -244,11 +245,34 @@ impl SymbolTable {
     }
 }
 
-/// A string of symbols.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
-pub struct Word(pub Vec<SymbolId>);
+/// A word: a sequence of modules, each a symbol with zero or more real
+/// parameters (`A(1,2.5)`). The symbols are `self.0`, one [`SymbolId`]
+/// each; the parameters live in a side array that is empty, and allocates
+/// nothing, while no module has any. So a word of plain symbols is as
+/// compact as a symbol array, and rewriting it moves nothing else.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Word(pub Vec<SymbolId>, Params);
+
+/// The parameters of a word's modules: module `i` has
+/// `values[starts[i]..starts[i + 1]]`; `starts` is empty while no module
+/// has parameters.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+struct Params {
+    values: Vec<f64>,
+    starts: Vec<u32>,
+}
+
+impl From<Vec<SymbolId>> for Word {
+    fn from(symbols: Vec<SymbolId>) -> Self {
+        Word(symbols, Params::default())
+    }
+}
 
 impl Word {
+    pub fn new() -> Self {
+        Word::default()
+    }
+    /// Modules in the word.
     pub fn len(&self) -> usize {
         self.0.len()
     }
@@ -258,12 +282,70 @@ impl Word {
     pub fn symbols(&self) -> &[SymbolId] {
         &self.0
     }
+    /// Whether some module has parameters.
+    pub fn has_params(&self) -> bool {
+        !self.1.starts.is_empty()
+    }
+    /// The parameters of module `i`.
+    pub fn args(&self, i: usize) -> &[f64] {
+        match self.1.starts.get(i..i + 2) {
+            Some(&[a, b]) => &self.1.values[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+    /// Appends the module `symbol(args)`.
+    pub fn push(&mut self, symbol: SymbolId, args: &[f64]) {
+        if !args.is_empty() && self.1.starts.is_empty() {
+            // The first module with parameters: every earlier one has none.
+            self.1.starts = vec![0; self.0.len() + 1];
+        }
+        self.0.push(symbol);
+        if !self.1.starts.is_empty() {
+            self.1.values.extend_from_slice(args);
+            self.1.starts.push(self.1.values.len() as u32);
+        }
+    }
+    /// Appends modules `range` of `other`.
+    pub fn extend_from(&mut self, other: &Word, range: Range<usize>) {
+        if !other.has_params() && !self.has_params() {
+            self.0.extend_from_slice(&other.0[range]);
+            return;
+        }
+        for i in range {
+            self.push(other.0[i], other.args(i));
+        }
+    }
+    pub fn clear(&mut self) {
+        self.0.clear();
+        self.1 = Params::default();
+    }
+    /// Sets the parameters of module `i`, which has as many already.
+    pub fn set_args(&mut self, i: usize, args: &[f64]) {
+        if let Some(&[a, b]) = self.1.starts.get(i..i + 2) {
+            for (slot, x) in self.1.values[a as usize..b as usize].iter_mut().zip(args) {
+                *slot = *x;
+            }
+        }
+    }
     /// The word written with the symbols' names, nothing between them (the
-    /// way pfg and the goldens print derived strings).
+    /// way pfg and the goldens print derived strings), and each module's
+    /// parameters in parentheses as cpfg writes them (`F(1.5)A(2,3)`).
     pub fn display(&self, table: &SymbolTable) -> String {
+        use std::fmt::Write as _;
         let mut s = String::with_capacity(self.0.len());
-        for &id in &self.0 {
+        for (i, &id) in self.0.iter().enumerate() {
             s.push_str(table.name(id));
+            let args = self.args(i);
+            if !args.is_empty() {
+                s.push('(');
+                for (k, a) in args.iter().enumerate() {
+                    if k > 0 {
+                        s.push(',');
+                    }
+                    let _ = write!(s, "{a}");
+                }
+                s.push(')');
+            }
         }
         s
     }
@@ -423,32 +505,101 @@ pub enum QueryKind {
 pub struct Alternative {
     /// Relative weight (normalised over the production's alternatives).
     pub weight: f64,
+    /// A weight computed each time the production applies (cpfg's `: e`),
+    /// in place of `weight`.
+    pub computed_weight: Option<Expr>,
     pub successor: Word,
+    /// The parameter expressions of each successor module, evaluated with
+    /// the production's locals; empty when no module has parameters.
+    pub args: Vec<Vec<Expr>>,
 }
 
-/// A condition on a production (reserved for parametric dialects; pfg has
-/// none).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub enum Condition {
-    Always,
+impl Alternative {
+    /// A successor of plain symbols with a fixed weight.
+    pub fn new(weight: f64, successor: Word) -> Self {
+        Alternative {
+            weight,
+            computed_weight: None,
+            successor,
+            args: Vec::new(),
+        }
+    }
 }
 
-/// A rewriting rule: `left < predecessor > right : condition --> alternatives`.
+/// The formal parameters of a production's modules: for each module of the
+/// left context, the strict predecessor and the right context, the local
+/// slots its parameters bind (a module matches only a module with as many
+/// parameters). All empty for a production of plain symbols.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Formals {
+    pub left: Vec<Vec<u16>>,
+    pub predecessor: Vec<Vec<u16>>,
+    pub right: Vec<Vec<u16>>,
+    /// Local slots: the formal parameters, then the variables the
+    /// production's statements assign.
+    pub locals: u16,
+}
+
+impl Formals {
+    /// The slots module `k` of `side` binds (none for a plain production).
+    pub fn of(side: &[Vec<u16>], k: usize) -> &[u16] {
+        side.get(k).map_or(&[], |v| v.as_slice())
+    }
+}
+
+/// A rewriting rule: `left < predecessor > right : condition -->
+/// alternatives`, with the statements run around the condition.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Production {
     pub left: Vec<SymbolId>,
     pub predecessor: Vec<SymbolId>,
     pub right: Vec<SymbolId>,
-    pub condition: Condition,
+    pub formals: Formals,
+    /// Run before the condition is tested (cpfg's `{ … }` before `?`).
+    pub before: Vec<Stmt>,
+    /// The production applies only where this is non-zero; `None`: always.
+    pub condition: Option<Expr>,
+    /// Run after the condition held, before the successor is computed.
+    pub after: Vec<Stmt>,
     pub alternatives: Vec<Alternative>,
 }
 
 impl Production {
+    /// A production of plain symbols, without condition or statements.
+    pub fn new(
+        left: Vec<SymbolId>,
+        predecessor: Vec<SymbolId>,
+        right: Vec<SymbolId>,
+        alternatives: Vec<Alternative>,
+    ) -> Self {
+        Production {
+            left,
+            predecessor,
+            right,
+            formals: Formals::default(),
+            before: Vec::new(),
+            condition: None,
+            after: Vec::new(),
+            alternatives,
+        }
+    }
     pub fn is_context_sensitive(&self) -> bool {
         !self.left.is_empty() || !self.right.is_empty()
     }
     pub fn is_stochastic(&self) -> bool {
         self.alternatives.len() > 1
+    }
+    /// Whether the production binds or computes parameters, tests a
+    /// condition, runs statements or computes its weights.
+    pub fn uses_modules(&self) -> bool {
+        self.formals != Formals::default()
+            || !self.before.is_empty()
+            || self.condition.is_some()
+            || !self.after.is_empty()
+            || self
+                .alternatives
+                .iter()
+                .any(|a| !a.args.is_empty() || a.computed_weight.is_some())
     }
 }
 
@@ -459,8 +610,24 @@ pub struct ProductionId(pub u32);
 /// How a production is chosen at a position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum RulePolicy {
-    /// The first production in file order that matches (pfg, cpfg, LinF).
+    /// The first production in file order that matches (pfg, LinF,
+    /// Fractint, STL, a cpfg system without `seed:`); a production's
+    /// alternatives are chosen among by weight.
     FirstMatch,
+    /// Every production that matches is a candidate, chosen by its weight
+    /// (a cpfg system with `seed:`).
+    Weighted,
+}
+
+/// Productions applied again to what a step produced (decomposition) or
+/// to the word for drawing only (homomorphism), recursively up to `depth`
+/// times.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Phase {
+    pub productions: Vec<Production>,
+    pub depth: u32,
+    /// The phase's own random seed (cpfg's `seed:` after `homomorphism`).
+    pub seed: Option<u64>,
 }
 
 /// Which symbols context matching sees.
@@ -501,6 +668,8 @@ pub struct Settings {
     /// Whether line widths are in turtle units (cpfg `line style: polygon`
     /// or `cylinder`) rather than pixels.
     pub world_widths: bool,
+    /// The file's own seed, added to the run's (cpfg `seed:`).
+    pub seed: Option<u64>,
 }
 
 impl Default for Settings {
@@ -517,6 +686,7 @@ impl Default for Settings {
             colour_step: 1.0,
             width_step: 1.0,
             world_widths: false,
+            seed: None,
         }
     }
 }
@@ -636,17 +806,27 @@ pub struct System {
     /// `interpretation[s]` is what the turtle does for symbol `s`.
     pub interpretation: Vec<Option<TurtleOp>>,
     pub axiom: Word,
+    /// The parameter expressions of each axiom module, evaluated after
+    /// [`Program::start`]; empty when none has parameters.
+    pub axiom_args: Vec<Vec<Expr>>,
     pub productions: Vec<Production>,
+    /// Applied after each step to what it produced.
+    pub decomposition: Phase,
+    /// Applied to the word for drawing only.
+    pub homomorphism: Phase,
+    /// Variables and the statements run around the derivation.
+    pub program: Program,
+    /// The word's ends are neighbours for context (a ring).
+    pub ring: bool,
+    /// The symbol that, after each step, removes itself and the rest of
+    /// its branch (cpfg's `%`).
+    pub cut: Option<SymbolId>,
     pub policy: RulePolicy,
     pub context: ContextFilter,
     pub settings: Settings,
     pub rotations: Vec<Rotation>,
     pub colours: Vec<Rgb>,
     pub structure: Option<Structure>,
-    /// A cpfg system's parametric productions, blocks and axiom. When set,
-    /// `axiom` and `productions` are unused and derivation follows
-    /// [`parametric`].
-    pub parametric: Option<Box<parametric::Parametric>>,
     /// Surfaces drawn by [`TurtleOp::Surface`]: triangles in the surface's
     /// own frame (x along the turtle's L, y along H, z along U), with the
     /// contact point at the origin.
@@ -681,14 +861,19 @@ impl System {
             symbols: SymbolTable::new(),
             interpretation: Vec::new(),
             axiom: Word::default(),
+            axiom_args: Vec::new(),
             productions: Vec::new(),
+            decomposition: Phase::default(),
+            homomorphism: Phase::default(),
+            program: Program::default(),
+            ring: false,
+            cut: None,
             policy: RulePolicy::FirstMatch,
             context: ContextFilter::Ignore(Vec::new()),
             settings: Settings::default(),
             rotations: Vec::new(),
             colours: Vec::new(),
             structure: None,
-            parametric: None,
             surfaces: Vec::new(),
         };
         sys.set_interpretation(SymbolId::OPEN, TurtleOp::Push);
@@ -729,6 +914,21 @@ impl System {
             None => id,
         };
         self.interpretation.get(id.index()).copied().flatten()
+    }
+
+    /// Whether rewriting needs modules: parameters, conditions,
+    /// statements, a program, decomposition or homomorphism phases, a
+    /// ring, a cut, or weighted choice among productions. Such a system is
+    /// derived by module rewriting ([`crate::eval`] says how it chooses).
+    pub fn rewrites_modules(&self) -> bool {
+        self.productions.iter().any(Production::uses_modules)
+            || !self.axiom_args.is_empty()
+            || self.decomposition != Phase::default()
+            || self.homomorphism != Phase::default()
+            || !self.program.is_empty()
+            || self.ring
+            || self.cut.is_some()
+            || self.policy == RulePolicy::Weighted
     }
 
     /// Whether context matching skips `id`.

@@ -14,8 +14,7 @@
 
 pub mod instanced;
 
-use crate::ir::parametric::ModuleWord;
-use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp};
+use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp, Word};
 use crate::random::{Rng, Stream};
 use serde::Serialize;
 
@@ -248,8 +247,8 @@ impl State {
 
 /// Interprets `word` as turtle commands of `sys`. `seed` drives interval
 /// angles (a stream separate from the derivation's).
-pub fn interpret(sys: &System, word: &[SymbolId], seed: u64) -> Geometry {
-    interpret_with(sys, word, seed, TurtleOptions::default())
+pub fn interpret(sys: &System, word: &Word, seed: u64) -> Geometry {
+    interpret_with(sys, word, seed, TurtleOptions::default(), &mut |_, _, _| {})
 }
 
 /// Where the turtle's drawing goes: stored ([`Geometry`]), counted, or
@@ -272,21 +271,26 @@ impl Sink for Geometry {
     }
 }
 
-/// [`interpret`], recording what `options` asks for.
+/// [`interpret`], recording what `options` asks for. Modules' parameters
+/// set lengths, angles, widths, colours and sizes; `query` receives, for
+/// each query module (`?P`, `?H`, `?L`, `?U`), its index in `word` and the
+/// vector it asks for.
 pub fn interpret_with(
     sys: &System,
-    word: &[SymbolId],
+    word: &Word,
     seed: u64,
     options: TurtleOptions,
+    query: &mut dyn FnMut(usize, QueryKind, Vec3),
 ) -> Geometry {
     let mut g = Geometry::default();
+    let params = word.has_params().then_some(word);
     let info = run(
         sys,
-        word.iter().copied(),
-        None,
+        word.0.iter().copied(),
+        params,
         seed,
         options,
-        &mut |_, _, _| {},
+        query,
         &mut g,
     );
     g.paths = info.paths;
@@ -315,37 +319,10 @@ pub fn interpret_into(
     .max_depth
 }
 
-/// Interprets a parametric word (cpfg): modules' parameters set lengths,
-/// angles, widths, colours and sizes. `query` receives, for each query
-/// module (`?P`, `?H`, `?L`, `?U`), its index in `word` and the vector it
-/// asks for.
-pub fn interpret_modules(
-    sys: &System,
-    word: &ModuleWord,
-    seed: u64,
-    options: TurtleOptions,
-    query: &mut dyn FnMut(usize, QueryKind, Vec3),
-) -> Geometry {
-    let mut g = Geometry::default();
-    let info = run(
-        sys,
-        word.symbols.iter().copied(),
-        Some(word),
-        seed,
-        options,
-        query,
-        &mut g,
-    );
-    g.paths = info.paths;
-    g.max_depth = info.max_depth;
-    g.world_widths = info.world_widths;
-    g
-}
-
 fn run(
     sys: &System,
     word: impl Iterator<Item = SymbolId>,
-    params: Option<&ModuleWord>,
+    params: Option<&Word>,
     seed: u64,
     options: TurtleOptions,
     query: &mut dyn FnMut(usize, QueryKind, Vec3),
@@ -742,7 +719,7 @@ mod tests {
 
     fn draw(src: &str) -> Geometry {
         let sys = read_ok(src);
-        interpret(&sys, &sys.axiom.0, 0)
+        interpret(&sys, &sys.axiom, 0)
     }
 
     fn close(a: Vec3, b: Vec3) -> bool {
@@ -799,7 +776,13 @@ mod tests {
     #[test]
     fn paths_follow_every_move_per_branch() {
         let sys = read_ok("angle factor: 4\naxiom: f+f[-fF]f\n");
-        let g = interpret_with(&sys, &sys.axiom.0, 0, TurtleOptions { paths: true });
+        let g = interpret_with(
+            &sys,
+            &sys.axiom,
+            0,
+            TurtleOptions { paths: true },
+            &mut |_, _, _| {},
+        );
         assert_eq!(g.paths.len(), 2);
         // The main axis: origin, two moves, then (after the branch) one more.
         assert_eq!(g.paths[0].points.len(), 4);
@@ -808,7 +791,7 @@ mod tests {
         assert!(close(g.paths[1].points[0], [1.0, 1.0, 0.0]));
         assert!(close(g.paths[1].points[2], [1.0, 3.0, 0.0]));
         // Without the option nothing is recorded.
-        assert!(interpret(&sys, &sys.axiom.0, 0).paths.is_empty());
+        assert!(interpret(&sys, &sys.axiom, 0).paths.is_empty());
     }
 
     #[test]
@@ -817,7 +800,7 @@ mod tests {
         let sys = read_ok("axiom: 'X\n' --> ''\nX --> X[F]X\n");
         let word = crate::eval::derive(&sys, &crate::eval::DeriveOptions::new(16)).unwrap();
         let t = std::time::Instant::now();
-        let g = interpret(&sys, &word.0, 0);
+        let g = interpret(&sys, &word, 0);
         assert_eq!(g.segments.len(), (1 << 16) - 1);
         assert!(t.elapsed().as_secs_f64() < 1.0, "{:?}", t.elapsed());
     }
@@ -834,7 +817,7 @@ mod tests {
             .chars()
             .map(|c| sys.symbols.get(&c.to_string()).unwrap())
             .collect();
-        let g = interpret(&sys, &word, 0);
+        let g = interpret(&sys, &Word::from(word), 0);
         let colours: Vec<u8> = g.segments.iter().map(|s| s.colour.0).collect();
         assert_eq!(colours, [1, 2, 3, 2, 3, 2, 1, 1]);
     }
@@ -846,8 +829,8 @@ mod tests {
             "lines f\nangles w = (0.7311, 1.1234) q = (0, pi/2) p = (pi/2, pi/2)\nrules x = +w f+q+p",
         );
         let [f, w, q, p] = ["f", "+w", "+q", "+p"].map(|s| sys.symbols.get(s).unwrap());
-        sys.axiom = Word([vec![w; n], vec![f, q, f, p, f]].concat());
-        let g = interpret(&sys, &sys.axiom.0, 0);
+        sys.axiom = Word::from([vec![w; n], vec![f, q, f, p, f]].concat());
+        let g = interpret(&sys, &sys.axiom, 0);
         let d = |k: usize| {
             let s: &Segment = &g.segments[k];
             [s.b[0] - s.a[0], s.b[1] - s.a[1], s.b[2] - s.a[2]]

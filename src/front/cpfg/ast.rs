@@ -1,7 +1,7 @@
 //! The syntax tree of a cpfg L-system file, as written (after the
 //! preprocessor). Every node keeps its span in the preprocessed text.
 
-use crate::ir::parametric::{BinOp, UnOp};
+use crate::ir::program::{BinOp, UnOp};
 use crate::ir::Span;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -6,10 +6,11 @@
 
 use super::ast::{self, BlockKind, ExprKind, Item, Section};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::ir::parametric::{
-    ArrayDecl, Builtin, Expr, ModuleCall, ParamProduction, Parametric, Pattern, Place, Stmt, Var,
+use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
+use crate::ir::{
+    Alternative, Angle, Axis, Formals, Phase, Production, QueryKind, RulePolicy, Span, SpanTable,
+    SymbolId, System, TurtleOp, Word,
 };
-use crate::ir::{Angle, Axis, QueryKind, Span, SpanTable, System, TurtleOp, Word};
 use std::collections::HashMap;
 
 /// The largest derivation length or recursion depth graftal accepts.
@@ -409,8 +410,13 @@ impl Lowerer<'_> {
         out
     }
 
-    fn patterns(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Vec<Pattern> {
-        let mut out = Vec::new();
+    /// The symbols of a pattern and the local slots each module binds.
+    fn patterns(
+        &mut self,
+        scope: &mut Scope,
+        mods: &[ast::Module],
+    ) -> (Vec<SymbolId>, Vec<Vec<u16>>) {
+        let mut out = (Vec::new(), Vec::new());
         for m in mods {
             self.check_module(m);
             let symbol = self.symbol(&m.name, &m.span);
@@ -436,23 +442,29 @@ impl Lowerer<'_> {
                     }
                 }
             }
-            out.push(Pattern { symbol, params });
+            out.0.push(symbol);
+            out.1.push(params);
         }
         out
     }
 
-    fn calls(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Vec<ModuleCall> {
-        mods.iter()
-            .map(|m| {
-                self.check_module(m);
-                let symbol = self.symbol(&m.name, &m.span);
-                let args = m.args.iter().map(|a| self.expr(scope, a)).collect();
-                ModuleCall { symbol, args }
-            })
-            .collect()
+    /// A successor (or the axiom): its symbols and each module's
+    /// parameter expressions.
+    fn calls(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> (Word, Vec<Vec<Expr>>) {
+        let mut symbols = Vec::with_capacity(mods.len());
+        let mut args = Vec::with_capacity(mods.len());
+        for m in mods {
+            self.check_module(m);
+            symbols.push(self.symbol(&m.name, &m.span));
+            args.push(m.args.iter().map(|a| self.expr(scope, a)).collect());
+        }
+        (Word::from(symbols), args)
     }
 
-    fn production(&mut self, p: &ast::Production) -> ParamProduction {
+    /// A production. Its patterns always carry their parameter lists (a
+    /// cpfg module matches only a module with as many parameters), so even
+    /// a production without parameters is one of modules.
+    fn production(&mut self, p: &ast::Production) -> Production {
         let mut scope = Scope {
             locals: Vec::new(),
             global_block: false,
@@ -463,18 +475,27 @@ impl Lowerer<'_> {
         let before = self.stmts(&mut scope, &p.before);
         let condition = p.condition.as_ref().map(|c| self.expr(&mut scope, c));
         let after = self.stmts(&mut scope, &p.after);
-        let successor = self.calls(&mut scope, &p.successor);
-        let probability = p.probability.as_ref().map(|e| self.expr(&mut scope, e));
-        ParamProduction {
-            left,
-            predecessor,
-            right,
-            locals: scope.locals.len().min(u16::MAX as usize) as u16,
+        let (successor, args) = self.calls(&mut scope, &p.successor);
+        let computed_weight = p.probability.as_ref().map(|e| self.expr(&mut scope, e));
+        Production {
+            left: left.0,
+            predecessor: predecessor.0,
+            right: right.0,
+            formals: Formals {
+                left: left.1,
+                predecessor: predecessor.1,
+                right: right.1,
+                locals: scope.locals.len().min(u16::MAX as usize) as u16,
+            },
             before,
             condition,
             after,
-            successor,
-            probability,
+            alternatives: vec![Alternative {
+                weight: 1.0,
+                computed_weight,
+                successor,
+                args,
+            }],
         }
     }
 
@@ -493,7 +514,7 @@ impl Lowerer<'_> {
         let saved = std::mem::take(&mut self.globals);
         let x = self.expr(&mut scope, e);
         self.globals = saved;
-        let v = crate::eval::parametric::constant(&x);
+        let v = x.constant();
         match v {
             Some(v) if (min..=max).contains(&v) => Some(v),
             _ => {
@@ -537,6 +558,38 @@ fn assigned(stmts: &[ast::Stmt], out: &mut Vec<String>) {
             ast::Stmt::While(_, b) | ast::Stmt::Do(b, _) => assigned(b, out),
             ast::Stmt::Eval(_) => {}
         }
+    }
+}
+
+/// What the items of an L-system say, gathered in file order before it
+/// goes into the system.
+#[derive(Default)]
+struct Gathered {
+    program: Program,
+    axiom: (Word, Vec<Vec<Expr>>),
+    productions: Vec<Production>,
+    decomposition: Phase,
+    homomorphism: Phase,
+    ring: bool,
+    /// `seed:`: the system chooses among productions by weight, with this
+    /// added to the run's seed.
+    seed: Option<u64>,
+}
+
+impl Gathered {
+    fn into_system(self, sys: &mut System) {
+        // The axiom is modules, as every cpfg word is.
+        (sys.axiom, sys.axiom_args) = self.axiom;
+        sys.productions = self.productions;
+        sys.decomposition = self.decomposition;
+        sys.homomorphism = self.homomorphism;
+        sys.program = self.program;
+        sys.ring = self.ring;
+        sys.settings.seed = self.seed;
+        if self.seed.is_some() {
+            sys.policy = RulePolicy::Weighted;
+        }
+        sys.cut = sys.symbols.get("%");
     }
 }
 
@@ -587,7 +640,7 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
     }
     // Globals: every name assigned in a Start/End block; arrays.
     let mut global_names = Vec::new();
-    let mut par = Parametric::default();
+    let mut par = Gathered::default();
     for item in items {
         match item {
             Item::Block(_, stmts, _) => assigned(stmts, &mut global_names),
@@ -621,9 +674,11 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
                                 .unwrap_or(0.0)
                         })
                         .collect();
-                    l.arrays
-                        .insert(d.name.clone(), (par.arrays.len() as u16, dims.len()));
-                    par.arrays.push(ArrayDecl {
+                    l.arrays.insert(
+                        d.name.clone(),
+                        (par.program.arrays.len() as u16, dims.len()),
+                    );
+                    par.program.arrays.push(ArrayDecl {
                         name: d.name.clone(),
                         dims,
                         init,
@@ -635,8 +690,9 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
     }
     for n in global_names {
         if !l.arrays.contains_key(&n) {
-            l.globals.insert(n.clone(), par.globals.len() as u16);
-            par.globals.push(n);
+            l.globals
+                .insert(n.clone(), par.program.globals.len() as u16);
+            par.program.globals.push(n);
         }
     }
     let mut stage = Stage::Before;
@@ -756,10 +812,10 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
                 };
                 let s = l.stmts(&mut scope, stmts);
                 match kind {
-                    BlockKind::Start => par.start = s,
-                    BlockKind::StartEach => par.start_each = s,
-                    BlockKind::EndEach => par.end_each = s,
-                    BlockKind::End => par.end = s,
+                    BlockKind::Start => par.program.start = s,
+                    BlockKind::StartEach => par.program.start_each = s,
+                    BlockKind::EndEach => par.program.end_each = s,
+                    BlockKind::End => par.program.end = s,
                 }
             }
             Item::Section(Section::Decomposition, _) => {
@@ -772,7 +828,10 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
             }
             Item::Production(p) => {
                 let prod = l.production(p);
-                if prod.probability.is_some() && par.seed.is_none() && stage == Stage::Productions {
+                if prod.alternatives[0].computed_weight.is_some()
+                    && par.seed.is_none()
+                    && stage == Stage::Productions
+                {
                     l.diags.push(
                         Diagnostic::at(
                             codes::CPFG_PROBABILITY_IGNORED,
@@ -818,11 +877,7 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
             .with_help("add `axiom: A` before the productions"),
         );
     }
-    // Plain axiom word (symbols only), for tools that look at it.
-    l.sys.axiom = Word(par.axiom.iter().map(|c| c.symbol).collect());
-    // Every symbol of the cpfg turtle table has its meaning even when
-    // only a homomorphism produces it.
-    l.sys.parametric = Some(Box::new(par));
+    par.into_system(&mut l.sys);
     Lowered {
         system: l.sys,
         spans: l.spans,

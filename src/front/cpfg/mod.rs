@@ -70,7 +70,7 @@ impl Front for Cpfg {
         line_comments(src, None)
     }
     fn describe(&self, sys: Option<&System>) -> Option<String> {
-        Some(match sys.and_then(|s| s.parametric.as_deref()) {
+        Some(match sys {
             Some(p) => format!(
                 "cpfg, {} productions, {} decomposition, {} homomorphism",
                 p.productions.len(),
@@ -150,16 +150,16 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
         }
         None => view::View::default(),
     };
-    let mut functions: Vec<crate::ir::parametric::Function> = Vec::new();
+    let mut functions: Vec<crate::ir::program::Function> = Vec::new();
     let mut defines: Vec<(String, String)> = Vec::new();
     let mut add_function =
         |name: Option<String>,
          f: &func::Function,
-         functions: &mut Vec<crate::ir::parametric::Function>| {
+         functions: &mut Vec<crate::ir::program::Function>| {
             let samples = (0..FUNCTION_SAMPLES)
                 .map(|k| f.eval(k as f64 / (FUNCTION_SAMPLES - 1) as f64))
                 .collect();
-            functions.push(crate::ir::parametric::Function {
+            functions.push(crate::ir::program::Function {
                 name: name.clone().unwrap_or_default(),
                 samples,
             });
@@ -266,9 +266,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
             }
         })
         .collect();
-    if let Some(p) = sys.parametric.as_deref_mut() {
-        p.functions = functions;
-    }
+    sys.program.functions = functions;
     // Surfaces: `~id` draws surface `id` of the view file.
     for r in &view.surfaces {
         let Some(text) = read_side(&r.file) else {

@@ -12,7 +12,7 @@ use super::ast::{
 };
 use super::lexer::{lex, Keyword, Token};
 use crate::diagnostics::{codes, syntax_error, Diagnostic, Diagnostics};
-use crate::ir::parametric::{BinOp, UnOp};
+use crate::ir::program::{BinOp, UnOp};
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;

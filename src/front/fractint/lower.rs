@@ -8,8 +8,7 @@ use super::lexer::{commands, number};
 use super::parser::KEYWORDS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Axis, Condition, Production, Rgb, Span, SpanTable, SymbolId, System,
-    TurtleOp, Word,
+    Alternative, Angle, Axis, Production, Rgb, Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };
 
 /// Fractint's default order (the `lsystem` type's one parameter, 2 in
@@ -182,7 +181,7 @@ impl Cx<'_> {
                 .with_help("Fractint draws each string's brackets on their own: balance them"),
             );
         }
-        (Word(word), spans)
+        (Word::from(word), spans)
     }
 }
 
@@ -371,16 +370,12 @@ pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
         };
         for p in preds {
             cx.spans.symbols.entry(p).or_insert_with(|| span.clone());
-            cx.sys.productions.push(Production {
-                left: Vec::new(),
-                predecessor: vec![p],
-                right: Vec::new(),
-                condition: Condition::Always,
-                alternatives: vec![Alternative {
-                    weight: 1.0,
-                    successor: Word(succ.clone()),
-                }],
-            });
+            cx.sys.productions.push(Production::new(
+                Vec::new(),
+                vec![p],
+                Vec::new(),
+                vec![Alternative::new(1.0, Word::from(succ.clone()))],
+            ));
             cx.spans.productions.push(span.clone());
             cx.spans.successors.push(vec![succ_spans.clone()]);
         }

@@ -26,8 +26,8 @@ use super::ast::{
 use super::lexer::BlockKind;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Condition, Production, Rgb, Rotation, RotationId, Span, SpanTable,
-    SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
+    TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -122,7 +122,7 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
             ..
         }) => {
             let (word, spans) = lower_string(&mut cx, items);
-            cx.sys.axiom = Word(word);
+            cx.sys.axiom = Word::from(word);
             cx.spans.axiom = spans;
         }
         _ => cx.diags.push(
@@ -134,16 +134,12 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         let head = cx.sys.intern(&r.head.text);
         let (successor, spans) = lower_string(&mut cx, &r.body);
         cx.spans.symbols.entry(head).or_insert(r.head.span.clone());
-        cx.sys.productions.push(Production {
-            left: Vec::new(),
-            predecessor: vec![head],
-            right: Vec::new(),
-            condition: Condition::Always,
-            alternatives: vec![Alternative {
-                weight: 1.0,
-                successor: Word(successor),
-            }],
-        });
+        cx.sys.productions.push(Production::new(
+            Vec::new(),
+            vec![head],
+            Vec::new(),
+            vec![Alternative::new(1.0, Word::from(successor))],
+        ));
         cx.spans.productions.push(r.span.clone());
         cx.spans.successors.push(vec![spans]);
     }

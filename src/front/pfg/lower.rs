@@ -4,8 +4,8 @@ use super::ast::{File, Header, Item, Production as AstProduction, Symbols};
 use super::parser::HEADERS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Alternative, Angle, Axis, Condition, ContextFilter, Production, Span, SpanTable, SymbolId,
-    System, TurtleOp, Word,
+    Alternative, Angle, Axis, ContextFilter, Production, Span, SpanTable, SymbolId, System,
+    TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -85,7 +85,7 @@ impl Ctx<'_> {
             ids.push(self.intern(c, span));
             spans.push(span.clone());
         }
-        (Word(ids), spans)
+        (Word::from(ids), spans)
     }
 }
 
@@ -430,10 +430,10 @@ fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
             match (first_weighted, weighted) {
                 (true, true) => {
                     let prod = &mut cx.sys.productions[i];
-                    prod.alternatives.push(Alternative {
-                        weight: p.weight.as_ref().map_or(1.0, |w| w.0),
-                        successor: succ,
-                    });
+                    prod.alternatives.push(Alternative::new(
+                        p.weight.as_ref().map_or(1.0, |w| w.0),
+                        succ,
+                    ));
                     cx.spans.successors[i].push(succ_spans);
                     continue;
                 }
@@ -475,16 +475,15 @@ fn lower_productions(cx: &mut Ctx<'_>, prods: &[&AstProduction]) {
             .entry((left.clone(), pred.0.clone(), right.clone()))
             .or_insert(keys.len());
         keys.push((weighted, p.span.clone()));
-        cx.sys.productions.push(Production {
+        cx.sys.productions.push(Production::new(
             left,
-            predecessor: pred.0,
+            pred.0,
             right,
-            condition: Condition::Always,
-            alternatives: vec![Alternative {
-                weight: p.weight.as_ref().map_or(1.0, |w| w.0),
-                successor: succ,
-            }],
-        });
+            vec![Alternative::new(
+                p.weight.as_ref().map_or(1.0, |w| w.0),
+                succ,
+            )],
+        ));
         cx.spans.productions.push(p.span.clone());
         cx.spans.successors.push(vec![succ_spans]);
     }

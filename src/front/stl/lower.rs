@@ -1233,19 +1233,24 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     for (r, src) in ctx.rules.iter().enumerate() {
         structure.rules.push(StlRule {
             name: src.name.clone(),
-            body: Word(ctx.full[r].iter().map(|&c| comp_ids[c as usize]).collect()),
+            body: Word::from(
+                ctx.full[r]
+                    .iter()
+                    .map(|&c| comp_ids[c as usize])
+                    .collect::<Vec<_>>(),
+            ),
             resemblance: ctx.count[r],
         });
     }
     for p in &parts {
         match p {
-            Part::Comps(cs) => structure.seed.push(SeedItem::Word(Word(
-                cs.iter().map(|&c| comp_ids[c as usize]).collect(),
+            Part::Comps(cs) => structure.seed.push(SeedItem::Word(Word::from(
+                cs.iter().map(|&c| comp_ids[c as usize]).collect::<Vec<_>>(),
             ))),
             Part::Term(t) => structure.seed.push(SeedItem::Term(ir_term(t))),
         }
     }
-    system.axiom = Word(word);
+    system.axiom = Word::from(word);
     system.structure = Some(structure);
     Lowered {
         system,
