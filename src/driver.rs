@@ -284,12 +284,12 @@ pub fn derive_with_progress(
     progress: impl FnMut(u64, usize),
 ) -> Result<Word, Diagnostic> {
     let dopts = opts.derive_options(sys);
-    if sys.rewrites_modules() {
-        return eval::parametric::derive(sys, &dopts, progress, &mut |w| {
-            answer_queries(sys, w, opts)
-        });
+    match eval::plan(sys, dopts.steps) {
+        eval::Method::Modules => {
+            eval::parametric::derive(sys, &dopts, progress, &mut |w| answer_queries(sys, w, opts))
+        }
+        _ => Deriver::new(sys).derive(&dopts, progress),
     }
-    Deriver::new(sys).derive(&dopts, progress)
 }
 
 /// Derives the word.
@@ -564,6 +564,10 @@ pub struct Stats {
     /// `"derived"` (the word derived, then interpreted without keeping what
     /// is drawn).
     pub method: &'static str,
+    /// How the word is derived ([`eval::Method::name`]): `"shared tree"`,
+    /// `"table"`, `"general"` or `"modules"`, chosen from the system's
+    /// properties.
+    pub derivation: &'static str,
     /// Seconds per stage.
     pub time: StageTimes,
 }
@@ -622,6 +626,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let t0 = Instant::now();
     let dopts = opts.derive_options(sys);
     let steps = dopts.steps;
+    let derivation = eval::plan(sys, steps).name();
     let secs = |d: Duration| d.as_secs_f64();
     let silent: Vec<u128> = sys
         .symbols
@@ -641,6 +646,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
             bbox: c.bbox.unwrap_or([0.0; 6]),
             max_depth,
             method,
+            derivation,
             time: StageTimes {
                 parse: 0.0,
                 derive: 0.0,
@@ -690,6 +696,7 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         bbox: c.bbox.unwrap_or([0.0; 6]),
         max_depth,
         method: "derived",
+        derivation,
         time: StageTimes {
             parse: 0.0,
             derive: secs(t1 - t0),

@@ -102,25 +102,6 @@ pub static ENTRIES: &[Entry] = &[
     entry!("stl" / "fig10-outline-dfs" . "stl"),
 ];
 
-/// The Delphi colour table of STL layouts (`stdlib/stl/delphi-colours.txt`):
-/// each name with its RGB value, in the file's order.
-pub fn delphi_colours() -> &'static [(&'static str, crate::ir::Rgb)] {
-    static TABLE: std::sync::OnceLock<Vec<(&'static str, crate::ir::Rgb)>> =
-        std::sync::OnceLock::new();
-    TABLE.get_or_init(|| {
-        include_str!("../stdlib/stl/delphi-colours.txt")
-            .lines()
-            .filter(|l| !l.trim_start().starts_with('#'))
-            .filter_map(|l| {
-                let mut it = l.split_whitespace();
-                let name = it.next()?;
-                let mut c = it.map(|v| v.parse::<u8>().ok());
-                Some((name, crate::ir::Rgb(c.next()??, c.next()??, c.next()??)))
-            })
-            .collect()
-    })
-}
-
 /// The entry called `name` (with or without its extension; pfg entries
 /// also as `pfg/NAME`).
 pub fn get(name: &str) -> Option<&'static Entry> {
@@ -166,15 +147,5 @@ mod tests {
         assert_eq!(files, listed);
         assert!(get("koch-island.l").is_some() && get("nope").is_none());
         assert!(get("pfg/koch-island").is_some() && get("koch-island.linf").is_none());
-    }
-
-    #[test]
-    fn the_delphi_colour_table_is_complete() {
-        let t = delphi_colours();
-        assert_eq!(t.len(), 22);
-        let get = |n: &str| t.iter().find(|(k, _)| *k == n).map(|(_, c)| *c);
-        assert_eq!(get("clMaroon"), Some(crate::ir::Rgb(128, 0, 0)));
-        assert_eq!(get("clMoneyGreen"), Some(crate::ir::Rgb(192, 220, 192)));
-        assert_eq!(get("clSkyBlue"), Some(crate::ir::Rgb(166, 202, 240)));
     }
 }

@@ -22,7 +22,6 @@
 //!   wide, that is reported, as is a layout.
 
 use super::{Kind, Problem};
-use crate::front::stl::lower::{per_level, MAX_DRAWN_WIDTH};
 use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
 use std::collections::HashMap;
 
@@ -232,9 +231,12 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         })
         .max()
         .unwrap_or(0);
-    let (lengths, _) = per_level(st.length.0, st.length.1, max_depth);
-    let (widths, _) = per_level(st.broadness.0, st.broadness.1, max_depth);
-    if widths.iter().any(|&w| w.min(MAX_DRAWN_WIDTH) != 1.0) {
+    let (lengths, _) = Structure::per_level(st.length.0, st.length.1, max_depth);
+    let (widths, _) = Structure::per_level(st.broadness.0, st.broadness.1, max_depth);
+    if widths
+        .iter()
+        .any(|&w| w.min(Structure::MAX_DRAWN_WIDTH) != 1.0)
+    {
         problems.push(Problem {
             kind: Kind::Attribute,
             span: None,

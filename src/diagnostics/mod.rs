@@ -159,47 +159,6 @@ impl Diagnostics {
     }
 }
 
-/// A parser's syntax error as a diagnostic: at the end of input E0007
-/// "unexpected end of file", else E0003 "unexpected TOKEN" labelled with the
-/// tokens that were expected there. `help` may add a hint for the token
-/// found.
-pub fn syntax_error<T: std::fmt::Display>(
-    err: &chumsky::error::Rich<'_, T>,
-    help: impl Fn(&T) -> Option<&'static str>,
-) -> Diagnostic {
-    let span = err.span().into_range();
-    let expected: Vec<String> = err
-        .expected()
-        .map(|e| e.to_string().trim_matches('\'').to_string())
-        .filter(|e| e != "something else")
-        .collect();
-    let expected = match expected.len() {
-        0 => None,
-        _ => Some(expected.join(", ")),
-    };
-    match err.found() {
-        None => {
-            let d = Diagnostic::at(codes::UNEXPECTED_EOF, span, "unexpected end of file")
-                .with_label("the file ends here");
-            match expected {
-                Some(e) => d.with_help(format!("expected {e}")),
-                None => d,
-            }
-        }
-        Some(tok) => {
-            let d = Diagnostic::at(codes::SYNTAX, span, format!("unexpected {tok}"));
-            let d = match &expected {
-                Some(e) => d.with_label(format!("expected {e}")),
-                None => d.with_label("not expected here"),
-            };
-            match help(tok) {
-                Some(h) => d.with_help(h),
-                None => d,
-            }
-        }
-    }
-}
-
 /// The Levenshtein distance between two strings (by characters).
 pub fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();

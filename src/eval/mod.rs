@@ -59,6 +59,48 @@ impl DeriveOptions {
     }
 }
 
+/// How a system is derived. The method follows from the system's
+/// properties alone, never from the notation it was read from: the same
+/// system read from pfg, LinF or Fractint is derived the same way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Method {
+    /// Context-free and deterministic, without parameters (a D0L system):
+    /// the word is built from the shared derivation tree ([`tree`]), its
+    /// length known before it is derived.
+    SharedTree,
+    /// Contexts of at most one symbol on each side, one-symbol
+    /// predecessors, without parameters: each step looks up the production
+    /// of every (left, symbol, right) in a table, on words of bytes when
+    /// the alphabet has fewer than 256 symbols.
+    Table,
+    /// Any other system without parameters (longer predecessors and
+    /// contexts, stochastic alternatives, guards): the general matcher.
+    General,
+    /// Parameters, conditions, statements, phases, a ring or a cut
+    /// ([`System::rewrites_modules`]): module rewriting ([`parametric`]).
+    Modules,
+}
+
+impl Method {
+    /// The method's name as `stats` reports it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::SharedTree => "shared tree",
+            Method::Table => "table",
+            Method::General => "general",
+            Method::Modules => "modules",
+        }
+    }
+}
+
+/// The method [`derive`] uses for `steps` steps of `sys`.
+pub fn plan(sys: &System, steps: u64) -> Method {
+    if sys.rewrites_modules() {
+        return Method::Modules;
+    }
+    Deriver::new(sys).method(steps)
+}
+
 /// A system prepared for rewriting: productions indexed by their first
 /// predecessor symbol, the ignore set as a table.
 pub struct Deriver<'a> {
@@ -124,6 +166,17 @@ impl<'a> Deriver<'a> {
                 .map(|p| p.right.len())
                 .max()
                 .unwrap_or(0),
+        }
+    }
+
+    /// The method [`Deriver::derive`] takes for `steps` steps.
+    pub fn method(&self, steps: u64) -> Method {
+        if steps <= tree::MAX_TREE_DEPTH && crate::ir::D0l::of(self.sys).is_some() {
+            Method::SharedTree
+        } else if self.table.is_some() {
+            Method::Table
+        } else {
+            Method::General
         }
     }
 
@@ -625,9 +678,14 @@ impl ContextIndex {
     }
 }
 
-/// Derives `opts.steps` steps of `sys`.
+/// Derives `opts.steps` steps of `sys` by the method [`plan`] chooses.
+/// (Query modules, `?P` and the like, are answered by the turtle: the
+/// driver derives systems that have them.)
 pub fn derive(sys: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
-    Deriver::new(sys).derive(opts, |_, _| {})
+    match plan(sys, opts.steps) {
+        Method::Modules => parametric::derive(sys, opts, |_, _| {}, &mut |_| {}),
+        _ => Deriver::new(sys).derive(opts, |_, _| {}),
+    }
 }
 
 #[cfg(test)]

@@ -122,6 +122,7 @@
 //! which sets the turtle's line width and step length for what follows in
 //! the branch (push/pop restore them like the rest of the state).
 
+pub mod colours;
 pub mod d0l;
 pub mod program;
 
@@ -704,6 +705,51 @@ pub struct Structure {
     pub broadness: (f64, f64),
     /// Stem length and its decrement per level (`L = 40 (4)`).
     pub length: (f64, f64),
+}
+
+impl Structure {
+    /// Names that cannot be rule names: the drawing components, the stem
+    /// parameters, `I` of `[I n X]` and the keywords of the STL notation,
+    /// which writes rules by name.
+    pub const RESERVED: [&'static str; 13] = [
+        "F",
+        "L",
+        "R",
+        "B",
+        "I",
+        "ANGLE",
+        "GROWTH",
+        "LEVELS",
+        "SEED",
+        "ENDSEED",
+        "LAYOUT",
+        "ENDLAYOUT",
+        "BFS",
+    ];
+    /// The most drawing components an expansion may have.
+    pub const MAX_EXPANSION: usize = 8_000_000;
+    /// The widest stroke drawn (turtle width units: pixels per 600 pixels
+    /// of picture). Growth uses the broadness as given; only the picture is
+    /// capped.
+    pub const MAX_DRAWN_WIDTH: f64 = 200.0;
+
+    /// Broadness or length per level, clamped to a tenth of the first value
+    /// where it would not be positive; the first clamped level, if any.
+    pub fn per_level(base: f64, dec: f64, levels: u32) -> (Vec<f64>, Option<u32>) {
+        let mut first = None;
+        let v = (0..=levels)
+            .map(|k| {
+                let x = base - dec * k as f64;
+                if x <= 0.0 && base > 0.0 {
+                    first.get_or_insert(k);
+                    base * 0.1
+                } else {
+                    x.max(0.0)
+                }
+            })
+            .collect();
+        (v, first)
+    }
 }
 
 /// A named STL growth rule.

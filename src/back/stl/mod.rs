@@ -132,10 +132,7 @@ fn term(sys: &System, st: &Structure, t: &BranchTerm, out: &mut String) {
 }
 
 fn colour(c: crate::ir::Rgb) -> String {
-    match crate::stdlib::delphi_colours()
-        .iter()
-        .find(|(_, v)| *v == c)
-    {
+    match crate::ir::colours::delphi().iter().find(|(_, v)| *v == c) {
         Some((n, _)) => n.to_string(),
         None => format!("$00{:02X}{:02X}{:02X}", c.2, c.1, c.0),
     }
@@ -177,7 +174,7 @@ fn shape(s: &Shape) -> String {
 }
 
 /// How many components the STL reader expands at most.
-const MAX_COMPONENTS: u64 = crate::front::stl::lower::MAX_EXPANSION as u64;
+const MAX_COMPONENTS: u64 = crate::ir::Structure::MAX_EXPANSION as u64;
 
 /// A pfg or LinF system as STL. STL has no derivation: the steps are
 /// written into the rules. Symbol `s` after `k` steps is the macro `Sk`,
@@ -418,7 +415,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     }
 
     // Rule names.
-    let reserved: Vec<&str> = crate::front::stl::parser::RESERVED.to_vec();
+    let reserved: Vec<&str> = crate::ir::Structure::RESERVED.to_vec();
     let mut names = super::Names::new(&reserved);
     let mut base_name: HashMap<SymbolId, String> = HashMap::new();
     let mut rule_name = |s: SymbolId, names: &mut super::Names| -> String {

@@ -11,7 +11,8 @@ use super::ast::{
     ArrayDef, BlockKind, Expr, ExprKind, File, Item, Module, Production, Section, Stmt,
 };
 use super::lexer::{lex, Keyword, Token};
-use crate::diagnostics::{codes, syntax_error, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::front::syntax_error;
 use crate::ir::program::{BinOp, UnOp};
 use crate::ir::Span;
 use chumsky::input::ValueInput;

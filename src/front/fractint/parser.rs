@@ -52,7 +52,7 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
     for err in errors {
-        diags.push(crate::diagnostics::syntax_error(&err, |_| None));
+        diags.push(crate::front::syntax_error(&err, |_| None));
     }
     build(src, lines.unwrap_or_default(), diags)
 }

@@ -13,7 +13,7 @@ use super::ast::{
     RotationDecl, Rule,
 };
 use super::lexer::{lex, BlockKind, Token};
-use crate::diagnostics::{self, codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -523,7 +523,7 @@ fn text_before_first_block(first: Token<'_>, span: Span) -> Diagnostic {
 }
 
 fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
-    diagnostics::syntax_error(err, |tok| match tok {
+    crate::front::syntax_error(err, |tok| match tok {
         Token::Eq => Some("a rule is `name = string`; each rule starts with its name"),
         Token::Colon => Some("`:` only labels a colour: `0: (0, 0, 0)`"),
         Token::LParen | Token::RParen => {

@@ -12,7 +12,7 @@
 
 use super::ast::{File, Header, Item, Production, Symbols};
 use super::lexer::{lex, Token};
-use crate::diagnostics::{self, codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -154,7 +154,7 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
 }
 
 fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
-    diagnostics::syntax_error(err, |tok| match tok {
+    crate::front::syntax_error(err, |tok| match tok {
         Token::Arrow => {
             Some("a production has exactly one `-->`; put each production on its own line")
         }

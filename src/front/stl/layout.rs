@@ -47,7 +47,7 @@ pub fn hex_colour(text: &str) -> Option<Rgb> {
 
 /// The Delphi colour called `name` (case-insensitive, as Delphi is).
 pub fn named_colour(name: &str) -> Option<Rgb> {
-    crate::stdlib::delphi_colours()
+    crate::ir::colours::delphi()
         .iter()
         .find(|(n, _)| n.eq_ignore_ascii_case(name))
         .map(|(_, c)| *c)

@@ -44,10 +44,9 @@ pub const DEFAULT_LENGTH: f64 = 10.0;
 /// The most levels an outline grows (`LEVELS`).
 pub const MAX_LEVELS: u32 = 256;
 /// The most drawing components an expansion may have.
-pub const MAX_EXPANSION: usize = 8_000_000;
-/// The widest stroke drawn (turtle width units: pixels per 600 pixels of
-/// picture). Growth uses B as given; only the picture is capped.
-pub const MAX_DRAWN_WIDTH: f64 = 200.0;
+pub const MAX_EXPANSION: usize = Structure::MAX_EXPANSION;
+/// The widest stroke drawn ([`Structure::MAX_DRAWN_WIDTH`]).
+pub const MAX_DRAWN_WIDTH: f64 = Structure::MAX_DRAWN_WIDTH;
 
 pub use crate::ir::Lowered;
 
@@ -682,22 +681,9 @@ fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
     Some(n.value)
 }
 
-/// Broadness or length per level, clamped to a tenth of the first value
-/// where it would not be positive; the first clamped level, if any.
+/// Broadness or length per level ([`Structure::per_level`]).
 pub fn per_level(base: f64, dec: f64, levels: u32) -> (Vec<f64>, Option<u32>) {
-    let mut first = None;
-    let v = (0..=levels)
-        .map(|k| {
-            let x = base - dec * k as f64;
-            if x <= 0.0 && base > 0.0 {
-                first.get_or_insert(k);
-                base * 0.1
-            } else {
-                x.max(0.0)
-            }
-        })
-        .collect();
-    (v, first)
+    Structure::per_level(base, dec, levels)
 }
 
 fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
@@ -705,7 +691,7 @@ fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
         ColourAst::Name(n, span) => match layout::named_colour(n) {
             Some(c) => Some(c),
             None => {
-                let names: Vec<&str> = crate::stdlib::delphi_colours()
+                let names: Vec<&str> = crate::ir::colours::delphi()
                     .iter()
                     .map(|(n, _)| *n)
                     .collect();

@@ -17,30 +17,15 @@
 use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
 use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::ir::Span;
+use crate::ir::{Span, Structure};
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
 
 /// The statement keywords (upper case, as the paper writes them).
 pub const KEYWORDS: [&str; 7] = ["ANGLE", "B", "L", "GROWTH", "LEVELS", "SEED", "LAYOUT"];
 
-/// Names that cannot be rule names: the drawing components, the stem
-/// parameters, `I` of `[I n X]` and the keywords.
-pub const RESERVED: [&str; 13] = [
-    "F",
-    "L",
-    "R",
-    "B",
-    "I",
-    "ANGLE",
-    "GROWTH",
-    "LEVELS",
-    "SEED",
-    "ENDSEED",
-    "LAYOUT",
-    "ENDLAYOUT",
-    "BFS",
-];
+/// Names that cannot be rule names ([`Structure::RESERVED`]).
+pub const RESERVED: [&str; 13] = Structure::RESERVED;
 
 /// The deepest nesting of `[ ]` and `{ }` read.
 pub const MAX_NESTING: usize = 1000;

@@ -1,0 +1,519 @@
+//! The house rules, read from the source: which module may import which.
+//!
+//! Every `.rs` file under `src/` is read as text; the crate paths it names
+//! outside its test module (`crate::x::y`, `use crate::{x, y::z}`, `super::`
+//! paths) and the external crates it names (`clap::`, `ariadne::`, …) are
+//! its imports. The rules (README, "How graftal is built"):
+//!
+//! * a front end (`src/front/<notation>/`) imports no other front end, no
+//!   emitter, no turtle, render, eval, driver or cli;
+//! * an emitter (`src/back/`) imports no front end;
+//! * `ir` imports nothing above it (only `ir` itself);
+//! * the turtle imports neither render nor eval (nor anything above them);
+//! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
+//!   `chumsky` and `logos` only in front ends;
+//! * the top-level modules form no import cycle.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// A source file: its path under `src/` and its code without comments,
+/// string literals and test module.
+struct Source {
+    path: String,
+    code: String,
+}
+
+fn sources() -> Vec<Source> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    collect(&root, &mut files);
+    files.sort();
+    files
+        .into_iter()
+        .map(|p| Source {
+            path: p
+                .strip_prefix(&root)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/"),
+            code: without_tests(&strip(&std::fs::read_to_string(&p).unwrap())),
+        })
+        .collect()
+}
+
+fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            collect(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The code with comments and the contents of string and char literals
+/// removed (so a path in a doc comment or a message is not an import).
+fn strip(src: &str) -> String {
+    let b = src.as_bytes();
+    let mut out = String::with_capacity(src.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i..].starts_with(b"//") {
+            while i < b.len() && b[i] != b'\n' {
+                i += 1;
+            }
+        } else if b[i..].starts_with(b"/*") {
+            let mut depth = 0;
+            while i < b.len() {
+                if b[i..].starts_with(b"/*") {
+                    depth += 1;
+                    i += 2;
+                } else if b[i..].starts_with(b"*/") {
+                    depth -= 1;
+                    i += 2;
+                    if depth == 0 {
+                        break;
+                    }
+                } else {
+                    i += 1;
+                }
+            }
+        } else if let Some(end) = raw_string_end(b, i) {
+            out.push_str("\"\"");
+            i = end;
+        } else if b[i] == b'"' {
+            i += 1;
+            while i < b.len() && b[i] != b'"' {
+                i += if b[i] == b'\\' { 2 } else { 1 };
+            }
+            i += 1;
+            out.push_str("\"\"");
+        } else if b[i] == b'\'' && char_literal_len(&b[i..]).is_some() {
+            i += char_literal_len(&b[i..]).unwrap();
+            out.push_str("' '");
+        } else {
+            let c = src[i..].chars().next().unwrap();
+            out.push(c);
+            i += c.len_utf8();
+        }
+    }
+    out
+}
+
+/// Where a raw string literal (`r"…"`, `r#"…"#`) starting at `i` ends.
+fn raw_string_end(b: &[u8], i: usize) -> Option<usize> {
+    if b[i] != b'r' || (i > 0 && (b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_')) {
+        return None;
+    }
+    let mut j = i + 1;
+    while j < b.len() && b[j] == b'#' {
+        j += 1;
+    }
+    if j >= b.len() || b[j] != b'"' {
+        return None;
+    }
+    let hashes = j - i - 1;
+    let mut close = vec![b'"'];
+    close.extend(std::iter::repeat_n(b'#', hashes));
+    let body = j + 1;
+    (body..b.len())
+        .find(|&k| b[k..].starts_with(&close))
+        .map(|k| k + close.len())
+}
+
+/// The length of a char literal at the start of `b` (`'a'`, `'\n'`,
+/// `'\u{..}'`), or `None` for a lifetime.
+fn char_literal_len(b: &[u8]) -> Option<usize> {
+    if b.len() >= 4 && b[1] == b'\\' {
+        let end = b[2..].iter().position(|&c| c == b'\'')?;
+        return Some(end + 3);
+    }
+    let s = std::str::from_utf8(&b[1..b.len().min(6)])
+        .ok()
+        .or_else(|| {
+            // A multi-byte char cut short: take what decodes.
+            (2..b.len().min(6))
+                .rev()
+                .find_map(|k| std::str::from_utf8(&b[1..k]).ok())
+        })?;
+    let c = s.chars().next()?;
+    let n = c.len_utf8();
+    (b.get(1 + n) == Some(&b'\'')).then_some(n + 2)
+}
+
+/// The code before the file's `#[cfg(test)]` module (by the house
+/// convention the test module is the last item of a file).
+fn without_tests(code: &str) -> String {
+    match code.find("#[cfg(test)]") {
+        Some(k) => code[..k].to_string(),
+        None => code.to_string(),
+    }
+}
+
+/// The module path of a file: `front/pfg/lower.rs` -> `["front", "pfg",
+/// "lower"]`, `front/mod.rs` -> `["front"]`.
+fn module_of(path: &str) -> Vec<String> {
+    let mut parts: Vec<String> = path
+        .trim_end_matches(".rs")
+        .split('/')
+        .map(String::from)
+        .collect();
+    if parts
+        .last()
+        .is_some_and(|p| p == "mod" || p == "lib" || p == "main")
+    {
+        parts.pop();
+    }
+    parts
+}
+
+/// The crate paths `code` names, as module paths (up to three segments).
+fn crate_paths(module: &[String], code: &str) -> BTreeSet<Vec<String>> {
+    let mut out = BTreeSet::new();
+    let words: Vec<(usize, &str)> = tokens(code);
+    for (k, &(_, w)) in words.iter().enumerate() {
+        let base: Vec<String> = match w {
+            "crate" => Vec::new(),
+            "super" => {
+                // `super` is the parent of this file's module.
+                let mut m = module.to_vec();
+                let mut j = k;
+                m.pop();
+                while words.get(j + 2).is_some_and(|t| t.1 == "super")
+                    && words.get(j + 1).is_some_and(|t| t.1 == "::")
+                {
+                    m.pop();
+                    j += 2;
+                }
+                if j != k {
+                    continue;
+                }
+                m
+            }
+            _ => continue,
+        };
+        if k > 0 && words[k - 1].1 == "::" {
+            continue;
+        }
+        follow(&words, k + 1, base, &mut out);
+    }
+    out
+}
+
+/// Follows `::a::b` or `::{a::b, c}` from token `k`, adding each path.
+fn follow(words: &[(usize, &str)], k: usize, base: Vec<String>, out: &mut BTreeSet<Vec<String>>) {
+    if words.get(k).map(|t| t.1) != Some("::") {
+        if !base.is_empty() {
+            out.insert(base);
+        }
+        return;
+    }
+    match words.get(k + 1).map(|t| t.1) {
+        Some("{") => {
+            // A group: each comma-separated path inside, to the matching `}`.
+            let mut depth = 0;
+            let mut j = k + 1;
+            let mut start = true;
+            while j < words.len() {
+                match words[j].1 {
+                    "{" => {
+                        depth += 1;
+                        start = true;
+                    }
+                    "}" => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    "," => start = true,
+                    w if start && depth == 1 && is_ident(w) => {
+                        let mut p = base.clone();
+                        if w != "self" {
+                            p.push(w.to_string());
+                        }
+                        follow(words, j + 1, p, out);
+                        start = false;
+                    }
+                    _ => {}
+                }
+                j += 1;
+            }
+        }
+        Some(w) if is_ident(w) => {
+            let mut p = base;
+            p.push(w.to_string());
+            if p.len() >= 3 {
+                out.insert(p);
+            } else {
+                follow(words, k + 2, p, out);
+            }
+        }
+        _ => {
+            if !base.is_empty() {
+                out.insert(base);
+            }
+        }
+    }
+}
+
+fn is_ident(w: &str) -> bool {
+    w.chars()
+        .next()
+        .is_some_and(|c| c.is_alphabetic() || c == '_')
+}
+
+/// Identifiers, `::` and the punctuation `{`, `}`, `,` of `code`.
+fn tokens(code: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let b = code.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c.is_ascii_alphabetic() || c == b'_' {
+            let s = i;
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
+                i += 1;
+            }
+            out.push((s, &code[s..i]));
+        } else if b[i..].starts_with(b"::") {
+            out.push((i, "::"));
+            i += 2;
+        } else {
+            if matches!(c, b'{' | b'}' | b',') {
+                out.push((i, &code[i..i + 1]));
+            }
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The external crates among `names` that `code` uses (`name::` or `use
+/// name`).
+fn external<'a>(code: &str, names: &[&'a str]) -> Vec<&'a str> {
+    let words = tokens(code);
+    names
+        .iter()
+        .copied()
+        .filter(|&n| {
+            words.iter().enumerate().any(|(k, t)| {
+                t.1 == n
+                    && (k == 0 || words[k - 1].1 != "::")
+                    && (words.get(k + 1).is_some_and(|t| t.1 == "::")
+                        || (k > 0 && words[k - 1].1 == "use"))
+            })
+        })
+        .collect()
+}
+
+const FRONT_ENDS_ARE: &str = "front";
+const NOT_FOR_FRONT_ENDS: &[&str] = &["back", "turtle", "render", "eval", "driver", "cli"];
+const ABOVE_THE_TURTLE: &[&str] = &["render", "eval", "front", "back", "driver", "cli"];
+
+/// The front ends: the folders under `src/front/`.
+fn notations() -> BTreeSet<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join(FRONT_ENDS_ARE);
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Every rule broken, as "file: what it imports".
+fn violations(files: &[Source]) -> Vec<String> {
+    let notations = notations();
+    assert!(notations.len() >= 5, "{notations:?}");
+    let mut out = Vec::new();
+    for f in files {
+        let module = module_of(&f.path);
+        let top = module.first().cloned().unwrap_or_default();
+        for path in crate_paths(&module, &f.code) {
+            let target = path[0].as_str();
+            let broken = match top.as_str() {
+                "front" if module.len() >= 2 => {
+                    NOT_FOR_FRONT_ENDS.contains(&target)
+                        || (target == "front"
+                            && path
+                                .get(1)
+                                .is_some_and(|n| notations.contains(n) && *n != module[1]))
+                }
+                "back" => target == "front",
+                "ir" => target != "ir",
+                "turtle" => ABOVE_THE_TURTLE.contains(&target),
+                _ => false,
+            };
+            if broken {
+                out.push(format!("{}: imports crate::{}", f.path, path.join("::")));
+            }
+        }
+        let allowed: &[(&str, bool)] = &[
+            ("clap", top == "cli"),
+            ("ariadne", f.path == "diagnostics/render.rs"),
+            ("chumsky", top == "front"),
+            ("logos", top == "front"),
+        ];
+        let names: Vec<&str> = allowed.iter().map(|a| a.0).collect();
+        for used in external(&f.code, &names) {
+            if !allowed.iter().any(|a| a.0 == used && a.1) {
+                out.push(format!("{}: uses the crate {used}", f.path));
+            }
+        }
+    }
+    out
+}
+
+/// The imports between top-level modules (self-imports left out).
+fn module_graph(files: &[Source]) -> BTreeMap<String, BTreeSet<String>> {
+    let tops: BTreeSet<String> = files
+        .iter()
+        .filter_map(|f| module_of(&f.path).first().cloned())
+        .collect();
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for f in files {
+        let module = module_of(&f.path);
+        let Some(top) = module.first() else { continue };
+        for path in crate_paths(&module, &f.code) {
+            if path[0] != *top && tops.contains(&path[0]) {
+                graph
+                    .entry(top.clone())
+                    .or_default()
+                    .insert(path[0].clone());
+            }
+        }
+    }
+    graph
+}
+
+/// A cycle in `graph`, if there is one.
+fn cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        n: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        stack: &mut Vec<String>,
+        done: &mut BTreeSet<String>,
+    ) -> Option<Vec<String>> {
+        if let Some(k) = stack.iter().position(|s| s == n) {
+            let mut c = stack[k..].to_vec();
+            c.push(n.to_string());
+            return Some(c);
+        }
+        if done.contains(n) {
+            return None;
+        }
+        stack.push(n.to_string());
+        for m in graph.get(n).into_iter().flatten() {
+            if let Some(c) = visit(m, graph, stack, done) {
+                return Some(c);
+            }
+        }
+        stack.pop();
+        done.insert(n.to_string());
+        None
+    }
+    let mut done = BTreeSet::new();
+    for n in graph.keys() {
+        if let Some(c) = visit(n, graph, &mut Vec::new(), &mut done) {
+            return Some(c);
+        }
+    }
+    None
+}
+
+#[test]
+fn no_module_imports_what_the_house_rules_forbid() {
+    let files = sources();
+    assert!(files.len() > 40, "read {} files", files.len());
+    let broken = violations(&files);
+    assert!(
+        broken.is_empty(),
+        "forbidden imports:\n{}",
+        broken.join("\n")
+    );
+}
+
+#[test]
+fn the_top_level_modules_form_no_cycle() {
+    let graph = module_graph(&sources());
+    // The graph is read: the CLI does reach the driver.
+    assert!(graph["cli"].contains("driver"), "{graph:?}");
+    assert_eq!(cycle(&graph), None, "{graph:?}");
+}
+
+/// The checker itself: each rule catches what it is meant to.
+#[test]
+fn the_checker_sees_each_kind_of_forbidden_import() {
+    let file = |path: &str, code: &str| Source {
+        path: path.to_string(),
+        code: without_tests(&strip(code)),
+    };
+    let cases = [
+        (
+            "front/pfg/lower.rs",
+            "use crate::front::linf::display;",
+            true,
+        ),
+        (
+            "front/pfg/lower.rs",
+            "use crate::front::{Front, Read};",
+            false,
+        ),
+        (
+            "front/pfg/lower.rs",
+            "use crate::{ir::System, eval::Rng};",
+            true,
+        ),
+        ("front/pfg/mod.rs", "fn f() { super::linf::read(x) }", true),
+        ("front/pfg/lower.rs", "use super::ast::File;", false),
+        (
+            "front/stl/lower.rs",
+            "let x = crate::turtle::interpret(a);",
+            true,
+        ),
+        (
+            "back/stl/mod.rs",
+            "use crate::front::stl::parser::RESERVED;",
+            true,
+        ),
+        ("back/mod.rs", "use crate::ir::System;", false),
+        ("ir/mod.rs", "use crate::diagnostics::Diagnostic;", true),
+        ("ir/d0l.rs", "use super::{SymbolId, System};", false),
+        ("turtle/instanced.rs", "use crate::render::Picture;", true),
+        ("turtle/mod.rs", "use crate::random::Rng;", false),
+        ("eval/mod.rs", "use clap::Parser;", true),
+        ("cli/mod.rs", "use clap::Parser;", false),
+        (
+            "diagnostics/mod.rs",
+            "fn f(e: &chumsky::error::Rich<'_, T>) {}",
+            true,
+        ),
+        ("diagnostics/render.rs", "use ariadne::Report;", false),
+        ("render/mod.rs", "use logos::Logos;", true),
+        // Comments, strings and the test module are not imports.
+        (
+            "ir/mod.rs",
+            "// see crate::eval::derive\nlet s = \"crate::eval\";",
+            false,
+        ),
+        (
+            "turtle/mod.rs",
+            "fn f() {}\n#[cfg(test)]\nmod tests { use crate::eval::derive; }",
+            false,
+        ),
+    ];
+    for (path, code, forbidden) in cases {
+        let found = violations(&[file(path, code)]);
+        assert_eq!(!found.is_empty(), forbidden, "{path}: {code}: {found:?}");
+    }
+    let graph = module_graph(&[
+        file("eval/mod.rs", "use crate::turtle::Sink;"),
+        file("turtle/mod.rs", "use crate::eval::Rng;"),
+    ]);
+    assert!(cycle(&graph).is_some());
+}
