@@ -348,158 +348,183 @@ pub struct Lexed {
 /// are reported (E0001) and dropped.
 pub fn lex(src: &str, diags: &mut Diagnostics) -> Lexed {
     let mut tokens: Vec<(Token, Span)> = Vec::new();
+    let mut mode = Mode::default();
     let mut pos = 0;
-    let mut expression = false;
-    // Parenthesis nesting in expression mode (0 ends a parameter list).
-    let mut nesting: i32 = 0;
-    // Statement-brace depth: line breaks inside braces do not end an item.
-    let mut braces: i32 = 0;
     while pos < src.len() {
-        let (tok, span, next) = if expression {
-            let mut lx = ExprTok::lexer(&src[pos..]);
-            match lx.next() {
-                None => break,
-                Some(t) => {
-                    let span = pos + lx.span().start..pos + lx.span().end;
-                    (Ok(t), span.clone(), span.end)
-                }
-            }
+        let next = if mode.expression {
+            next_raw::<ExprTok>(src, pos)
+                .map(|(t, span)| (t.map(|t| mode.expression_step(t, &src[span.clone()])), span))
         } else {
-            let mut lx = SymTok::lexer(&src[pos..]);
-            match lx.next() {
-                None => break,
-                Some(t) => {
-                    let span = pos + lx.span().start..pos + lx.span().end;
-                    (Err(t), span.clone(), span.end)
-                }
-            }
+            next_raw::<SymTok>(src, pos).map(|(t, span)| (t.map(|t| mode.symbol_step(t)), span))
         };
-        pos = next;
-        let text = &src[span.clone()];
-        let token = match tok {
-            Ok(Err(())) | Err(Err(())) => {
-                diags.push_invalid_character(src, span.clone());
-                continue;
-            }
-            Ok(Ok(t)) => match t {
-                ExprTok::_Skip | ExprTok::Continuation => continue,
-                ExprTok::OpenComment => {
-                    push_unterminated(diags, span);
-                    break;
-                }
-                ExprTok::Newline => {
-                    if braces > 0 {
-                        continue;
-                    }
-                    expression = false;
-                    nesting = 0;
-                    Token::Eol
-                }
-                ExprTok::Keyword(k) => {
-                    expression = k.takes_expression();
-                    nesting = 0;
-                    Token::Keyword(k)
-                }
-                ExprTok::Arrow => {
-                    expression = false;
-                    Token::Arrow
-                }
-                ExprTok::ObjectArrow => {
-                    expression = false;
-                    Token::ObjectArrow
-                }
-                ExprTok::Assign => Token::Assign,
-                ExprTok::Amp => Token::Amp,
-                ExprTok::Plus => Token::Plus,
-                ExprTok::Minus => Token::Minus,
-                ExprTok::Star => Token::Star,
-                ExprTok::Slash => Token::Slash,
-                ExprTok::Percent => Token::Percent,
-                ExprTok::Caret => Token::Caret,
-                ExprTok::Semi => Token::Semi,
-                ExprTok::Comma => Token::Comma,
-                ExprTok::Question => Token::Question,
-                ExprTok::Colon => Token::Colon,
-                ExprTok::LParen => {
-                    nesting += 1;
-                    Token::LParen
-                }
-                ExprTok::RParen => {
-                    nesting -= 1;
-                    if nesting <= 0 && braces == 0 {
-                        nesting = 0;
-                        expression = false;
-                    }
-                    Token::RParen
-                }
-                ExprTok::LBracket => Token::LBracket,
-                ExprTok::RBracket => Token::RBracket,
-                ExprTok::Lt => Token::Lt,
-                ExprTok::Gt => Token::Gt,
-                ExprTok::Ne => Token::Ne,
-                ExprTok::EqEq => Token::EqEq,
-                ExprTok::Le => Token::Le,
-                ExprTok::Ge => Token::Ge,
-                ExprTok::Not => Token::Not,
-                ExprTok::And => Token::And,
-                ExprTok::Or => Token::Or,
-                ExprTok::LBrace => {
-                    braces += 1;
-                    Token::LBrace
-                }
-                ExprTok::RBrace => {
-                    braces = (braces - 1).max(0);
-                    Token::RBrace
-                }
-                ExprTok::Name => Token::Name(text.to_string()),
-                ExprTok::Number => Token::Number(text.parse().unwrap_or(f64::NAN)),
-                ExprTok::Str => Token::Str(text[1..text.len() - 1].to_string()),
-            },
-            Err(Ok(t)) => match t {
-                SymTok::_Skip | SymTok::Continuation => continue,
-                SymTok::OpenComment => {
-                    push_unterminated(diags, span);
-                    break;
-                }
-                SymTok::Newline => {
-                    if braces > 0 {
-                        continue;
-                    }
-                    Token::Eol
-                }
-                SymTok::Keyword(k) => {
-                    expression = k.takes_expression();
-                    nesting = 0;
-                    Token::Keyword(k)
-                }
-                SymTok::Null => Token::Null,
-                SymTok::Colon => {
-                    expression = true;
-                    nesting = 1;
-                    Token::Colon
-                }
-                SymTok::Arrow => Token::Arrow,
-                SymTok::ObjectArrow => Token::ObjectArrow,
-                SymTok::LSep => Token::LSep,
-                SymTok::RSep => Token::RSep,
-                SymTok::LParen => {
-                    expression = true;
-                    nesting = 1;
-                    Token::LParen
-                }
-                SymTok::RParen => Token::RParen,
-                SymTok::Symbol => {
-                    let len = symbol_len(src, span.start);
-                    let span = span.start..span.start + len;
-                    pos = span.end;
-                    tokens.push((Token::Symbol(src[span.clone()].to_string()), span));
-                    continue;
-                }
-            },
+        let Some((step, span)) = next else {
+            break;
         };
-        tokens.push((token, span));
+        pos = span.end;
+        match step {
+            Err(()) => diags.push_invalid_character(src, span),
+            Ok(Step::Skip) => {}
+            Ok(Step::Emit(token)) => tokens.push((token, span)),
+            Ok(Step::Symbol) => {
+                // A prefixed command is longer than the character read.
+                let span = span.start..span.start + symbol_len(src, span.start);
+                pos = span.end;
+                tokens.push((Token::Symbol(src[span.clone()].to_string()), span));
+            }
+            Ok(Step::Unterminated) => {
+                push_unterminated(diags, span);
+                break;
+            }
+        }
     }
     Lexed { tokens }
+}
+
+/// The next token of one mode's lexer at byte `pos`, with its span in `src`.
+fn next_raw<'s, T>(src: &'s str, pos: usize) -> Option<(Result<T, T::Error>, Span)>
+where
+    T: Logos<'s, Source = str>,
+    T::Extras: Default,
+{
+    let mut lx = T::lexer(&src[pos..]);
+    let t = lx.next()?;
+    Some((t, pos + lx.span().start..pos + lx.span().end))
+}
+
+/// What a token read in either mode gives the parser.
+enum Step {
+    Emit(Token),
+    /// A module symbol, perhaps the start of a prefixed command.
+    Symbol,
+    /// Nothing: blanks, comments, continuations, line breaks inside braces.
+    Skip,
+    /// A comment that is never closed: the rest of the text is comment.
+    Unterminated,
+}
+
+/// The lexer's mode and the nesting that decides when it changes.
+#[derive(Default)]
+struct Mode {
+    expression: bool,
+    /// Parenthesis nesting in expression mode (0 ends a parameter list).
+    nesting: i32,
+    /// Statement-brace depth: line breaks inside braces do not end an item.
+    braces: i32,
+}
+
+impl Mode {
+    fn expression_step(&mut self, t: ExprTok, text: &str) -> Step {
+        let token = match t {
+            ExprTok::_Skip | ExprTok::Continuation => return Step::Skip,
+            ExprTok::OpenComment => return Step::Unterminated,
+            ExprTok::Newline => return self.line_break(),
+            ExprTok::Keyword(k) => return self.keyword(k),
+            ExprTok::Arrow => {
+                self.expression = false;
+                Token::Arrow
+            }
+            ExprTok::ObjectArrow => {
+                self.expression = false;
+                Token::ObjectArrow
+            }
+            ExprTok::Assign => Token::Assign,
+            ExprTok::Amp => Token::Amp,
+            ExprTok::Plus => Token::Plus,
+            ExprTok::Minus => Token::Minus,
+            ExprTok::Star => Token::Star,
+            ExprTok::Slash => Token::Slash,
+            ExprTok::Percent => Token::Percent,
+            ExprTok::Caret => Token::Caret,
+            ExprTok::Semi => Token::Semi,
+            ExprTok::Comma => Token::Comma,
+            ExprTok::Question => Token::Question,
+            ExprTok::Colon => Token::Colon,
+            ExprTok::LParen => {
+                self.nesting += 1;
+                Token::LParen
+            }
+            ExprTok::RParen => {
+                self.nesting -= 1;
+                if self.nesting <= 0 && self.braces == 0 {
+                    self.nesting = 0;
+                    self.expression = false;
+                }
+                Token::RParen
+            }
+            ExprTok::LBracket => Token::LBracket,
+            ExprTok::RBracket => Token::RBracket,
+            ExprTok::Lt => Token::Lt,
+            ExprTok::Gt => Token::Gt,
+            ExprTok::Ne => Token::Ne,
+            ExprTok::EqEq => Token::EqEq,
+            ExprTok::Le => Token::Le,
+            ExprTok::Ge => Token::Ge,
+            ExprTok::Not => Token::Not,
+            ExprTok::And => Token::And,
+            ExprTok::Or => Token::Or,
+            ExprTok::LBrace => {
+                self.braces += 1;
+                Token::LBrace
+            }
+            ExprTok::RBrace => {
+                self.braces = (self.braces - 1).max(0);
+                Token::RBrace
+            }
+            ExprTok::Name => Token::Name(text.to_string()),
+            ExprTok::Number => Token::Number(text.parse().unwrap_or(f64::NAN)),
+            ExprTok::Str => Token::Str(text[1..text.len() - 1].to_string()),
+        };
+        Step::Emit(token)
+    }
+
+    fn symbol_step(&mut self, t: SymTok) -> Step {
+        let token = match t {
+            SymTok::_Skip | SymTok::Continuation => return Step::Skip,
+            SymTok::OpenComment => return Step::Unterminated,
+            SymTok::Newline => return self.line_break(),
+            SymTok::Keyword(k) => return self.keyword(k),
+            SymTok::Symbol => return Step::Symbol,
+            SymTok::Null => Token::Null,
+            // A condition or a parameter list follows.
+            SymTok::Colon => {
+                self.open_expression();
+                Token::Colon
+            }
+            SymTok::LParen => {
+                self.open_expression();
+                Token::LParen
+            }
+            SymTok::Arrow => Token::Arrow,
+            SymTok::ObjectArrow => Token::ObjectArrow,
+            SymTok::LSep => Token::LSep,
+            SymTok::RSep => Token::RSep,
+            SymTok::RParen => Token::RParen,
+        };
+        Step::Emit(token)
+    }
+
+    /// A line break ends the item, back in symbol mode, unless it is inside
+    /// the braces of a statement block.
+    fn line_break(&mut self) -> Step {
+        if self.braces > 0 {
+            return Step::Skip;
+        }
+        self.expression = false;
+        self.nesting = 0;
+        Step::Emit(Token::Eol)
+    }
+
+    /// Expression mode, inside one level of parentheses (or after a `:`).
+    fn open_expression(&mut self) {
+        self.expression = true;
+        self.nesting = 1;
+    }
+
+    fn keyword(&mut self, k: Keyword) -> Step {
+        self.expression = k.takes_expression();
+        self.nesting = 0;
+        Step::Emit(Token::Keyword(k))
+    }
 }
 
 fn push_unterminated(diags: &mut Diagnostics, span: Span) {

@@ -5,8 +5,8 @@
 //! Reading a cpfg object: [`preprocess`] (the C preprocessor pass cpfg runs
 //! over the `.l` file, with a map back to the original text) -> `lexer`
 //! (logos, cpfg's two modes) -> `parser` (chumsky, one item per line,
-//! recovering) -> `ast` -> `lower` (the IR, with its parametric part
-//! [`crate::ir::parametric`]). The files beside the `.l` come in through
+//! recovering) -> `ast` -> `lower` (the IR: modules with parameters,
+//! [`crate::ir::program`]). The files beside the `.l` come in through
 //! [`view`] (the `.v` view file: angle, widths, colours, surfaces,
 //! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
@@ -25,6 +25,7 @@ use crate::diagnostics::Diagnostics;
 use crate::front::{line_comments, strip_block_comments, Confidence, Front, Read};
 use crate::ir::{Span, System};
 use crate::source::SourceFile;
+use std::path::Path;
 
 /// The cpfg dialect of `.l` in the registry.
 pub struct Cpfg;
@@ -123,92 +124,176 @@ fn side_file(
 /// and view, and brings in user functions and surfaces. Diagnostics point
 /// into the original `.l` text; problems in the other files name the file.
 pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
-    use std::path::Path;
     let path = Path::new(&file.name);
-    let dir = path.parent().filter(|d| d.is_dir());
-    let read_side = |name: &str| -> Option<String> {
-        let d = dir?;
-        std::fs::read(d.join(name))
-            .ok()
-            .map(|b| String::from_utf8_lossy(&b).into_owned())
+    let beside = Beside {
+        dir: path.parent().filter(|d| d.is_dir()),
     };
-    // The view file and the user functions it names.
-    let view_path = dir.and_then(|d| view::find_view(d, path.file_name()?.to_str()?));
-    let view = match &view_path {
-        Some(p) => {
-            let text = std::fs::read(p)
-                .map(|b| String::from_utf8_lossy(&b).into_owned())
-                .unwrap_or_default();
-            let name = p
-                .file_name()
-                .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-            let (v, d) = view::read_view(&text);
-            for x in d.iter() {
-                diags.push(side_file(x, &name, &text));
-            }
-            v
-        }
-        None => view::View::default(),
-    };
-    let mut functions: Vec<crate::ir::program::Function> = Vec::new();
-    let mut defines: Vec<(String, String)> = Vec::new();
-    let mut add_function =
-        |name: Option<String>,
-         f: &func::Function,
-         functions: &mut Vec<crate::ir::program::Function>| {
-            let samples = (0..FUNCTION_SAMPLES)
-                .map(|k| f.eval(k as f64 / (FUNCTION_SAMPLES - 1) as f64))
-                .collect();
-            functions.push(crate::ir::program::Function {
-                name: name.clone().unwrap_or_default(),
-                samples,
-            });
-            // cpfg defines `FUNCNAME=id`, the name in capitals (manual §8.1.6).
-            if let Some(n) = name {
-                defines.push((n.to_uppercase(), functions.len().to_string()));
-            }
+    let view = beside.view(path, diags);
+    let functions = beside.user_functions(&view, diags);
+    let mut lowered = beside.read_mapped(&file.text, &functions.defines, diags);
+    warn_tropisms(&view, diags);
+    apply_view(&mut lowered.system, &view);
+    lowered.system.program.functions = functions.functions;
+    beside.add_surfaces(&mut lowered.system, &view, diags);
+    report_undefined_surfaces(&lowered, diags);
+    lowered
+}
+
+/// The folder of the `.l` file, where cpfg finds the files it reads beside
+/// it (none when the `.l` has no folder on disk).
+struct Beside<'a> {
+    dir: Option<&'a Path>,
+}
+
+impl Beside<'_> {
+    /// The text of the file `name` of the folder, if it can be read.
+    fn read(&self, name: &str) -> Option<String> {
+        read_lossy(&self.dir?.join(name))
+    }
+
+    /// The file `name` of the folder (a `what` file named by the view file)
+    /// read by `read`; a file that is missing or wrong is reported.
+    fn read_with<T>(
+        &self,
+        name: &str,
+        what: &str,
+        read: impl FnOnce(&str) -> Result<T, Diagnostics>,
+        diags: &mut Diagnostics,
+    ) -> Option<T> {
+        let Some(text) = self.read(name) else {
+            diags.push(missing_file(name, what));
+            return None;
         };
-    for fname in &view.functions {
-        match read_side(fname).map(|t| (func::read_func(&t), t)) {
-            Some((Ok(f), _)) => add_function(f.name.clone(), &f, &mut functions),
-            Some((Err(d), t)) => {
-                for x in d.iter() {
-                    diags.push(side_file(x, fname, &t));
-                }
+        match read(&text) {
+            Ok(x) => Some(x),
+            Err(d) => {
+                push_side_file(diags, &d, name, &text);
+                None
             }
-            None => diags.push(missing_file(fname, "function")),
         }
     }
-    for fname in &view.function_sets {
-        match read_side(fname).map(|t| (func::read_fset(&t), t)) {
-            Some((Ok(set), _)) => {
+
+    /// The view file of the `.l` at `path`; the defaults when there is none.
+    fn view(&self, path: &Path, diags: &mut Diagnostics) -> view::View {
+        let view_path = self
+            .dir
+            .and_then(|d| view::find_view(d, path.file_name()?.to_str()?));
+        let Some(p) = view_path else {
+            return view::View::default();
+        };
+        let text = read_lossy(&p).unwrap_or_default();
+        let name = p
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        let (v, d) = view::read_view(&text);
+        push_side_file(diags, &d, &name, &text);
+        v
+    }
+
+    /// The user functions of the view's `function:` files, then of its
+    /// `function set:` files.
+    fn user_functions(&self, view: &view::View, diags: &mut Diagnostics) -> UserFunctions {
+        let mut user = UserFunctions::default();
+        for fname in &view.functions {
+            if let Some(f) = self.read_with(fname, "function", func::read_func, diags) {
+                user.add(f.name.clone(), &f);
+            }
+        }
+        for fname in &view.function_sets {
+            if let Some(set) = self.read_with(fname, "function set", func::read_fset, diags) {
                 for (name, f) in set {
-                    add_function(Some(name), &f, &mut functions);
+                    user.add(Some(name), &f);
                 }
             }
-            Some((Err(d), t)) => {
-                for x in d.iter() {
-                    diags.push(side_file(x, fname, &t));
-                }
+        }
+        user
+    }
+
+    /// Preprocesses the `.l` text (its `#include`s come from the folder)
+    /// and reads it, with the spans of the diagnostics and of the IR mapped
+    /// back to the original text.
+    fn read_mapped(
+        &self,
+        text: &str,
+        defines: &[(String, String)],
+        diags: &mut Diagnostics,
+    ) -> Lowered {
+        let pre = preprocess::preprocess_with_defines(text, defines, &mut |name| self.read(name));
+        diags.extend(pre.diagnostics);
+        let mut own = Diagnostics::default();
+        let mut lowered = read(&pre.text, &mut own);
+        let map = |s: &Span| pre.map.to_source(s.clone());
+        for mut d in own.0 {
+            d.span = d.span.as_ref().map(map);
+            for l in &mut d.labels {
+                l.span = map(&l.span);
             }
-            None => diags.push(missing_file(fname, "function set")),
+            diags.push(d);
+        }
+        map_spans(&mut lowered.spans, map);
+        lowered
+    }
+
+    /// Surfaces: `~id` draws surface `id` of the view file.
+    fn add_surfaces(&self, sys: &mut System, view: &view::View, diags: &mut Diagnostics) {
+        for r in &view.surfaces {
+            let Some(surface) = self.read_with(&r.file, "surface", surface::read_surface, diags)
+            else {
+                continue;
+            };
+            let name = format!("~{}", r.id);
+            sys.surfaces.push(crate::ir::SurfaceMesh {
+                name: name.clone(),
+                triangles: surface_triangles(r, &surface),
+            });
+            let index = (sys.surfaces.len() - 1) as u16;
+            if let Some(id) = sys.symbols.get(&name) {
+                sys.set_interpretation(id, crate::ir::TurtleOp::Surface(index));
+            }
         }
     }
-    // Preprocess, then read with spans mapped back.
-    let pre =
-        preprocess::preprocess_with_defines(&file.text, &defines, &mut |name| read_side(name));
-    diags.extend(pre.diagnostics);
-    let mut own = Diagnostics::default();
-    let mut lowered = read(&pre.text, &mut own);
-    let map = |s: &crate::ir::Span| pre.map.to_source(s.clone());
-    for mut d in own.0 {
-        d.span = d.span.as_ref().map(map);
-        for l in &mut d.labels {
-            l.span = map(&l.span);
-        }
-        diags.push(d);
+}
+
+fn read_lossy(path: &Path) -> Option<String> {
+    std::fs::read(path)
+        .ok()
+        .map(|b| String::from_utf8_lossy(&b).into_owned())
+}
+
+/// Reports the diagnostics of a file beside the `.l` (see [`side_file`]).
+fn push_side_file(diags: &mut Diagnostics, d: &Diagnostics, name: &str, text: &str) {
+    for x in d.iter() {
+        diags.push(side_file(x, name, text));
     }
-    let spans = &mut lowered.spans;
+}
+
+/// The user functions in the IR's order, sampled, and the macro cpfg
+/// defines for each named one.
+#[derive(Default)]
+struct UserFunctions {
+    functions: Vec<crate::ir::program::Function>,
+    defines: Vec<(String, String)>,
+}
+
+impl UserFunctions {
+    fn add(&mut self, name: Option<String>, f: &func::Function) {
+        let samples = (0..FUNCTION_SAMPLES)
+            .map(|k| f.eval(k as f64 / (FUNCTION_SAMPLES - 1) as f64))
+            .collect();
+        self.functions.push(crate::ir::program::Function {
+            name: name.clone().unwrap_or_default(),
+            samples,
+        });
+        // cpfg defines `FUNCNAME=id`, the name in capitals (manual §8.1.6).
+        if let Some(n) = name {
+            self.defines
+                .push((n.to_uppercase(), self.functions.len().to_string()));
+        }
+    }
+}
+
+/// Sends every span of the IR through `map`.
+fn map_spans(spans: &mut crate::ir::SpanTable, map: impl Fn(&Span) -> Span) {
     for s in spans.productions.iter_mut().chain(spans.axiom.iter_mut()) {
         *s = map(s);
     }
@@ -222,8 +307,11 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
             }
         }
     }
-    // Tropisms bend every segment in cpfg; graftal does not apply them yet,
-    // so say so rather than draw a different plant silently.
+}
+
+/// Tropisms bend every segment in cpfg; graftal does not apply them yet,
+/// so say so rather than draw a different plant silently.
+fn warn_tropisms(view: &view::View, diags: &mut Diagnostics) {
     let bends = !view.tropisms.is_empty()
         || (view.tropism_direction.is_some() && view.initial_elasticity != 0.0);
     if bends {
@@ -235,8 +323,11 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
             .with_help("cpfg bends each segment towards the tropism vector by its elasticity"),
         );
     }
-    // The view file's settings.
-    let sys = &mut lowered.system;
+}
+
+/// The view file's settings: angle, widths, colours, scale and view
+/// direction.
+fn apply_view(sys: &mut System, view: &view::View) {
     let st = &mut sys.settings;
     st.delta = view.angle.to_radians();
     st.width = view.initial_line_width;
@@ -266,47 +357,30 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
             }
         })
         .collect();
-    sys.program.functions = functions;
-    // Surfaces: `~id` draws surface `id` of the view file.
-    for r in &view.surfaces {
-        let Some(text) = read_side(&r.file) else {
-            diags.push(missing_file(&r.file, "surface"));
-            continue;
-        };
-        let surface = match surface::read_surface(&text) {
-            Ok(s) => s,
-            Err(d) => {
-                for x in d.iter() {
-                    diags.push(side_file(x, &r.file, &text));
-                }
-                continue;
-            }
-        };
-        let mut div = r.s_divisions.max(r.t_divisions).clamp(1, 8);
-        while div > 1 && surface.patches.len() * 2 * (div * div) as usize > MAX_SURFACE_TRIANGLES {
-            div -= 1;
-        }
-        let triangles = surface
-            .triangles(div)
-            .into_iter()
-            .map(|t| {
-                t.map(|p| {
-                    let [h, l, u] = surface.to_turtle(p);
-                    [l * r.scale, h * r.scale, u * r.scale]
-                })
-            })
-            .collect();
-        let name = format!("~{}", r.id);
-        sys.surfaces.push(crate::ir::SurfaceMesh {
-            name: name.clone(),
-            triangles,
-        });
-        let index = (sys.surfaces.len() - 1) as u16;
-        if let Some(id) = sys.symbols.get(&name) {
-            sys.set_interpretation(id, crate::ir::TurtleOp::Surface(index));
-        }
+}
+
+/// The triangles of a surface placed as `r` says, in turtle coordinates,
+/// with no more than [`MAX_SURFACE_TRIANGLES`].
+fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[f64; 3]; 3]> {
+    let mut div = r.s_divisions.max(r.t_divisions).clamp(1, 8);
+    while div > 1 && surface.patches.len() * 2 * (div * div) as usize > MAX_SURFACE_TRIANGLES {
+        div -= 1;
     }
-    // A `~` module whose surface the view file does not define.
+    surface
+        .triangles(div)
+        .into_iter()
+        .map(|t| {
+            t.map(|p| {
+                let [h, l, u] = surface.to_turtle(p);
+                [l * r.scale, h * r.scale, u * r.scale]
+            })
+        })
+        .collect()
+}
+
+/// A `~` module whose surface the view file does not define.
+fn report_undefined_surfaces(lowered: &Lowered, diags: &mut Diagnostics) {
+    let sys = &lowered.system;
     for (id, info) in sys.symbols.iter() {
         if info.name.starts_with('~') && info.name.len() > 1 && sys.op(id).is_none() {
             let span = lowered.spans.symbols.get(&id).cloned().unwrap_or(0..0);
@@ -324,7 +398,6 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
             );
         }
     }
-    lowered
 }
 
 fn missing_file(name: &str, what: &str) -> crate::diagnostics::Diagnostic {

@@ -532,6 +532,126 @@ impl Macro {
     }
 }
 
+impl Tok {
+    /// This token as made by the expansion of the call at `origin`.
+    fn made_by(&self, origin: &Range<usize>, hide: Rc<Vec<u32>>) -> Tok {
+        Tok {
+            kind: self.kind,
+            text: self.text.clone(),
+            origin: origin.clone(),
+            own: false,
+            hide,
+        }
+    }
+}
+
+/// The index in `input` of the `)` that closes the `(` at `open`.
+fn matching_paren(input: &VecDeque<Tok>, open: usize) -> Option<usize> {
+    let mut level = 0usize;
+    for (j, x) in input.iter().enumerate().skip(open) {
+        match &*x.text {
+            "(" if x.kind == Kind::Other => level += 1,
+            ")" if x.kind == Kind::Other => {
+                level -= 1;
+                if level == 0 {
+                    return Some(j);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The arguments between a call's parentheses, split at the commas outside
+/// nested parentheses, without surrounding blanks. `f()` has no argument
+/// when `f` takes none.
+fn call_arguments(
+    inner: &[Tok],
+    n_params: usize,
+    variadic: bool,
+    name_origin: &Range<usize>,
+) -> Vec<Vec<Tok>> {
+    let mut args: Vec<Vec<Tok>> = vec![Vec::new()];
+    let mut level = 0usize;
+    for x in inner {
+        if x.kind == Kind::Other {
+            match &*x.text {
+                "(" => level += 1,
+                ")" => level = level.saturating_sub(1),
+                "," if level == 0 => {
+                    args.push(Vec::new());
+                    continue;
+                }
+                _ => {}
+            }
+        }
+        if let Some(a) = args.last_mut() {
+            a.push(x.clone());
+        }
+    }
+    let mut args: Vec<Vec<Tok>> = args.into_iter().map(strip_ws).collect();
+    if n_params == 0 && args.len() == 1 && args[0].is_empty() {
+        args.clear();
+    }
+    if variadic {
+        fit_variadic(&mut args, n_params, name_origin);
+    }
+    args
+}
+
+/// Joins the arguments of a variadic macro past its named parameters into
+/// the last one (with the commas between them), or gives it an empty one.
+fn fit_variadic(args: &mut Vec<Vec<Tok>>, n_params: usize, name_origin: &Range<usize>) {
+    if args.len() > n_params {
+        let rest = args.split_off(n_params - 1);
+        let mut joined = Vec::new();
+        for (i, a) in rest.into_iter().enumerate() {
+            if i > 0 {
+                joined.push(Tok {
+                    kind: Kind::Other,
+                    text: Rc::from(","),
+                    origin: name_origin.clone(),
+                    own: false,
+                    hide: Rc::new(Vec::new()),
+                });
+            }
+            joined.extend(a);
+        }
+        args.push(joined);
+    } else if args.len() + 1 == n_params {
+        args.push(Vec::new());
+    }
+}
+
+/// A function-like macro's body with each parameter replaced by its
+/// expanded argument, every token made by the call at `origin`.
+fn substitute(
+    body: &[Tok],
+    params: &[String],
+    args: &[Vec<Tok>],
+    origin: &Range<usize>,
+    hide: &Rc<Vec<u32>>,
+) -> Vec<Tok> {
+    let mut repl: Vec<Tok> = Vec::new();
+    for bt in body {
+        let p = if bt.kind == Kind::Ident {
+            params.iter().position(|p| **p == *bt.text)
+        } else {
+            None
+        };
+        match p {
+            Some(p) => {
+                for at in &args[p] {
+                    repl.push(at.made_by(origin, Rc::new(union(&at.hide, hide))));
+                }
+            }
+            None => repl.push(bt.made_by(origin, hide.clone())),
+        }
+    }
+    repl
+}
+
 struct Cond {
     /// This group's text is kept.
     active: bool,
@@ -541,6 +661,19 @@ struct Cond {
     parent: bool,
     seen_else: bool,
     span: Range<usize>,
+}
+
+/// A directive line taken apart.
+struct Directive<'a> {
+    name: &'a str,
+    /// The tokens after the name.
+    rest: Vec<Tok>,
+    /// `rest` without its surrounding blanks (the point after the name when
+    /// there is nothing).
+    rest_span: Range<usize>,
+    name_span: Range<usize>,
+    /// From the `#` to the end of the line's text.
+    line_span: Range<usize>,
 }
 
 struct Pp<'a> {
@@ -706,186 +839,124 @@ impl Pp<'_> {
             let m = m.clone();
             match &m.params {
                 None => {
+                    // The body replaces the name, to be rescanned.
                     let hide = Rc::new(union(&t.hide, &[m.id]));
-                    let origin = t.origin.clone();
                     for bt in m.body.iter().rev() {
-                        input.push_front(Tok {
-                            kind: bt.kind,
-                            text: bt.text.clone(),
-                            origin: origin.clone(),
-                            own: false,
-                            hide: hide.clone(),
-                        });
+                        input.push_front(bt.made_by(&t.origin, hide.clone()));
                     }
                 }
-                Some(params) => {
-                    // Is the next non-space token `(`?
-                    let k = input
-                        .iter()
-                        .position(|x| !matches!(x.kind, Kind::Ws | Kind::Splice));
-                    let Some(k) = k.filter(|&k| &*input[k].text == "(") else {
-                        output.push(t);
-                        continue;
-                    };
-                    // Collect the arguments up to the matching `)`.
-                    let mut level = 0usize;
-                    let mut close = None;
-                    for (j, x) in input.iter().enumerate().skip(k) {
-                        match &*x.text {
-                            "(" if x.kind == Kind::Other => level += 1,
-                            ")" if x.kind == Kind::Other => {
-                                level -= 1;
-                                if level == 0 {
-                                    close = Some(j);
-                                    break;
-                                }
-                            }
-                            _ => {}
-                        }
-                    }
-                    let Some(close) = close else {
-                        self.diags.push(
-                            Diagnostic::at(
-                                codes::CPFG_UNTERMINATED_CALL,
-                                t.origin.clone(),
-                                format!("call of macro `{}` is never closed", t.text),
-                            )
-                            .with_label("this call has no closing `)`")
-                            .with_help(
-                                "add the missing `)`; a call cannot run past the next directive",
-                            ),
-                        );
-                        output.push(t);
-                        continue;
-                    };
-                    let call: Vec<Tok> = input.drain(..=close).collect();
-                    let rparen_hide = call[close].hide.clone();
-                    let mut args: Vec<Vec<Tok>> = vec![Vec::new()];
-                    let mut level = 0usize;
-                    for x in &call[k + 1..close] {
-                        if x.kind == Kind::Other {
-                            match &*x.text {
-                                "(" => level += 1,
-                                ")" => level = level.saturating_sub(1),
-                                "," if level == 0 => {
-                                    args.push(Vec::new());
-                                    continue;
-                                }
-                                _ => {}
-                            }
-                        }
-                        if let Some(a) = args.last_mut() {
-                            a.push(x.clone());
-                        }
-                    }
-                    let mut args: Vec<Vec<Tok>> = args.into_iter().map(strip_ws).collect();
-                    if params.is_empty() && args.len() == 1 && args[0].is_empty() {
-                        args.clear();
-                    }
-                    if m.variadic && args.len() > params.len() {
-                        let rest = args.split_off(params.len() - 1);
-                        let mut joined = Vec::new();
-                        for (i, a) in rest.into_iter().enumerate() {
-                            if i > 0 {
-                                joined.push(Tok {
-                                    kind: Kind::Other,
-                                    text: Rc::from(","),
-                                    origin: t.origin.clone(),
-                                    own: false,
-                                    hide: Rc::new(Vec::new()),
-                                });
-                            }
-                            joined.extend(a);
-                        }
-                        args.push(joined);
-                    } else if m.variadic && args.len() + 1 == params.len() {
-                        args.push(Vec::new());
-                    }
-                    let mut origin = t.origin.clone();
-                    if let Some(s) = span_of(&call) {
-                        origin = origin.start.min(s.start)..origin.end.max(s.end);
-                    }
-                    if args.len() != params.len() {
-                        let mut d = Diagnostic::at(
-                            codes::CPFG_MACRO_ARGUMENTS,
-                            origin.clone(),
-                            format!(
-                                "macro `{}` takes {} argument{} but is given {}",
-                                t.text,
-                                params.len(),
-                                if params.len() == 1 { "" } else { "s" },
-                                args.len()
-                            ),
-                        )
-                        .with_label("this call")
-                        .with_help(format!(
-                            "call it as `{}({})`",
-                            t.text,
-                            params.join(", ")
-                        ));
-                        if let Some(def) = &m.def {
-                            d = d.with_secondary(def.clone(), "defined here");
-                        }
-                        self.diags.push(d);
-                        // Leave the call as it is.
-                        output.push(t);
-                        output.extend(call);
-                        continue;
-                    }
-                    if depth >= MAX_ARG_DEPTH {
-                        self.abort(origin.clone(), "macro calls nested too deep in arguments");
-                        output.push(t);
-                        output.extend(call);
-                        continue;
-                    }
-                    let mut expanded_args = Vec::with_capacity(args.len());
-                    for a in args {
-                        expanded_args.push(self.expand(a.into(), depth + 1));
-                    }
-                    let inter: Vec<u32> = t
-                        .hide
-                        .iter()
-                        .filter(|h| rparen_hide.contains(h))
-                        .copied()
-                        .collect();
-                    let hide = Rc::new(union(&inter, &[m.id]));
-                    let mut repl: Vec<Tok> = Vec::new();
-                    for bt in &m.body {
-                        let p = if bt.kind == Kind::Ident {
-                            params.iter().position(|p| **p == *bt.text)
-                        } else {
-                            None
-                        };
-                        match p {
-                            Some(p) => {
-                                for at in &expanded_args[p] {
-                                    repl.push(Tok {
-                                        kind: at.kind,
-                                        text: at.text.clone(),
-                                        origin: origin.clone(),
-                                        own: false,
-                                        hide: Rc::new(union(&at.hide, &hide)),
-                                    });
-                                }
-                            }
-                            None => repl.push(Tok {
-                                kind: bt.kind,
-                                text: bt.text.clone(),
-                                origin: origin.clone(),
-                                own: false,
-                                hide: hide.clone(),
-                            }),
-                        }
-                    }
-                    for x in repl.into_iter().rev() {
-                        input.push_front(x);
-                    }
-                }
+                Some(params) => self.expand_call(t, &m, params, &mut input, &mut output, depth),
             }
         }
         output
     }
 
+    /// Expands the call of the function-like macro `m` whose name is `t` and
+    /// whose arguments follow in `input`: the replacement goes back to the
+    /// front of `input`, to be rescanned. A name without `(` goes to `output`
+    /// as it is, and so does a call that is unclosed, has the wrong number
+    /// of arguments or is nested too deep (with a diagnostic).
+    fn expand_call(
+        &mut self,
+        t: Tok,
+        m: &Macro,
+        params: &[String],
+        input: &mut VecDeque<Tok>,
+        output: &mut Vec<Tok>,
+        depth: usize,
+    ) {
+        // Is the next non-space token `(`?
+        let k = input
+            .iter()
+            .position(|x| !matches!(x.kind, Kind::Ws | Kind::Splice));
+        let Some(k) = k.filter(|&k| &*input[k].text == "(") else {
+            output.push(t);
+            return;
+        };
+        let Some(close) = matching_paren(input, k) else {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_UNTERMINATED_CALL,
+                    t.origin.clone(),
+                    format!("call of macro `{}` is never closed", t.text),
+                )
+                .with_label("this call has no closing `)`")
+                .with_help("add the missing `)`; a call cannot run past the next directive"),
+            );
+            output.push(t);
+            return;
+        };
+        let call: Vec<Tok> = input.drain(..=close).collect();
+        let rparen_hide = call[close].hide.clone();
+        let args = call_arguments(&call[k + 1..close], params.len(), m.variadic, &t.origin);
+        let mut origin = t.origin.clone();
+        if let Some(s) = span_of(&call) {
+            origin = origin.start.min(s.start)..origin.end.max(s.end);
+        }
+        let refused = if args.len() != params.len() {
+            self.wrong_argument_count(&t, m, params, args.len(), origin.clone());
+            true
+        } else if depth >= MAX_ARG_DEPTH {
+            self.abort(origin.clone(), "macro calls nested too deep in arguments");
+            true
+        } else {
+            false
+        };
+        if refused {
+            // Leave the call as it is.
+            output.push(t);
+            output.extend(call);
+            return;
+        }
+        let expanded_args: Vec<Vec<Tok>> = args
+            .into_iter()
+            .map(|a| self.expand(a.into(), depth + 1))
+            .collect();
+        // The tokens made hide what both the name and the closing `)` hide,
+        // and the macro itself.
+        let inter: Vec<u32> = t
+            .hide
+            .iter()
+            .filter(|h| rparen_hide.contains(h))
+            .copied()
+            .collect();
+        let hide = Rc::new(union(&inter, &[m.id]));
+        let repl = substitute(&m.body, params, &expanded_args, &origin, &hide);
+        for x in repl.into_iter().rev() {
+            input.push_front(x);
+        }
+    }
+
+    fn wrong_argument_count(
+        &mut self,
+        t: &Tok,
+        m: &Macro,
+        params: &[String],
+        given: usize,
+        origin: Range<usize>,
+    ) {
+        let mut d = Diagnostic::at(
+            codes::CPFG_MACRO_ARGUMENTS,
+            origin,
+            format!(
+                "macro `{}` takes {} argument{} but is given {}",
+                t.text,
+                params.len(),
+                if params.len() == 1 { "" } else { "s" },
+                given
+            ),
+        )
+        .with_label("this call")
+        .with_help(format!("call it as `{}({})`", t.text, params.join(", ")));
+        if let Some(def) = &m.def {
+            d = d.with_secondary(def.clone(), "defined here");
+        }
+        self.diags.push(d);
+    }
+
+    /// Reads the directive whose `#` is at `hash` and whose logical line ends
+    /// at `end`. In skipped text (not `active`) only the conditionals are
+    /// followed.
     #[allow(clippy::too_many_arguments)]
     fn directive(
         &mut self,
@@ -914,138 +985,158 @@ impl Pp<'_> {
             toks[idx + 1..].to_vec()
         };
         let rest_span = span_of(&strip_ws(rest.clone())).unwrap_or(name_span.end..name_span.end);
+        let dir = Directive {
+            name,
+            rest,
+            rest_span,
+            name_span,
+            line_span,
+        };
         match name {
             "if" | "ifdef" | "ifndef" => {
-                let value = if !active {
-                    false
-                } else if name == "if" {
-                    self.eval_if(&rest, rest_span.clone(), name_span.clone())
-                } else {
-                    let words = strip_ws(rest.clone());
-                    match words.first() {
-                        Some(w) if w.kind == Kind::Ident => {
-                            self.extra_tokens(&words[1..], name);
-                            self.macros.contains_key(&*w.text) == (name == "ifdef")
-                        }
-                        _ => {
-                            self.bad_directive(
-                                line_span.clone(),
-                                format!("`#{name}` needs a macro name"),
-                            );
-                            false
-                        }
-                    }
-                };
+                let value = active && self.condition(&dir);
                 conds.push(Cond {
                     active: active && value,
                     taken: value,
                     parent: active,
                     seen_else: false,
-                    span: line_span,
+                    span: dir.line_span,
                 });
             }
-            "elif" | "else" | "endif" => {
-                let Some(c) = conds.last_mut() else {
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_STRAY_CONDITIONAL,
-                            line_span,
-                            format!("`#{name}` without `#if`"),
-                        )
-                        .with_label("no conditional block is open here")
-                        .with_help("remove it, or add the `#if` it belongs to"),
-                    );
-                    return;
-                };
-                if name == "endif" {
-                    self.extra_tokens(&strip_ws(rest), name);
-                    conds.pop();
-                    return;
-                }
-                if c.seen_else {
-                    let first = c.span.clone();
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_STRAY_CONDITIONAL,
-                            line_span,
-                            format!("`#{name}` after `#else`"),
-                        )
-                        .with_secondary(first, "in the block opened here")
-                        .with_label("the block already had its `#else`")
-                        .with_help("a block has at most one `#else`, after every `#elif`"),
-                    );
-                    return;
-                }
-                if name == "else" {
-                    self.extra_tokens(&strip_ws(rest), name);
-                    c.seen_else = true;
-                    c.active = c.parent && !c.taken;
-                    c.taken = true;
-                } else {
-                    let (parent, taken) = (c.parent, c.taken);
-                    let value = if parent && !taken {
-                        self.eval_if(&rest, rest_span, name_span)
-                    } else {
-                        false
-                    };
-                    if let Some(c) = conds.last_mut() {
-                        c.active = parent && !taken && value;
-                        c.taken = taken || value;
-                    }
-                }
-            }
+            "elif" | "else" | "endif" => self.next_group(dir, conds),
             _ if !active => {} // other directives of skipped text are not read
-            "define" => self.define(rest, line_span, main),
+            "define" => self.define(dir.rest, dir.line_span, main),
             "undef" => {
-                let words = strip_ws(rest);
-                match words.first() {
-                    Some(w) if w.kind == Kind::Ident => {
-                        self.macros.remove(&*w.text);
-                        self.extra_tokens(&words[1..], name);
-                    }
-                    _ => self.bad_directive(line_span, "`#undef` needs a macro name".to_string()),
+                if let Some(m) = self.macro_operand(&dir) {
+                    self.macros.remove(&*m);
                 }
             }
-            "include" => self.include_directive(rest, line_span, out),
+            "include" => self.include_directive(dir.rest, dir.line_span, out),
             "error" => {
-                let msg = clean[rest_span.clone()].trim().to_string();
+                let msg = clean[dir.rest_span.clone()].trim().to_string();
                 self.diags.push(
                     Diagnostic::at(
                         codes::CPFG_ERROR_DIRECTIVE,
-                        line_span,
+                        dir.line_span,
                         format!("#error {msg}"),
                     )
                     .with_label("the file stops itself here"),
                 );
             }
             "pragma" | "line" | "warning" | "ident" | "sccs" => {}
+            _ => self.unknown_directive(name_tok, hash),
+        }
+    }
+
+    /// The value of an `#if`, `#ifdef` or `#ifndef` in kept text.
+    fn condition(&mut self, dir: &Directive) -> bool {
+        if dir.name == "if" {
+            return self.eval_if(&dir.rest, dir.rest_span.clone(), dir.name_span.clone());
+        }
+        self.macro_operand(dir)
+            .is_some_and(|m| self.macros.contains_key(&*m) == (dir.name == "ifdef"))
+    }
+
+    /// The macro name an `#ifdef`, `#ifndef` or `#undef` is about: text after
+    /// it is reported as ignored, and a line without it as a bad directive.
+    fn macro_operand(&mut self, dir: &Directive) -> Option<Rc<str>> {
+        let words = strip_ws(dir.rest.clone());
+        match words.first() {
+            Some(w) if w.kind == Kind::Ident => {
+                self.extra_tokens(&words[1..], dir.name);
+                Some(w.text.clone())
+            }
             _ => {
-                let known = [
-                    "define", "undef", "include", "if", "ifdef", "ifndef", "elif", "else", "endif",
-                    "error", "pragma", "line",
-                ];
-                let mut d = Diagnostic::at(
-                    codes::CPFG_UNKNOWN_DIRECTIVE,
-                    hash..name_span.end,
-                    format!("unknown preprocessor directive `#{name}`"),
-                )
-                .with_label("not a directive");
-                let suggestion = if name_tok.kind == Kind::Ident {
-                    nearest(name, &known).first().copied()
-                } else {
-                    None
-                };
-                if let Some(n) = suggestion {
-                    d = d.with_help(format!("did you mean `#{n}`?"));
-                } else {
-                    d = d.with_help(
-                        "a line cannot start with `#` in cpfg (the preprocessor reads it as a directive); \
-                         put something before the module, e.g. `* < #(w)` as a context",
-                    );
-                }
-                self.diags.push(d);
+                self.bad_directive(
+                    dir.line_span.clone(),
+                    format!("`#{}` needs a macro name", dir.name),
+                );
+                None
             }
         }
+    }
+
+    /// `#elif`, `#else` or `#endif`: ends the current group of the innermost
+    /// `#if` and, but for `#endif`, starts the next one.
+    fn next_group(&mut self, dir: Directive, conds: &mut Vec<Cond>) {
+        let name = dir.name;
+        let Some(c) = conds.last_mut() else {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_STRAY_CONDITIONAL,
+                    dir.line_span,
+                    format!("`#{name}` without `#if`"),
+                )
+                .with_label("no conditional block is open here")
+                .with_help("remove it, or add the `#if` it belongs to"),
+            );
+            return;
+        };
+        if name == "endif" {
+            self.extra_tokens(&strip_ws(dir.rest), name);
+            conds.pop();
+            return;
+        }
+        if c.seen_else {
+            let first = c.span.clone();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_STRAY_CONDITIONAL,
+                    dir.line_span,
+                    format!("`#{name}` after `#else`"),
+                )
+                .with_secondary(first, "in the block opened here")
+                .with_label("the block already had its `#else`")
+                .with_help("a block has at most one `#else`, after every `#elif`"),
+            );
+            return;
+        }
+        if name == "else" {
+            self.extra_tokens(&strip_ws(dir.rest), name);
+            c.seen_else = true;
+            c.active = c.parent && !c.taken;
+            c.taken = true;
+        } else {
+            let (parent, taken) = (c.parent, c.taken);
+            let value = if parent && !taken {
+                self.eval_if(&dir.rest, dir.rest_span, dir.name_span)
+            } else {
+                false
+            };
+            if let Some(c) = conds.last_mut() {
+                c.active = parent && !taken && value;
+                c.taken = taken || value;
+            }
+        }
+    }
+
+    /// A `#` line that is no directive cpfg's preprocessor knows.
+    fn unknown_directive(&mut self, name_tok: &Tok, hash: usize) {
+        let name = &*name_tok.text;
+        let known = [
+            "define", "undef", "include", "if", "ifdef", "ifndef", "elif", "else", "endif",
+            "error", "pragma", "line",
+        ];
+        let mut d = Diagnostic::at(
+            codes::CPFG_UNKNOWN_DIRECTIVE,
+            hash..name_tok.origin.end,
+            format!("unknown preprocessor directive `#{name}`"),
+        )
+        .with_label("not a directive");
+        let suggestion = if name_tok.kind == Kind::Ident {
+            nearest(name, &known).first().copied()
+        } else {
+            None
+        };
+        if let Some(n) = suggestion {
+            d = d.with_help(format!("did you mean `#{n}`?"));
+        } else {
+            d = d.with_help(
+                "a line cannot start with `#` in cpfg (the preprocessor reads it as a directive); \
+                 put something before the module, e.g. `* < #(w)` as a context",
+            );
+        }
+        self.diags.push(d);
     }
 
     fn bad_directive(&mut self, span: Range<usize>, msg: String) {

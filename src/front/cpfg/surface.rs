@@ -14,6 +14,7 @@
 //! turtle coordinates (before scaling).
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use std::iter::Peekable;
 use std::ops::Range;
 
 /// One bicubic Bézier patch.
@@ -65,125 +66,33 @@ fn labelled_point(line: &str, label: &str) -> Option<[f64; 3]> {
 
 /// Reads a surface file.
 pub fn read_surface(text: &str) -> Result<Surface, Diagnostics> {
-    // Non-blank lines with their spans.
-    let mut lines = Vec::new();
-    let mut at = 0;
-    for l in text.split_inclusive('\n') {
-        let body = l.trim_end_matches(['\n', '\r']);
-        if !body.trim().is_empty() {
-            lines.push((body, at..at + body.len()));
-        }
-        at += l.len();
-    }
-    let end = text.len()..text.len();
-    let mut it = lines.into_iter().peekable();
-    let mut next = |expected: &str| {
-        it.next()
-            .ok_or_else(|| error(end.clone(), "the surface file ends too early", expected))
-    };
-
-    let (l, s) = next("the bounding box")?;
+    let mut lines = Lines::new(text);
+    let (l, s) = lines.next("the bounding box")?;
     let bounds: [f64; 6] = nums(l)
         .and_then(|v| v.try_into().ok())
         .ok_or_else(|| error(s, "malformed bounding box", "six numbers"))?;
-    let mut precision = None;
-    if let Some((l, s)) = it.next_if(|(l, _)| l.trim_start().starts_with("PRECISION")) {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        match w.as_slice() {
-            ["PRECISION", "S:", a, "T:", b] => match (a.parse::<u32>(), b.parse::<u32>()) {
-                (Ok(a), Ok(b)) => precision = Some((a, b)),
-                _ => {
-                    return Err(error(
-                        s,
-                        "malformed `PRECISION` line",
-                        "`PRECISION S: s T: t`",
-                    ))
-                }
-            },
-            _ => {
-                return Err(error(
-                    s,
-                    "malformed `PRECISION` line",
-                    "`PRECISION S: s T: t`",
-                ))
-            }
-        }
-    }
-    let mut next = |expected: &str| {
-        it.next()
-            .ok_or_else(|| error(end.clone(), "the surface file ends too early", expected))
-    };
-    let mut header = |label: &str| -> Result<[f64; 3], Diagnostics> {
-        let (l, s) = next(label)?;
-        labelled_point(l, label).ok_or_else(|| {
-            error(
-                s,
-                format!("malformed `{label}` line"),
-                &format!("`{label} X: x Y: y Z: z`"),
-            )
-        })
-    };
-    let contact = header("CONTACT POINT")?;
-    let end_point = header("END POINT")?;
-    let heading = header("HEADING")?;
-    let up = header("UP")?;
-    let (l, s) = next("`SIZE:`")?;
+    let precision = read_precision(&mut lines)?;
+    let contact = lines.point("CONTACT POINT")?;
+    let end_point = lines.point("END POINT")?;
+    let heading = lines.point("HEADING")?;
+    let up = lines.point("UP")?;
+    let (l, s) = lines.next("`SIZE:`")?;
     let size = l
         .trim()
         .strip_prefix("SIZE:")
         .and_then(|v| v.trim().parse::<f64>().ok())
         .filter(|x| x.is_finite())
         .ok_or_else(|| error(s, "malformed `SIZE:` line", "`SIZE: s`"))?;
-
     let mut patches = Vec::new();
-    while let Some((name, _)) = it.next() {
+    while let Some((name, _)) = lines.it.next() {
         if patches.len() >= MAX_PATCHES {
-            return Err(error(end.clone(), "too many patches", "fewer patches"));
+            return Err(error(lines.end(), "too many patches", "fewer patches"));
         }
-        let name = name.trim().to_string();
-        // Colour and neighbour lines (not used for the geometry).
-        while it.peek().is_some_and(|(l, _)| {
-            let t = l.trim_start();
-            ["TOP COLOR:", "AL:", "L:", "BL:"]
-                .iter()
-                .any(|p| t.starts_with(p))
-        }) {
-            it.next();
-        }
-        let mut values = Vec::with_capacity(48);
-        while values.len() < 48 {
-            let (l, s) = it.next().ok_or_else(|| {
-                error(
-                    end.clone(),
-                    format!("patch `{name}` ends too early"),
-                    "4 rows of 4 points",
-                )
-            })?;
-            let v = nums(l).ok_or_else(|| {
-                error(
-                    s.clone(),
-                    format!("malformed control points in patch `{name}`"),
-                    "numbers",
-                )
-            })?;
-            if values.len() + v.len() > 48 {
-                return Err(error(
-                    s,
-                    format!("too many numbers in patch `{name}`"),
-                    "4 rows of 4 points `x y z`",
-                ));
-            }
-            values.extend(v);
-        }
-        let mut points = [[[0.0; 3]; 4]; 4];
-        for (k, c) in values.chunks(3).enumerate() {
-            points[k / 4][k % 4] = [c[0], c[1], c[2]];
-        }
-        patches.push(Patch { name, points });
+        patches.push(read_patch(&mut lines, name.trim().to_string())?);
     }
     if patches.is_empty() {
         return Err(error(
-            end,
+            lines.end(),
             "the surface has no patch",
             "a patch after `SIZE:`",
         ));
@@ -198,6 +107,119 @@ pub fn read_surface(text: &str) -> Result<Surface, Diagnostics> {
         precision,
         patches,
     })
+}
+
+/// The non-blank lines of a surface file with their spans, read in order.
+struct Lines<'a> {
+    it: Peekable<std::vec::IntoIter<(&'a str, Range<usize>)>>,
+    len: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn new(text: &'a str) -> Self {
+        let mut lines = Vec::new();
+        let mut at = 0;
+        for l in text.split_inclusive('\n') {
+            let body = l.trim_end_matches(['\n', '\r']);
+            if !body.trim().is_empty() {
+                lines.push((body, at..at + body.len()));
+            }
+            at += l.len();
+        }
+        Lines {
+            it: lines.into_iter().peekable(),
+            len: text.len(),
+        }
+    }
+
+    /// The end of the file, where what is missing is reported.
+    fn end(&self) -> Range<usize> {
+        self.len..self.len
+    }
+
+    /// The next line; at the end of the file, the error that `expected` is
+    /// missing.
+    fn next(&mut self, expected: &str) -> Result<(&'a str, Range<usize>), Diagnostics> {
+        let end = self.end();
+        self.it
+            .next()
+            .ok_or_else(|| error(end, "the surface file ends too early", expected))
+    }
+
+    /// The next line, which must be `LABEL X: x Y: y Z: z`.
+    fn point(&mut self, label: &str) -> Result<[f64; 3], Diagnostics> {
+        let (l, s) = self.next(label)?;
+        labelled_point(l, label).ok_or_else(|| {
+            error(
+                s,
+                format!("malformed `{label}` line"),
+                &format!("`{label} X: x Y: y Z: z`"),
+            )
+        })
+    }
+}
+
+/// The optional `PRECISION S: s T: t` line.
+fn read_precision(lines: &mut Lines) -> Result<Option<(u32, u32)>, Diagnostics> {
+    let Some((l, s)) = lines
+        .it
+        .next_if(|(l, _)| l.trim_start().starts_with("PRECISION"))
+    else {
+        return Ok(None);
+    };
+    let w: Vec<&str> = l.split_whitespace().collect();
+    let precision = match w.as_slice() {
+        ["PRECISION", "S:", a, "T:", b] => a.parse::<u32>().ok().zip(b.parse::<u32>().ok()),
+        _ => None,
+    };
+    precision
+        .map(Some)
+        .ok_or_else(|| error(s, "malformed `PRECISION` line", "`PRECISION S: s T: t`"))
+}
+
+/// The patch after its name line: colour and neighbour lines, then 16
+/// control points.
+fn read_patch(lines: &mut Lines, name: String) -> Result<Patch, Diagnostics> {
+    // Colour and neighbour lines (not used for the geometry).
+    while lines.it.peek().is_some_and(|(l, _)| {
+        let t = l.trim_start();
+        ["TOP COLOR:", "AL:", "L:", "BL:"]
+            .iter()
+            .any(|p| t.starts_with(p))
+    }) {
+        lines.it.next();
+    }
+    let mut values = Vec::with_capacity(48);
+    while values.len() < 48 {
+        let end = lines.end();
+        let (l, s) = lines.it.next().ok_or_else(|| {
+            error(
+                end,
+                format!("patch `{name}` ends too early"),
+                "4 rows of 4 points",
+            )
+        })?;
+        let v = nums(l).ok_or_else(|| {
+            error(
+                s.clone(),
+                format!("malformed control points in patch `{name}`"),
+                "numbers",
+            )
+        })?;
+        if values.len() + v.len() > 48 {
+            return Err(error(
+                s,
+                format!("too many numbers in patch `{name}`"),
+                "4 rows of 4 points `x y z`",
+            ));
+        }
+        values.extend(v);
+    }
+    let mut points = [[[0.0; 3]; 4]; 4];
+    for (k, c) in values.chunks(3).enumerate() {
+        points[k / 4][k % 4] = [c[0], c[1], c[2]];
+    }
+    Ok(Patch { name, points })
 }
 
 fn bernstein(t: f64) -> [f64; 4] {

@@ -269,292 +269,365 @@ pub fn read_view(text: &str) -> (View, Diagnostics) {
     for line in clean.split_inclusive('\n') {
         let start = at;
         at += line.len();
-        let body = line.trim_end();
-        let lead = body.len() - body.trim_start().len();
-        let body = body.trim_start();
-        if body.is_empty() {
-            continue;
-        }
-        let span = start + lead..start + lead + body.len();
-        let Some(colon) = body.find(':') else {
-            d.push(
-                Diagnostic::at(
-                    codes::CPFG_UNKNOWN_VIEW_COMMAND,
-                    span,
-                    "line without `command:` is ignored",
-                )
-                .with_label("not a view command"),
-            );
-            continue;
-        };
-        let raw_name = &body[..colon];
-        let name = raw_name
-            .split_whitespace()
-            .collect::<Vec<_>>()
-            .join(" ")
-            .to_ascii_lowercase();
-        let value = body[colon + 1..].trim();
-        let vspan = {
-            let off = span.start + colon + 1;
-            let l = body[colon + 1..].len() - body[colon + 1..].trim_start().len();
-            off + l..off + l + value.len()
-        };
-        let name_span = span.start..span.start + raw_name.trim_end().len();
-        let mut bad = |d: &mut Diagnostics, what: &str| {
-            d.push(
-                Diagnostic::at(
-                    codes::CPFG_VIEW_VALUE,
-                    vspan.clone(),
-                    format!("`{name}:` expects {what}; the line is ignored"),
-                )
-                .with_label(format!("not {what}")),
-            );
-        };
-        match name.as_str() {
-            "angle increment" => match num(value) {
-                Some(a) => v.angle = a,
-                None => bad(&mut d, "a number of degrees"),
-            },
-            "angle factor" => match num(value) {
-                Some(n) if n != 0.0 => v.angle = 360.0 / n,
-                _ => bad(&mut d, "a non-zero number"),
-            },
-            "initial color" => {
-                let ns = nums(value);
-                match ns.first() {
-                    Some(&c) if c >= 0.0 => {
-                        v.initial_color = c as u32;
-                        v.initial_back_color = ns.get(1).map(|&b| b.max(0.0) as u32);
-                    }
-                    _ => bad(&mut d, "a colour index"),
-                }
-            }
-            "color increment" => match num(value) {
-                Some(c) => v.color_increment = c.max(0.0) as u32,
-                None => bad(&mut d, "a number"),
-            },
-            "initial line width" => match num(value) {
-                Some(w) => {
-                    v.initial_line_width = w;
-                    let unit = value
-                        .split_whitespace()
-                        .nth(1)
-                        .unwrap_or("")
-                        .to_ascii_lowercase();
-                    match unit.as_str() {
-                        "" => {}
-                        "p" | "pixel" | "pixels" => {
-                            v.line_width_unit = WidthUnit::Pixels;
-                            v.line_style = LineStyle::Pixel;
-                        }
-                        "s" | "shaded" | "polygon" | "polygons" => {
-                            v.line_width_unit = WidthUnit::World;
-                            v.line_style = LineStyle::Cylinder;
-                        }
-                        _ => bad(&mut d, "a width and `pixels` or `shaded`"),
-                    }
-                }
-                None => bad(&mut d, "a number"),
-            },
-            "line width increment" => set_num(&mut v.line_width_increment, value, &mut d, &mut bad),
-            "initial scale" => set_num(&mut v.initial_scale, value, &mut d, &mut bad),
-            "scale factor" => set_num(&mut v.scale_factor, value, &mut d, &mut bad),
-            "viewing angle" => set_num(&mut v.viewing_angle, value, &mut d, &mut bad),
-            "front distance" => set_num(&mut v.front_distance, value, &mut d, &mut bad),
-            "back distance" => set_num(&mut v.back_distance, value, &mut d, &mut bad),
-            "twist" => set_num(&mut v.twist, value, &mut d, &mut bad),
-            "initial elasticity" => set_num(&mut v.initial_elasticity, value, &mut d, &mut bad),
-            "elasticity increment" => set_num(&mut v.elasticity_increment, value, &mut d, &mut bad),
-            "viewpoint" => {
-                set_vec(&mut v.viewpoint, value, &mut d, &mut bad);
-            }
-            "view reference point" => {
-                set_vec(&mut v.view_reference_point, value, &mut d, &mut bad);
-            }
-            "tropism direction" => {
-                let mut t = [0.0; 3];
-                if set_vec(&mut t, value, &mut d, &mut bad) {
-                    v.tropism_direction = Some(t);
-                }
-            }
-            "projection" => match value.to_ascii_lowercase().as_str() {
-                "parallel" => v.projection = Projection::Parallel,
-                "perspective" => v.projection = Projection::Perspective,
-                _ => bad(&mut d, "`parallel` or `perspective`"),
-            },
-            "line style" => match value.to_ascii_lowercase().as_str() {
-                "pixel" | "pixels" => {
-                    v.line_style = LineStyle::Pixel;
-                    v.line_width_unit = WidthUnit::Pixels;
-                }
-                "polygon" | "polygons" => {
-                    v.line_style = LineStyle::Polygon;
-                    v.line_width_unit = WidthUnit::World;
-                }
-                "cylinder" | "cylinders" => {
-                    v.line_style = LineStyle::Cylinder;
-                    v.line_width_unit = WidthUnit::World;
-                }
-                "wireframe" => {
-                    v.line_style = LineStyle::Wireframe;
-                    v.line_width_unit = WidthUnit::Pixels;
-                }
-                _ => bad(&mut d, "`pixel`, `polygon` or `cylinder`"),
-            },
-            "render mode" => {
-                let m = match value.to_ascii_lowercase().as_str() {
-                    "filled" => Some(RenderMode::Filled),
-                    "fast" => Some(RenderMode::Fast),
-                    "wireframe" => Some(RenderMode::Wireframe),
-                    "interpolated" => Some(RenderMode::Interpolated),
-                    "flat" => Some(RenderMode::Flat),
-                    "shaded" => Some(RenderMode::Shaded),
-                    "shadows" => Some(RenderMode::Shadows),
-                    _ => None,
-                };
-                match m {
-                    Some(m) => v.render_mode = m,
-                    None => bad(&mut d, "a render mode (filled, wireframe, shaded, …)"),
-                }
-            }
-            "z buffer" => set_flag(&mut v.z_buffer, value, &mut d, &mut bad),
-            "tapered lines" => set_flag(&mut v.tapered_lines, value, &mut d, &mut bad),
-            "tappered lines" => {
-                d.push(
-                    Diagnostic::at(
-                        codes::CPFG_DEPRECATED_VIEW_SPELLING,
-                        name_span.clone(),
-                        "`tappered lines` read as `tapered lines`",
-                    )
-                    .with_label("misspelt")
-                    .with_note("old cpfg versions accepted this spelling")
-                    .with_help("write `tapered lines:`"),
-                );
-                set_flag(&mut v.tapered_lines, value, &mut d, &mut bad);
-            }
-            "twist of cylinders" => set_flag(&mut v.twist_of_cylinders, value, &mut d, &mut bad),
-            "interpretation past %" => set_flag(&mut v.interpret_past_cut, value, &mut d, &mut bad),
-            "contour sides" => match num(value) {
-                Some(n) if n >= 1.0 => v.contour_sides = n as u32,
-                _ => bad(&mut d, "a positive number"),
-            },
-            "function" => {
-                let mut w = value.split_whitespace();
-                match w.next() {
-                    Some(f) => {
-                        v.functions.push(f.to_string());
-                        v.function_samples
-                            .push(w.next().and_then(num).map(|n| n.max(0.0) as u32));
-                    }
-                    None => bad(&mut d, "a file name"),
-                }
-            }
-            "function set" => match value.split_whitespace().next() {
-                Some(f) => v.function_sets.push(f.to_string()),
-                None => bad(&mut d, "a file name"),
-            },
-            "surface" | "line" => match surface_ref(value) {
-                Some(s) if name == "surface" => v.surfaces.push(s),
-                Some(s) => v.lines.push(s),
-                None => bad(&mut d, "`id file.s scale`"),
-            },
-            "contour" => {
-                let mut w = value.split_whitespace();
-                match (w.next().and_then(num), w.next()) {
-                    (Some(id), Some(f)) => v.contours.push(ContourRef {
-                        id: id.max(0.0) as u32,
-                        file: f.to_string(),
-                    }),
-                    _ => bad(&mut d, "`id file.con`"),
-                }
-            }
-            "curve" => match value.split_whitespace().next() {
-                Some(f) => {
-                    let id = v.contours.len() as u32 + 1;
-                    v.contours.push(ContourRef {
-                        id,
-                        file: f.to_string(),
-                    })
-                }
-                None => bad(&mut d, "a file name"),
-            },
-            "tropism" | "torque" => match tropism(value) {
-                Some(t) if name == "tropism" => v.tropisms.push(t),
-                Some(t) => v.torques.push(t),
-                None => bad(&mut d, "subcommands with `T: x y z`"),
-            },
-            "box" => {
-                let subs = subcommands(value);
-                let mut b = [[0.0, 1.0]; 3];
-                let mut ok = true;
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    match subs.iter().find(|(n, _)| n.eq_ignore_ascii_case(axis)) {
-                        Some((_, vals)) if vals.len() >= 2 => b[k] = [vals[0], vals[1]],
-                        Some(_) => ok = false,
-                        None => {}
-                    }
-                }
-                if ok {
-                    v.bounding_box = Some(b);
-                } else {
-                    bad(&mut d, "`x: min,max y: min,max z: min,max`");
-                }
-            }
-            n if UNUSED.contains(&n) => v.unused.push((n.to_string(), span.clone())),
-            _ => {
-                let mut all: Vec<&str> = KNOWN.to_vec();
-                all.extend_from_slice(UNUSED);
-                let mut diag = Diagnostic::at(
-                    codes::CPFG_UNKNOWN_VIEW_COMMAND,
-                    name_span.clone(),
-                    format!("unknown view command `{name}` is ignored"),
-                )
-                .with_label("not a view command");
-                if let Some(s) = nearest(&name, &all).first() {
-                    diag = diag.with_help(format!("did you mean `{s}:`?"));
-                }
-                d.push(diag);
-            }
+        if let Some(c) = command_at(line, start, &mut d) {
+            apply(&mut v, &c, &mut d);
         }
     }
     (v, d)
 }
 
-fn set_num(
-    slot: &mut f64,
-    value: &str,
-    d: &mut Diagnostics,
-    bad: &mut impl FnMut(&mut Diagnostics, &str),
-) {
-    match num(value) {
-        Some(x) => *slot = x,
-        None => bad(d, "a number"),
+/// One `command: value` line of a view file.
+struct Command<'a> {
+    /// The command's name in lower case, its words joined by single spaces.
+    name: String,
+    value: &'a str,
+    /// The whole line, without its surrounding blanks.
+    span: Span,
+    name_span: Span,
+    value_span: Span,
+}
+
+impl Command<'_> {
+    /// Reports a value that is not the `what` the command expects.
+    fn bad(&self, d: &mut Diagnostics, what: &str) {
+        d.push(
+            Diagnostic::at(
+                codes::CPFG_VIEW_VALUE,
+                self.value_span.clone(),
+                format!("`{}:` expects {what}; the line is ignored", self.name),
+            )
+            .with_label(format!("not {what}")),
+        );
     }
 }
 
-fn set_vec(
-    slot: &mut [f64; 3],
-    value: &str,
-    d: &mut Diagnostics,
-    bad: &mut impl FnMut(&mut Diagnostics, &str),
-) -> bool {
-    let ns = nums(value);
+/// The command on a line starting at byte `start` of the text: `None` for a
+/// blank line, and for a line without a colon, which is reported.
+fn command_at<'a>(line: &'a str, start: usize, d: &mut Diagnostics) -> Option<Command<'a>> {
+    let body = line.trim_end();
+    let lead = body.len() - body.trim_start().len();
+    let body = body.trim_start();
+    if body.is_empty() {
+        return None;
+    }
+    let span = start + lead..start + lead + body.len();
+    let Some(colon) = body.find(':') else {
+        d.push(
+            Diagnostic::at(
+                codes::CPFG_UNKNOWN_VIEW_COMMAND,
+                span,
+                "line without `command:` is ignored",
+            )
+            .with_label("not a view command"),
+        );
+        return None;
+    };
+    let raw_name = &body[..colon];
+    let name = raw_name
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_ascii_lowercase();
+    let after = &body[colon + 1..];
+    let value = after.trim();
+    let value_start = span.start + colon + 1 + (after.len() - after.trim_start().len());
+    Some(Command {
+        name,
+        value,
+        name_span: span.start..span.start + raw_name.trim_end().len(),
+        value_span: value_start..value_start + value.len(),
+        span,
+    })
+}
+
+/// Applies one command to the view: each group of commands below returns
+/// whether it knew the command.
+fn apply(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let known = set_drawing(v, c, d)
+        || set_forces(v, c, d)
+        || set_camera(v, c, d)
+        || set_rendering(v, c, d)
+        || add_file(v, c, d);
+    if !known {
+        note_other(v, c, d);
+    }
+}
+
+/// The turtle's angle, colours, widths and scale.
+fn set_drawing(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "angle increment" => match num(c.value) {
+            Some(a) => v.angle = a,
+            None => c.bad(d, "a number of degrees"),
+        },
+        "angle factor" => match num(c.value) {
+            Some(n) if n != 0.0 => v.angle = 360.0 / n,
+            _ => c.bad(d, "a non-zero number"),
+        },
+        "initial color" => {
+            let ns = nums(c.value);
+            match ns.first() {
+                Some(&col) if col >= 0.0 => {
+                    v.initial_color = col as u32;
+                    v.initial_back_color = ns.get(1).map(|&b| b.max(0.0) as u32);
+                }
+                _ => c.bad(d, "a colour index"),
+            }
+        }
+        "color increment" => match num(c.value) {
+            Some(inc) => v.color_increment = inc.max(0.0) as u32,
+            None => c.bad(d, "a number"),
+        },
+        "initial line width" => set_line_width(v, c, d),
+        "line width increment" => set_num(&mut v.line_width_increment, c, d),
+        "initial scale" => set_num(&mut v.initial_scale, c, d),
+        _ => return false,
+    }
+    true
+}
+
+/// `initial line width: w [unit]`: the unit, when given, also sets the line
+/// style, as cpfg does.
+fn set_line_width(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let Some(w) = num(c.value) else {
+        c.bad(d, "a number");
+        return;
+    };
+    v.initial_line_width = w;
+    let unit = c
+        .value
+        .split_whitespace()
+        .nth(1)
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match unit.as_str() {
+        "" => {}
+        "p" | "pixel" | "pixels" => {
+            v.line_width_unit = WidthUnit::Pixels;
+            v.line_style = LineStyle::Pixel;
+        }
+        "s" | "shaded" | "polygon" | "polygons" => {
+            v.line_width_unit = WidthUnit::World;
+            v.line_style = LineStyle::Cylinder;
+        }
+        _ => c.bad(d, "a width and `pixels` or `shaded`"),
+    }
+}
+
+/// Tropisms, torques and elasticity (manual §8.1.8).
+fn set_forces(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "initial elasticity" => set_num(&mut v.initial_elasticity, c, d),
+        "elasticity increment" => set_num(&mut v.elasticity_increment, c, d),
+        "tropism direction" => {
+            let mut t = [0.0; 3];
+            if set_vec(&mut t, c, d) {
+                v.tropism_direction = Some(t);
+            }
+        }
+        "tropism" | "torque" => match tropism(c.value) {
+            Some(t) if c.name == "tropism" => v.tropisms.push(t),
+            Some(t) => v.torques.push(t),
+            None => c.bad(d, "subcommands with `T: x y z`"),
+        },
+        _ => return false,
+    }
+    true
+}
+
+/// Where the view looks from and how it projects.
+fn set_camera(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "scale factor" => set_num(&mut v.scale_factor, c, d),
+        "viewing angle" => set_num(&mut v.viewing_angle, c, d),
+        "front distance" => set_num(&mut v.front_distance, c, d),
+        "back distance" => set_num(&mut v.back_distance, c, d),
+        "twist" => set_num(&mut v.twist, c, d),
+        "viewpoint" => {
+            set_vec(&mut v.viewpoint, c, d);
+        }
+        "view reference point" => {
+            set_vec(&mut v.view_reference_point, c, d);
+        }
+        "projection" => match c.value.to_ascii_lowercase().as_str() {
+            "parallel" => v.projection = Projection::Parallel,
+            "perspective" => v.projection = Projection::Perspective,
+            _ => c.bad(d, "`parallel` or `perspective`"),
+        },
+        "box" => set_box(v, c, d),
+        _ => return false,
+    }
+    true
+}
+
+/// `box: x: min,max y: min,max z: min,max`; an axis not given keeps 0..1.
+fn set_box(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let subs = subcommands(c.value);
+    let mut b = [[0.0, 1.0]; 3];
+    let mut ok = true;
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        match subs.iter().find(|(n, _)| n.eq_ignore_ascii_case(axis)) {
+            Some((_, vals)) if vals.len() >= 2 => b[k] = [vals[0], vals[1]],
+            Some(_) => ok = false,
+            None => {}
+        }
+    }
+    if ok {
+        v.bounding_box = Some(b);
+    } else {
+        c.bad(d, "`x: min,max y: min,max z: min,max`");
+    }
+}
+
+/// How lines and surfaces are drawn.
+fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "line style" => set_line_style(v, c, d),
+        "render mode" => set_render_mode(v, c, d),
+        "z buffer" => set_flag(&mut v.z_buffer, c, d),
+        "tapered lines" => set_flag(&mut v.tapered_lines, c, d),
+        "tappered lines" => {
+            d.push(
+                Diagnostic::at(
+                    codes::CPFG_DEPRECATED_VIEW_SPELLING,
+                    c.name_span.clone(),
+                    "`tappered lines` read as `tapered lines`",
+                )
+                .with_label("misspelt")
+                .with_note("old cpfg versions accepted this spelling")
+                .with_help("write `tapered lines:`"),
+            );
+            set_flag(&mut v.tapered_lines, c, d);
+        }
+        "twist of cylinders" => set_flag(&mut v.twist_of_cylinders, c, d),
+        "interpretation past %" => set_flag(&mut v.interpret_past_cut, c, d),
+        "contour sides" => match num(c.value) {
+            Some(n) if n >= 1.0 => v.contour_sides = n as u32,
+            _ => c.bad(d, "a positive number"),
+        },
+        _ => return false,
+    }
+    true
+}
+
+/// `line style:` sets the unit of the line width with the style.
+fn set_line_style(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let (style, unit) = match c.value.to_ascii_lowercase().as_str() {
+        "pixel" | "pixels" => (LineStyle::Pixel, WidthUnit::Pixels),
+        "polygon" | "polygons" => (LineStyle::Polygon, WidthUnit::World),
+        "cylinder" | "cylinders" => (LineStyle::Cylinder, WidthUnit::World),
+        "wireframe" => (LineStyle::Wireframe, WidthUnit::Pixels),
+        _ => return c.bad(d, "`pixel`, `polygon` or `cylinder`"),
+    };
+    v.line_style = style;
+    v.line_width_unit = unit;
+}
+
+fn set_render_mode(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let m = match c.value.to_ascii_lowercase().as_str() {
+        "filled" => RenderMode::Filled,
+        "fast" => RenderMode::Fast,
+        "wireframe" => RenderMode::Wireframe,
+        "interpolated" => RenderMode::Interpolated,
+        "flat" => RenderMode::Flat,
+        "shaded" => RenderMode::Shaded,
+        "shadows" => RenderMode::Shadows,
+        _ => return c.bad(d, "a render mode (filled, wireframe, shaded, …)"),
+    };
+    v.render_mode = m;
+}
+
+/// The function, surface and contour files the view names.
+fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "function" => {
+            let mut w = c.value.split_whitespace();
+            match w.next() {
+                Some(f) => {
+                    v.functions.push(f.to_string());
+                    v.function_samples
+                        .push(w.next().and_then(num).map(|n| n.max(0.0) as u32));
+                }
+                None => c.bad(d, "a file name"),
+            }
+        }
+        "function set" => match c.value.split_whitespace().next() {
+            Some(f) => v.function_sets.push(f.to_string()),
+            None => c.bad(d, "a file name"),
+        },
+        "surface" | "line" => match surface_ref(c.value) {
+            Some(s) if c.name == "surface" => v.surfaces.push(s),
+            Some(s) => v.lines.push(s),
+            None => c.bad(d, "`id file.s scale`"),
+        },
+        "contour" => {
+            let mut w = c.value.split_whitespace();
+            match (w.next().and_then(num), w.next()) {
+                (Some(id), Some(f)) => v.contours.push(ContourRef {
+                    id: id.max(0.0) as u32,
+                    file: f.to_string(),
+                }),
+                _ => c.bad(d, "`id file.con`"),
+            }
+        }
+        "curve" => match c.value.split_whitespace().next() {
+            Some(f) => {
+                let id = v.contours.len() as u32 + 1;
+                v.contours.push(ContourRef {
+                    id,
+                    file: f.to_string(),
+                })
+            }
+            None => c.bad(d, "a file name"),
+        },
+        _ => return false,
+    }
+    true
+}
+
+/// A command graftal does not use is listed; one cpfg does not know is
+/// reported, with the nearest known name.
+fn note_other(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    let name = c.name.as_str();
+    if UNUSED.contains(&name) {
+        v.unused.push((name.to_string(), c.span.clone()));
+        return;
+    }
+    let mut all: Vec<&str> = KNOWN.to_vec();
+    all.extend_from_slice(UNUSED);
+    let mut diag = Diagnostic::at(
+        codes::CPFG_UNKNOWN_VIEW_COMMAND,
+        c.name_span.clone(),
+        format!("unknown view command `{name}` is ignored"),
+    )
+    .with_label("not a view command");
+    if let Some(s) = nearest(name, &all).first() {
+        diag = diag.with_help(format!("did you mean `{s}:`?"));
+    }
+    d.push(diag);
+}
+
+fn set_num(slot: &mut f64, c: &Command, d: &mut Diagnostics) {
+    match num(c.value) {
+        Some(x) => *slot = x,
+        None => c.bad(d, "a number"),
+    }
+}
+
+fn set_vec(slot: &mut [f64; 3], c: &Command, d: &mut Diagnostics) -> bool {
+    let ns = nums(c.value);
     if ns.len() >= 3 {
         *slot = [ns[0], ns[1], ns[2]];
         true
     } else {
-        bad(d, "three numbers `x,y,z`");
+        c.bad(d, "three numbers `x,y,z`");
         false
     }
 }
 
-fn set_flag(
-    slot: &mut bool,
-    value: &str,
-    d: &mut Diagnostics,
-    bad: &mut impl FnMut(&mut Diagnostics, &str),
-) {
-    match value
+fn set_flag(slot: &mut bool, c: &Command, d: &mut Diagnostics) {
+    match c
+        .value
         .split_whitespace()
         .next()
         .map(str::to_ascii_lowercase)
@@ -562,7 +635,7 @@ fn set_flag(
     {
         Some("on" | "yes" | "1") => *slot = true,
         Some("off" | "no" | "0") => *slot = false,
-        _ => bad(d, "`on` or `off`"),
+        _ => c.bad(d, "`on` or `off`"),
     }
 }
 

@@ -111,90 +111,147 @@ where
 /// tokens after the contents that no item could take.
 type RawBlock<'s> = (BlockKind, Span, RawBody, Vec<(Token<'s>, SimpleSpan)>);
 
+/// A file: the tokens before the first block (reported by `parse`), then
+/// the blocks.
 fn file_parser<'t, 's: 't, I>(
 ) -> impl Parser<'t, I, (Vec<(Token<'s>, SimpleSpan)>, Vec<RawBlock<'s>>), Extra<'t, 's>>
 where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
 {
-    let name = select! { Token::Name(s) => s }.map_with(|s, e| Name {
-        text: s.to_string(),
-        span: range(e.span()),
-    });
-    let number = select! { Token::Number(s) => s }
-        .map_with(|s: &str, e| (s.parse::<f64>().unwrap_or(f64::NAN), s, range(e.span())));
+    stray_tokens()
+        .then(block().repeated().collect::<Vec<_>>())
+        .then_ignore(end())
+}
 
-    // Expressions.
-    let expr = recursive(|expr| {
-        let atom = choice((
-            number.map(|(v, _, span)| Expr {
-                kind: ExprKind::Number(v),
-                span,
-            }),
-            name.map(|n| Expr {
-                kind: ExprKind::Name(n.text),
-                span: n.span,
-            }),
-            expr.delimited_by(just(Token::LParen), just(Token::RParen))
-                .map_with(|inner: Expr, e| Expr {
-                    span: range(e.span()),
-                    ..inner
-                }),
-        ))
-        .labelled("a number");
-        arithmetic(atom, false)
-    });
-    let paren_atom = expr
-        .clone()
-        .delimited_by(just(Token::LParen), just(Token::RParen))
-        .map_with(|inner: Expr, e| Expr {
-            span: range(e.span()),
-            ..inner
-        });
-    let low_end = arithmetic(
-        choice((
-            number.map(|(v, _, span)| Expr {
-                kind: ExprKind::Number(v),
-                span,
-            }),
-            name.map(|n| Expr {
-                kind: ExprKind::Name(n.text),
-                span: n.span,
-            }),
-            paren_atom,
-        )),
-        true,
-    );
-    let interval = low_end
-        .then_ignore(just(Token::Comma).or_not())
-        .then(expr.clone())
-        .delimited_by(just(Token::LBracket), just(Token::RBracket))
-        .map_with(|(lo, hi), e| Component::Interval {
-            lo,
-            hi,
-            span: range(e.span()),
-        })
-        .labelled("an interval `[lo hi]`");
-    let component = interval.or(expr.clone().map(Component::Value));
-
-    // lines, blanks
-    let names_body = name
-        .map(Some)
-        .recover_with(via_parser(
-            junk(select! { Token::Name(_) => () }).map(|_| None),
-        ))
+/// Tokens up to the next keyword, with their spans.
+fn stray_tokens<'t, 's: 't, I>(
+) -> impl Parser<'t, I, Vec<(Token<'s>, SimpleSpan)>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    any()
+        .filter(not_keyword)
+        .map_with(|t, e| (t, e.span()))
         .repeated()
         .collect::<Vec<_>>()
-        .map(RawBody::Names);
+}
 
-    // angles
+/// A block: its keyword, the items its kind holds, then whatever no item
+/// could take (reported by `parse`).
+fn block<'t, 's: 't, I>() -> impl Parser<'t, I, RawBlock<'s>, Extra<'t, 's>>
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let keyword =
+        |kind: BlockKind| just(Token::Keyword(kind)).map_with(move |_, e| (kind, range(e.span())));
+    choice((
+        keyword(BlockKind::Lines).then(names_body()),
+        keyword(BlockKind::Blanks).then(names_body()),
+        keyword(BlockKind::Angles).then(angles_body()),
+        keyword(BlockKind::Axiom).then(axiom_body()),
+        keyword(BlockKind::Rules).then(rules_body()),
+        keyword(BlockKind::Colors).then(colors_body()),
+    ))
+    .then(stray_tokens())
+    .map(|(((kind, span), body), leftover)| (kind, span, body, leftover))
+}
+
+/// The items of a block, each `None` when it is malformed: reported, then
+/// skipped up to where `start` says the next item can start.
+fn items<'t, 's: 't, I, T>(
+    item: impl Parser<'t, I, T, Extra<'t, 's>> + Clone,
+    start: impl Parser<'t, I, (), Extra<'t, 's>> + Clone,
+) -> impl Parser<'t, I, Vec<Option<T>>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    item.map(Some)
+        .recover_with(via_parser(junk(start).map(|_| None)))
+        .repeated()
+        .collect::<Vec<_>>()
+}
+
+fn name<'t, 's: 't, I>() -> impl Parser<'t, I, Name, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    select! { Token::Name(s) => s }.map_with(|s, e| Name {
+        text: s.to_string(),
+        span: range(e.span()),
+    })
+}
+
+/// A number's value and span.
+fn number<'t, 's: 't, I>() -> impl Parser<'t, I, (f64, Span), Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    select! { Token::Number(s) => s }
+        .map_with(|s: &str, e| (s.parse::<f64>().unwrap_or(f64::NAN), range(e.span())))
+}
+
+/// An arithmetic expression.
+fn expression<'t, 's: 't, I>() -> impl Parser<'t, I, Expr, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    recursive(|expr| arithmetic(operand(expr).labelled("a number"), false))
+}
+
+/// What arithmetic is made of: a number, a name, or `expr` in parentheses.
+fn operand<'t, 's: 't, I>(
+    expr: impl Parser<'t, I, Expr, Extra<'t, 's>> + Clone,
+) -> impl Parser<'t, I, Expr, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    choice((
+        number().map(|(v, span)| Expr {
+            kind: ExprKind::Number(v),
+            span,
+        }),
+        name().map(|n| Expr {
+            kind: ExprKind::Name(n.text),
+            span: n.span,
+        }),
+        expr.delimited_by(just(Token::LParen), just(Token::RParen))
+            .map_with(|inner: Expr, e| Expr {
+                span: range(e.span()),
+                ..inner
+            }),
+    ))
+}
+
+/// A names block (`lines`, `blanks`): names; anything else is skipped to
+/// the next name.
+fn names_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    items(name(), select! { Token::Name(_) => () }).map(RawBody::Names)
+}
+
+/// The `angles` block: rotations, each starting with `(` or `name =`.
+fn angles_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
     let rotation_start = just(Token::LParen)
         .ignored()
-        .or(name.then(just(Token::Eq)).ignored());
-    let rotation = name
+        .or(name().then(just(Token::Eq)).ignored());
+    items(rotation(), rotation_start).map(RawBody::Angles)
+}
+
+/// A rotation `(torsion, curvature)`, named `t = (…)` or not.
+fn rotation<'t, 's: 't, I>() -> impl Parser<'t, I, RotationDecl, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    name()
         .then_ignore(just(Token::Eq))
         .or_not()
         .then(
-            component
+            component()
                 .separated_by(just(Token::Comma))
                 .collect::<Vec<_>>()
                 .map(Some)
@@ -215,16 +272,36 @@ where
             recovered: components.is_none(),
             components: components.unwrap_or_default(),
             span,
-        });
-    let angles_body = rotation
-        .map(Some)
-        .recover_with(via_parser(junk(rotation_start).map(|_| None)))
-        .repeated()
-        .collect::<Vec<_>>()
-        .map(RawBody::Angles);
+        })
+}
 
-    // strings
-    let string_token = any().filter(|t: &Token| {
+/// A component of a rotation: an interval `[lo hi]` or one expression.
+fn component<'t, 's: 't, I>() -> impl Parser<'t, I, Component, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let expr = expression();
+    // A sign before the high end starts it: `[0 -pi]`.
+    let low_end = arithmetic(operand(expr.clone()), true);
+    let interval = low_end
+        .then_ignore(just(Token::Comma).or_not())
+        .then(expr.clone())
+        .delimited_by(just(Token::LBracket), just(Token::RBracket))
+        .map_with(|(lo, hi), e| Component::Interval {
+            lo,
+            hi,
+            span: range(e.span()),
+        })
+        .labelled("an interval `[lo hi]`");
+    interval.or(expr.map(Component::Value))
+}
+
+/// A token that can stand in a string.
+fn string_token<'t, 's: 't, I>() -> impl Parser<'t, I, Token<'s>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    any().filter(|t: &Token| {
         matches!(
             t,
             Token::Name(_)
@@ -239,9 +316,15 @@ where
                 | Token::RBrace
                 | Token::Bang
         )
-    });
-    // A token followed by `=` starts the next rule.
-    let item = string_token
+    })
+}
+
+/// A symbol of a string. A token followed by `=` starts the next rule.
+fn string_item<'t, 's: 't, I>() -> impl Parser<'t, I, Item, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    string_token()
         .and_is(any().then(just(Token::Eq)).not())
         .map_with(|t: Token, e| {
             let span = range(e.span());
@@ -266,45 +349,67 @@ where
                 _ => Item::Swap(span),
             }
         })
-        .labelled("a symbol");
-    let string = item.repeated().collect::<Vec<_>>();
-    let rule =
-        name.then_ignore(just(Token::Eq))
-            .then(string)
-            .map(|(head, body): (Name, Vec<Item>)| {
-                let end = body.last().map_or(head.span.end + 1, |i| i.span().end);
-                Rule {
-                    span: head.span.start..end,
-                    head,
-                    body,
-                }
-            });
-    // A `name = …` in the axiom block is a rule written without the
-    // `rules` keyword: parsed as a rule, reported by `parse`.
-    let axiom_body = rule
-        .map(|r| Some(Err(r)))
-        .or(item.map(|i| Some(Ok(i))))
-        .recover_with(via_parser(
-            junk(
-                string_token
-                    .ignored()
-                    .or(name.then(just(Token::Eq)).ignored()),
-            )
-            .map(|_| None),
-        ))
-        .repeated()
-        .collect::<Vec<_>>()
-        .map(|all| {
-            let (items, rules): (Vec<_>, Vec<_>) =
-                all.into_iter().flatten().partition(Result::is_ok);
-            RawBody::Axiom(
-                items.into_iter().filter_map(Result::ok).map(Some).collect(),
-                rules.into_iter().filter_map(Result::err).collect(),
-            )
-        });
+        .labelled("a symbol")
+}
 
-    // rules
-    let reserved_head = any()
+fn string<'t, 's: 't, I>() -> impl Parser<'t, I, Vec<Item>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    string_item().repeated().collect::<Vec<_>>()
+}
+
+/// A rule `name = string`.
+fn rule<'t, 's: 't, I>() -> impl Parser<'t, I, Rule, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    name()
+        .then_ignore(just(Token::Eq))
+        .then(string())
+        .map(|(head, body): (Name, Vec<Item>)| {
+            let end = body.last().map_or(head.span.end + 1, |i| i.span().end);
+            Rule {
+                span: head.span.start..end,
+                head,
+                body,
+            }
+        })
+}
+
+/// The `axiom` block: a string. A `name = …` in it is a rule written
+/// without the `rules` keyword: parsed as a rule, reported by `parse`.
+fn axiom_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let start = string_token()
+        .ignored()
+        .or(name().then(just(Token::Eq)).ignored());
+    items(rule().map(Err).or(string_item().map(Ok)), start).map(|all| {
+        let (items, rules): (Vec<_>, Vec<_>) = all.into_iter().flatten().partition(Result::is_ok);
+        RawBody::Axiom(
+            items.into_iter().filter_map(Result::ok).map(Some).collect(),
+            rules.into_iter().filter_map(Result::err).collect(),
+        )
+    })
+}
+
+/// The `rules` block: rules, each starting with a token and `=`.
+fn rules_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    let rule_start = any().then(just(Token::Eq)).ignored();
+    items(rule().map(RawRule::Rule).or(reserved_rule()), rule_start).map(RawBody::Rules)
+}
+
+/// A rule for a reserved symbol, `+ = …` (reported by `parse`).
+fn reserved_rule<'t, 's: 't, I>() -> impl Parser<'t, I, RawRule, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    any()
         .filter(|t: &Token| {
             matches!(
                 t,
@@ -324,72 +429,42 @@ where
             span: range(e.span()),
         })
         .then_ignore(just(Token::Eq))
-        .then(string)
-        .map(|(r, _)| r);
-    let rule_start = any().then(just(Token::Eq)).ignored();
-    let rules_body = rule
-        .map(RawRule::Rule)
-        .or(reserved_head)
-        .map(Some)
-        .recover_with(via_parser(junk(rule_start).map(|_| None)))
-        .repeated()
-        .collect::<Vec<_>>()
-        .map(RawBody::Rules);
+        .then(string())
+        .map(|(r, _)| r)
+}
 
-    // colors
+/// The `colors` block: colours, each starting with `(` or `label:`.
+fn colors_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
     let colour_start = just(Token::LParen)
         .ignored()
-        .or(number.then(just(Token::Colon)).ignored());
-    let colour = number
+        .or(number().then(just(Token::Colon)).ignored());
+    items(colour(), colour_start).map(RawBody::Colors)
+}
+
+/// A colour `(r, g, b)`, with an optional label `n:`.
+fn colour<'t, 's: 't, I>() -> impl Parser<'t, I, ColourDecl, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    number()
         .then_ignore(just(Token::Colon))
         .or_not()
         .then(
-            expr.separated_by(just(Token::Comma))
+            expression()
+                .separated_by(just(Token::Comma))
                 .collect::<Vec<_>>()
                 .delimited_by(just(Token::LParen), just(Token::RParen))
                 .map_with(|c, e| (c, range(e.span())))
                 .labelled("a colour `(r, g, b)`"),
         )
         .map(|(label, (components, span))| ColourDecl {
-            label: label.map(|(v, _, s)| (v, s)),
+            label,
             components,
             span,
-        });
-    let colors_body = colour
-        .map(Some)
-        .recover_with(via_parser(junk(colour_start).map(|_| None)))
-        .repeated()
-        .collect::<Vec<_>>()
-        .map(RawBody::Colors);
-
-    let keyword =
-        |kind: BlockKind| just(Token::Keyword(kind)).map_with(move |_, e| (kind, range(e.span())));
-    let block = choice((
-        keyword(BlockKind::Lines).then(names_body.clone()),
-        keyword(BlockKind::Blanks).then(names_body),
-        keyword(BlockKind::Angles).then(angles_body),
-        keyword(BlockKind::Axiom).then(axiom_body),
-        keyword(BlockKind::Rules).then(rules_body),
-        keyword(BlockKind::Colors).then(colors_body),
-    ))
-    .then(
-        // Whatever no item could take (reported by `parse`).
-        any()
-            .filter(not_keyword)
-            .map_with(|t, e| (t, e.span()))
-            .repeated()
-            .collect::<Vec<_>>(),
-    )
-    .map(|(((kind, span), body), leftover)| (kind, span, body, leftover));
-
-    let preamble = any()
-        .filter(not_keyword)
-        .map_with(|t, e| (t, e.span()))
-        .repeated()
-        .collect::<Vec<_>>();
-    preamble
-        .then(block.repeated().collect::<Vec<_>>())
-        .then_ignore(end())
+        })
 }
 
 /// Parses LinF source text into an AST. Never fails: problems are pushed to

@@ -262,40 +262,9 @@ fn build_rule(
     diags: &mut Diagnostics,
 ) -> Option<Production> {
     let errors_before = diags.len();
-    // Split the left-hand side at `<` and `>`.
-    let mut parts: Vec<&[Tok<'_>]> = Vec::new();
-    let mut seps: Vec<Tok<'_>> = Vec::new();
-    let mut start = 0;
-    for (i, tok) in lhs.iter().enumerate() {
-        if matches!(tok.0, Token::Lt | Token::Gt) {
-            parts.push(&lhs[start..i]);
-            seps.push(*tok);
-            start = i + 1;
-        }
-    }
-    parts.push(&lhs[start..]);
-
+    let (parts, seps) = split_at_separators(lhs);
     let Some(arrow) = arrow else {
-        let at = if lhs.is_empty() {
-            span.clone()
-        } else {
-            line_span(&[lhs])
-        };
-        let mut d = Diagnostic::at(codes::MISSING_ARROW, at.end..at.end, "missing `-->`")
-            .with_label("expected `-->` here")
-            .with_secondary(at, "this line is neither a header nor a production");
-        let first: String = lhs
-            .first()
-            .map(|t| src[range(t.1)].to_string())
-            .unwrap_or_default();
-        let hint = nearest(&first, &HEADERS);
-        d = match hint.first() {
-            Some(h) if !first.is_empty() && first.len() > 1 => {
-                d.with_help(format!("if this is a header, write it as `{h}: …`"))
-            }
-            _ => d.with_help("a production is written `predecessor --> successor`"),
-        };
-        diags.push(d);
+        diags.push(missing_arrow(lhs, span, src));
         return None;
     };
     if let Token::BadArrow(s) = arrow.0 {
@@ -309,15 +278,89 @@ fn build_rule(
             .with_help(format!("replace `{s}` with `-->`")),
         );
     }
+    let (left, pred, right) = contexts(&parts, &seps, diags)?;
+    check_separator_sides(&parts, &seps, diags);
+    // The listing's `enter` reads any string starting with `*` as empty.
+    for part in [left, Some(pred), right, Some(rhs)].into_iter().flatten() {
+        check_text_after_star(part, diags);
+    }
+    let pred_sym = symbols(pred, src, true);
+    check_predecessor(pred, &pred_sym, seps.is_empty(), arrow, diags);
+    let successor = symbols(rhs, src, true);
+    if rhs.is_empty() {
+        diags.push(missing_successor(arrow, src));
+    }
+    let weight = weight.and_then(|(colon, toks)| read_weight(*colon, toks, src, diags));
+    if diags.0[errors_before..].iter().any(Diagnostic::is_error) {
+        return None;
+    }
+    Some(Production {
+        left: left.map(|l| symbols(l, src, true)),
+        predecessor: pred_sym,
+        right: right.map(|r| symbols(r, src, true)),
+        successor,
+        weight,
+        arrow: range(arrow.1),
+        span,
+    })
+}
 
-    // The shape of the left-hand side.
-    let (left, pred, right) = match seps.as_slice() {
+/// The left-hand side split at its `<` and `>`: the parts, and the
+/// separators between them.
+fn split_at_separators<'a, 's>(lhs: &'a [Tok<'s>]) -> (Vec<&'a [Tok<'s>]>, Vec<Tok<'s>>) {
+    let mut parts: Vec<&[Tok<'_>]> = Vec::new();
+    let mut seps: Vec<Tok<'_>> = Vec::new();
+    let mut start = 0;
+    for (i, tok) in lhs.iter().enumerate() {
+        if matches!(tok.0, Token::Lt | Token::Gt) {
+            parts.push(&lhs[start..i]);
+            seps.push(*tok);
+            start = i + 1;
+        }
+    }
+    parts.push(&lhs[start..]);
+    (parts, seps)
+}
+
+/// A line without `-->`: perhaps a header missing its colon.
+fn missing_arrow(lhs: &[Tok<'_>], span: Span, src: &str) -> Diagnostic {
+    let at = if lhs.is_empty() {
+        span
+    } else {
+        line_span(&[lhs])
+    };
+    let d = Diagnostic::at(codes::MISSING_ARROW, at.end..at.end, "missing `-->`")
+        .with_label("expected `-->` here")
+        .with_secondary(at, "this line is neither a header nor a production");
+    let first: String = lhs
+        .first()
+        .map(|t| src[range(t.1)].to_string())
+        .unwrap_or_default();
+    let hint = nearest(&first, &HEADERS);
+    match hint.first() {
+        Some(h) if !first.is_empty() && first.len() > 1 => {
+            d.with_help(format!("if this is a header, write it as `{h}: …`"))
+        }
+        _ => d.with_help("a production is written `predecessor --> successor`"),
+    }
+}
+
+/// The left context, predecessor and right context (`left < pred > right`),
+/// or `None` when the separators are out of order (reported).
+type Contexts<'a, 's> = (Option<&'a [Tok<'s>]>, &'a [Tok<'s>], Option<&'a [Tok<'s>]>);
+
+fn contexts<'a, 's>(
+    parts: &[&'a [Tok<'s>]],
+    seps: &[Tok<'s>],
+    diags: &mut Diagnostics,
+) -> Option<Contexts<'a, 's>> {
+    Some(match seps {
         [] => (None, parts[0], None),
         [(Token::Lt, _)] => (Some(parts[0]), parts[1], None),
         [(Token::Gt, _)] => (None, parts[0], Some(parts[1])),
         [(Token::Lt, _), (Token::Gt, _)] => (Some(parts[0]), parts[1], Some(parts[2])),
         _ => {
-            let (msg, bad) = misplaced(&seps);
+            let (msg, bad) = misplaced(seps);
             diags.push(
                 Diagnostic::at(codes::MISPLACED_CONTEXT, range(bad.1), msg)
                     .with_label("misplaced here")
@@ -325,7 +368,11 @@ fn build_rule(
             );
             return None;
         }
-    };
+    })
+}
+
+/// Reports a `<` or `>` with nothing on one side.
+fn check_separator_sides(parts: &[&[Tok<'_>]], seps: &[Tok<'_>], diags: &mut Diagnostics) {
     for (i, sep) in seps.iter().enumerate() {
         let (before, after) = (parts[i], parts[i + 1]);
         let which = if sep.0 == Token::Lt { "<" } else { ">" };
@@ -349,21 +396,32 @@ fn build_rule(
             );
         }
     }
-    // The listing's `enter` reads any string starting with `*` as empty.
-    for part in [left, Some(pred), right, Some(rhs)].into_iter().flatten() {
-        if part.len() > 1 && part[0].0 == Token::Star {
-            let rest = part[1].1.start..part[part.len() - 1].1.end;
-            diags.push(
-                Diagnostic::at(codes::TEXT_AFTER_STAR, rest, "text after `*` is ignored")
-                    .with_label("not read")
-                    .with_secondary(range(part[0].1), "`*` makes this string empty")
-                    .with_note("the Appendix A listing reads any string that starts with `*` as the empty string")
-                    .with_help("write `*` alone for an empty string, or remove the `*`"),
-            );
-        }
+}
+
+/// Reports text after a `*` that makes a string empty (it is not read).
+fn check_text_after_star(part: &[Tok<'_>], diags: &mut Diagnostics) {
+    if part.len() > 1 && part[0].0 == Token::Star {
+        let rest = part[1].1.start..part[part.len() - 1].1.end;
+        diags.push(
+            Diagnostic::at(codes::TEXT_AFTER_STAR, rest, "text after `*` is ignored")
+                .with_label("not read")
+                .with_secondary(range(part[0].1), "`*` makes this string empty")
+                .with_note("the Appendix A listing reads any string that starts with `*` as the empty string")
+                .with_help("write `*` alone for an empty string, or remove the `*`"),
+        );
     }
-    let pred_sym = symbols(pred, src, true);
-    if pred.is_empty() && seps.is_empty() {
+}
+
+/// Reports a predecessor that is missing (with no context separator
+/// either) or is `*`.
+fn check_predecessor(
+    pred: &[Tok<'_>],
+    pred_sym: &Symbols,
+    no_separators: bool,
+    arrow: Tok<'_>,
+    diags: &mut Diagnostics,
+) {
+    if pred.is_empty() && no_separators {
         diags.push(
             Diagnostic::at(
                 codes::MISSING_PREDECESSOR,
@@ -384,86 +442,76 @@ fn build_rule(
             .with_note("`*` stands for an empty context or successor"),
         );
     }
+}
 
-    // The successor and its weight.
-    let successor = symbols(rhs, src, true);
-    if rhs.is_empty() {
-        let at = range(arrow.1);
-        let at_eof = src[at.end..].trim().is_empty();
-        let d = if at_eof {
-            Diagnostic::at(
-                codes::UNEXPECTED_EOF,
-                at.end..at.end,
-                "unexpected end of file",
-            )
-            .with_label("the file ends before the successor")
-        } else {
-            Diagnostic::at(codes::MISSING_SUCCESSOR, at, "missing successor")
-                .with_label("nothing after the arrow")
-        };
-        diags.push(d.with_help("write the successor, or `*` for the empty one"));
-    }
-    let weight = match weight {
-        None => None,
-        Some((colon, toks)) => {
-            let text: String = match (toks.first(), toks.last()) {
-                (Some(a), Some(b)) => src[a.1.start..b.1.end].to_string(),
-                _ => String::new(),
-            };
-            let wspan = if toks.is_empty() {
-                range(*colon)
-            } else {
-                line_span(&[toks])
-            };
-            match text.parse::<f64>() {
-                Ok(w) if w > 0.0 && w.is_finite() => Some((w, wspan)),
-                Ok(w) if w <= 0.0 => {
-                    diags.push(
-                        Diagnostic::at(
-                            codes::BAD_PROBABILITY,
-                            wspan,
-                            format!("probability `{text}` is not positive"),
-                        )
-                        .with_label("must be greater than zero")
-                        .with_help("weights are relative: e.g. `: 0.33`, or `: 1` for each of equally likely productions"),
-                    );
-                    None
-                }
-                _ => {
-                    diags.push(
-                        Diagnostic::at(
-                            codes::BAD_PROBABILITY,
-                            wspan,
-                            if text.is_empty() {
-                                "missing probability after `:`".to_string()
-                            } else if text.parse::<f64>().is_ok() {
-                                format!("probability `{text}` is not a finite number")
-                            } else {
-                                format!("probability `{text}` is not a number")
-                            },
-                        )
-                        .with_label("expected a positive number")
-                        .with_help(
-                            "write the weight as a decimal number, e.g. `F --> F[+F]F : 0.33`",
-                        ),
-                    );
-                    None
-                }
-            }
-        }
+/// Nothing after the arrow: the end of the file, or a missing successor.
+fn missing_successor(arrow: Tok<'_>, src: &str) -> Diagnostic {
+    let at = range(arrow.1);
+    let at_eof = src[at.end..].trim().is_empty();
+    let d = if at_eof {
+        Diagnostic::at(
+            codes::UNEXPECTED_EOF,
+            at.end..at.end,
+            "unexpected end of file",
+        )
+        .with_label("the file ends before the successor")
+    } else {
+        Diagnostic::at(codes::MISSING_SUCCESSOR, at, "missing successor")
+            .with_label("nothing after the arrow")
     };
-    if diags.0[errors_before..].iter().any(Diagnostic::is_error) {
-        return None;
+    d.with_help("write the successor, or `*` for the empty one")
+}
+
+/// The weight after the `:` at `colon`, which must be a positive finite
+/// number; otherwise it is reported and `None`.
+fn read_weight(
+    colon: SimpleSpan,
+    toks: &[Tok<'_>],
+    src: &str,
+    diags: &mut Diagnostics,
+) -> Option<(f64, Span)> {
+    let text: String = match (toks.first(), toks.last()) {
+        (Some(a), Some(b)) => src[a.1.start..b.1.end].to_string(),
+        _ => String::new(),
+    };
+    let wspan = if toks.is_empty() {
+        range(colon)
+    } else {
+        line_span(&[toks])
+    };
+    match text.parse::<f64>() {
+        Ok(w) if w > 0.0 && w.is_finite() => Some((w, wspan)),
+        Ok(w) if w <= 0.0 => {
+            diags.push(
+                Diagnostic::at(
+                    codes::BAD_PROBABILITY,
+                    wspan,
+                    format!("probability `{text}` is not positive"),
+                )
+                .with_label("must be greater than zero")
+                .with_help("weights are relative: e.g. `: 0.33`, or `: 1` for each of equally likely productions"),
+            );
+            None
+        }
+        _ => {
+            diags.push(
+                Diagnostic::at(
+                    codes::BAD_PROBABILITY,
+                    wspan,
+                    if text.is_empty() {
+                        "missing probability after `:`".to_string()
+                    } else if text.parse::<f64>().is_ok() {
+                        format!("probability `{text}` is not a finite number")
+                    } else {
+                        format!("probability `{text}` is not a number")
+                    },
+                )
+                .with_label("expected a positive number")
+                .with_help("write the weight as a decimal number, e.g. `F --> F[+F]F : 0.33`"),
+            );
+            None
+        }
     }
-    Some(Production {
-        left: left.map(|l| symbols(l, src, true)),
-        predecessor: pred_sym,
-        right: right.map(|r| symbols(r, src, true)),
-        successor,
-        weight,
-        arrow: range(arrow.1),
-        span,
-    })
 }
 
 /// The message for a bad sequence of separators and the separator to blame.

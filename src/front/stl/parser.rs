@@ -181,6 +181,15 @@ impl<'src> Cursor<'_, 'src> {
         }
     }
 
+    /// A number; without one, reports that a number was expected.
+    fn expect_number(&mut self, help: &str) -> Option<Num> {
+        let n = self.number();
+        if n.is_none() {
+            self.unexpected("a number", help);
+        }
+        n
+    }
+
     /// A string of elements up to (not including) a token `stop` accepts,
     /// or the end. `depth` counts enclosing brackets and braces.
     fn string(&mut self, stop: fn(&Token) -> bool, depth: usize) -> Str {
@@ -494,109 +503,13 @@ fn line(cur: &mut Cursor<'_, '_>) -> Option<Item> {
         return None;
     };
     let (_, first_span) = cur.bump();
-    let rest_done = |cur: &mut Cursor<'_, '_>| {
-        if !cur.at_end() {
-            cur.unexpected(
-                "the end of the line",
-                "put one setting or rule on each line",
-            );
-        }
-    };
     match first {
-        "ANGLE" | "LEVELS" => {
-            let Some(value) = cur.number() else {
-                cur.unexpected(
-                    "a number",
-                    &format!(
-                        "write e.g. `{first} {}`",
-                        if first == "ANGLE" { "30" } else { "12" }
-                    ),
-                );
-                return None;
-            };
-            rest_done(cur);
-            Some(if first == "ANGLE" {
-                Item::Angle { value, span }
-            } else {
-                Item::Levels { value, span }
-            })
-        }
-        "GROWTH" => {
-            let which = match cur.peek() {
-                Some(Token::Ident("BFS")) => false,
-                Some(Token::Ident("DFS")) => true,
-                Some(Token::Ident(other)) => {
-                    let s = cur.span();
-                    let near = nearest(other, &["BFS", "DFS"]);
-                    let help = match near.first() {
-                        Some(n) => format!("did you mean `{n}`?"),
-                        None => "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)"
-                            .into(),
-                    };
-                    cur.diags.push(
-                        Diagnostic::at(
-                            codes::SYNTAX,
-                            s,
-                            format!("unknown growth strategy `{other}`"),
-                        )
-                        .with_label("expected `BFS` or `DFS`")
-                        .with_help(help),
-                    );
-                    return None;
-                }
-                _ => {
-                    cur.unexpected(
-                        "`BFS` or `DFS`",
-                        "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)",
-                    );
-                    return None;
-                }
-            };
-            cur.bump();
-            rest_done(cur);
-            Some(Item::Growth {
-                depth_first: which,
-                span,
-            })
-        }
+        "ANGLE" | "LEVELS" => number_setting(cur, first, span),
+        "GROWTH" => growth(cur, span),
         _ if cur.peek() == Some(Token::Eq) => {
             cur.bump();
             if first == "B" || first == "L" {
-                let Some(value) = cur.number() else {
-                    cur.unexpected(
-                        "a number",
-                        &format!(
-                            "write `{first} = {} (1)`: the value and its decrement per level",
-                            if first == "B" { "8" } else { "40" }
-                        ),
-                    );
-                    return None;
-                };
-                let decrement = if cur.peek() == Some(Token::LParen) {
-                    cur.bump();
-                    let Some(d) = cur.number() else {
-                        cur.unexpected(
-                            "a number",
-                            "the decrement per level is a number in parentheses: `(1)`",
-                        );
-                        return None;
-                    };
-                    if cur.peek() != Some(Token::RParen) {
-                        cur.unexpected("`)`", "close the decrement with `)`");
-                        return None;
-                    }
-                    cur.bump();
-                    Some(d)
-                } else {
-                    None
-                };
-                rest_done(cur);
-                return Some(Item::Param {
-                    param: if first == "B" { 'B' } else { 'L' },
-                    value,
-                    decrement,
-                    span,
-                });
+                return parameter(cur, first, span);
             }
             let body = cur.string(|_| false, 0);
             Some(Item::Rule {
@@ -607,45 +520,134 @@ fn line(cur: &mut Cursor<'_, '_>) -> Option<Item> {
             })
         }
         _ => {
-            let keywords: Vec<&str> = KEYWORDS
-                .iter()
-                .copied()
-                .chain(["ENDSEED", "ENDLAYOUT"])
-                .collect();
-            let near = nearest(first, &keywords);
-            let d = if matches!(first, "ENDSEED" | "ENDLAYOUT") {
-                Diagnostic::at(
-                    codes::SYNTAX,
-                    first_span,
-                    format!("`{first}` without its opening keyword"),
-                )
-                .with_label("no block to end")
-                .with_help(format!("start the block with `{}`", &first[3..]))
-            } else if let Some(k) = near
-                .first()
-                .filter(|_| first.chars().all(|c| c.is_ascii_uppercase()))
-            {
-                Diagnostic::at(
-                    codes::STL_UNKNOWN_KEYWORD,
-                    first_span,
-                    format!("unknown keyword `{first}`"),
-                )
-                .with_label("not an STL keyword")
-                .with_help(format!("did you mean `{k}`?"))
-            } else {
-                Diagnostic::at(
-                    codes::STL_UNKNOWN_KEYWORD,
-                    first_span,
-                    format!("`{first}` is not a setting or a rule definition"),
-                )
-                .with_label("expected a keyword or `NAME =`")
-                .with_help(
-                    "define a rule with `R1 = [F][+F]`; the seed goes between `SEED` and `ENDSEED`",
-                )
-            };
-            cur.diags.push(d);
+            cur.diags.push(not_a_line(first, first_span));
             None
         }
+    }
+}
+
+/// Reports anything left on a line after its setting.
+fn line_end(cur: &mut Cursor<'_, '_>) {
+    if !cur.at_end() {
+        cur.unexpected(
+            "the end of the line",
+            "put one setting or rule on each line",
+        );
+    }
+}
+
+/// `ANGLE a` or `LEVELS n`, after the keyword.
+fn number_setting(cur: &mut Cursor<'_, '_>, keyword: &str, span: Span) -> Option<Item> {
+    let example = if keyword == "ANGLE" { "30" } else { "12" };
+    let value = cur.expect_number(&format!("write e.g. `{keyword} {example}`"))?;
+    line_end(cur);
+    Some(if keyword == "ANGLE" {
+        Item::Angle { value, span }
+    } else {
+        Item::Levels { value, span }
+    })
+}
+
+/// `GROWTH BFS` or `GROWTH DFS`, after the keyword.
+fn growth(cur: &mut Cursor<'_, '_>, span: Span) -> Option<Item> {
+    let depth_first = match cur.peek() {
+        Some(Token::Ident("BFS")) => false,
+        Some(Token::Ident("DFS")) => true,
+        Some(Token::Ident(other)) => {
+            let s = cur.span();
+            let near = nearest(other, &["BFS", "DFS"]);
+            let help = match near.first() {
+                Some(n) => format!("did you mean `{n}`?"),
+                None => "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)".into(),
+            };
+            cur.diags.push(
+                Diagnostic::at(
+                    codes::SYNTAX,
+                    s,
+                    format!("unknown growth strategy `{other}`"),
+                )
+                .with_label("expected `BFS` or `DFS`")
+                .with_help(help),
+            );
+            return None;
+        }
+        _ => {
+            cur.unexpected(
+                "`BFS` or `DFS`",
+                "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)",
+            );
+            return None;
+        }
+    };
+    cur.bump();
+    line_end(cur);
+    Some(Item::Growth { depth_first, span })
+}
+
+/// `B = value (decrement)` or `L = …`, after the `=`; the decrement is
+/// optional.
+fn parameter(cur: &mut Cursor<'_, '_>, name: &str, span: Span) -> Option<Item> {
+    let example = if name == "B" { "8" } else { "40" };
+    let value = cur.expect_number(&format!(
+        "write `{name} = {example} (1)`: the value and its decrement per level"
+    ))?;
+    let decrement = if cur.peek() == Some(Token::LParen) {
+        cur.bump();
+        let d = cur.expect_number("the decrement per level is a number in parentheses: `(1)`")?;
+        if cur.peek() != Some(Token::RParen) {
+            cur.unexpected("`)`", "close the decrement with `)`");
+            return None;
+        }
+        cur.bump();
+        Some(d)
+    } else {
+        None
+    };
+    line_end(cur);
+    Some(Item::Param {
+        param: if name == "B" { 'B' } else { 'L' },
+        value,
+        decrement,
+        span,
+    })
+}
+
+/// The error for a line that starts with a word that is neither a setting
+/// nor a rule name: a stray block end, a misspelt keyword, or other text.
+fn not_a_line(first: &str, first_span: Span) -> Diagnostic {
+    let keywords: Vec<&str> = KEYWORDS
+        .iter()
+        .copied()
+        .chain(["ENDSEED", "ENDLAYOUT"])
+        .collect();
+    let near = nearest(first, &keywords);
+    if matches!(first, "ENDSEED" | "ENDLAYOUT") {
+        Diagnostic::at(
+            codes::SYNTAX,
+            first_span,
+            format!("`{first}` without its opening keyword"),
+        )
+        .with_label("no block to end")
+        .with_help(format!("start the block with `{}`", &first[3..]))
+    } else if let Some(k) = near
+        .first()
+        .filter(|_| first.chars().all(|c| c.is_ascii_uppercase()))
+    {
+        Diagnostic::at(
+            codes::STL_UNKNOWN_KEYWORD,
+            first_span,
+            format!("unknown keyword `{first}`"),
+        )
+        .with_label("not an STL keyword")
+        .with_help(format!("did you mean `{k}`?"))
+    } else {
+        Diagnostic::at(
+            codes::STL_UNKNOWN_KEYWORD,
+            first_span,
+            format!("`{first}` is not a setting or a rule definition"),
+        )
+        .with_label("expected a keyword or `NAME =`")
+        .with_help("define a rule with `R1 = [F][+F]`; the seed goes between `SEED` and `ENDSEED`")
     }
 }
 
