@@ -159,7 +159,16 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
                     front.title()
                 ),
             )
-            .with_help("only Fractint libraries (`Name { … }` entries) have entries to choose"),
+            .with_help(format!(
+                "only libraries have entries to choose ({})",
+                front::FRONTS
+                    .iter()
+                    .filter_map(|f| f
+                        .library_form()
+                        .map(|form| format!("{}: {form}", f.title())))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )),
         );
     }
     diags.sort();
@@ -396,11 +405,11 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
         .layout
         .iter()
         .map(|s| turtle::Polygon {
-            points: crate::front::stl::layout::outline(s)
+            points: crate::ir::layout::outline(s)
                 .into_iter()
                 .map(|p| [p[0], p[1], 0.0])
                 .collect(),
-            colour: crate::front::stl::layout::colour(s),
+            colour: crate::ir::layout::colour(s),
         })
         .filter(|p| p.points.len() >= 3)
         .collect();
@@ -496,7 +505,7 @@ fn too_much_geometry(moves: impl std::fmt::Display, max: usize) -> Diagnostic {
 }
 
 /// Draws a context-free deterministic system from its shared derivation
-/// tree ([`Instanced::picture`]): nothing is derived or stored but the
+/// tree ([`render::shared::picture`]): nothing is derived or stored but the
 /// picture's polylines, and a subtree within one pixel is drawn as one
 /// line. `None` when the system or the view is not one this covers (a 2D
 /// system in one colour and width, seen face on, without splines); the

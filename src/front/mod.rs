@@ -80,6 +80,11 @@ pub trait Front: Sync {
     fn comments(&self, _src: &str) -> Vec<(Span, String)> {
         Vec::new()
     }
+    /// How a library of several systems is written in this notation, for
+    /// a notation that has libraries (`Name { … }` entries in Fractint).
+    fn library_form(&self) -> Option<&'static str> {
+        None
+    }
     /// What `check` says about a file of this notation beyond its
     /// diagnostics (after `FILE: dialect: `), if anything.
     fn describe(&self, _sys: Option<&System>) -> Option<String> {

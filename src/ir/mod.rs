@@ -1,129 +1,212 @@
 //! # The graftal IR: one representation for every notation
 //!
 //! This module is the specification of graftal's semantics. Every front end
-//! (pfg `.l` today; LinF `.linf`, STL `.stl`, the cpfg and Fractint dialects
-//! later) *lowers* its AST into a [`System`]; everything downstream —
-//! validation, derivation ([`crate::eval`]), turtle interpretation
-//! ([`crate::turtle`]), rendering and the emitters — reads only this type.
-//! Nothing notation-specific survives lowering except spans, and those live in
-//! a side table ([`SpanTable`]) that takes no part in equality or output.
+//! ([`crate::front`]: pfg, LinF, STL, cpfg, Fractint) *lowers* its AST into a
+//! [`System`]; everything downstream — derivation ([`crate::eval`]), turtle
+//! interpretation ([`crate::turtle`]), rendering and the emitters
+//! ([`crate::back`]) — reads only this type. No field says which notation a
+//! system came from: each construct is named for what it means and any
+//! front end may fill it. Spans live in a side table ([`SpanTable`]) that
+//! takes no part in equality or output. Every angle is in radians.
 //!
 //! ## Data model
 //!
-//! * **Symbols** are interned names ([`SymbolId`] into [`SymbolTable`]). A name
-//!   may be several characters long (`+t` in LinF, `R1` in STL); pfg symbols
-//!   are single characters. Ids 0 and 1 are always `[` and `]`, the branch
-//!   delimiters that context matching and the turtle both understand.
-//! * **Words** ([`Word`]) are sequences of symbols. The working string of a
-//!   derivation is a `Word`. Parametric modules (cpfg) will add a parallel
-//!   parameter array to `Word`; a word without parameters stays a plain
-//!   `Vec<SymbolId>`, so the common case pays nothing.
+//! * **Symbols** are interned names ([`SymbolId`] into [`SymbolTable`]). A
+//!   name may be several characters long (`+t` in LinF, `R1` in STL, `@O` in
+//!   cpfg). Ids 0 and 1 are always `[` and `]`, the branch delimiters that
+//!   context matching and the turtle both understand.
+//! * **Words** ([`Word`]) are sequences of *modules*: a symbol with zero or
+//!   more real parameters. The symbols are one array; the parameters a side
+//!   array that is empty, and allocates nothing, while no module has any, so
+//!   a word of plain symbols costs what a symbol array costs.
 //! * **What a symbol does** is a separate table ([`System::interpretation`]):
 //!   for each symbol an optional [`TurtleOp`]. pfg `+`, LinF `+t` and STL `L`
-//!   lower to the same kind of operation (a rotation of the turtle frame), so
-//!   one turtle draws every notation.
-//! * **Productions** ([`Production`]) have a strict predecessor (one or more
-//!   symbols), optional left and right contexts, an optional condition (for
-//!   parametric dialects), and one or more weighted [`Alternative`]
-//!   successors. Which production applies is decided by [`RulePolicy`] and
-//!   contexts are matched modulo the [`ContextFilter`].
-//! * **Settings** ([`Settings`]): derivation length, angle increment, step
-//!   length, scale; the seed is given at run time.
+//!   lower to the same kind of operation (a rotation of the turtle frame),
+//!   so one turtle draws every notation.
+//! * **Productions** ([`Production`]): a strict predecessor (one or more
+//!   symbols), left and right contexts, the [`Formals`] its modules bind, an
+//!   optional condition with statements before and after it, and one or more
+//!   weighted [`Alternative`] successors whose modules carry parameter
+//!   expressions. A production of plain symbols is the case with no formals,
+//!   no condition, no statements and constant weights.
+//! * **Around the productions**: the [`RulePolicy`] (first match, or weighted
+//!   choice among all that match), the [`ContextFilter`] (ignored or
+//!   considered symbols), the decomposition and homomorphism [`Phase`]s, the
+//!   [`Program`] (variables, arrays, user functions, statements run around
+//!   the derivation), a ring (the word's ends are neighbours), a cut symbol
+//!   (removes the rest of its branch after each step).
+//! * **Per-occurrence probability** ([`Guard`]): a symbol `p?s` is an
+//!   occurrence of `s` expanded with probability `p` at each step.
+//! * **Named rotations** ([`Rotation`]): (torsion, curvature) pairs of
+//!   [`Angle`]s, fixed or drawn uniformly from an interval each time.
+//! * **Colours and widths**: [`System::colours`] (a list stepped through or an
+//!   indexed palette), [`Settings::colour`], widths with decrements.
+//! * **Structure** ([`Structure`]): named rules (a table of rules with
+//!   self-resemblance counts), a seed of branching terms, and a growth
+//!   constraint — layout [`Shape`]s with colours, the growth strategy and
+//!   level limit — with stem broadness and length per level.
+//! * **Settings** ([`Settings`]): derivation length, angle increment δ,
+//!   step length, scale, widths, the view, the file's own seed.
 //!
 //! ## Rewriting semantics ([`crate::eval`])
 //!
-//! One derivation step rewrites the whole word in parallel, scanning left to
-//! right. At each position the productions are tried in file order
-//! ([`RulePolicy::FirstMatch`], the Appendix A listing's `FindProd`): a
-//! production applies when its predecessor equals the symbols at this position
-//! and both contexts match. The first that applies is used; its predecessor's
-//! symbols are consumed and one of its alternatives is appended (chosen by
-//! weight with the seeded generator when there are several). When none
-//! applies, the one symbol is copied. Branch delimiters are never rewritten
-//! unless a production names them.
+//! One derivation step rewrites the whole word in parallel, scanning left
+//! to right. At each position the productions whose predecessor starts with
+//! the symbol there are tried in file order: a production applies when its
+//! predecessor's symbols equal the modules at this position (with as many
+//! parameters as its formals bind), both contexts match, and its condition
+//! holds after its before-statements ran. Under [`RulePolicy::FirstMatch`]
+//! the first that applies is used and one of its alternatives is chosen by
+//! weight with the seeded generator when there are several (the Appendix A
+//! listing's `FindProd`); under [`RulePolicy::Weighted`] every production
+//! that applies is a candidate, chosen by its (possibly computed) weight.
+//! The predecessor's modules are consumed, the after-statements run and the
+//! successor's parameter expressions are evaluated. When none applies, the
+//! module is copied. Branch delimiters are never rewritten unless a
+//! production names them. After the step, a cut removes the rest of its
+//! branch and the decomposition phase rewrites each new module again,
+//! recursively, up to its depth. The homomorphism rewrites the word for
+//! drawing only.
 //!
 //! Context matching in bracketed words (the listing's `lcondiff` and
-//! `rcondiff`): symbols in the filter's ignore set are skipped. Going left,
+//! `rcondiff`): symbols the filter does not see are skipped. Going left,
 //! `[` is skipped (the parent branch is the left context of a child) and a
 //! whole branch `[...]` met from its right is skipped. Going right, a whole
-//! branch `[...]` in the way is skipped and a `]` ends the search (nothing to
-//! the right inside this branch). The start and end of the word match only an
-//! empty context.
+//! branch `[...]` in the way is skipped and a `]` ends the search (nothing
+//! to the right inside this branch). The start and end of the word match
+//! only an empty context, unless the word is a ring.
+//!
+//! How a system is derived follows from these properties alone
+//! ([`crate::eval::plan`]): a shared derivation tree for context-free
+//! deterministic systems of plain symbols ([`D0l`]), a look-up table for
+//! one-symbol contexts, the general matcher for other plain systems, module
+//! rewriting when [`System::rewrites_modules`].
 //!
 //! ## How each notation lands here
 //!
+//! Each example below is a test (`cargo test` runs it).
+//!
 //! **pfg context-sensitive production** `0 < 1 > 1 --> 1[+F1F1]` with
 //! `ignore: +-F`: one [`Production`] with `left = [0]`, `predecessor = [1]`,
-//! `right = [1]`, one alternative of weight 1 whose successor is the word
-//! `1 [ + F 1 F 1 ]`; the system's [`ContextFilter::Ignore`] holds `+ - F`.
-//! Multi-character predecessors (`AB < CDE > FG`) are simply longer vectors.
-//! cpfg-style stochastic productions with the same predecessor and contexts
-//! (`F --> F[+F]F : 0.33`, …) are grouped into one `Production` with several
-//! alternatives whose weights are normalised.
+//! `right = [1]`, one alternative of weight 1; the filter ignores `+ - F`.
+//! Stochastic productions with the same predecessor and contexts are one
+//! production with several alternatives.
+//!
+//! ```
+//! use graftal::ir::{ContextFilter, SymbolId};
+//! let sys = graftal::front::pfg::read_ok("axiom: 0\nignore: +-F\n0 < 1 > 1 --> 1[+F1F1]\n");
+//! let name = |ids: &[SymbolId]| -> String { ids.iter().map(|&s| sys.symbols.name(s)).collect() };
+//! let p = &sys.productions[0];
+//! assert_eq!((name(&p.left), name(&p.predecessor), name(&p.right)), ("0".into(), "1".into(), "1".into()));
+//! assert_eq!(p.alternatives[0].successor.display(&sys.symbols), "1[+F1F1]");
+//! assert!(!p.uses_modules() && !sys.rewrites_modules());
+//! let ContextFilter::Ignore(ignored) = &sys.context else { panic!() };
+//! assert!(["+", "-", "F"].iter().all(|s| ignored.contains(&sys.symbols.get(s).unwrap())));
+//!
+//! let bush = graftal::front::pfg::read_ok(
+//!     "axiom: F\nF --> F[+F]F : 0.33\nF --> F[-F]F : 0.33\nF --> F : 0.34\n",
+//! );
+//! let weights: Vec<f64> = bush.productions[0].alternatives.iter().map(|a| a.weight).collect();
+//! assert_eq!((bush.productions.len(), weights), (1, vec![0.33, 0.33, 0.34]));
+//! ```
 //!
 //! **LinF rotation pair with an interval**, `w = (0, [0 2*pi])`: the `angles`
-//! block becomes entries of [`System::rotations`]: `Rotation { name: "w",
-//! torsion: Angle::Radians(0), curvature: Angle::Uniform { lo: 0, hi: 2π } }`.
-//! An occurrence `+w` in a successor is the symbol `+w`, interpreted as
-//! [`TurtleOp::Frenet`] `{ rotation: w, negate: false }`; `--w` is two symbols
-//! `-w -w` (one rotation per sign), each `negate: true`. The uniform draw
-//! happens each time the turtle applies the rotation, from the turtle's own
-//! seeded stream. The LinF frame {t, n, b} is the turtle frame {H, L, U}
-//! (t = heading, n = left, b = up): a torsion θ is [`Axis::Heading`] by −θ, a
-//! curvature θ is [`Axis::Up`] by −θ (see [`TurtleOp::Rotate`] for the sign
-//! conventions); `!` is [`TurtleOp::SwapTurns`]; `x@` is the symbol `x@`
-//! interpreted as [`TurtleOp::ScaleLength`]`(x)`; `{`/`}` step through
-//! [`System::colours`].
+//! block becomes [`System::rotations`]; `+w` in a successor is the symbol
+//! `+w` interpreted as [`TurtleOp::Frenet`], `--w` two symbols `-w -w` (one
+//! rotation per sign). The LinF frame {t, n, b} is the turtle frame
+//! {H, L, U}. **LinF `0.5?f`** is the symbol `0.5?f` carrying a [`Guard`]:
+//! rewritten by `f`'s production with probability 0.5 at each step,
+//! otherwise left as it is for the next step; the turtle draws it as `f`.
 //!
-//! **LinF `0.5?j`** in a successor: the symbol `0.5?j` (interned as its own
-//! symbol) carrying [`SymbolInfo::guard`] `= Some(Guard { probability: 0.5,
-//! base: j })`. In each derivation step an occurrence of a guarded symbol is
-//! rewritten by `j`'s production with probability 0.5 and otherwise stays as
-//! it is (still guarded) for the next step. The turtle draws it as `j`.
+//! ```
+//! use graftal::ir::{Angle, Guard, TurtleOp};
+//! let sys = graftal::front::linf::read_ok(
+//!     "lines f\nangles (0, pi/3) w = (0, [0 2*pi])\naxiom f\nrules\n  f = f+w--w[0.5?f]\n",
+//! );
+//! let w = &sys.rotations[1];
+//! assert_eq!(w.name, "w");
+//! assert_eq!(w.curvature, Angle::Uniform { lo: 0.0, hi: std::f64::consts::TAU });
+//! let succ = &sys.productions[0].alternatives[0].successor;
+//! assert_eq!(succ.display(&sys.symbols), "f+w-w-w[0.5?f]");
+//! let minus_w = sys.symbols.get("-w").unwrap();
+//! assert!(matches!(sys.op(minus_w), Some(TurtleOp::Frenet { negate: true, .. })));
+//! let guarded = sys.symbols.get("0.5?f").unwrap();
+//! let f = sys.symbols.get("f").unwrap();
+//! assert_eq!(sys.symbols.info(guarded).guard, Some(Guard { probability: 0.5, base: f }));
+//! assert_eq!(sys.op(guarded), sys.op(f));
+//! ```
 //!
-//! **STL branching term** `R1{R1,,R2}` with `LAYOUT … GROWTH BFS`: STL
-//! structure is kept as structure in [`Structure`]: the growth rules are
-//! [`StlRule`]s (name, body word, self-resemblance count), the seed is a list
-//! of [`SeedItem`]s where `R1{R1,,R2}` is a [`BranchTerm`] `{ rule: R1,
-//! entries: [Rule(R1{}), Empty, Rule(R2{})] }`, the layout is a list of
-//! [`Shape`]s and the strategy is [`Growth::BreadthFirst`]. A file with
-//! explicit branching (a BED) is expanded into the axiom word when lowered;
-//! a file with a layout (an OD) is grown by the STL growth evaluator into a
-//! BED, which then expands to a word like any other. Drawing components `F`,
-//! `L`/`+`, `R`/`-` are symbols interpreted as `Forward`, and rotations about
-//! [`Axis::Up`] by ∓δ.
+//! **STL branching term** `R1{R1, , R2}`: the rules are a [`Structure`]'s
+//! [`StlRule`]s, the seed a list of [`SeedItem`]s where the term is a
+//! [`BranchTerm`] whose entries extend the rule's top-level branches (an
+//! empty entry keeps the branch as it is). A file with explicit branching
+//! (a Branch-Expansion Description) is expanded into the axiom word; a
+//! file with a layout is grown inside its shapes into one. Drawing
+//! components `F`, `L`/`+`, `R`/`-` are symbols interpreted as `Forward`
+//! and rotations about [`Axis::Up`]; silent symbols (empty names) set each
+//! stem level's width and length ([`TurtleOp::Stem`]).
 //!
-//! **Fractint entry** `Dragon { Angle 8  Axiom FX  F=  y=+FX--FY+ … }`
-//! (one entry of a library file, chosen by name): `Angle 8` is
-//! [`Settings::angle`] `= 360/8`; Fractint has no derivation length in the
-//! file, so [`Settings::steps`] is its default order, 2. Rules for the same
-//! character are concatenated in file order into one [`Production`]
-//! (`F=` is a production with the empty successor). Commands are lowercased
-//! symbols; those with a number are single symbols (`\30`, `@iq2`, `c12`,
-//! `<2`). Fractint's turtle has two headings: the frame's heading, turned by
-//! `+` (`Rotate { Up, Delta(−1) }`: Fractint's `+` turns counter-clockwise),
-//! `-` and `|` ([`TurtleOp::TurnUnswapped`] by ⌊N/2⌋ increments; plain
-//! [`TurtleOp::TurnAround`] for even N) and used by `F`/`G` (`Forward`);
-//! and a real heading in degrees turned by `\n`/`/n`
-//! ([`TurtleOp::RotateReal`]) and used by `D`/`M`
-//! ([`TurtleOp::ForwardReal`]). `!` is [`TurtleOp::SwapTurns`] (it swaps
-//! both registers' turns), `@n` is [`TurtleOp::ScaleLength`] (both
-//! registers' moves), `Cn`/`<n`/`>n` are [`TurtleOp::SetColour`] and
-//! [`TurtleOp::ShiftColour`] over Fractint's 256-colour palette in
-//! [`System::colours`], starting at [`Settings::colour`] 15. Both headings
-//! start along the turtle's initial H (graftal's up; Fractint's screen starts
-//! east, so pictures are a quarter turn counter-clockwise from Fractint's).
+//! ```
+//! use graftal::ir::{BranchEntry, SeedItem};
+//! let sys = graftal::front::stl::read_ok(
+//!     "ANGLE 30\nB = 8 (1)\nL = 40 (4)\nR1 = [F][+F][-F]\nR2 = [++F][-F]\nSEED\nF R1{R1, , R2}\nENDSEED\n",
+//! );
+//! let st = sys.structure.as_ref().unwrap();
+//! let rules: Vec<&str> = st.rules.iter().map(|r| r.name.as_str()).collect();
+//! assert_eq!(rules, ["R1", "R2"]);
+//! let SeedItem::Term(term) = &st.seed[1] else { panic!() };
+//! assert!(matches!(term.entries[..], [BranchEntry::Term(_), BranchEntry::Empty, BranchEntry::Term(_)]));
+//! assert_eq!(sys.axiom.display(&sys.symbols), "F[F[F][+F][-F]][+F][-F[++F][-F]]");
+//! assert_eq!((st.broadness, st.length), ((8.0, 1.0), (40.0, 4.0)));
+//! assert!((sys.settings.delta - 30f64.to_radians()).abs() < 1e-15);
+//! ```
 //!
-//! **STL stem levels** (`B = 8 (1)`, `L = 40 (4)`): a stem drawn at growth
-//! level k has broadness `B − k·ΔB` and length `L − k·ΔL`. The STL front end
-//! writes a *silent* symbol ([`SymbolTable::intern_silent`]: its name is
-//! empty, so it prints as nothing) wherever the level changes in the
-//! expanded word, interpreted as [`TurtleOp::Stem`] `{ width, length }`,
-//! which sets the turtle's line width and step length for what follows in
-//! the branch (push/pop restore them like the rest of the state).
+//! **Fractint entry** `Dragon { Angle 8  Axiom FX  F=  y=+FX--FY+ … }`:
+//! `Angle 8` is δ = 2π/8; the derivation length is Fractint's default order
+//! 2; rules for the same character are one production (`F=` has the empty
+//! successor); commands are lowercased symbols. Fractint's second, *real*
+//! heading is turned by [`TurtleOp::RotateReal`] and used by
+//! [`TurtleOp::ForwardReal`]; `|` is [`TurtleOp::TurnUnswapped`]; colour
+//! commands index a 256-colour palette starting at colour 15.
+//!
+//! ```
+//! let sys = graftal::front::fractint::read_ok(
+//!     "Dragon {\n  Angle 8\n  Axiom FX\n  F=\n  y=+FX--FY+\n  x=-FX++FY-\n}\n",
+//! );
+//! assert!((sys.settings.delta - std::f64::consts::TAU / 8.0).abs() < 1e-15);
+//! assert_eq!((sys.settings.steps, sys.settings.colour, sys.colours.len()), (Some(2), 15, 256));
+//! let rules: Vec<String> = sys
+//!     .productions
+//!     .iter()
+//!     .map(|p| format!("{}={}", sys.symbols.name(p.predecessor[0]), p.alternatives[0].successor.display(&sys.symbols)))
+//!     .collect();
+//! assert_eq!(rules, ["f=", "y=+fx--fy+", "x=-fx++fy-"]);
+//! ```
+//!
+//! **cpfg parametric production** `A(x) : x < 3 --> F(x) A(x+1)`: the
+//! predecessor binds `x` to local slot 0 ([`Formals`]), the condition and
+//! the successor's parameters are [`program::Expr`]essions over it, and the
+//! axiom's parameters are expressions too ([`System::axiom_args`]). Such a
+//! system is derived by module rewriting.
+//!
+//! ```
+//! use graftal::ir::program::Expr;
+//! let sys = graftal::front::cpfg::read_ok(
+//!     "lsystem: 1\nderivation length: 3\naxiom: A(1)\nA(x) : x < 3 --> F(x) A(x+1)\nendlsystem\n",
+//! );
+//! let p = &sys.productions[0];
+//! assert_eq!(p.formals.predecessor, [vec![0]]);
+//! assert!(p.condition.is_some() && p.uses_modules());
+//! assert_eq!(p.alternatives[0].args.len(), 2);
+//! assert_eq!(sys.axiom_args, [vec![Expr::Num(1.0)]]);
+//! assert_eq!(graftal::eval::plan(&sys, 3), graftal::eval::Method::Modules);
+//! let word = graftal::driver::derive(&sys, &graftal::driver::RunOptions::default()).unwrap();
+//! assert_eq!(word.display(&sys.symbols), "F(1)F(2)A(3)");
+//! ```
 
 pub mod colours;
 pub mod d0l;
+pub mod layout;
 pub mod program;
 
 pub use d0l::D0l;

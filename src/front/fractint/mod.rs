@@ -47,6 +47,9 @@ impl Front for Fractint {
             library: Some(library),
         }
     }
+    fn library_form(&self) -> Option<&'static str> {
+        Some("`Name { … }` entries")
+    }
     // The comments of a library belong to its many entries, not to the
     // one translated: none are carried over (the default).
 }
