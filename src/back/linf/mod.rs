@@ -200,9 +200,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     let sys = e.sys;
     let mut rules = single_symbol_rules(e, "LinF");
     // LinF rewrites names: not turns, brackets or other reserved symbols.
-    let mut heads: Vec<(SymbolId, usize)> = rules.iter().map(|(&s, &i)| (s, i)).collect();
-    heads.sort_by_key(|&(_, i)| i);
-    for &(s, i) in &heads {
+    for (s, i) in rules.heads() {
         if !matches!(sys.op(s), None | Some(TurtleOp::Forward { .. })) {
             let text = e.production_text(i);
             e.problem(
@@ -214,7 +212,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 ),
                 "the production is dropped",
             );
-            rules.remove(&s);
+            rules.remove(s);
         }
     }
     let occ = occurring(sys);
@@ -443,9 +441,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     // Rules: rewritten symbols, then the identity rule for plain symbols
     // nothing rewrites.
     let mut rule_lines = Vec::new();
-    let mut heads: Vec<(SymbolId, usize)> = rules.iter().map(|(&s, &i)| (s, i)).collect();
-    heads.sort_by_key(|&(_, i)| i);
-    for (s, i) in heads {
+    for (s, i) in rules.heads() {
         let p = &sys.productions[i];
         let alt = &p.alternatives[heaviest(p)];
         let head = spell.get(&s).cloned().unwrap_or_default();
@@ -470,7 +466,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         rule_lines.push(line.trim_end().to_string());
     }
     for &s in occ.iter().filter(|&&s| plain(s)) {
-        if sys.op(s).is_none() && !rules.contains_key(&s) {
+        if sys.op(s).is_none() && !rules.contains(s) {
             if let Some(n) = spell.get(&s) {
                 rule_lines.push(format!("  {n} = {n}"));
             }

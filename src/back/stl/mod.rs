@@ -371,7 +371,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
 
     let steps = e.steps;
     let successor = |s: SymbolId| -> Option<&[SymbolId]> {
-        let i = *rules.get(&s)?;
+        let i = rules.get(s)?;
         let p = &sys.productions[i];
         Some(&p.alternatives[heaviest(p)].successor.0)
     };
@@ -449,7 +449,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
 
     let mut out_rules: Vec<(u64, String, String)> = Vec::new();
     let shortcut = {
-        let draw: Vec<SymbolId> = rules.keys().copied().collect();
+        let draw: Vec<SymbolId> = rules.heads().iter().map(|h| h.0).collect();
         draw.len() == 1
             && comps.get(&draw[0]).map(String::as_str) == Some("F")
             && steps >= 1
@@ -461,7 +461,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     };
     let mut seed = Vec::new();
     if shortcut {
-        let d = *rules.keys().next().expect("one rule");
+        let d = rules.heads()[0].0;
         let body: String = successor(d)
             .unwrap_or_default()
             .iter()
@@ -578,7 +578,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     e.exact("the axiom", e.spans.axiom.first().cloned(), &seed_text);
     for (i, _) in sys.productions.iter().enumerate() {
         let text = e.production_text(i);
-        if rules.values().any(|&j| j == i) {
+        if rules.heads().iter().any(|h| h.1 == i) {
             e.exact(
                 format!("production `{text}`"),
                 e.production_span(i),
