@@ -596,19 +596,6 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
     (plain, problems)
 }
 
-/// What an emitter writes for an operation only Fractint has (they are
-/// replaced before emitting, see [`fractint_plain`]): a problem, nothing
-/// written.
-pub fn fractint_only(e: &mut Emitter<'_>, name: &str, span: Option<Span>, to: &str) -> String {
-    e.problem(
-        Kind::Attribute,
-        span,
-        format!("the Fractint command `{name}`: {to} has no such command"),
-        "it is dropped",
-    );
-    String::new()
-}
-
 /// The first line of `src` that starts with the word `word` (followed by
 /// a blank, `=` or the end of the line), as a span without its blanks;
 /// comments are not lines.
