@@ -16,6 +16,12 @@
 //! levels become length factors. The pfg and LinF emitters then write that
 //! system like any other.
 //!
+//! The three emitters walk a system alike ([`walk`]): the symbols that
+//! occur and what each does to the turtle, the turns as repeated turn
+//! symbols, words written symbol by symbol, and what a target drops
+//! reported in the same words; a target that rewrites one symbol by one
+//! rule takes the system's [`Rules`].
+//!
 //! Every emitter reports what its target cannot express as a [`Problem`]:
 //! the kind of construct (each kind has an error code `E06xx` and, for
 //! `--lossy`, a warning code `W06xx`), the source span, what the construct

@@ -5,6 +5,7 @@
 
 use super::{angle_factor, multiples, number, occurring, repeated, turns, Emitter, Kind, Turns};
 use crate::ir::{Axis, Guard, Span, SymbolId, System, TurtleOp};
+use std::collections::HashMap;
 
 /// The symbols that occur in a system (see [`occurring`]), as the
 /// emitters walk them.
@@ -33,6 +34,12 @@ impl Symbols {
             plain,
             guarded,
         }
+    }
+
+    /// The plain symbols `spell` has no spelling for yet, in order.
+    pub fn unspelled<T>(&self, spell: &HashMap<SymbolId, T>) -> Vec<SymbolId> {
+        let todo = self.plain.iter().copied();
+        todo.filter(|s| !spell.contains_key(s)).collect()
     }
 }
 
@@ -156,8 +163,8 @@ pub fn write_word<T>(
     join(w.iter().copied().filter_map(spell).collect())
 }
 
-/// How the colours a system lists differ: the count of runs of equal
-/// colours (one for a single colour, however often it is listed).
+/// How many colours the system lists, a run of the same colour counted
+/// once: more than one means its colour symbols change the colour.
 pub fn distinct_colours(sys: &System) -> usize {
     let mut c = sys.colours.clone();
     c.dedup();

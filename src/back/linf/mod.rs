@@ -342,12 +342,7 @@ fn fixed(sys: &System, a: Angle) -> Angle {
 /// then everything else.
 fn operations(e: &mut Emitter<'_>, syms: &Symbols, sp: &mut Spellings) {
     let sys = e.sys;
-    let mut order: Vec<SymbolId> = syms
-        .plain
-        .iter()
-        .copied()
-        .filter(|s| !sp.spell.contains_key(s))
-        .collect();
+    let mut order = syms.unspelled(&sp.spell);
     order.sort_by_key(|&s| match sys.op(s) {
         Some(TurtleOp::Rotate { angle, .. }) => {
             if super::radians(sys, angle).is_some_and(|a| a < 0.0) {

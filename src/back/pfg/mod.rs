@@ -202,12 +202,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         &format!("angle factor: {n} ({} degrees)", number(360.0 / n as f64)),
     );
     name_symbols(e, &syms, &mut sp);
-    let todo: Vec<SymbolId> = syms
-        .plain
-        .iter()
-        .copied()
-        .filter(|s| !sp.spell.contains_key(s))
-        .collect();
+    let todo = syms.unspelled(&sp.spell);
     let distinct = distinct_colours(sys);
     for (sym, text) in spell_each(e, todo, |e, sym| operation(e, sym, n, distinct)) {
         e.rename(&sym.name, &text);
