@@ -16,6 +16,12 @@
 //! levels become length factors. The pfg and LinF emitters then write that
 //! system like any other.
 //!
+//! The three emitters walk a system alike ([`walk`]): the symbols that
+//! occur and what each does to the turtle, the turns as repeated turn
+//! symbols, words written symbol by symbol, and what a target drops
+//! reported in the same words; a target that rewrites one symbol by one
+//! rule takes the system's [`Rules`].
+//!
 //! Every emitter reports what its target cannot express as a [`Problem`]:
 //! the kind of construct (each kind has an error code `E06xx` and, for
 //! `--lossy`, a warning code `W06xx`), the source span, what the construct
@@ -33,6 +39,7 @@ pub mod from_stl;
 pub mod linf;
 pub mod pfg;
 pub mod stl;
+pub mod walk;
 
 use crate::diagnostics::codes::{self, Code};
 use crate::diagnostics::{Diagnostic, Diagnostics};
@@ -278,6 +285,26 @@ impl<'a> Emitter<'a> {
             target: target.to_string(),
             note: None,
         });
+    }
+
+    /// Records production `i` carried over exactly as `target`.
+    pub fn exact_production(&mut self, i: usize, target: &str) {
+        let text = self.production_text(i);
+        self.exact(
+            format!("production `{text}`"),
+            self.production_span(i),
+            target,
+        );
+    }
+
+    /// Records the axiom carried over exactly as `target`.
+    pub fn exact_axiom(&mut self, target: &str) {
+        self.exact("the axiom", self.spans.axiom.first().cloned(), target);
+    }
+
+    /// The comment attached to the item at `span` (see [`attached`]).
+    pub fn attached_to(&self, span: Option<&Span>) -> Option<Attached> {
+        span.and_then(|s| attached(&self.origin.comments, self.source, s))
     }
 
     /// Where symbol `id` is first written in the source.
@@ -575,19 +602,6 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
     (plain, problems)
 }
 
-/// What an emitter writes for an operation only Fractint has (they are
-/// replaced before emitting, see [`fractint_plain`]): a problem, nothing
-/// written.
-pub fn fractint_only(e: &mut Emitter<'_>, name: &str, span: Option<Span>, to: &str) -> String {
-    e.problem(
-        Kind::Attribute,
-        span,
-        format!("the Fractint command `{name}`: {to} has no such command"),
-        "it is dropped",
-    );
-    String::new()
-}
-
 /// The first line of `src` that starts with the word `word` (followed by
 /// a blank, `=` or the end of the line), as a span without its blanks;
 /// comments are not lines.
@@ -655,13 +669,49 @@ pub fn heaviest(p: &Production) -> usize {
     best
 }
 
-/// For targets that rewrite one symbol by one rule (LinF, STL): for each
-/// symbol, the index of the production that rewrites it, reporting what
-/// such targets cannot express (contexts, several predecessor symbols,
-/// random choice). Contexts dropped under `--lossy` make the first
-/// production for a symbol apply everywhere; productions after it never
-/// apply, in the source as in the target.
-pub fn single_symbol_rules(e: &mut Emitter<'_>, target: &str) -> HashMap<SymbolId, usize> {
+/// For targets that rewrite one symbol by one rule (LinF, STL): which
+/// production rewrites each symbol.
+#[derive(Clone, Debug, Default)]
+pub struct Rules {
+    by_symbol: HashMap<SymbolId, usize>,
+}
+
+impl Rules {
+    /// The index of the production that rewrites `s`.
+    pub fn get(&self, s: SymbolId) -> Option<usize> {
+        self.by_symbol.get(&s).copied()
+    }
+
+    pub fn contains(&self, s: SymbolId) -> bool {
+        self.by_symbol.contains_key(&s)
+    }
+
+    pub fn remove(&mut self, s: SymbolId) {
+        self.by_symbol.remove(&s);
+    }
+
+    /// Each rewritten symbol with its production, in the productions'
+    /// order.
+    pub fn heads(&self) -> Vec<(SymbolId, usize)> {
+        let mut heads: Vec<(SymbolId, usize)> =
+            self.by_symbol.iter().map(|(&s, &i)| (s, i)).collect();
+        heads.sort_by_key(|&(_, i)| i);
+        heads
+    }
+
+    /// The successor `s` is rewritten to: the heaviest alternative's.
+    pub fn successor<'s>(&self, sys: &'s System, s: SymbolId) -> Option<&'s [SymbolId]> {
+        let p = &sys.productions[self.get(s)?];
+        Some(&p.alternatives[heaviest(p)].successor.0)
+    }
+}
+
+/// The [`Rules`] of a system for a target that rewrites one symbol by one
+/// rule, reporting what such targets cannot express (contexts, several
+/// predecessor symbols, random choice). Contexts dropped under `--lossy`
+/// make the first production for a symbol apply everywhere; productions
+/// after it never apply, in the source as in the target.
+pub fn single_symbol_rules(e: &mut Emitter<'_>, target: &str) -> Rules {
     let mut rules: HashMap<SymbolId, usize> = HashMap::new();
     for (i, p) in e.sys.productions.iter().enumerate() {
         let text = e.production_text(i);
@@ -709,7 +759,7 @@ pub fn single_symbol_rules(e: &mut Emitter<'_>, target: &str) -> HashMap<SymbolI
         }
         rules.insert(head, i);
     }
-    rules
+    Rules { by_symbol: rules }
 }
 
 /// The rotations a turtle operation makes, each about one axis (radians),
@@ -919,6 +969,12 @@ impl Names {
     }
 }
 
+/// `base` followed by each number of `range`: names to try after the
+/// wished ones.
+pub fn numbered(base: &str, range: std::ops::Range<u32>) -> impl Iterator<Item = String> + '_ {
+    range.map(move |i| format!("{base}{i}"))
+}
+
 // ---------------------------------------------------------------------
 // Comments
 // ---------------------------------------------------------------------
@@ -1055,6 +1111,31 @@ pub fn attached_comment(cs: &[(Span, String)], src: &str, span: &Span) -> Option
 /// The first line every translation starts with.
 pub fn banner(e: &Emitter<'_>) -> String {
     format!("Translated by graftal from {}", e.origin.title)
+}
+
+/// The comment every translation opens with: the [`banner`], then, after
+/// a blank line, the source's [`file_comment`].
+pub fn opening(e: &Emitter<'_>) -> Vec<String> {
+    let mut head = vec![banner(e)];
+    if let Some(c) = file_comment(&e.origin.comments, e.source) {
+        head.push(String::new());
+        head.extend(c);
+    }
+    head
+}
+
+/// A comment line as LinF and STL write it: `#`, a blank, the text.
+pub fn hash_line(l: &str) -> String {
+    if l.is_empty() {
+        "#".into()
+    } else {
+        format!("# {l}")
+    }
+}
+
+/// Comment lines as LinF and STL write them, each ending its line.
+pub fn hash_comment(lines: &[String]) -> String {
+    lines.iter().map(|l| hash_line(l) + "\n").collect()
 }
 
 #[cfg(test)]

@@ -16,11 +16,15 @@
 //! * A step length other than 1 becomes a length factor at the start of
 //!   the axiom.
 
-use super::{
-    attached, banner, file_comment, heaviest, number, occurring, single_symbol_rules, Attached,
-    Emitter, Kind, Names,
+use super::walk::{
+    distinct_colours, fractint_only, no_polygons, no_scale, no_stems, no_widths, spell_each,
+    write_word, Does, Sym, Symbols,
 };
-use crate::ir::{Angle, Axis, Rgb, SymbolId, TurtleOp};
+use super::{
+    hash_comment, hash_line, number, numbered, opening, single_symbol_rules, Attached, Emitter,
+    Kind, Names, Rules,
+};
+use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
@@ -181,10 +185,7 @@ impl Rotations {
                 .collect();
             let base = w.first().cloned().unwrap_or_else(|| "a".into());
             names
-                .take(
-                    w.into_iter()
-                        .chain((2..).map(|i| format!("{base}{i}")).take(1000)),
-                )
+                .take(w.into_iter().chain(numbered(&base, 2..1002)))
                 .unwrap_or_default()
         };
         self.decls.push(Decl {
@@ -196,13 +197,63 @@ impl Rotations {
     }
 }
 
+/// The symbols of a system as LinF spells them, and what they declare.
+struct Spellings {
+    names: Names,
+    spell: HashMap<SymbolId, String>,
+    /// The `lines` and `blanks` blocks.
+    lines: Vec<String>,
+    blanks: Vec<String>,
+    rot: Rotations,
+    /// The source's own rotations (LinF): index -> declaration.
+    own: HashMap<u32, usize>,
+    /// Whether a symbol steps through the colours.
+    uses_colour: bool,
+}
+
 pub fn write(e: &mut Emitter<'_>) -> String {
     let sys = e.sys;
+    let rules = rules(e);
+    let syms = Symbols::of(sys);
+    let mut sp = Spellings {
+        names: Names::new(RESERVED),
+        spell: HashMap::new(),
+        lines: Vec::new(),
+        blanks: Vec::new(),
+        rot: Rotations { decls: Vec::new() },
+        own: HashMap::new(),
+        uses_colour: false,
+    };
+    declare_names(e, &syms, &mut sp);
+    own_rotations(e, &syms, &mut sp);
+    operations(e, &syms, &mut sp);
+    // Guarded occurrences.
+    for &(s, g) in &syms.guarded {
+        let base = sp.spell.get(&g.base).cloned().unwrap_or_default();
+        sp.spell
+            .insert(s, format!("{}?{base}", number(g.probability)));
+    }
+    no_scale(e, "LinF pictures always fill the frame");
+    let words = Words::of(&sp);
+    let rule_lines = rule_lines(e, &rules, &syms, &sp, &words);
+    let mut axiom = words.word(&sys.axiom.0);
+    if sys.settings.step != 1.0 {
+        let f = format!("{}@", number(sys.settings.step));
+        axiom = if axiom.is_empty() {
+            f
+        } else {
+            format!("{f} {axiom}")
+        };
+    }
+    text(e, &sp, &axiom, &rule_lines)
+}
+
+/// The rules: LinF rewrites names, not turns, brackets or other reserved
+/// symbols.
+fn rules(e: &mut Emitter<'_>) -> Rules {
+    let sys = e.sys;
     let mut rules = single_symbol_rules(e, "LinF");
-    // LinF rewrites names: not turns, brackets or other reserved symbols.
-    let mut heads: Vec<(SymbolId, usize)> = rules.iter().map(|(&s, &i)| (s, i)).collect();
-    heads.sort_by_key(|&(_, i)| i);
-    for &(s, i) in &heads {
+    for (s, i) in rules.heads() {
         if !matches!(sys.op(s), None | Some(TurtleOp::Forward { .. })) {
             let text = e.production_text(i);
             e.problem(
@@ -214,83 +265,84 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 ),
                 "the production is dropped",
             );
-            rules.remove(&s);
+            rules.remove(s);
         }
     }
-    let occ = occurring(sys);
-    let plain = |s: SymbolId| sys.symbols.info(s).guard.is_none();
-    let mut names = Names::new(RESERVED);
-    let mut spell: HashMap<SymbolId, String> = HashMap::new();
+    rules
+}
 
-    // Names of lines, blanks and rule heads.
-    let mut lines_block = Vec::new();
-    let mut blanks_block = Vec::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        let op = sys.op(s);
+/// Names the symbols LinF declares by name: lines, blanks and the
+/// symbols that do nothing (rule heads).
+fn declare_names(e: &mut Emitter<'_>, syms: &Symbols, sp: &mut Spellings) {
+    for &s in &syms.plain {
+        let op = e.sys.op(s);
         if !matches!(op, None | Some(TurtleOp::Forward { .. })) {
             continue;
         }
         let name = e.name(s).to_string();
-        let fallback = (1..).map(|i| format!("s{i}")).take(100_000);
-        let Some(n) = names.take(wishes(&name).into_iter().chain(fallback)) else {
+        let fallback = numbered("s", 1..100_001);
+        let Some(n) = sp.names.take(wishes(&name).into_iter().chain(fallback)) else {
             continue;
         };
         e.rename(&name, &n);
         match op {
-            Some(TurtleOp::Forward { draw: true }) => lines_block.push(n.clone()),
-            Some(TurtleOp::Forward { draw: false }) => blanks_block.push(n.clone()),
+            Some(TurtleOp::Forward { draw: true }) => sp.lines.push(n.clone()),
+            Some(TurtleOp::Forward { draw: false }) => sp.blanks.push(n.clone()),
             _ => {}
         }
-        spell.insert(s, n);
+        sp.spell.insert(s, n);
     }
+}
 
-    // Rotations: the source's own first (LinF), in their order.
-    let mut rot = Rotations { decls: Vec::new() };
-    let mut own: HashMap<u32, usize> = HashMap::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
+/// Declares the rotations of a LinF source first, in their order.
+fn own_rotations(e: &mut Emitter<'_>, syms: &Symbols, sp: &mut Spellings) {
+    let sys = e.sys;
+    for &s in &syms.plain {
         if let Some(TurtleOp::Frenet { rotation, .. }) = sys.op(s) {
-            own.entry(rotation.0).or_insert(0);
+            sp.own.entry(rotation.0).or_insert(0);
         }
     }
-    let mut own_ids: Vec<u32> = own.keys().copied().collect();
+    let mut own_ids: Vec<u32> = sp.own.keys().copied().collect();
     own_ids.sort();
     for id in own_ids {
         let r = &sys.rotations[id as usize];
         let name = if r.name.is_empty() {
             String::new()
         } else {
-            names
+            sp.names
                 .take(
                     wishes(&r.name)
                         .into_iter()
-                        .chain((2..).map(|i| format!("{}{i}", r.name)).take(1000)),
+                        .chain(numbered(&r.name, 2..1002)),
                 )
                 .unwrap_or_default()
         };
         if !r.name.is_empty() {
             e.rename(&r.name, &name);
         }
-        let fix = |a: Angle| match a {
-            Angle::Delta(k) => Angle::Radians(k * sys.settings.delta),
-            other => other,
-        };
-        own.insert(id, rot.decls.len());
-        rot.decls.push(Decl {
+        sp.own.insert(id, sp.rot.decls.len());
+        sp.rot.decls.push(Decl {
             name,
-            torsion: fix(r.torsion),
-            curvature: fix(r.curvature),
+            torsion: fixed(sys, r.torsion),
+            curvature: fixed(sys, r.curvature),
         });
     }
+}
 
-    let distinct_colours = {
-        let mut c = sys.colours.clone();
-        c.dedup();
-        c.len()
-    };
-    let mut uses_colour = false;
-    // Turns (positive first, so that the declared pairs are the positive
-    // ones), then everything else.
-    let mut order: Vec<SymbolId> = occ.iter().copied().filter(|&s| plain(s)).collect();
+/// `a` in radians where it is a multiple of the system's angle.
+fn fixed(sys: &System, a: Angle) -> Angle {
+    match a {
+        Angle::Delta(k) => Angle::Radians(k * sys.settings.delta),
+        other => other,
+    }
+}
+
+/// Spells the symbols that do something besides moving: turns first
+/// (positive first, so that the declared pairs are the positive ones),
+/// then everything else.
+fn operations(e: &mut Emitter<'_>, syms: &Symbols, sp: &mut Spellings) {
+    let sys = e.sys;
+    let mut order = syms.unspelled(&sp.spell);
     order.sort_by_key(|&s| match sys.op(s) {
         Some(TurtleOp::Rotate { angle, .. }) => {
             if super::radians(sys, angle).is_some_and(|a| a < 0.0) {
@@ -301,211 +353,159 @@ pub fn write(e: &mut Emitter<'_>) -> String {
         }
         _ => 2,
     });
-    for s in order {
-        if spell.contains_key(&s) {
-            continue;
+    for (sym, text) in spell_each(e, order, |e, sym| operation(e, sym, sp)) {
+        e.rename(&sym.name, &text);
+        sp.spell.insert(sym.id, text);
+    }
+}
+
+/// What LinF writes for a symbol that does something besides moving
+/// (`None`: it is spelled elsewhere, or not at all).
+fn operation(e: &mut Emitter<'_>, sym: &Sym, sp: &mut Spellings) -> Option<String> {
+    let r = Angle::Radians;
+    Some(match sym.does {
+        Does::Nothing | Does::Forward { .. } | Does::Cpfg => return None,
+        Does::Turn(TurtleOp::Frenet { rotation, negate }) => {
+            let d = &sp.rot.decls[sp.own[&rotation.0]];
+            format!("{}{}", if negate { '-' } else { '+' }, d.name)
         }
-        let name = e.name(s).to_string();
-        let span = e.symbol_span(s);
-        let Some(op) = sys.op(s) else { continue };
-        let r = |x: f64| Angle::Radians(x);
-        let text = match op {
-            TurtleOp::Forward { .. } => continue,
-            TurtleOp::Frenet { rotation, negate } => {
-                let d = &rot.decls[own[&rotation.0]];
-                format!("{}{}", if negate { '-' } else { '+' }, d.name)
-            }
-            TurtleOp::Rotate { axis, angle } => {
-                let a = match angle {
-                    Angle::Delta(k) => Angle::Radians(k * sys.settings.delta),
-                    other => other,
-                };
-                let (mag, negative) = match a {
-                    Angle::Radians(x) => (Angle::Radians(x.abs()), x < 0.0),
-                    other => (other, false),
-                };
-                let tok = match axis {
-                    Axis::Up => rot.token(&mut names, r(0.0), neg(mag), &["", "c"]),
-                    Axis::Heading => rot.token(&mut names, neg(mag), r(0.0), &["r"]),
-                    Axis::Left => {
-                        let first = rot.token(&mut names, r(-PI / 2.0), a, &["p"]);
-                        let back = rot.token(&mut names, r(PI / 2.0), r(0.0), &["h"]);
-                        format!("{first} {back}")
-                    }
-                };
-                if axis != Axis::Left && negative {
-                    flip(&tok)
-                } else {
-                    tok
-                }
-            }
-            TurtleOp::TurnAround => rot.token(&mut names, r(0.0), r(PI), &["u"]),
-            TurtleOp::Push => "[".into(),
-            TurtleOp::Pop => "]".into(),
-            TurtleOp::NextColour => {
-                uses_colour = true;
-                "{".into()
-            }
-            TurtleOp::PreviousColour => {
-                uses_colour = true;
-                "}".into()
-            }
-            TurtleOp::SwapTurns => "!".into(),
-            TurtleOp::ScaleLength(x) => format!("{}@", number(x)),
-            TurtleOp::PolygonBegin | TurtleOp::PolygonEnd => {
-                e.problem(
-                    Kind::Attribute,
-                    span,
-                    format!("the polygon symbol `{name}`: LinF has no filled polygons"),
-                    "the polygon is dropped; its edges are drawn as they move",
-                );
-                String::new()
-            }
-            TurtleOp::DecrementWidth => {
-                e.problem(
-                    Kind::Attribute,
-                    span,
-                    format!("`{name}` makes lines thinner: LinF has no line widths"),
-                    "it is dropped",
-                );
-                String::new()
-            }
-            TurtleOp::Stem { .. } => {
-                e.problem(
-                    Kind::Length,
-                    span,
-                    "a stem length: LinF scales lengths by factors",
-                    "it is dropped",
-                );
-                String::new()
-            }
-            TurtleOp::TurnUnswapped(_)
-            | TurtleOp::RotateReal(_)
-            | TurtleOp::ForwardReal { .. }
-            | TurtleOp::SetColour(_)
-            | TurtleOp::ShiftColour { .. } => super::fractint_only(e, &name, span, "LinF"),
-            // cpfg's own turtle commands: parametric systems are refused
-            // before any emitter runs (see `translate`).
-            TurtleOp::ColourIndex { .. }
-            | TurtleOp::LineWidth { .. }
-            | TurtleOp::PolygonVertex
-            | TurtleOp::Sphere
-            | TurtleOp::ScreenDisc
-            | TurtleOp::Circle
-            | TurtleOp::MoveTo
-            | TurtleOp::SetHeading
-            | TurtleOp::RollToVertical
-            | TurtleOp::Surface(_)
-            | TurtleOp::CylinderStart
-            | TurtleOp::CylinderPoint { .. }
-            | TurtleOp::CylinderTangents
-            | TurtleOp::Query(_) => continue,
+        Does::Turn(TurtleOp::Rotate { axis, angle }) => sp.rotate(fixed(e.sys, angle), axis),
+        // The half turn.
+        Does::Turn(_) => sp.rot.token(&mut sp.names, r(0.0), r(PI), &["u"]),
+        Does::Push => "[".into(),
+        Does::Pop => "]".into(),
+        Does::Colour { next } => {
+            sp.uses_colour = true;
+            if next { "{" } else { "}" }.into()
+        }
+        Does::Swap => "!".into(),
+        Does::Length(x) => format!("{}@", number(x)),
+        Does::Polygon { .. } => no_polygons(e, sym, "LinF", "as they move"),
+        Does::Thinner => no_widths(e, sym, "LinF has no line widths"),
+        Does::Stem => no_stems(e, sym, "LinF scales lengths by factors"),
+        Does::Fractint => fractint_only(e, sym, "LinF"),
+    })
+}
+
+impl Spellings {
+    /// The tokens of a rotation by `a` about `axis`: a turn about U by a
+    /// is (0, −a), a roll about H is (−a, 0), a pitch about L is a quarter
+    /// roll, a turn and the roll back.
+    fn rotate(&mut self, a: Angle, axis: Axis) -> String {
+        let r = Angle::Radians;
+        let (mag, negative) = match a {
+            Angle::Radians(x) => (Angle::Radians(x.abs()), x < 0.0),
+            other => (other, false),
         };
-        if text != name {
-            e.rename(&name, &text);
+        let (rot, names) = (&mut self.rot, &mut self.names);
+        let tok = match axis {
+            Axis::Up => rot.token(names, r(0.0), neg(mag), &["", "c"]),
+            Axis::Heading => rot.token(names, neg(mag), r(0.0), &["r"]),
+            Axis::Left => {
+                let first = rot.token(names, r(-PI / 2.0), a, &["p"]);
+                let back = rot.token(names, r(PI / 2.0), r(0.0), &["h"]);
+                format!("{first} {back}")
+            }
+        };
+        if axis != Axis::Left && negative {
+            flip(&tok)
+        } else {
+            tok
         }
-        spell.insert(s, text);
     }
-    // Guarded occurrences.
-    for &s in occ.iter().filter(|&&s| !plain(s)) {
-        if let Some(g) = sys.symbols.info(s).guard {
-            let base = spell.get(&g.base).cloned().unwrap_or_default();
-            spell.insert(s, format!("{}?{base}", number(g.probability)));
+}
+
+/// How words are written: each symbol's tokens, joined so that LinF reads
+/// them back as the same tokens.
+struct Words<'s> {
+    spell: &'s HashMap<SymbolId, String>,
+    all_short: bool,
+    angle_names: Vec<&'s str>,
+}
+
+impl<'s> Words<'s> {
+    fn of(sp: &'s Spellings) -> Self {
+        let decls = &sp.rot.decls;
+        let all_short = sp
+            .spell
+            .values()
+            .chain(decls.iter().map(|d| &d.name))
+            .all(|n| !is_ident(n) || n.chars().count() <= 1)
+            && decls.iter().all(|d| d.name.chars().count() <= 1);
+        Words {
+            spell: &sp.spell,
+            all_short,
+            angle_names: decls.iter().map(|d| d.name.as_str()).collect(),
         }
-    }
-    if sys.settings.scale != 100.0 {
-        e.problem(
-            Kind::Attribute,
-            None,
-            format!(
-                "the scale factor {}: LinF pictures always fill the frame",
-                number(sys.settings.scale)
-            ),
-            "the figure fills the picture",
-        );
     }
 
-    let all_short = spell
-        .values()
-        .chain(rot.decls.iter().map(|d| &d.name))
-        .all(|n| !is_ident(n) || n.chars().count() <= 1)
-        && rot.decls.iter().all(|d| d.name.chars().count() <= 1);
-    let angle_names: Vec<&str> = rot.decls.iter().map(|d| d.name.as_str()).collect();
-    let word = |w: &[SymbolId]| -> String {
-        let toks: Vec<&str> = w
-            .iter()
-            .filter_map(|s| spell.get(s).map(String::as_str))
-            .flat_map(str::split_whitespace)
-            .collect();
-        join(&toks, all_short, &angle_names)
-    };
+    fn word(&self, w: &[SymbolId]) -> String {
+        write_word(
+            w,
+            |s| self.spell.get(&s).map(String::as_str),
+            |t| {
+                let toks: Vec<&str> = t.into_iter().flat_map(str::split_whitespace).collect();
+                join(&toks, self.all_short, &self.angle_names)
+            },
+        )
+    }
+}
 
-    // Rules: rewritten symbols, then the identity rule for plain symbols
-    // nothing rewrites.
-    let mut rule_lines = Vec::new();
-    let mut heads: Vec<(SymbolId, usize)> = rules.iter().map(|(&s, &i)| (s, i)).collect();
-    heads.sort_by_key(|&(_, i)| i);
-    for (s, i) in heads {
-        let p = &sys.productions[i];
-        let alt = &p.alternatives[heaviest(p)];
-        let head = spell.get(&s).cloned().unwrap_or_default();
-        let mut line = format!("  {head} = {}", word(&alt.successor.0));
-        let span = e.production_span(i);
-        match span
-            .as_ref()
-            .and_then(|sp| attached(&e.origin.comments, e.source, sp))
-        {
+/// The lines of the `rules` block: rewritten symbols, then the identity
+/// rule for plain symbols nothing rewrites.
+fn rule_lines(
+    e: &mut Emitter<'_>,
+    rules: &Rules,
+    syms: &Symbols,
+    sp: &Spellings,
+    words: &Words<'_>,
+) -> Vec<String> {
+    let sys = e.sys;
+    let mut out = Vec::new();
+    for (s, i) in rules.heads() {
+        let succ = rules.successor(sys, s).unwrap_or_default();
+        let head = sp.spell.get(&s).cloned().unwrap_or_default();
+        let mut line = format!("  {head} = {}", words.word(succ));
+        match e.attached_to(e.production_span(i).as_ref()) {
             Some(Attached::After(c)) => {
                 let _ = write!(line, "  # {c}");
             }
             Some(Attached::Above(c)) => {
                 for l in c {
-                    rule_lines.push(format!("  {}", comment_line(&l).trim_end()));
+                    out.push(format!("  {}", hash_line(&l)));
                 }
             }
             None => {}
         }
-        let text = e.production_text(i);
-        e.exact(format!("production `{text}`"), span, line.trim());
-        rule_lines.push(line.trim_end().to_string());
+        e.exact_production(i, line.trim());
+        out.push(line.trim_end().to_string());
     }
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        if sys.op(s).is_none() && !rules.contains_key(&s) {
-            if let Some(n) = spell.get(&s) {
-                rule_lines.push(format!("  {n} = {n}"));
+    for &s in &syms.plain {
+        if sys.op(s).is_none() && !rules.contains(s) {
+            if let Some(n) = sp.spell.get(&s) {
+                out.push(format!("  {n} = {n}"));
             }
         }
     }
+    out
+}
 
-    let mut axiom = word(&sys.axiom.0);
-    if sys.settings.step != 1.0 {
-        let f = format!("{}@", number(sys.settings.step));
-        axiom = if axiom.is_empty() {
-            f
-        } else {
-            format!("{f} {axiom}")
-        };
-    }
-
-    let mut out = String::new();
-    out.push_str(&format!("# {}\n", banner(e)));
-    if let Some(c) = file_comment(&e.origin.comments, e.source) {
-        out.push_str("#\n");
-        for l in c {
-            out.push_str(&comment_line(&l));
-        }
-    }
+/// The file: the opening comment, the directives, the blocks.
+fn text(e: &mut Emitter<'_>, sp: &Spellings, axiom: &str, rule_lines: &[String]) -> String {
+    let sys = e.sys;
+    let mut out = hash_comment(&opening(e));
     let _ = writeln!(out, "#: steps {}", e.steps);
     if let Some((az, el)) = sys.settings.view {
         let _ = writeln!(out, "#: view {},{}", super::degrees(az), super::degrees(el));
     }
-    if !lines_block.is_empty() {
-        let _ = writeln!(out, "lines {}", lines_block.join(" "));
+    if !sp.lines.is_empty() {
+        let _ = writeln!(out, "lines {}", sp.lines.join(" "));
     }
-    if !blanks_block.is_empty() {
-        let _ = writeln!(out, "blanks {}", blanks_block.join(" "));
+    if !sp.blanks.is_empty() {
+        let _ = writeln!(out, "blanks {}", sp.blanks.join(" "));
     }
-    if !rot.decls.is_empty() {
+    let decls = &sp.rot.decls;
+    if !decls.is_empty() {
         let decl = |d: &Decl| {
             let pair = format!("({}, {})", expr(d.torsion), expr(d.curvature));
             if d.name.is_empty() {
@@ -514,28 +514,31 @@ pub fn write(e: &mut Emitter<'_>) -> String {
                 format!("{} = {pair}", d.name)
             }
         };
-        if rot.decls.len() == 1 {
-            let _ = writeln!(out, "angles {}", decl(&rot.decls[0]));
+        if decls.len() == 1 {
+            let _ = writeln!(out, "angles {}", decl(&decls[0]));
         } else {
             out.push_str("angles\n");
-            for d in &rot.decls {
+            for d in decls {
                 let _ = writeln!(out, "  {}", decl(d));
             }
         }
     }
     let _ = writeln!(out, "axiom {axiom}");
-    e.exact(
-        "the axiom",
-        e.spans.axiom.first().cloned(),
-        &format!("axiom {axiom}"),
-    );
+    e.exact_axiom(&format!("axiom {axiom}"));
     if !rule_lines.is_empty() {
         out.push_str("rules\n");
         for l in rule_lines {
-            out.push_str(&l);
+            out.push_str(l);
             out.push('\n');
         }
     }
+    out.push_str(&colors(sys, sp.uses_colour));
+    out
+}
+
+/// The `colors` block, when colours change.
+fn colors(sys: &System, uses_colour: bool) -> String {
+    let mut out = String::new();
     let colours: Vec<Rgb> = if !sys.colours.is_empty() {
         sys.colours.clone()
     } else if uses_colour {
@@ -546,28 +549,21 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     } else {
         Vec::new()
     };
-    if !colours.is_empty() && (uses_colour || distinct_colours > 1 || sys.colours.len() > 1) {
-        if sys.colours.is_empty() {
-            out.push_str("# pfg's palette, eight times: pfg starts again after the eighth colour, LinF stays on the last\n");
-        }
-        out.push_str("colors");
-        for (i, c) in colours.iter().enumerate() {
-            if i > 0 && i % 8 == 0 {
-                out.push_str("\n      ");
-            }
-            let _ = write!(out, " ({},{},{})", c.0, c.1, c.2);
-        }
-        out.push('\n');
+    if colours.is_empty() || !(uses_colour || distinct_colours(sys) > 1 || sys.colours.len() > 1) {
+        return out;
     }
+    if sys.colours.is_empty() {
+        out.push_str("# pfg's palette, eight times: pfg starts again after the eighth colour, LinF stays on the last\n");
+    }
+    out.push_str("colors");
+    for (i, c) in colours.iter().enumerate() {
+        if i > 0 && i % 8 == 0 {
+            out.push_str("\n      ");
+        }
+        let _ = write!(out, " ({},{},{})", c.0, c.1, c.2);
+    }
+    out.push('\n');
     out
-}
-
-fn comment_line(l: &str) -> String {
-    if l.is_empty() {
-        "#\n".into()
-    } else {
-        format!("# {l}\n")
-    }
 }
 
 /// `+name` <-> `-name`.

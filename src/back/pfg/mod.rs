@@ -22,11 +22,12 @@
 //!   list, so contexts see the markers as they saw the symbols.
 //! * A consider list (cpfg) becomes the ignore list of everything else.
 
-use super::{
-    attached, banner, file_comment, multiples, number, occurring, turns, Attached, Emitter, Kind,
-    Names, Turns,
+use super::walk::{
+    distinct_colours, dropped, fractint_only, no_chance, no_length_factor, no_stems, spell_each,
+    turn_text, turning, write_word, Does, Sym, Symbols, Turning,
 };
-use crate::ir::{Axis, ContextFilter, SymbolId, TurtleOp};
+use super::{number, opening, Attached, Emitter, Kind, Names};
+use crate::ir::{Axis, ContextFilter, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -127,263 +128,95 @@ impl Spelling {
     }
 }
 
+/// How pfg takes the turns of a system.
+const TURNING: Turning = Turning {
+    target: "pfg",
+    fixed: "pfg turns by fixed angles",
+    middle_in_degrees: true,
+    plane: false,
+};
+
+/// Why pfg has no length factors or stem lengths.
+const ONE_LENGTH: &str = "pfg draws every step with the same length";
+
+/// The symbols of a system as pfg spells them.
+struct Spellings {
+    spell: HashMap<SymbolId, Spelling>,
+    names: Names,
+    /// The drawing and the moving symbols (each written as a marker and
+    /// `F` or `f` when there are several).
+    draws: Vec<SymbolId>,
+    moves: Vec<SymbolId>,
+}
+
+impl Spellings {
+    fn pair_draw(&self) -> bool {
+        self.draws.len() > 1
+    }
+
+    fn pair_move(&self) -> bool {
+        self.moves.len() > 1
+    }
+
+    /// `w` as pfg writes it.
+    fn full(&self, w: &[SymbolId]) -> String {
+        write_word(
+            w,
+            |s| Some(self.spell.get(&s).map(Spelling::full).unwrap_or_default()),
+            |t| t.concat(),
+        )
+    }
+
+    /// The one character of each symbol of `w` (a context), if each has
+    /// one.
+    fn context(&self, w: &[SymbolId]) -> Option<String> {
+        let mut out = String::new();
+        for s in w {
+            out.push(self.spell.get(s)?.single()?);
+        }
+        Some(out)
+    }
+}
+
 pub fn write(e: &mut Emitter<'_>) -> String {
     let sys = e.sys;
-    let occ = occurring(sys);
-    let plain = |s: SymbolId| sys.symbols.info(s).guard.is_none();
-    let draws: Vec<SymbolId> = occ
-        .iter()
-        .copied()
-        .filter(|&s| plain(s) && sys.op(s) == Some(TurtleOp::Forward { draw: true }))
-        .collect();
-    let moves: Vec<SymbolId> = occ
-        .iter()
-        .copied()
-        .filter(|&s| plain(s) && sys.op(s) == Some(TurtleOp::Forward { draw: false }))
-        .collect();
-    let pair_draw = draws.len() > 1;
-    let pair_move = moves.len() > 1;
-
-    // The angle factor.
-    let mut by_symbol = Vec::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        let Some(op) = sys.op(s) else { continue };
-        if let Some(Turns::Fixed(t) | Turns::Random(t)) = turns(sys, op) {
-            by_symbol.extend(t.iter().map(|x| (s, x.1.abs())));
-        }
-        match turns(sys, op) {
-            Some(Turns::Fixed(_)) => {}
-            Some(Turns::Random(t)) => {
-                let mid: Vec<String> = t
-                    .iter()
-                    .map(|x| format!("{:.4}", x.1.to_degrees()))
-                    .collect();
-                e.problem(
-                    Kind::Interval,
-                    e.symbol_span(s),
-                    format!(
-                        "the interval angle of `{}`: pfg turns by fixed angles",
-                        e.name(s)
-                    ),
-                    format!(
-                        "the middle of the interval is used ({} degrees)",
-                        mid.join(", ")
-                    ),
-                );
-            }
-            None => {}
-        }
-    }
-    let n = super::angle_factor(e, &by_symbol, "pfg");
+    let syms = Symbols::of(sys);
+    let forward = |draw: bool| -> Vec<SymbolId> {
+        let op = Some(TurtleOp::Forward { draw });
+        syms.plain
+            .iter()
+            .copied()
+            .filter(|&s| sys.op(s) == op)
+            .collect()
+    };
+    let mut sp = Spellings {
+        spell: HashMap::new(),
+        names: Names::new(RESERVED),
+        draws: forward(true),
+        moves: forward(false),
+    };
+    let n = turning(e, &syms.plain, &TURNING);
     e.exact(
         "the turning angles",
         None,
         &format!("angle factor: {n} ({} degrees)", number(360.0 / n as f64)),
     );
-
-    // Names and spellings.
-    let mut names = Names::new(RESERVED);
-    let mut spell: HashMap<SymbolId, Spelling> = HashMap::new();
-    // Plain names first, so that they keep their own characters.
-    let mut wanted: Vec<(SymbolId, Vec<String>)> = Vec::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        let op = sys.op(s);
-        let name = e.name(s).to_string();
-        match op {
-            None => wanted.push((s, wishes(&name))),
-            Some(TurtleOp::Forward { draw }) if (draw && pair_draw) || (!draw && pair_move) => {
-                let mut w: Vec<String> = wishes(&name)
-                    .into_iter()
-                    .map(|c| c.to_ascii_uppercase())
-                    .collect();
-                w.extend(wishes(&name));
-                wanted.push((s, w));
-            }
-            _ => {}
-        }
-    }
-    for (s, w) in wanted {
-        let name = e.name(s).to_string();
-        let Some(c) = names.take(w.into_iter().chain(pool())) else {
-            e.problem(
-                Kind::TooLarge,
-                e.symbol_span(s),
-                format!("the symbol `{name}`: pfg has no character left for it"),
-                "use fewer symbols",
-            );
-            continue;
-        };
-        let c = c.chars().next().unwrap_or('?');
-        let sp = match sys.op(s) {
-            Some(TurtleOp::Forward { draw }) => Spelling::Pair(c, if draw { 'F' } else { 'f' }),
-            _ => Spelling::Chars(c.to_string()),
-        };
-        e.rename(&name, &sp.full());
-        spell.insert(s, sp);
-    }
-    let distinct_colours = {
-        let mut c = sys.colours.clone();
-        c.dedup();
-        c.len()
-    };
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        if spell.contains_key(&s) {
-            continue;
-        }
-        let name = e.name(s).to_string();
-        let span = e.symbol_span(s);
-        let Some(op) = sys.op(s) else { continue };
-        let text = match op {
-            TurtleOp::Forward { draw: true } => "F".to_string(),
-            TurtleOp::Forward { draw: false } => "f".to_string(),
-            TurtleOp::TurnAround => "|".to_string(),
-            TurtleOp::Rotate { .. } | TurtleOp::Frenet { .. } => {
-                let t = match turns(sys, op) {
-                    Some(Turns::Fixed(t)) | Some(Turns::Random(t)) => t,
-                    None => Vec::new(),
-                };
-                let mut out = String::new();
-                for (axis, a) in t {
-                    let k = multiples(a, n);
-                    let (pos, neg) = match axis {
-                        Axis::Up => ('+', '-'),
-                        Axis::Left => ('&', '^'),
-                        Axis::Heading => ('\\', '/'),
-                    };
-                    if axis == Axis::Up && k.unsigned_abs() * 2 == n {
-                        out.push('|');
-                    } else {
-                        let c = if k > 0 { pos } else { neg };
-                        out.push_str(&super::repeated(e, s, c, k));
-                    }
-                }
-                out
-            }
-            TurtleOp::Push => "[".into(),
-            TurtleOp::Pop => "]".into(),
-            TurtleOp::PolygonBegin => "{".into(),
-            TurtleOp::PolygonEnd => "}".into(),
-            TurtleOp::DecrementWidth => {
-                if sys.settings.width_factor != crate::ir::Settings::default().width_factor {
-                    e.problem(
-                        Kind::Attribute,
-                        span,
-                        format!(
-                            "`{name}` makes lines thinner by the factor {}: pfg's `!` always uses {}",
-                            number(sys.settings.width_factor),
-                            number(crate::ir::Settings::default().width_factor)
-                        ),
-                        "pfg's factor is used",
-                    );
-                }
-                "!".into()
-            }
-            TurtleOp::NextColour => {
-                if sys.colours.is_empty() {
-                    "'".into()
-                } else if distinct_colours <= 1 {
-                    String::new()
-                } else {
-                    e.problem(
-                        Kind::Attribute,
-                        span,
-                        format!("`{name}` steps through the file's own colours: pfg's `'` steps through a fixed palette"),
-                        "`'` is written: the colours come from pfg's palette",
-                    );
-                    "'".into()
-                }
-            }
-            TurtleOp::PreviousColour => {
-                if distinct_colours > 1 {
-                    e.problem(
-                        Kind::Attribute,
-                        span,
-                        format!(
-                            "`{name}` goes back to the previous colour: pfg has no such symbol"
-                        ),
-                        "it is dropped",
-                    );
-                }
-                String::new()
-            }
-            TurtleOp::SwapTurns => {
-                e.problem(
-                    Kind::Swap,
-                    span,
-                    format!("`{name}` exchanges `+` and `-`: pfg has no such symbol"),
-                    "it is dropped",
-                );
-                String::new()
-            }
-            TurtleOp::ScaleLength(x) => {
-                if x != 1.0 {
-                    e.problem(
-                        Kind::Length,
-                        span,
-                        format!(
-                            "the length factor `{name}`: pfg draws every step with the same length"
-                        ),
-                        "the factor is dropped",
-                    );
-                }
-                String::new()
-            }
-            TurtleOp::Stem { .. } => {
-                e.problem(
-                    Kind::Length,
-                    span,
-                    "a stem length: pfg draws every step with the same length",
-                    "it is dropped",
-                );
-                String::new()
-            }
-            TurtleOp::TurnUnswapped(_)
-            | TurtleOp::RotateReal(_)
-            | TurtleOp::ForwardReal { .. }
-            | TurtleOp::SetColour(_)
-            | TurtleOp::ShiftColour { .. } => super::fractint_only(e, &name, span, "pfg"),
-            // cpfg's own turtle commands: parametric systems are refused
-            // before any emitter runs (see `translate`).
-            TurtleOp::ColourIndex { .. }
-            | TurtleOp::LineWidth { .. }
-            | TurtleOp::PolygonVertex
-            | TurtleOp::Sphere
-            | TurtleOp::ScreenDisc
-            | TurtleOp::Circle
-            | TurtleOp::MoveTo
-            | TurtleOp::SetHeading
-            | TurtleOp::RollToVertical
-            | TurtleOp::Surface(_)
-            | TurtleOp::CylinderStart
-            | TurtleOp::CylinderPoint { .. }
-            | TurtleOp::CylinderTangents
-            | TurtleOp::Query(_) => continue,
-        };
-        if text != name {
-            e.rename(&name, &text);
-        }
-        spell.insert(s, Spelling::Chars(text));
+    name_symbols(e, &syms, &mut sp);
+    let todo = syms.unspelled(&sp.spell);
+    let distinct = distinct_colours(sys);
+    for (sym, text) in spell_each(e, todo, |e, sym| operation(e, sym, n, distinct)) {
+        e.rename(&sym.name, &text);
+        sp.spell.insert(sym.id, Spelling::Chars(text));
     }
     // Guarded symbols are written as their base.
-    for &s in occ.iter().filter(|&&s| !plain(s)) {
-        let Some(g) = sys.symbols.info(s).guard else {
-            continue;
-        };
-        e.problem(
-            Kind::Guard,
-            e.symbol_span(s),
-            format!(
-                "`{}` expands with probability {}: pfg has no per-occurrence probability",
-                e.name(s),
-                number(g.probability)
-            ),
-            format!("`{}` is always expanded", e.name(g.base)),
-        );
-        let base = spell
+    for &(s, g) in &syms.guarded {
+        no_chance(e, s, g, "pfg has no per-occurrence probability");
+        let base = sp
+            .spell
             .get(&g.base)
             .cloned()
             .unwrap_or(Spelling::Chars(String::new()));
-        spell.insert(s, base);
+        sp.spell.insert(s, base);
     }
     if sys.settings.step != 1.0 {
         e.problem(
@@ -396,95 +229,220 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             "steps are 1 long: the picture is the same, scaled",
         );
     }
-
-    let full = |w: &[SymbolId]| -> String {
-        w.iter()
-            .map(|s| spell.get(s).map(Spelling::full).unwrap_or_default())
-            .collect()
-    };
-    let ctx_used = sys.productions.iter().any(|p| p.is_context_sensitive());
-
-    // Productions.
     let mut lines: Vec<String> = Vec::new();
     let mut rewritten_alone: Vec<SymbolId> = Vec::new();
-    for (i, p) in sys.productions.iter().enumerate() {
-        let text = e.production_text(i);
-        let span = e.production_span(i);
-        let mut pred = String::new();
-        let mut ok = true;
-        for (j, s) in p.predecessor.iter().enumerate() {
-            match spell.get(s) {
-                Some(sp @ Spelling::Pair(..)) if j + 1 < p.predecessor.len() => {
-                    pred.push_str(&sp.full())
-                }
-                Some(sp) => match sp.single() {
-                    Some(c) => pred.push(c),
-                    None => ok = false,
-                },
-                None => ok = false,
+    for i in 0..sys.productions.len() {
+        rewritten_alone.extend(production(e, i, &sp, &mut lines));
+    }
+    pair_rules(e, &sp, &rewritten_alone, &mut lines);
+    let ignore = ignore_list(sys, &syms, &sp);
+    let axiom = axiom(e, &mut sp);
+    text(e, n, &axiom, &ignore, &lines)
+}
+
+/// Gives the symbols that do nothing, and the drawing and moving symbols
+/// written as a marker and `F` or `f`, their characters: plain names
+/// first, so that they keep their own characters.
+fn name_symbols(e: &mut Emitter<'_>, syms: &Symbols, sp: &mut Spellings) {
+    let sys = e.sys;
+    let mut wanted: Vec<(SymbolId, Vec<String>)> = Vec::new();
+    for &s in &syms.plain {
+        let name = e.name(s);
+        match sys.op(s) {
+            None => wanted.push((s, wishes(name))),
+            Some(TurtleOp::Forward { draw })
+                if (draw && sp.pair_draw()) || (!draw && sp.pair_move()) =>
+            {
+                let mut w: Vec<String> = wishes(name)
+                    .into_iter()
+                    .map(|c| c.to_ascii_uppercase())
+                    .collect();
+                w.extend(wishes(name));
+                wanted.push((s, w));
             }
+            _ => {}
         }
-        let context = |w: &[SymbolId]| -> Option<String> {
-            let mut out = String::new();
-            for s in w {
-                out.push(spell.get(s)?.single()?);
-            }
-            Some(out)
-        };
-        let (lc, rc) = (context(&p.left), context(&p.right));
-        let (Some(lc), Some(rc), true) = (lc, rc, ok) else {
+    }
+    for (s, w) in wanted {
+        let name = e.name(s).to_string();
+        let Some(c) = sp.names.take(w.into_iter().chain(pool())) else {
             e.problem(
-                Kind::Rule,
-                span,
-                format!("the production `{text}` rewrites or looks at a symbol that pfg writes as several characters (or none)"),
-                "the production is dropped",
+                Kind::TooLarge,
+                e.symbol_span(s),
+                format!("the symbol `{name}`: pfg has no character left for it"),
+                "use fewer symbols",
             );
             continue;
         };
-        if p.left.is_empty() && p.right.is_empty() && p.predecessor.len() == 1 {
-            rewritten_alone.push(p.predecessor[0]);
-        }
-        let star = |s: String| if s.is_empty() { "*".to_string() } else { s };
-        let head = format!("{} < {} > {} -->", star(lc), pred, star(rc));
-        let comment = span
-            .as_ref()
-            .and_then(|s| attached(&e.origin.comments, e.source, s));
-        if let Some(Attached::Above(c)) = &comment {
-            lines.push(comment_block(c));
-        }
-        let weighted = p.alternatives.len() > 1;
-        // Weights are relative: written as shares of the largest, and
-        // equal when the source's do not make sense as numbers.
-        let max = p.alternatives.iter().map(|a| a.weight).fold(0.0, f64::max);
-        let mut first = String::new();
-        for a in &p.alternatives {
-            let mut line = format!("{head} {}", star(full(&a.successor.0)));
-            if weighted {
-                let w = a.weight / max;
-                let w = if w.is_finite() && w > 0.0 { w } else { 1.0 };
-                let _ = write!(line, " : {}", number(w));
-            }
-            if let Some(Attached::After(c)) = &comment {
-                if first.is_empty() {
-                    let _ = write!(line, " /* {} */", sanitize(c));
-                }
-            }
-            if first.is_empty() {
-                first = line.clone();
-            }
-            lines.push(line);
-        }
-        e.exact(format!("production `{text}`"), span, &first);
+        let c = c.chars().next().unwrap_or('?');
+        let spelling = match sys.op(s) {
+            Some(TurtleOp::Forward { draw }) => Spelling::Pair(c, if draw { 'F' } else { 'f' }),
+            _ => Spelling::Chars(c.to_string()),
+        };
+        e.rename(&name, &spelling.full());
+        sp.spell.insert(s, spelling);
     }
-    // The pairs: markers nothing rewrote keep their symbol, and the old
-    // `F`/`f` go.
-    for (pair, base) in [(pair_draw, 'F'), (pair_move, 'f')] {
+}
+
+/// What pfg writes for a symbol that does something (`None`: nothing
+/// at all, not even an empty spelling), with the angle factor `n` and
+/// the count of the file's distinct colours.
+fn operation(e: &mut Emitter<'_>, sym: &Sym, n: u64, distinct: usize) -> Option<String> {
+    let sys = e.sys;
+    let name = &sym.name;
+    let span = sym.span.clone();
+    Some(match sym.does {
+        Does::Nothing | Does::Cpfg => return None,
+        Does::Forward { draw: true } => "F".into(),
+        Does::Forward { draw: false } => "f".into(),
+        Does::Turn(TurtleOp::TurnAround) => "|".into(),
+        Does::Turn(op) => turn_text(e, sym.id, op, n, Some('|'), |axis, positive| {
+            let (pos, neg) = match axis {
+                Axis::Up => ('+', '-'),
+                Axis::Left => ('&', '^'),
+                Axis::Heading => ('\\', '/'),
+            };
+            Some(if positive { pos } else { neg })
+        }),
+        Does::Push => "[".into(),
+        Does::Pop => "]".into(),
+        Does::Polygon { begin } => if begin { "{" } else { "}" }.into(),
+        Does::Thinner => {
+            let default = crate::ir::Settings::default().width_factor;
+            if sys.settings.width_factor != default {
+                e.problem(
+                    Kind::Attribute,
+                    span,
+                    format!(
+                        "`{name}` makes lines thinner by the factor {}: pfg's `!` always uses {}",
+                        number(sys.settings.width_factor),
+                        number(default)
+                    ),
+                    "pfg's factor is used",
+                );
+            }
+            "!".into()
+        }
+        Does::Colour { next: true } => {
+            if sys.colours.is_empty() {
+                "'".into()
+            } else if distinct <= 1 {
+                String::new()
+            } else {
+                e.problem(
+                    Kind::Attribute,
+                    span,
+                    format!("`{name}` steps through the file's own colours: pfg's `'` steps through a fixed palette"),
+                    "`'` is written: the colours come from pfg's palette",
+                );
+                "'".into()
+            }
+        }
+        Does::Colour { next: false } if distinct > 1 => dropped(
+            e,
+            sym,
+            Kind::Attribute,
+            format!("`{name}` goes back to the previous colour: pfg has no such symbol"),
+            "it is dropped",
+        ),
+        Does::Colour { next: false } => String::new(),
+        Does::Swap => dropped(
+            e,
+            sym,
+            Kind::Swap,
+            format!("`{name}` exchanges `+` and `-`: pfg has no such symbol"),
+            "it is dropped",
+        ),
+        Does::Length(x) => no_length_factor(e, sym, x, ONE_LENGTH),
+        Does::Stem => no_stems(e, sym, ONE_LENGTH),
+        Does::Fractint => fractint_only(e, sym, "pfg"),
+    })
+}
+
+/// Writes production `i` (one line per alternative, after the comment
+/// above it) to `lines`; the symbol it rewrites when it rewrites one
+/// symbol without context.
+fn production(
+    e: &mut Emitter<'_>,
+    i: usize,
+    sp: &Spellings,
+    lines: &mut Vec<String>,
+) -> Option<SymbolId> {
+    let p = &e.sys.productions[i];
+    let text = e.production_text(i);
+    let span = e.production_span(i);
+    let mut pred = String::new();
+    let mut ok = true;
+    for (j, s) in p.predecessor.iter().enumerate() {
+        match sp.spell.get(s) {
+            Some(x @ Spelling::Pair(..)) if j + 1 < p.predecessor.len() => pred.push_str(&x.full()),
+            Some(x) => match x.single() {
+                Some(c) => pred.push(c),
+                None => ok = false,
+            },
+            None => ok = false,
+        }
+    }
+    let (lc, rc) = (sp.context(&p.left), sp.context(&p.right));
+    let (Some(lc), Some(rc), true) = (lc, rc, ok) else {
+        e.problem(
+            Kind::Rule,
+            span,
+            format!("the production `{text}` rewrites or looks at a symbol that pfg writes as several characters (or none)"),
+            "the production is dropped",
+        );
+        return None;
+    };
+    let star = |s: String| if s.is_empty() { "*".to_string() } else { s };
+    let head = format!("{} < {} > {} -->", star(lc), pred, star(rc));
+    let comment = e.attached_to(span.as_ref());
+    if let Some(Attached::Above(c)) = &comment {
+        lines.push(comment_block(c));
+    }
+    let weighted = p.alternatives.len() > 1;
+    // Weights are relative: written as shares of the largest, and
+    // equal when the source's do not make sense as numbers.
+    let max = p.alternatives.iter().map(|a| a.weight).fold(0.0, f64::max);
+    let mut first = String::new();
+    for a in &p.alternatives {
+        let mut line = format!("{head} {}", star(sp.full(&a.successor.0)));
+        if weighted {
+            let w = a.weight / max;
+            let w = if w.is_finite() && w > 0.0 { w } else { 1.0 };
+            let _ = write!(line, " : {}", number(w));
+        }
+        if let Some(Attached::After(c)) = &comment {
+            if first.is_empty() {
+                let _ = write!(line, " /* {} */", sanitize(c));
+            }
+        }
+        if first.is_empty() {
+            first = line.clone();
+        }
+        lines.push(line);
+    }
+    e.exact(format!("production `{text}`"), span, &first);
+    let alone = p.left.is_empty() && p.right.is_empty() && p.predecessor.len() == 1;
+    alone.then(|| p.predecessor[0])
+}
+
+/// The pairs: markers nothing rewrote (alone) keep their symbol, and the
+/// old `F`/`f` go.
+fn pair_rules(
+    e: &mut Emitter<'_>,
+    sp: &Spellings,
+    rewritten_alone: &[SymbolId],
+    lines: &mut Vec<String>,
+) {
+    for (pair, base, syms) in [
+        (sp.pair_draw(), 'F', &sp.draws),
+        (sp.pair_move(), 'f', &sp.moves),
+    ] {
         if !pair {
             continue;
         }
-        let syms = if base == 'F' { &draws } else { &moves };
         for s in syms {
-            if let Some(Spelling::Pair(m, b)) = spell.get(s) {
+            if let Some(Spelling::Pair(m, b)) = sp.spell.get(s) {
                 if !rewritten_alone.contains(s) {
                     lines.push(format!("* < {m} > * --> {m}{b}"));
                 }
@@ -497,67 +455,65 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             &format!("* < {base} > * --> *"),
         );
     }
+}
 
-    // Ignore list.
+/// The ignore list (empty unless a production has a context).
+fn ignore_list(sys: &System, syms: &Symbols, sp: &Spellings) -> String {
     let mut ignore = String::new();
-    if ctx_used {
-        let mut push = |s: String| {
-            for c in s.chars() {
-                if !ignore.contains(c) {
-                    ignore.push(c);
-                }
-            }
-        };
-        match &sys.context {
-            ContextFilter::Ignore(set) => {
-                for s in set {
-                    if let Some(sp) = spell.get(s) {
-                        push(sp.single().map(String::from).unwrap_or_else(|| sp.full()));
-                    }
-                }
-            }
-            ContextFilter::Consider(set) => {
-                for &s in &occ {
-                    if s != SymbolId::OPEN && s != SymbolId::CLOSE && !set.contains(&s) {
-                        if let Some(sp) = spell.get(&s) {
-                            push(sp.single().map(String::from).unwrap_or_else(|| sp.full()));
-                        }
-                    }
-                }
+    if !sys.productions.iter().any(|p| p.is_context_sensitive()) {
+        return ignore;
+    }
+    let mut push = |s: String| {
+        for c in s.chars() {
+            if !ignore.contains(c) {
+                ignore.push(c);
             }
         }
-        if pair_draw {
-            push("F".into());
-        }
-        if pair_move {
-            push("f".into());
+    };
+    let ignored: Vec<SymbolId> = match &sys.context {
+        ContextFilter::Ignore(set) => set.clone(),
+        ContextFilter::Consider(set) => syms
+            .all
+            .iter()
+            .copied()
+            .filter(|s| *s != SymbolId::OPEN && *s != SymbolId::CLOSE && !set.contains(s))
+            .collect(),
+    };
+    for s in ignored {
+        if let Some(x) = sp.spell.get(&s) {
+            push(x.single().map(String::from).unwrap_or_else(|| x.full()));
         }
     }
+    if sp.pair_draw() {
+        push("F".into());
+    }
+    if sp.pair_move() {
+        push("f".into());
+    }
+    ignore
+}
 
-    let mut axiom = full(&sys.axiom.0);
-    if axiom.is_empty() {
-        // pfg needs an axiom: a symbol that does nothing.
-        axiom = names.take(pool()).unwrap_or_else(|| "Z".to_string());
-        e.exact(
-            "the empty axiom",
-            None,
-            &format!("axiom: {axiom} (a symbol that does nothing)"),
-        );
-    } else {
-        e.exact(
-            "the axiom",
-            e.spans.axiom.first().cloned(),
-            &format!("axiom: {axiom}"),
-        );
+/// The axiom; pfg needs one, so an empty axiom is a symbol that does
+/// nothing.
+fn axiom(e: &mut Emitter<'_>, sp: &mut Spellings) -> String {
+    let axiom = sp.full(&e.sys.axiom.0);
+    if !axiom.is_empty() {
+        e.exact_axiom(&format!("axiom: {axiom}"));
+        return axiom;
     }
+    let axiom = sp.names.take(pool()).unwrap_or_else(|| "Z".to_string());
+    e.exact(
+        "the empty axiom",
+        None,
+        &format!("axiom: {axiom} (a symbol that does nothing)"),
+    );
+    axiom
+}
 
-    let mut out = String::new();
-    let mut head = vec![banner(e)];
-    if let Some(c) = file_comment(&e.origin.comments, e.source) {
-        head.push(String::new());
-        head.extend(c);
-    }
-    out.push_str(&comment_block(&head));
+/// The file: the opening comment, the headers, the productions.
+fn text(e: &Emitter<'_>, n: u64, axiom: &str, ignore: &str, lines: &[String]) -> String {
+    let sys = e.sys;
+    let mut out = comment_block(&opening(e));
     out.push('\n');
     let _ = writeln!(out, "derivation length: {}", e.steps);
     let _ = writeln!(out, "angle factor: {n}");
@@ -569,7 +525,7 @@ pub fn write(e: &mut Emitter<'_>) -> String {
     let _ = writeln!(out, "axiom: {axiom}");
     let _ = writeln!(out, "{}", format!("ignore: {ignore}").trim_end());
     for l in lines {
-        out.push_str(&l);
+        out.push_str(l);
         out.push('\n');
     }
     out

@@ -15,7 +15,17 @@
 //! left, reading the BED back draws exactly the same stems (and the layout
 //! under them).
 
-use crate::ir::{BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word};
+use super::walk::{
+    distinct_colours, dropped, fractint_only, no_chance, no_length_factor, no_polygons, no_scale,
+    no_widths, spell_each, turn_text, turning, write_word, Does, Sym, Symbols, Turning,
+};
+use super::{
+    hash_comment, number, numbered, opening, single_symbol_rules, Emitter, Kind, Names, Rules,
+};
+use crate::ir::{
+    Axis, BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word,
+};
+use std::collections::HashMap;
 use std::fmt::Write;
 
 /// The Stl emitter in the registry.
@@ -176,6 +186,14 @@ fn shape(s: &Shape) -> String {
 /// How many components the STL reader expands at most.
 const MAX_COMPONENTS: u64 = crate::ir::Structure::MAX_EXPANSION as u64;
 
+/// How STL takes the turns of a system.
+const TURNING: Turning = Turning {
+    target: "STL",
+    fixed: "STL turns by a fixed angle",
+    middle_in_degrees: false,
+    plane: true,
+};
+
 /// A pfg or LinF system as STL. STL has no derivation: the steps are
 /// written into the rules. Symbol `s` after `k` steps is the macro `Sk`,
 /// whose body is `s`'s successor with each symbol after `k − 1` steps; a
@@ -186,223 +204,35 @@ const MAX_COMPONENTS: u64 = crate::ir::Structure::MAX_EXPANSION as u64;
 /// stems only: moves without drawing, 3D turns, colours, widths and
 /// length factors are problems, as are contexts and random choices.
 pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
-    use super::{heaviest, multiples, number, occurring, single_symbol_rules, turns};
-    use super::{Kind, Turns};
-    use crate::ir::{Axis, TurtleOp};
-    use std::collections::HashMap;
-
     let sys = e.sys;
     let rules = single_symbol_rules(e, "STL");
-    let occ = occurring(sys);
-    let plain = |s: SymbolId| sys.symbols.info(s).guard.is_none();
-
-    // The turning angle.
-    let mut by_symbol = Vec::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        let Some(op) = sys.op(s) else { continue };
-        let t = match turns(sys, op) {
-            Some(Turns::Fixed(t)) => t,
-            Some(Turns::Random(t)) => {
-                e.problem(
-                    Kind::Interval,
-                    e.symbol_span(s),
-                    format!(
-                        "the interval angle of `{}`: STL turns by a fixed angle",
-                        e.name(s)
-                    ),
-                    "the middle of the interval is used",
-                );
-                t
-            }
-            None => continue,
-        };
-        for (axis, a) in t {
-            if axis == Axis::Up {
-                by_symbol.push((s, a.abs()));
-            } else {
-                e.problem(
-                    Kind::ThreeD,
-                    e.symbol_span(s),
-                    format!("`{}` rotates out of the plane: STL draws in 2D", e.name(s)),
-                    "the rotation out of the plane is dropped",
-                );
-            }
-        }
-    }
-    let n = super::angle_factor(e, &by_symbol, "STL");
-
-    // Components of each symbol.
-    let distinct_colours = {
-        let mut c = sys.colours.clone();
-        c.dedup();
-        c.len()
-    };
-    let mut comps: HashMap<SymbolId, String> = HashMap::new();
-    for &s in occ.iter().filter(|&&s| plain(s)) {
-        let name = e.name(s).to_string();
-        let span = e.symbol_span(s);
-        let text = match sys.op(s) {
-            None => String::new(),
-            Some(TurtleOp::Forward { draw: true }) => "F".into(),
-            Some(TurtleOp::Forward { draw: false }) => {
-                e.problem(
-                    Kind::Move,
-                    span,
-                    format!("`{name}` moves without drawing: every STL stem is drawn"),
-                    "the move is drawn as a stem",
-                );
-                "F".into()
-            }
-            Some(
-                op @ (TurtleOp::Rotate { .. } | TurtleOp::Frenet { .. } | TurtleOp::TurnAround),
-            ) => {
-                let t = match turns(sys, op) {
-                    Some(Turns::Fixed(t)) | Some(Turns::Random(t)) => t,
-                    None => Vec::new(),
-                };
-                let mut out = String::new();
-                for (axis, a) in t {
-                    if axis != Axis::Up {
-                        continue;
-                    }
-                    let k = multiples(a, n);
-                    let c = if k > 0 { 'R' } else { 'L' };
-                    out.push_str(&super::repeated(e, s, c, k));
-                }
-                out
-            }
-            Some(TurtleOp::Push) => "[".into(),
-            Some(TurtleOp::Pop) => "]".into(),
-            Some(TurtleOp::NextColour) | Some(TurtleOp::PreviousColour) => {
-                if sys.colours.is_empty() || distinct_colours > 1 {
-                    e.problem(
-                        Kind::Attribute,
-                        span,
-                        format!("the colour symbol `{name}`: STL stems have no colours"),
-                        "it is dropped",
-                    );
-                }
-                String::new()
-            }
-            Some(TurtleOp::DecrementWidth) => {
-                e.problem(
-                    Kind::Attribute,
-                    span,
-                    format!("`{name}` makes lines thinner: STL sets widths per level only"),
-                    "it is dropped",
-                );
-                String::new()
-            }
-            Some(TurtleOp::PolygonBegin) | Some(TurtleOp::PolygonEnd) => {
-                e.problem(
-                    Kind::Attribute,
-                    span,
-                    format!("the polygon symbol `{name}`: STL has no filled polygons"),
-                    "the polygon is dropped; its edges are drawn as stems",
-                );
-                String::new()
-            }
-            Some(TurtleOp::SwapTurns) => {
-                e.problem(
-                    Kind::Swap,
-                    span,
-                    format!("`{name}` exchanges left and right: STL has no such component"),
-                    "it is dropped",
-                );
-                String::new()
-            }
-            Some(TurtleOp::ScaleLength(x)) => {
-                if x != 1.0 {
-                    e.problem(
-                        Kind::Length,
-                        span,
-                        format!(
-                            "the length factor `{name}`: STL stem lengths change per level only"
-                        ),
-                        "the factor is dropped",
-                    );
-                }
-                String::new()
-            }
-            Some(TurtleOp::Stem { .. }) => String::new(),
-            Some(
-                TurtleOp::TurnUnswapped(_)
-                | TurtleOp::RotateReal(_)
-                | TurtleOp::ForwardReal { .. }
-                | TurtleOp::SetColour(_)
-                | TurtleOp::ShiftColour { .. },
-            ) => super::fractint_only(e, &name, span, "STL"),
-            // cpfg's own turtle commands: parametric systems are refused
-            // before any emitter runs (see `translate`).
-            Some(_) => String::new(),
-        };
-        comps.insert(s, text);
-    }
+    let syms = Symbols::of(sys);
+    let n = turning(e, &syms.plain, &TURNING);
+    let distinct = distinct_colours(sys);
+    let comps = spell_each(e, syms.plain.iter().copied(), |e, sym| {
+        Some(components(e, sym, n, distinct))
+    })
+    .into_iter()
+    .map(|(sym, text)| (sym.id, text))
+    .collect();
     // A guarded occurrence is its base.
-    let base = |s: SymbolId| sys.symbols.info(s).guard.map_or(s, |g| g.base);
-    for &s in occ.iter().filter(|&&s| !plain(s)) {
-        if let Some(g) = sys.symbols.info(s).guard {
-            e.problem(
-                Kind::Guard,
-                e.symbol_span(s),
-                format!(
-                    "`{}` expands with probability {}: STL has no chance",
-                    e.name(s),
-                    number(g.probability)
-                ),
-                format!("`{}` is always expanded", e.name(g.base)),
-            );
-        }
+    for &(s, g) in &syms.guarded {
+        no_chance(e, s, g, "STL has no chance");
     }
-    if sys.settings.scale != 100.0 {
-        e.problem(
-            Kind::Attribute,
-            None,
-            format!(
-                "the scale factor {}: STL pictures fill the frame",
-                number(sys.settings.scale)
-            ),
-            "the figure fills the picture",
-        );
-    }
+    no_scale(e, "STL pictures fill the frame");
 
     let steps = e.steps;
-    let successor = |s: SymbolId| -> Option<&[SymbolId]> {
-        let i = *rules.get(&s)?;
-        let p = &sys.productions[i];
-        Some(&p.alternatives[heaviest(p)].successor.0)
+    let mut x = Expansion {
+        sys,
+        rules: &rules,
+        comps,
+        size: HashMap::new(),
+        names: Names::new(&crate::ir::Structure::RESERVED),
+        stems: HashMap::new(),
+        defined: HashMap::new(),
+        stack: Vec::new(),
     };
-    // Sizes (components) of each symbol after k steps, bottom-up.
-    let mut size: HashMap<(SymbolId, u64), u64> = HashMap::new();
-    let comp_len = |s: SymbolId| comps.get(&base(s)).map_or(0, |c| c.len() as u64);
-    fn size_of(
-        s: SymbolId,
-        k: u64,
-        size: &mut HashMap<(SymbolId, u64), u64>,
-        succ: &dyn Fn(SymbolId) -> Option<Vec<SymbolId>>,
-        comp_len: &dyn Fn(SymbolId) -> u64,
-    ) -> u64 {
-        if let Some(&v) = size.get(&(s, k)) {
-            return v;
-        }
-        let v = match (k, succ(s)) {
-            (0, _) | (_, None) => comp_len(s),
-            (_, Some(w)) => {
-                let mut total: u64 = 0;
-                for t in w {
-                    total = total.saturating_add(size_of(t, k - 1, size, succ, comp_len));
-                }
-                total
-            }
-        };
-        size.insert((s, k), v);
-        v
-    }
-    let succ_of = |s: SymbolId| successor(base(s)).map(|w| w.to_vec());
-    let mut total: u64 = 0;
-    for &s in &sys.axiom.0 {
-        total = total.saturating_add(size_of(s, steps, &mut size, &succ_of, &comp_len));
-    }
+    let total = x.total(steps);
     if total > MAX_COMPONENTS {
         e.problem(
             Kind::TooLarge,
@@ -413,175 +243,264 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
             "translate with fewer steps (`-n`)",
         );
     }
-
-    // Rule names.
-    let reserved: Vec<&str> = crate::ir::Structure::RESERVED.to_vec();
-    let mut names = super::Names::new(&reserved);
-    let mut base_name: HashMap<SymbolId, String> = HashMap::new();
-    let mut rule_name = |s: SymbolId, names: &mut super::Names| -> String {
-        base_name
-            .entry(s)
-            .or_insert_with(|| {
-                let n = sys.symbols.name(s);
-                let ok = n.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
-                    && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-                let stem = if ok {
-                    n.to_string()
-                } else {
-                    format!("S{}", s.0)
-                };
-                let stem = if stem
-                    .chars()
-                    .all(|c| matches!(c, 'F' | 'L' | 'R' | 'B' | 'I'))
-                {
-                    format!("{stem}x")
-                } else {
-                    stem
-                };
-                names.reserve(&stem);
-                stem
-            })
-            .clone()
+    let (out_rules, seed) = if let Some(d) = x.self_resembling(steps) {
+        x.self_resemblance(d, steps)
+    } else if total <= MAX_COMPONENTS {
+        x.macros(steps)
+    } else {
+        (Vec::new(), String::new())
     };
+    text(e, n, &rules, &out_rules, &seed)
+}
 
-    let mut out_rules: Vec<(u64, String, String)> = Vec::new();
-    let shortcut = {
-        let draw: Vec<SymbolId> = rules.keys().copied().collect();
-        draw.len() == 1
-            && comps.get(&draw[0]).map(String::as_str) == Some("F")
+/// The drawing components STL writes for a symbol, with the angle factor
+/// `n` and the count of the file's distinct colours.
+fn components(e: &mut Emitter<'_>, sym: &Sym, n: u64, distinct: usize) -> String {
+    let sys = e.sys;
+    let name = &sym.name;
+    let span = sym.span.clone();
+    match sym.does {
+        Does::Nothing | Does::Stem | Does::Cpfg => String::new(),
+        Does::Forward { draw: true } => "F".into(),
+        Does::Forward { draw: false } => {
+            e.problem(
+                Kind::Move,
+                span,
+                format!("`{name}` moves without drawing: every STL stem is drawn"),
+                "the move is drawn as a stem",
+            );
+            "F".into()
+        }
+        Does::Turn(op) => turn_text(e, sym.id, op, n, None, |axis, positive| {
+            (axis == Axis::Up).then_some(if positive { 'R' } else { 'L' })
+        }),
+        Does::Push => "[".into(),
+        Does::Pop => "]".into(),
+        Does::Colour { .. } if sys.colours.is_empty() || distinct > 1 => dropped(
+            e,
+            sym,
+            Kind::Attribute,
+            format!("the colour symbol `{name}`: STL stems have no colours"),
+            "it is dropped",
+        ),
+        Does::Colour { .. } => String::new(),
+        Does::Thinner => no_widths(e, sym, "STL sets widths per level only"),
+        Does::Polygon { .. } => no_polygons(e, sym, "STL", "as stems"),
+        Does::Swap => dropped(
+            e,
+            sym,
+            Kind::Swap,
+            format!("`{name}` exchanges left and right: STL has no such component"),
+            "it is dropped",
+        ),
+        Does::Length(x) => no_length_factor(e, sym, x, "STL stem lengths change per level only"),
+        Does::Fractint => fractint_only(e, sym, "STL"),
+    }
+}
+
+/// One rule as written: the steps it stands for, its name, its body.
+type Macro = (u64, String, String);
+
+/// The derived word as STL rules: each symbol's drawing components, and
+/// the macros defined so far.
+struct Expansion<'a> {
+    sys: &'a System,
+    rules: &'a Rules,
+    comps: HashMap<SymbolId, String>,
+    /// The number of components of each symbol after k steps.
+    size: HashMap<(SymbolId, u64), u64>,
+    names: Names,
+    /// The stem of each symbol's macro names.
+    stems: HashMap<SymbolId, String>,
+    /// The macro of each symbol after k steps, and those still to write.
+    defined: HashMap<(SymbolId, u64), String>,
+    stack: Vec<(SymbolId, u64)>,
+}
+
+impl<'a> Expansion<'a> {
+    /// The symbol a guarded occurrence stands for.
+    fn base(&self, s: SymbolId) -> SymbolId {
+        self.sys.symbols.info(s).guard.map_or(s, |g| g.base)
+    }
+
+    fn successor(&self, s: SymbolId) -> Option<&'a [SymbolId]> {
+        self.rules.successor(self.sys, s)
+    }
+
+    /// The components `s` writes itself.
+    fn comp(&self, s: SymbolId) -> Option<&String> {
+        self.comps.get(&s).filter(|c| !c.is_empty())
+    }
+
+    /// The number of components of `s` after `k` steps.
+    fn size(&mut self, s: SymbolId, k: u64) -> u64 {
+        if let Some(&v) = self.size.get(&(s, k)) {
+            return v;
+        }
+        let b = self.base(s);
+        let v = match (k, self.successor(b)) {
+            (0, _) | (_, None) => self.comps.get(&b).map_or(0, |c| c.len() as u64),
+            (_, Some(w)) => {
+                let mut total: u64 = 0;
+                for &t in w {
+                    total = total.saturating_add(self.size(t, k - 1));
+                }
+                total
+            }
+        };
+        self.size.insert((s, k), v);
+        v
+    }
+
+    /// The number of components of the axiom after `steps` steps.
+    fn total(&mut self, steps: u64) -> u64 {
+        let mut total: u64 = 0;
+        for &s in &self.sys.axiom.0 {
+            total = total.saturating_add(self.size(s, steps));
+        }
+        total
+    }
+
+    /// The symbol whose successor is the paper's self-resemblance count
+    /// `[I n X]`: the only rewritten symbol, which draws, when its
+    /// successor draws and has no guarded symbol.
+    fn self_resembling(&self, steps: u64) -> Option<SymbolId> {
+        let heads = self.rules.heads();
+        let [(d, _)] = heads[..] else {
+            return None;
+        };
+        let ok = self.comps.get(&d).map(String::as_str) == Some("F")
             && steps >= 1
-            && successor(draw[0]).is_some_and(|w| {
-                w.iter().all(|&t| sys.symbols.info(t).guard.is_none())
-                    && w.iter()
-                        .any(|t| comps.get(t).is_some_and(|c| !c.is_empty()))
-            })
-    };
-    let mut seed = Vec::new();
-    if shortcut {
-        let d = *rules.keys().next().expect("one rule");
-        let body: String = successor(d)
-            .unwrap_or_default()
-            .iter()
-            .map(|t| comps.get(t).cloned().unwrap_or_default())
-            .collect();
-        let name = names
+            && self.successor(d).is_some_and(|w| {
+                w.iter().all(|&t| self.sys.symbols.info(t).guard.is_none())
+                    && w.iter().any(|t| self.comp(*t).is_some())
+            });
+        ok.then_some(d)
+    }
+
+    /// The one rule `[I steps X]` for `d`, and the seed.
+    fn self_resemblance(&mut self, d: SymbolId, steps: u64) -> (Vec<Macro>, String) {
+        let body = write_word(
+            self.successor(d).unwrap_or_default(),
+            |t| Some(self.comps.get(&t).cloned().unwrap_or_default()),
+            |t| t.concat(),
+        );
+        let name = self
+            .names
             .take([
                 "Plant".to_string(),
                 "Plant1".to_string(),
                 "Plant2".to_string(),
             ])
             .unwrap_or_else(|| "Plant".into());
-        out_rules.push((steps, name.clone(), format!("[I {steps} {body}]")));
-        for &s in &sys.axiom.0 {
-            let s = base(s);
+        let mut seed = Vec::new();
+        for &s in &self.sys.axiom.0 {
+            let s = self.base(s);
             if s == d {
                 seed.push(name.clone());
-            } else if let Some(c) = comps.get(&s).filter(|c| !c.is_empty()) {
+            } else if let Some(c) = self.comp(s) {
                 seed.push(c.clone());
             }
         }
-    } else {
-        // tokens of s after k steps; defines the rules it needs.
-        let mut defined: HashMap<(SymbolId, u64), String> = HashMap::new();
-        let mut stack: Vec<(SymbolId, u64)> = Vec::new();
-        let mut token = |s: SymbolId,
-                         k: u64,
-                         stack: &mut Vec<(SymbolId, u64)>,
-                         names: &mut super::Names,
-                         size: &mut HashMap<(SymbolId, u64), u64>|
-         -> Option<String> {
-            let s = base(s);
-            if k == 0 || successor(s).is_none() {
-                return comps.get(&s).filter(|c| !c.is_empty()).cloned();
-            }
-            if size_of(s, k, size, &succ_of, &comp_len) == 0 {
-                return None;
-            }
-            if let Some(n) = defined.get(&(s, k)) {
-                return Some(n.clone());
-            }
-            let stem = rule_name(s, names);
-            let name = names
-                .take(
-                    (0..)
-                        .map(|i| {
-                            if i == 0 {
-                                format!("{stem}{k}")
-                            } else {
-                                format!("{stem}{k}_{i}")
-                            }
-                        })
-                        .take(1000),
-                )
-                .unwrap_or_default();
-            defined.insert((s, k), name.clone());
-            stack.push((s, k));
-            Some(name)
-        };
-        if total <= MAX_COMPONENTS {
-            for &s in &sys.axiom.0 {
-                if let Some(t) = token(s, steps, &mut stack, &mut names, &mut size) {
-                    seed.push(t);
-                }
-            }
-            let mut made: Vec<(u64, String, String)> = Vec::new();
-            while let Some((s, k)) = stack.pop() {
-                let mut body = Vec::new();
-                for &t in successor(s).unwrap_or_default() {
-                    if let Some(tok) = token(t, k - 1, &mut stack, &mut names, &mut size) {
-                        body.push(tok);
-                    }
-                }
-                let name = token(s, k, &mut stack, &mut names, &mut size).unwrap_or_default();
-                made.push((k, name, join(&body)));
-            }
-            made.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
-            out_rules = made;
-        }
+        (
+            vec![(steps, name, format!("[I {steps} {body}]"))],
+            join(&seed),
+        )
     }
 
-    let mut out = String::new();
-    out.push_str(&format!("# {}\n", super::banner(e)));
-    if let Some(c) = super::file_comment(&e.origin.comments, e.source) {
-        out.push_str("#\n");
-        for l in c {
-            out.push_str(&format!(
-                "#{}\n",
-                if l.is_empty() {
-                    String::new()
-                } else {
-                    format!(" {l}")
-                }
-            ));
+    /// A macro for each symbol after each number of steps the axiom needs,
+    /// and the seed.
+    fn macros(&mut self, steps: u64) -> (Vec<Macro>, String) {
+        let axiom = &self.sys.axiom.0;
+        let seed = write_word(axiom, |s| self.token(s, steps), |t| join(&t));
+        let mut made: Vec<Macro> = Vec::new();
+        while let Some((s, k)) = self.stack.pop() {
+            let succ = self.successor(s).unwrap_or_default();
+            let body = write_word(succ, |t| self.token(t, k - 1), |t| join(&t));
+            let name = self.token(s, k).unwrap_or_default();
+            made.push((k, name, body));
         }
+        made.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
+        (made, seed)
     }
+
+    /// What `s` after `k` steps is written as: its components, or the
+    /// macro for it (defined, to be written, when new); `None` for
+    /// nothing.
+    fn token(&mut self, s: SymbolId, k: u64) -> Option<String> {
+        let s = self.base(s);
+        if k == 0 || self.successor(s).is_none() {
+            return self.comp(s).cloned();
+        }
+        if self.size(s, k) == 0 {
+            return None;
+        }
+        if let Some(n) = self.defined.get(&(s, k)) {
+            return Some(n.clone());
+        }
+        let stem = self.stem(s);
+        let first = format!("{stem}{k}");
+        let name = self
+            .names
+            .take(std::iter::once(first).chain(numbered(&format!("{stem}{k}_"), 1..1000)))
+            .unwrap_or_default();
+        self.defined.insert((s, k), name.clone());
+        self.stack.push((s, k));
+        Some(name)
+    }
+
+    /// The stem of `s`'s macro names: its name where that is an STL name
+    /// that cannot be read as components, reserved on first use.
+    fn stem(&mut self, s: SymbolId) -> String {
+        if let Some(stem) = self.stems.get(&s) {
+            return stem.clone();
+        }
+        let n = self.sys.symbols.name(s);
+        let ok = n.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        let stem = if ok {
+            n.to_string()
+        } else {
+            format!("S{}", s.0)
+        };
+        let stem = if stem
+            .chars()
+            .all(|c| matches!(c, 'F' | 'L' | 'R' | 'B' | 'I'))
+        {
+            format!("{stem}x")
+        } else {
+            stem
+        };
+        self.names.reserve(&stem);
+        self.stems.insert(s, stem.clone());
+        stem
+    }
+}
+
+/// The file: the opening comment, the settings, the rules, the seed.
+fn text(e: &mut Emitter<'_>, n: u64, rules: &Rules, out_rules: &[Macro], seed: &str) -> String {
+    let sys = e.sys;
+    let mut out = hash_comment(&opening(e));
     let _ = writeln!(
         out,
-        "# {steps} derivation steps are written into the rules."
+        "# {} derivation steps are written into the rules.",
+        e.steps
     );
     let _ = writeln!(out, "ANGLE {}", number(360.0 / n as f64));
     let _ = writeln!(out, "B = {} (0)", number(sys.settings.width));
     let _ = writeln!(out, "L = {} (0)", number(sys.settings.step));
-    for (_, name, body) in &out_rules {
+    for (_, name, body) in out_rules {
         let _ = writeln!(out, "{name} = {body}");
     }
-    let seed_text = join(&seed);
     out.push_str("SEED\n");
-    if !seed_text.is_empty() {
-        out.push_str(&seed_text);
+    if !seed.is_empty() {
+        out.push_str(seed);
         out.push('\n');
     }
     out.push_str("ENDSEED\n");
-    e.exact("the axiom", e.spans.axiom.first().cloned(), &seed_text);
-    for (i, _) in sys.productions.iter().enumerate() {
-        let text = e.production_text(i);
-        if rules.values().any(|&j| j == i) {
-            e.exact(
-                format!("production `{text}`"),
-                e.production_span(i),
-                "written into the rules, one per step",
-            );
-        }
+    e.exact_axiom(seed);
+    for (_, i) in rules.heads() {
+        e.exact_production(i, "written into the rules, one per step");
     }
     out
 }
