@@ -598,6 +598,29 @@ struct Counter {
 }
 
 impl Counter {
+    /// The figures counted, with what else `stats` reports: how the
+    /// figures were found and how the word is derived.
+    fn stats(
+        self,
+        steps: u64,
+        symbols: u128,
+        max_depth: usize,
+        (method, derivation): (&'static str, &'static str),
+        time: StageTimes,
+    ) -> Stats {
+        Stats {
+            steps,
+            symbols,
+            segments: self.segments,
+            polygons: self.polygons,
+            bbox: self.bbox.unwrap_or([0.0; 6]),
+            max_depth,
+            method,
+            derivation,
+            time,
+        }
+    }
+
     fn point(&mut self, p: turtle::Vec3) {
         let b = self
             .bbox
@@ -647,20 +670,13 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         let symbols = t
             .weighed(steps, &silent, u128::MAX)
             .expect("no limit to pass");
-        let measured = |c: Counter, max_depth: usize, method: &'static str| Stats {
-            steps,
-            symbols,
-            segments: c.segments,
-            polygons: c.polygons,
-            bbox: c.bbox.unwrap_or([0.0; 6]),
-            max_depth,
-            method,
-            derivation,
-            time: StageTimes {
+        let measured = |c: Counter, max_depth: usize, method: &'static str| {
+            let time = StageTimes {
                 parse: 0.0,
                 derive: 0.0,
                 interpret: secs(t0.elapsed()),
-            },
+            };
+            c.stats(steps, symbols, max_depth, (method, derivation), time)
         };
         if let Some(mut inst) = Instanced::new(sys).filter(|i| i.fits(steps)) {
             let x = inst.word(steps);
@@ -697,19 +713,10 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         (written_symbols(sys, &w) as u128, c, depth)
     };
     let t2 = Instant::now();
-    Ok(Stats {
-        steps,
-        symbols,
-        segments: c.segments,
-        polygons: c.polygons,
-        bbox: c.bbox.unwrap_or([0.0; 6]),
-        max_depth,
-        method: "derived",
-        derivation,
-        time: StageTimes {
-            parse: 0.0,
-            derive: secs(t1 - t0),
-            interpret: secs(t2 - t1),
-        },
-    })
+    let time = StageTimes {
+        parse: 0.0,
+        derive: secs(t1 - t0),
+        interpret: secs(t2 - t1),
+    };
+    Ok(c.stats(steps, symbols, max_depth, ("derived", derivation), time))
 }

@@ -231,6 +231,18 @@ pub fn syntax_error<T: std::fmt::Display>(
     }
 }
 
+/// The system `read` lowers from a text that must be free of errors (the
+/// front ends' `read_ok`, for tests and examples).
+///
+/// # Panics
+/// When reading reports an error; the message lists the diagnostics.
+pub fn read_clean(read: impl FnOnce(&mut Diagnostics) -> Lowered) -> System {
+    let mut d = Diagnostics::default();
+    let l = read(&mut d);
+    assert!(!d.has_errors(), "{d:#?}");
+    l.system
+}
+
 /// Text with `/* … */` comments removed (an unclosed one runs to the end).
 pub(crate) fn strip_block_comments(text: &str) -> String {
     let mut out = String::with_capacity(text.len());

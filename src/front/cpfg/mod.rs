@@ -413,8 +413,5 @@ fn missing_file(name: &str, what: &str) -> crate::diagnostics::Diagnostic {
 /// # Panics
 /// When the text has errors; the message lists them.
 pub fn read_ok(src: &str) -> crate::ir::System {
-    let mut d = Diagnostics::default();
-    let l = read(src, &mut d);
-    assert!(!d.has_errors(), "{d:#?}");
-    l.system
+    crate::front::read_clean(|d| read(src, d))
 }

@@ -188,10 +188,8 @@ fn read_library(
 /// # Panics
 /// When the text has no entry or errors; the message lists them.
 pub fn read_ok(src: &str) -> crate::ir::System {
-    let mut d = Diagnostics::default();
-    let file = parse(src, &mut d);
-    let entry = file.entries.first().expect("an entry");
-    let l = lower_entry(entry, &mut d);
-    assert!(!d.has_errors(), "{d:#?}");
-    l.system
+    crate::front::read_clean(|d| {
+        let file = parse(src, d);
+        lower_entry(file.entries.first().expect("an entry"), d)
+    })
 }

@@ -79,8 +79,5 @@ pub fn read(src: &str, diags: &mut Diagnostics) -> Lowered {
 /// # Panics
 /// When the text has errors; the message lists them.
 pub fn read_ok(src: &str) -> crate::ir::System {
-    let mut d = Diagnostics::default();
-    let l = read(src, &mut d);
-    assert!(!d.has_errors(), "{d:#?}");
-    l.system
+    crate::front::read_clean(|d| read(src, d))
 }
