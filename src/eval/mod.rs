@@ -69,12 +69,13 @@ pub enum Method {
     /// length known before it is derived.
     SharedTree,
     /// Contexts of at most one symbol on each side, one-symbol
-    /// predecessors, without parameters: each step looks up the production
-    /// of every (left, symbol, right) in a table, on words of bytes when
-    /// the alphabet has fewer than 256 symbols.
+    /// predecessors, without parameters or guards (stochastic alternatives
+    /// allowed): each step looks up the production of every (left, symbol,
+    /// right) in a table, on words of bytes when the alphabet has fewer
+    /// than 256 symbols.
     Table,
     /// Any other system without parameters (longer predecessors and
-    /// contexts, stochastic alternatives, guards): the general matcher.
+    /// contexts, guards): the general matcher.
     General,
     /// Parameters, conditions, statements, phases, a ring or a cut
     /// ([`System::rewrites_modules`]): module rewriting ([`parametric`]).

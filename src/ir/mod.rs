@@ -1070,3 +1070,71 @@ impl System {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_word_of_plain_symbols_keeps_no_parameter_array() {
+        let mut w = Word::from(vec![SymbolId(2); 1000]);
+        for _ in 0..1000 {
+            w.push(SymbolId(3), &[]);
+        }
+        assert!(!w.has_params());
+        assert_eq!((w.1.values.capacity(), w.1.starts.capacity()), (0, 0));
+        assert_eq!(w.args(1500), &[] as &[f64]);
+    }
+
+    #[test]
+    fn parameters_appear_with_the_first_module_that_has_them() {
+        let mut table = SymbolTable::new();
+        let (a, f) = (table.intern("A"), table.intern("F"));
+        let mut w = Word::from(vec![a, f]);
+        w.push(f, &[1.5]);
+        w.push(a, &[]);
+        w.push(a, &[2.0, 3.0]);
+        assert!(w.has_params());
+        assert_eq!(w.args(0), &[] as &[f64]);
+        assert_eq!(w.args(2), &[1.5]);
+        assert_eq!(w.args(4), &[2.0, 3.0]);
+        assert_eq!(w.display(&table), "AFF(1.5)AA(2,3)");
+        let mut copy = Word::new();
+        copy.extend_from(&w, 2..5);
+        assert_eq!(copy.display(&table), "F(1.5)AA(2,3)");
+        copy.set_args(0, &[7.0]);
+        assert_eq!(copy.args(0), &[7.0]);
+        copy.clear();
+        assert!(!copy.has_params() && copy.is_empty());
+    }
+
+    #[test]
+    fn which_systems_rewrite_modules_follows_from_their_parts() {
+        let mut sys = System::new();
+        let a = sys.intern("A");
+        sys.axiom = Word::from(vec![a]);
+        let plain = Production::new(
+            vec![],
+            vec![a],
+            vec![],
+            vec![Alternative::new(1.0, Word::from(vec![a, a]))],
+        );
+        sys.productions.push(plain.clone());
+        assert!(!sys.rewrites_modules());
+        let mut conditional = plain.clone();
+        conditional.condition = Some(program::Expr::Num(1.0));
+        let changes: [&dyn Fn(&mut System); 6] = [
+            &|s| s.ring = true,
+            &|s| s.cut = Some(a),
+            &|s| s.policy = RulePolicy::Weighted,
+            &|s| s.axiom_args = vec![vec![program::Expr::Num(1.0)]],
+            &|s| s.homomorphism.productions.push(s.productions[0].clone()),
+            &|s| s.productions[0] = conditional.clone(),
+        ];
+        for change in changes {
+            let mut s = sys.clone();
+            change(&mut s);
+            assert!(s.rewrites_modules());
+        }
+    }
+}
