@@ -8,8 +8,8 @@ use super::ast::{self, BlockKind, ExprKind, Item, Section};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{
-    Alternative, Angle, Axis, Formals, Phase, Production, QueryKind, RulePolicy, Span, SpanTable,
-    SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Axis, ContextFilter, Formals, Phase, Production, QueryKind, RulePolicy,
+    Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -189,74 +189,10 @@ impl Lowerer<'_> {
         match &e.kind {
             ExprKind::Num(v) => Expr::Num(*v),
             ExprKind::Str(s) => Expr::Str(s.clone()),
-            ExprKind::Name(n) | ExprKind::Address(n) => {
-                if let Some(i) = scope.locals.iter().position(|l| l == n) {
-                    return Expr::Var(Var::Local(i as u16));
-                }
-                if let Some(&g) = self.globals.get(n) {
-                    return Expr::Var(Var::Global(g));
-                }
-                if self.arrays.contains_key(n) {
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_NOT_ARRAY,
-                            e.span.clone(),
-                            format!("array `{n}` used without subscripts"),
-                        )
-                        .with_label("needs `[i]`"),
-                    );
-                    return Expr::Num(0.0);
-                }
-                if self.undefined.insert(n.clone()) {
-                    let mut known: Vec<&str> = scope
-                        .locals
-                        .iter()
-                        .map(String::as_str)
-                        .filter(|l| !l.is_empty())
-                        .collect();
-                    known.extend(self.globals.keys().map(String::as_str));
-                    let mut d = Diagnostic::at(
-                        codes::CPFG_UNDEFINED_NAME,
-                        e.span.clone(),
-                        format!("`{n}` is not defined; its value is 0"),
-                    )
-                    .with_label("not a parameter, local or global variable");
-                    if let Some(near) = nearest(n, &known).first() {
-                        d = d.with_help(format!("did you mean `{near}`?"));
-                    }
-                    self.diags.push(d);
-                }
-                scope.locals.push(n.clone());
-                Expr::Var(Var::Local((scope.locals.len() - 1) as u16))
-            }
+            ExprKind::Name(n) | ExprKind::Address(n) => self.name(scope, n, &e.span),
             ExprKind::Index(n, subs) => {
                 let subs: Vec<Expr> = subs.iter().map(|s| self.expr(scope, s)).collect();
-                match self.arrays.get(n).copied() {
-                    Some((id, dims)) if dims == subs.len() => Expr::Element(id, subs),
-                    Some((_, dims)) => {
-                        self.diags.push(
-                            Diagnostic::at(
-                                codes::CPFG_NOT_ARRAY,
-                                e.span.clone(),
-                                format!("`{n}` has {dims} dimension(s), not {}", subs.len()),
-                            )
-                            .with_label("subscripts do not match the declaration"),
-                        );
-                        Expr::Num(0.0)
-                    }
-                    None => {
-                        self.diags.push(
-                            Diagnostic::at(
-                                codes::CPFG_NOT_ARRAY,
-                                e.span.clone(),
-                                format!("`{n}` is not an array"),
-                            )
-                            .with_label("subscripted here")
-                            .with_help(format!("declare it: `define: {{ array {n}[size]; }}`")),
-                        );
-                        Expr::Num(0.0)
-                    }
-                }
+                self.element(n, subs, &e.span)
             }
             ExprKind::Unary(op, a) => Expr::Unary(*op, Box::new(self.expr(scope, a))),
             ExprKind::Binary(op, a, b) => Expr::Binary(
@@ -270,74 +206,160 @@ impl Lowerer<'_> {
                 Box::new(self.expr(scope, b)),
             ),
             ExprKind::Call(name, name_span, args) => {
-                let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
-                    let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
-                    let mut d = Diagnostic::at(
-                        codes::CPFG_UNKNOWN_FUNCTION,
-                        name_span.clone(),
-                        format!("unknown function `{name}`"),
-                    )
-                    .with_label("not a cpfg function");
-                    if let Some(near) = nearest(name, &names).first() {
-                        d = d.with_help(format!("did you mean `{near}`?"));
-                    }
-                    self.diags.push(d);
-                    return Expr::Num(0.0);
-                };
-                if !arities.is_empty() && !arities.contains(&args.len()) {
-                    let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_ARITY,
-                            e.span.clone(),
-                            format!(
-                                "`{name}` takes {} argument(s), not {}",
-                                want.join(" or "),
-                                args.len()
-                            ),
-                        )
-                        .with_label("called here"),
-                    );
-                }
-                if matches!(
-                    builtin,
-                    Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
-                ) {
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_UNSUPPORTED,
-                            name_span.clone(),
-                            format!(
-                                "`{name}` needs contour files, which graftal does not read yet"
-                            ),
-                        )
-                        .with_label("a contour function")
-                        .with_help("replace the contour by a user function (`func`) or a formula"),
-                    );
-                }
-                if builtin == Builtin::Io && !self.warned_io {
-                    self.warned_io = true;
-                    self.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_IO_IGNORED,
-                            name_span.clone(),
-                            format!("`{name}` does nothing in graftal"),
-                        )
-                        .with_label("no file or console output"),
-                    );
-                }
-                let args = args.iter().map(|a| self.expr(scope, a)).collect();
-                // `atan(y, x)` with two arguments is atan2.
-                let builtin = if builtin == Builtin::Atan && arities.len() > 1 {
-                    match &args {
-                        a if Vec::len(a) == 2 => Builtin::Atan2,
-                        _ => builtin,
-                    }
-                } else {
-                    builtin
-                };
-                Expr::Call(builtin, args)
+                self.call(scope, name, name_span, args, &e.span)
             }
+        }
+    }
+
+    /// A name read at `span`: a local, a global, or else (warned once as
+    /// undefined) a new local, which is 0.
+    fn name(&mut self, scope: &mut Scope, n: &str, span: &Span) -> Expr {
+        if let Some(i) = scope.locals.iter().position(|l| l == n) {
+            return Expr::Var(Var::Local(i as u16));
+        }
+        if let Some(&g) = self.globals.get(n) {
+            return Expr::Var(Var::Global(g));
+        }
+        if self.arrays.contains_key(n) {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_ARRAY,
+                    span.clone(),
+                    format!("array `{n}` used without subscripts"),
+                )
+                .with_label("needs `[i]`"),
+            );
+            return Expr::Num(0.0);
+        }
+        if self.undefined.insert(n.to_string()) {
+            self.warn_undefined(scope, n, span);
+        }
+        scope.locals.push(n.to_string());
+        Expr::Var(Var::Local((scope.locals.len() - 1) as u16))
+    }
+
+    fn warn_undefined(&mut self, scope: &Scope, n: &str, span: &Span) {
+        let mut known: Vec<&str> = scope
+            .locals
+            .iter()
+            .map(String::as_str)
+            .filter(|l| !l.is_empty())
+            .collect();
+        known.extend(self.globals.keys().map(String::as_str));
+        let d = Diagnostic::at(
+            codes::CPFG_UNDEFINED_NAME,
+            span.clone(),
+            format!("`{n}` is not defined; its value is 0"),
+        )
+        .with_label("not a parameter, local or global variable");
+        self.diags.push(with_nearest(d, n, &known));
+    }
+
+    /// The element `n[subs]` of an array; 0 if `n` is no array of as many
+    /// dimensions.
+    fn element(&mut self, n: &str, subs: Vec<Expr>, span: &Span) -> Expr {
+        match self.arrays.get(n).copied() {
+            Some((id, dims)) if dims == subs.len() => Expr::Element(id, subs),
+            Some((_, dims)) => {
+                self.diags.push(
+                    Diagnostic::at(
+                        codes::CPFG_NOT_ARRAY,
+                        span.clone(),
+                        format!("`{n}` has {dims} dimension(s), not {}", subs.len()),
+                    )
+                    .with_label("subscripts do not match the declaration"),
+                );
+                Expr::Num(0.0)
+            }
+            None => {
+                self.diags.push(
+                    Diagnostic::at(
+                        codes::CPFG_NOT_ARRAY,
+                        span.clone(),
+                        format!("`{n}` is not an array"),
+                    )
+                    .with_label("subscripted here")
+                    .with_help(format!("declare it: `define: {{ array {n}[size]; }}`")),
+                );
+                Expr::Num(0.0)
+            }
+        }
+    }
+
+    /// A call of a predefined function ([`FUNCTIONS`]) at `span`; 0 if
+    /// there is no such function.
+    fn call(
+        &mut self,
+        scope: &mut Scope,
+        name: &str,
+        name_span: &Span,
+        args: &[ast::Expr],
+        span: &Span,
+    ) -> Expr {
+        let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
+            let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
+            let d = Diagnostic::at(
+                codes::CPFG_UNKNOWN_FUNCTION,
+                name_span.clone(),
+                format!("unknown function `{name}`"),
+            )
+            .with_label("not a cpfg function");
+            self.diags.push(with_nearest(d, name, &names));
+            return Expr::Num(0.0);
+        };
+        if !arities.is_empty() && !arities.contains(&args.len()) {
+            let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_ARITY,
+                    span.clone(),
+                    format!(
+                        "`{name}` takes {} argument(s), not {}",
+                        want.join(" or "),
+                        args.len()
+                    ),
+                )
+                .with_label("called here"),
+            );
+        }
+        self.warn_not_run(name, name_span, builtin);
+        let args: Vec<Expr> = args.iter().map(|a| self.expr(scope, a)).collect();
+        // `atan(y, x)` with two arguments is atan2.
+        let builtin = if builtin == Builtin::Atan && arities.len() > 1 && args.len() == 2 {
+            Builtin::Atan2
+        } else {
+            builtin
+        };
+        Expr::Call(builtin, args)
+    }
+
+    /// Warns about a function graftal reads but does not run: the contour
+    /// functions, and (once) the input and output functions.
+    fn warn_not_run(&mut self, name: &str, name_span: &Span, builtin: Builtin) {
+        if matches!(
+            builtin,
+            Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
+        ) {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_UNSUPPORTED,
+                    name_span.clone(),
+                    format!("`{name}` needs contour files, which graftal does not read yet"),
+                )
+                .with_label("a contour function")
+                .with_help("replace the contour by a user function (`func`) or a formula"),
+            );
+        }
+        if builtin == Builtin::Io && !self.warned_io {
+            self.warned_io = true;
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_IO_IGNORED,
+                    name_span.clone(),
+                    format!("`{name}` does nothing in graftal"),
+                )
+                .with_label("no file or console output"),
+            );
         }
     }
 
@@ -540,6 +562,15 @@ impl Lowerer<'_> {
     }
 }
 
+/// `d` with a help naming the nearest of `candidates` to `name`, when one
+/// is near.
+fn with_nearest(d: Diagnostic, name: &str, candidates: &[&str]) -> Diagnostic {
+    match nearest(name, candidates).first() {
+        Some(near) => d.with_help(format!("did you mean `{near}`?")),
+        None => d,
+    }
+}
+
 /// Names assigned in `stmts` (recursively).
 fn assigned(stmts: &[ast::Stmt], out: &mut Vec<String>) {
     for s in stmts {
@@ -603,281 +634,333 @@ enum Stage {
     Done,
 }
 
-/// Lowers `file` to a parametric [`System`].
-pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
-    let mut sys = System::new();
-    sys.settings.delta = 45f64.to_radians();
-    let mut l = Lowerer {
-        sys,
-        spans: SpanTable::default(),
-        diags,
-        globals: HashMap::new(),
-        arrays: HashMap::new(),
-        undefined: Default::default(),
-        warned_not_drawn: Default::default(),
-        warned_io: false,
-        warned_env: false,
-    };
-    // The first L-system's items.
-    let first_end = file
-        .items
-        .iter()
-        .position(|i| matches!(i, Item::EndLsystem(_)))
-        .map_or(file.items.len(), |p| p + 1);
-    let items = &file.items[..first_end];
-    if let Some(Item::Lsystem { span, .. }) = file.items[first_end..]
-        .iter()
-        .find(|i| matches!(i, Item::Lsystem { .. }))
-    {
-        l.diags.push(
-            Diagnostic::at(
-                codes::CPFG_LATER_LSYSTEM,
-                span.clone(),
-                "only the first L-system of a file is read",
-            )
-            .with_label("a sub-L-system"),
-        );
+/// Where the items are read: the stage reached, what the header gave, and
+/// what is gathered so far.
+struct Reading {
+    stage: Stage,
+    lsystem_span: Option<Span>,
+    axiom_seen: bool,
+    par: Gathered,
+}
+
+/// The stages an item may stand in, and where it stands.
+fn placement(item: &Item) -> (&'static [Stage], Span) {
+    const BODY: &[Stage] = &[
+        Stage::Productions,
+        Stage::Decomposition,
+        Stage::Homomorphism,
+    ];
+    match item {
+        Item::Lsystem { span, .. } => (&[Stage::Before], span.clone()),
+        Item::Seed(_, s) => (&[Stage::Header, Stage::Homomorphism], s.clone()),
+        Item::DerivationLength(_, s) | Item::Ring(s) | Item::Axiom(_, s) | Item::Block(_, _, s) => {
+            (&[Stage::Header], s.clone())
+        }
+        Item::Ignore(v) | Item::Consider(v) => {
+            (&[Stage::Header], v.first().map_or(0..0, |(_, s)| s.clone()))
+        }
+        Item::Define(d) => (&[Stage::Header], d.first().map_or(0..0, |d| d.span.clone())),
+        Item::MaximumDepth(_, s) => (&[Stage::Decomposition, Stage::Homomorphism], s.clone()),
+        Item::Section(Section::Decomposition, s) => (&[Stage::Productions], s.clone()),
+        Item::Section(Section::Homomorphism, s) => {
+            (&[Stage::Productions, Stage::Decomposition], s.clone())
+        }
+        Item::Production(p) => (BODY, p.span.clone()),
+        Item::EndLsystem(s) => (BODY, s.clone()),
     }
-    // Globals: every name assigned in a Start/End block; arrays.
-    let mut global_names = Vec::new();
-    let mut par = Gathered::default();
-    for item in items {
-        match item {
-            Item::Block(_, stmts, _) => assigned(stmts, &mut global_names),
-            Item::Define(defs) => {
-                for d in defs {
-                    let dims: Vec<usize> = d
-                        .dims
-                        .iter()
-                        .map(|e| l.constant(e, "an array size", MAX_ARRAY).unwrap_or(0.0) as usize)
-                        .collect();
-                    let total: f64 = dims.iter().map(|&d| d as f64).product();
-                    if total > MAX_ARRAY {
-                        l.diags.push(
-                            Diagnostic::at(
-                                codes::CPFG_BAD_VALUE,
-                                d.span.clone(),
-                                format!(
-                                    "array `{}` has {total} elements, more than {MAX_ARRAY}",
-                                    d.name
-                                ),
-                            )
-                            .with_label("too large"),
-                        );
-                        continue;
+}
+
+impl<'d> Lowerer<'d> {
+    fn new(diags: &'d mut Diagnostics) -> Self {
+        let mut sys = System::new();
+        sys.settings.delta = 45f64.to_radians();
+        Lowerer {
+            sys,
+            spans: SpanTable::default(),
+            diags,
+            globals: HashMap::new(),
+            arrays: HashMap::new(),
+            undefined: Default::default(),
+            warned_not_drawn: Default::default(),
+            warned_io: false,
+            warned_env: false,
+        }
+    }
+}
+
+impl Lowerer<'_> {
+    /// The items of the file's first L-system; a later one is reported.
+    fn first_lsystem<'f>(&mut self, file: &'f ast::File) -> &'f [Item] {
+        let first_end = file
+            .items
+            .iter()
+            .position(|i| matches!(i, Item::EndLsystem(_)))
+            .map_or(file.items.len(), |p| p + 1);
+        if let Some(Item::Lsystem { span, .. }) = file.items[first_end..]
+            .iter()
+            .find(|i| matches!(i, Item::Lsystem { .. }))
+        {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_LATER_LSYSTEM,
+                    span.clone(),
+                    "only the first L-system of a file is read",
+                )
+                .with_label("a sub-L-system"),
+            );
+        }
+        &file.items[..first_end]
+    }
+
+    /// Declares the arrays and the globals (every name assigned in a
+    /// Start/End block that is not an array) before anything is lowered,
+    /// so that every use resolves to them.
+    fn declare_globals(&mut self, items: &[Item], program: &mut Program) {
+        let mut global_names = Vec::new();
+        for item in items {
+            match item {
+                Item::Block(_, stmts, _) => assigned(stmts, &mut global_names),
+                Item::Define(defs) => {
+                    for d in defs {
+                        self.declare_array(d, program);
                     }
-                    let init: Vec<f64> = d
-                        .init
-                        .iter()
-                        .map(|e| {
-                            l.constant_in(e, "an array value", f64::MIN, f64::MAX)
-                                .unwrap_or(0.0)
-                        })
-                        .collect();
-                    l.arrays.insert(
-                        d.name.clone(),
-                        (par.program.arrays.len() as u16, dims.len()),
-                    );
-                    par.program.arrays.push(ArrayDecl {
-                        name: d.name.clone(),
-                        dims,
-                        init,
-                    });
                 }
+                _ => {}
             }
-            _ => {}
+        }
+        for n in global_names {
+            if !self.arrays.contains_key(&n) {
+                self.globals.insert(n.clone(), program.globals.len() as u16);
+                program.globals.push(n);
+            }
         }
     }
-    for n in global_names {
-        if !l.arrays.contains_key(&n) {
-            l.globals
-                .insert(n.clone(), par.program.globals.len() as u16);
-            par.program.globals.push(n);
+
+    /// An array of `define:`, with constant sizes and initial values.
+    fn declare_array(&mut self, d: &ast::ArrayDef, program: &mut Program) {
+        let dims: Vec<usize> = d
+            .dims
+            .iter()
+            .map(|e| self.constant(e, "an array size", MAX_ARRAY).unwrap_or(0.0) as usize)
+            .collect();
+        let total: f64 = dims.iter().map(|&d| d as f64).product();
+        if total > MAX_ARRAY {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_BAD_VALUE,
+                    d.span.clone(),
+                    format!(
+                        "array `{}` has {total} elements, more than {MAX_ARRAY}",
+                        d.name
+                    ),
+                )
+                .with_label("too large"),
+            );
+            return;
         }
+        let init: Vec<f64> = d
+            .init
+            .iter()
+            .map(|e| {
+                self.constant_in(e, "an array value", f64::MIN, f64::MAX)
+                    .unwrap_or(0.0)
+            })
+            .collect();
+        self.arrays
+            .insert(d.name.clone(), (program.arrays.len() as u16, dims.len()));
+        program.arrays.push(ArrayDecl {
+            name: d.name.clone(),
+            dims,
+            init,
+        });
     }
-    let mut stage = Stage::Before;
-    let mut axiom_seen = false;
-    let mut lsystem_span = None;
-    for item in items {
-        let (need, span): (&[Stage], Span) = match item {
-            Item::Lsystem { span, .. } => (&[Stage::Before], span.clone()),
-            Item::Seed(_, s) => (&[Stage::Header, Stage::Homomorphism], s.clone()),
-            Item::DerivationLength(_, s)
-            | Item::Ring(s)
-            | Item::Axiom(_, s)
-            | Item::Block(_, _, s) => (&[Stage::Header], s.clone()),
-            Item::Ignore(v) | Item::Consider(v) => {
-                (&[Stage::Header], v.first().map_or(0..0, |(_, s)| s.clone()))
-            }
-            Item::Define(d) => (&[Stage::Header], d.first().map_or(0..0, |d| d.span.clone())),
-            Item::MaximumDepth(_, s) => (&[Stage::Decomposition, Stage::Homomorphism], s.clone()),
-            Item::Section(Section::Decomposition, s) => (&[Stage::Productions], s.clone()),
-            Item::Section(Section::Homomorphism, s) => {
-                (&[Stage::Productions, Stage::Decomposition], s.clone())
-            }
-            Item::Production(p) => (
-                &[
-                    Stage::Productions,
-                    Stage::Decomposition,
-                    Stage::Homomorphism,
-                ],
-                p.span.clone(),
-            ),
-            Item::EndLsystem(s) => (
-                &[
-                    Stage::Productions,
-                    Stage::Decomposition,
-                    Stage::Homomorphism,
-                ],
-                s.clone(),
-            ),
-        };
-        if !need.contains(&stage) {
-            // A missing `lsystem:` is reported once, below; other items
-            // out of order are reported where they stand.
-            if stage != Stage::Before {
-                l.diags.push(
-                    Diagnostic::at(
-                        codes::CPFG_MISPLACED,
-                        span.clone(),
-                        "this item is out of place",
-                    )
-                    .with_label(match stage {
-                        Stage::Header => "expected after `axiom:` only productions",
-                        Stage::Productions => "the header ended at `axiom:`",
-                        Stage::Decomposition | Stage::Homomorphism => {
-                            "inside the decomposition or homomorphism"
-                        }
-                        _ => "after `endlsystem`",
-                    })
-                    .with_help("cpfg order: lsystem:, declarations, axiom:, productions, decomposition, homomorphism, endlsystem"),
-                );
-            }
-            if stage == Stage::Before {
-                continue;
-            }
+
+    /// Whether `item` is read: an item out of cpfg's order is reported
+    /// where it stands and read all the same, except before `lsystem:`,
+    /// where it is skipped (the missing `lsystem:` is reported once, at
+    /// the end).
+    fn in_order(&mut self, item: &Item, stage: Stage) -> bool {
+        let (need, span) = placement(item);
+        if need.contains(&stage) {
+            return true;
         }
+        if stage == Stage::Before {
+            return false;
+        }
+        self.diags.push(
+            Diagnostic::at(
+                codes::CPFG_MISPLACED,
+                span,
+                "this item is out of place",
+            )
+            .with_label(match stage {
+                Stage::Header => "expected after `axiom:` only productions",
+                Stage::Productions => "the header ended at `axiom:`",
+                Stage::Decomposition | Stage::Homomorphism => {
+                    "inside the decomposition or homomorphism"
+                }
+                _ => "after `endlsystem`",
+            })
+            .with_help("cpfg order: lsystem:, declarations, axiom:, productions, decomposition, homomorphism, endlsystem"),
+        );
+        true
+    }
+
+    /// Reads one item in its stage.
+    fn item(&mut self, item: &Item, rd: &mut Reading) {
         match item {
             Item::Lsystem { span, .. } => {
-                lsystem_span = Some(span.clone());
-                stage = Stage::Header;
+                rd.lsystem_span = Some(span.clone());
+                rd.stage = Stage::Header;
             }
             Item::Seed(e, _) => {
-                let v = l.constant(e, "a seed", u32::MAX as f64).map(|v| v as u64);
-                if stage == Stage::Homomorphism {
-                    par.homomorphism.seed = v;
+                let v = self
+                    .constant(e, "a seed", u32::MAX as f64)
+                    .map(|v| v as u64);
+                if rd.stage == Stage::Homomorphism {
+                    rd.par.homomorphism.seed = v;
                 } else {
-                    par.seed = v.or(Some(0));
+                    rd.par.seed = v.or(Some(0));
                 }
             }
             Item::DerivationLength(e, _) => {
-                l.sys.settings.steps = l
+                self.sys.settings.steps = self
                     .constant(e, "the derivation length", MAX_DEPTH)
                     .map(|v| v as u64);
             }
             Item::MaximumDepth(e, _) => {
-                let d = l
+                let d = self
                     .constant(e, "the maximum depth", MAX_DEPTH)
                     .map_or(1, |v| v as u32);
-                if stage == Stage::Decomposition {
-                    par.decomposition.depth = d;
+                if rd.stage == Stage::Decomposition {
+                    rd.par.decomposition.depth = d;
                 } else {
-                    par.homomorphism.depth = d;
+                    rd.par.homomorphism.depth = d;
                 }
             }
-            Item::Ignore(v) | Item::Consider(v) => {
-                let ids: Vec<_> = v.iter().map(|(n, s)| l.symbol(n, s)).collect();
-                l.sys.context = if matches!(item, Item::Ignore(_)) {
-                    crate::ir::ContextFilter::Ignore(ids)
-                } else {
-                    crate::ir::ContextFilter::Consider(ids)
-                };
+            Item::Ignore(v) => self.sys.context = ContextFilter::Ignore(self.context_symbols(v)),
+            Item::Consider(v) => {
+                self.sys.context = ContextFilter::Consider(self.context_symbols(v))
             }
             Item::Axiom(mods, _) => {
                 let mut scope = Scope {
                     locals: Vec::new(),
                     global_block: false,
                 };
-                par.axiom = l.calls(&mut scope, mods);
-                l.spans.axiom = mods.iter().map(|m| m.span.clone()).collect();
-                axiom_seen = true;
-                stage = Stage::Productions;
+                rd.par.axiom = self.calls(&mut scope, mods);
+                self.spans.axiom = mods.iter().map(|m| m.span.clone()).collect();
+                rd.axiom_seen = true;
+                rd.stage = Stage::Productions;
             }
             Item::Define(_) => {}
-            Item::Ring(_) => par.ring = true,
-            Item::Block(kind, stmts, _) => {
-                let mut scope = Scope {
-                    locals: Vec::new(),
-                    global_block: true,
-                };
-                let s = l.stmts(&mut scope, stmts);
-                match kind {
-                    BlockKind::Start => par.program.start = s,
-                    BlockKind::StartEach => par.program.start_each = s,
-                    BlockKind::EndEach => par.program.end_each = s,
-                    BlockKind::End => par.program.end = s,
-                }
-            }
+            Item::Ring(_) => rd.par.ring = true,
+            Item::Block(kind, stmts, _) => self.block(*kind, stmts, &mut rd.par.program),
             Item::Section(Section::Decomposition, _) => {
-                stage = Stage::Decomposition;
-                par.decomposition.depth = 1;
+                rd.stage = Stage::Decomposition;
+                rd.par.decomposition.depth = 1;
             }
             Item::Section(Section::Homomorphism, _) => {
-                stage = Stage::Homomorphism;
-                par.homomorphism.depth = 1;
+                rd.stage = Stage::Homomorphism;
+                rd.par.homomorphism.depth = 1;
             }
-            Item::Production(p) => {
-                let prod = l.production(p);
-                if prod.alternatives[0].computed_weight.is_some()
-                    && par.seed.is_none()
-                    && stage == Stage::Productions
-                {
-                    l.diags.push(
-                        Diagnostic::at(
-                            codes::CPFG_PROBABILITY_IGNORED,
-                            p.probability
-                                .as_ref()
-                                .map_or(p.span.clone(), |e| e.span.clone()),
-                            "a probability in a deterministic L-system",
-                        )
-                        .with_label("ignored: there is no `seed:`")
-                        .with_help(
-                            "add `seed: 1` after `lsystem:` to make the L-system stochastic",
-                        ),
-                    );
-                }
-                l.spans.productions.push(p.span.clone());
-                match stage {
-                    Stage::Decomposition => par.decomposition.productions.push(prod),
-                    Stage::Homomorphism => par.homomorphism.productions.push(prod),
-                    _ => par.productions.push(prod),
-                }
-            }
-            Item::EndLsystem(_) => stage = Stage::Done,
+            Item::Production(p) => self.production_item(p, rd),
+            Item::EndLsystem(_) => rd.stage = Stage::Done,
         }
     }
-    if lsystem_span.is_none() {
-        l.diags.push(
-            Diagnostic::at(
-                codes::CPFG_NO_LSYSTEM,
-                0..0,
-                "the file has no `lsystem:` line",
-            )
-            .with_label("expected `lsystem: 1` before the axiom")
-            .with_help("a cpfg L-system starts with `lsystem: 1` and ends with `endlsystem`"),
-        );
-    } else if !axiom_seen {
-        l.diags.push(
-            Diagnostic::at(
-                codes::CPFG_NO_AXIOM,
-                lsystem_span.unwrap_or(0..0),
-                "this L-system has no axiom",
-            )
-            .with_label("no `axiom:` follows")
-            .with_help("add `axiom: A` before the productions"),
-        );
+
+    /// The symbols of `ignore:` or `consider:`.
+    fn context_symbols(&mut self, names: &[(String, Span)]) -> Vec<SymbolId> {
+        names.iter().map(|(n, s)| self.symbol(n, s)).collect()
     }
-    par.into_system(&mut l.sys);
+
+    /// A Start, StartEach, EndEach or End block: every name it assigns is
+    /// global.
+    fn block(&mut self, kind: BlockKind, stmts: &[ast::Stmt], program: &mut Program) {
+        let mut scope = Scope {
+            locals: Vec::new(),
+            global_block: true,
+        };
+        let s = self.stmts(&mut scope, stmts);
+        match kind {
+            BlockKind::Start => program.start = s,
+            BlockKind::StartEach => program.start_each = s,
+            BlockKind::EndEach => program.end_each = s,
+            BlockKind::End => program.end = s,
+        }
+    }
+
+    /// A production, into the productions, decomposition or homomorphism
+    /// it stands in.
+    fn production_item(&mut self, p: &ast::Production, rd: &mut Reading) {
+        let prod = self.production(p);
+        if prod.alternatives[0].computed_weight.is_some()
+            && rd.par.seed.is_none()
+            && rd.stage == Stage::Productions
+        {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_PROBABILITY_IGNORED,
+                    p.probability
+                        .as_ref()
+                        .map_or(p.span.clone(), |e| e.span.clone()),
+                    "a probability in a deterministic L-system",
+                )
+                .with_label("ignored: there is no `seed:`")
+                .with_help("add `seed: 1` after `lsystem:` to make the L-system stochastic"),
+            );
+        }
+        self.spans.productions.push(p.span.clone());
+        match rd.stage {
+            Stage::Decomposition => rd.par.decomposition.productions.push(prod),
+            Stage::Homomorphism => rd.par.homomorphism.productions.push(prod),
+            _ => rd.par.productions.push(prod),
+        }
+    }
+
+    /// Reports a file without `lsystem:`, or an L-system without an axiom.
+    fn check_complete(&mut self, rd: &Reading) {
+        if rd.lsystem_span.is_none() {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NO_LSYSTEM,
+                    0..0,
+                    "the file has no `lsystem:` line",
+                )
+                .with_label("expected `lsystem: 1` before the axiom")
+                .with_help("a cpfg L-system starts with `lsystem: 1` and ends with `endlsystem`"),
+            );
+        } else if !rd.axiom_seen {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NO_AXIOM,
+                    rd.lsystem_span.clone().unwrap_or(0..0),
+                    "this L-system has no axiom",
+                )
+                .with_label("no `axiom:` follows")
+                .with_help("add `axiom: A` before the productions"),
+            );
+        }
+    }
+}
+
+/// Lowers `file` to a parametric [`System`].
+pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
+    let mut l = Lowerer::new(diags);
+    let items = l.first_lsystem(file);
+    let mut rd = Reading {
+        stage: Stage::Before,
+        lsystem_span: None,
+        axiom_seen: false,
+        par: Gathered::default(),
+    };
+    l.declare_globals(items, &mut rd.par.program);
+    for item in items {
+        if l.in_order(item, rd.stage) {
+            l.item(item, &mut rd);
+        }
+    }
+    l.check_complete(&rd);
+    rd.par.into_system(&mut l.sys);
     Lowered {
         system: l.sys,
         spans: l.spans,

@@ -185,6 +185,260 @@ impl Cx<'_> {
     }
 }
 
+/// What an entry's lines say, read in order.
+#[derive(Default)]
+struct Lines<'e> {
+    /// The last `Axiom` line's string.
+    axiom: Option<&'e Body>,
+    axiom_seen: bool,
+    /// The last valid `Angle`.
+    angle: Option<u32>,
+    angle_seen: bool,
+    /// Rules in file order: (head, head span, body).
+    rules: Vec<(&'e str, Span, Option<&'e Body>)>,
+}
+
+impl Cx<'_> {
+    /// Reads the lines of `entry`, reporting what Fractint rejects or
+    /// ignores in each.
+    fn read_lines<'e>(&mut self, entry: &'e Entry) -> Lines<'e> {
+        let mut lines = Lines::default();
+        for line in &entry.lines {
+            match &line.kind {
+                LineKind::Axiom { keyword, body } => {
+                    lines.axiom_seen = true;
+                    lines.axiom = body.as_ref();
+                    if body.is_none() {
+                        self.diags.push(
+                            Diagnostic::at(
+                                codes::FR_NO_AXIOM,
+                                keyword.clone(),
+                                "`Axiom` without a string",
+                            )
+                            .with_label("the axiom string is missing")
+                            .with_help("write the string after the keyword, e.g. `Axiom F--F--F`"),
+                        );
+                    }
+                }
+                LineKind::Angle { keyword, value } => {
+                    lines.angle_seen = true;
+                    if let Some(n) = self.angle(keyword, value.as_ref()) {
+                        lines.angle = Some(n);
+                    }
+                }
+                LineKind::Rule {
+                    head,
+                    head_span,
+                    body,
+                } => {
+                    self.check_rule_head(head, head_span);
+                    lines.rules.push((head, head_span.clone(), body.as_ref()));
+                }
+                LineKind::Unknown { word, span, rule } => self.unknown_line(word, span, *rule),
+            }
+            if let Some(x) = &line.extra {
+                self.extra_text(x, &line.kind);
+            }
+        }
+        lines
+    }
+
+    /// The angle increments per turn of an `Angle` line: 3 to 50.
+    fn angle(&mut self, keyword: &Span, value: Option<&Body>) -> Option<u32> {
+        let (span, n) = match value {
+            Some(v) => (v.span.clone(), atoi(&v.text)),
+            None => (keyword.clone(), 0),
+        };
+        if (3..=50).contains(&n) {
+            return Some(n as u32);
+        }
+        let what = match value {
+            Some(v) => format!("illegal angle `{}`", v.text),
+            None => "`Angle` without a number".to_string(),
+        };
+        let mut d = Diagnostic::at(codes::FR_BAD_ANGLE, span, what)
+            .with_label("Fractint accepts 3 to 50")
+            .with_help("`Angle n` turns by 360/n degrees; n is a whole number from 3 to 50");
+        if n > 50 && 360 % n == 0 && (3..=50).contains(&(360 / n)) {
+            d = d.with_note(format!(
+                "n is not in degrees: for {n} degrees write `Angle {}`",
+                360 / n
+            ));
+        }
+        self.diags.push(d);
+        None
+    }
+
+    /// Warns about a rule for a symbol Fractint 19 reserves.
+    fn check_rule_head(&mut self, head: &str, head_span: &Span) {
+        if !RESERVED.contains(head) {
+            return;
+        }
+        self.diags.push(
+            Diagnostic::at(
+                codes::FR_RESERVED_RULE,
+                head_span.clone(),
+                format!("a rule for the reserved symbol `{head}`"),
+            )
+            .with_label("Fractint 19 rejects this rule")
+            .with_note(format!(
+                "read as Fractint 16 read it: the rule rewrites every command starting with `{head}`"
+            ))
+            .with_help("rename the symbol if you meant a variable of your own"),
+        );
+    }
+
+    /// A line starting with a word that is no keyword (`rule`: followed by
+    /// `=`, a rule head of several characters).
+    fn unknown_line(&mut self, word: &str, span: &Span, rule: bool) {
+        let d = if rule {
+            Diagnostic::at(
+                codes::FR_UNKNOWN_KEYWORD,
+                span.clone(),
+                format!("a rule for `{word}`: rule heads are one character"),
+            )
+            .with_label("several characters")
+            .with_help("a rule rewrites one character, e.g. `x=F+F`")
+        } else {
+            let d = Diagnostic::at(
+                codes::FR_UNKNOWN_KEYWORD,
+                span.clone(),
+                format!("unknown keyword `{word}`"),
+            )
+            .with_label("not `Angle`, `Axiom` or a rule");
+            match nearest(word, &KEYWORDS).first() {
+                Some(k) => d.with_help(format!("did you mean `{}`?", capitalised(k))),
+                None => d.with_help("a line is `Angle n`, `Axiom STRING`, `x=STRING` or `}`"),
+            }
+        };
+        self.diags.push(d);
+    }
+
+    /// Text after a line's string, which Fractint ignores.
+    fn extra_text(&mut self, extra: &Span, kind: &LineKind) {
+        let d = Diagnostic::at(
+            codes::FR_EXTRA_TEXT,
+            extra.clone(),
+            "extra text after the command",
+        )
+        .with_label("Fractint reads one string per line");
+        // `x = -FX` reads as the rule `x=` with the extra text `-FX`.
+        let eq_body = matches!(kind, LineKind::Rule { body: Some(b), .. } if b.text == "=");
+        self.diags.push(if eq_body {
+            d.with_help("write the rule without blanks around `=`, e.g. `x=-FX`")
+        } else {
+            d.with_help(
+                "strings cannot contain blanks: remove them, or comment the rest out with `;`",
+            )
+        });
+    }
+
+    /// Reports an entry without an axiom or an angle.
+    fn check_complete(&mut self, entry: &Entry, lines: &Lines<'_>) {
+        for (seen, code, what, keyword, help) in [
+            (
+                lines.axiom_seen,
+                codes::FR_NO_AXIOM,
+                "axiom",
+                "Axiom",
+                "add a line `Axiom STRING`, the word the derivation starts from",
+            ),
+            (
+                lines.angle_seen,
+                codes::FR_BAD_ANGLE,
+                "angle",
+                "Angle",
+                "add a line `Angle n` (n from 3 to 50: turns of 360/n degrees)",
+            ),
+        ] {
+            if !seen {
+                self.diags.push(
+                    Diagnostic::at(
+                        code,
+                        entry.name_span.clone(),
+                        format!("the entry `{}` has no {what}", entry.name),
+                    )
+                    .with_label(format!("no `{keyword}` line in this entry"))
+                    .with_help(help),
+                );
+            }
+        }
+    }
+
+    /// The productions of the rules: bodies in file order, rules for one
+    /// character concatenated.
+    fn productions(&mut self, rules: &[(&str, Span, Option<&Body>)]) {
+        let mut heads: Vec<(&str, Span, Vec<SymbolId>, Vec<Span>)> = Vec::new();
+        for (head, span, body) in rules {
+            let (w, spans) = match body {
+                Some(b) => self.word(b),
+                None => (Word::default(), Vec::new()),
+            };
+            match heads.iter_mut().find(|h| h.0 == *head) {
+                Some(h) => {
+                    h.2.extend(w.0);
+                    h.3.extend(spans);
+                    h.1 = h.1.start.min(span.start)..h.1.end.max(span.end);
+                }
+                None => heads.push((head, span.clone(), w.0, spans)),
+            }
+        }
+        for (head, span, succ, succ_spans) in heads {
+            self.add_production(head, &span, succ, succ_spans);
+        }
+    }
+
+    /// The production of one head. A reserved head (Fractint ≤ 16)
+    /// rewrites every command it starts.
+    fn add_production(
+        &mut self,
+        head: &str,
+        span: &Span,
+        succ: Vec<SymbolId>,
+        succ_spans: Vec<Span>,
+    ) {
+        let preds: Vec<SymbolId> = if RESERVED.contains(head) {
+            self.sys
+                .symbols
+                .iter()
+                .filter(|(_, i)| i.name.starts_with(head))
+                .map(|(id, _)| id)
+                .collect()
+        } else {
+            vec![self.sys.intern(head)]
+        };
+        for p in preds {
+            self.spans.symbols.entry(p).or_insert_with(|| span.clone());
+            self.sys.productions.push(Production::new(
+                Vec::new(),
+                vec![p],
+                Vec::new(),
+                vec![Alternative::new(1.0, Word::from(succ.clone()))],
+            ));
+            self.spans.productions.push(span.clone());
+            self.spans.successors.push(vec![succ_spans.clone()]);
+        }
+    }
+
+    /// Gives every command its turtle meaning (`n` increments per turn).
+    fn interpret_commands(&mut self, n: u32) {
+        let names: Vec<(SymbolId, String)> = self
+            .sys
+            .symbols
+            .iter()
+            .map(|(id, i)| (id, i.name.clone()))
+            .collect();
+        for (id, name) in names {
+            if id == SymbolId::OPEN || id == SymbolId::CLOSE {
+                continue;
+            }
+            if let Some(op) = interpret(&name, n) {
+                self.sys.set_interpretation(id, op);
+            }
+        }
+    }
+}
+
 /// Lowers one entry. The system is usable only when `diags` got no error.
 pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
     let mut cx = Cx {
@@ -192,208 +446,20 @@ pub fn lower_entry(entry: &Entry, diags: &mut Diagnostics) -> Lowered {
         spans: SpanTable::default(),
         diags,
     };
-    let mut axiom: Option<&Body> = None;
-    let mut axiom_seen = false;
-    let mut angle: Option<u32> = None;
-    let mut angle_seen = false;
-    // Rules in file order: (head, head span, body).
-    let mut rules: Vec<(&str, Span, Option<&Body>)> = Vec::new();
-    for line in &entry.lines {
-        match &line.kind {
-            LineKind::Axiom { keyword, body } => {
-                axiom_seen = true;
-                axiom = body.as_ref();
-                if body.is_none() {
-                    cx.diags.push(
-                        Diagnostic::at(
-                            codes::FR_NO_AXIOM,
-                            keyword.clone(),
-                            "`Axiom` without a string",
-                        )
-                        .with_label("the axiom string is missing")
-                        .with_help("write the string after the keyword, e.g. `Axiom F--F--F`"),
-                    );
-                }
-            }
-            LineKind::Angle { keyword, value } => {
-                angle_seen = true;
-                let (span, n) = match value {
-                    Some(v) => (v.span.clone(), atoi(&v.text)),
-                    None => (keyword.clone(), 0),
-                };
-                if (3..=50).contains(&n) {
-                    angle = Some(n as u32);
-                } else {
-                    let what = match value {
-                        Some(v) => format!("illegal angle `{}`", v.text),
-                        None => "`Angle` without a number".to_string(),
-                    };
-                    let mut d = Diagnostic::at(codes::FR_BAD_ANGLE, span, what)
-                        .with_label("Fractint accepts 3 to 50")
-                        .with_help(
-                            "`Angle n` turns by 360/n degrees; n is a whole number from 3 to 50",
-                        );
-                    if n > 50 && 360 % n == 0 && (3..=50).contains(&(360 / n)) {
-                        d = d.with_note(format!(
-                            "n is not in degrees: for {n} degrees write `Angle {}`",
-                            360 / n
-                        ));
-                    }
-                    cx.diags.push(d);
-                }
-            }
-            LineKind::Rule {
-                head,
-                head_span,
-                body,
-            } => {
-                if RESERVED.contains(head.as_str()) {
-                    cx.diags.push(
-                        Diagnostic::at(
-                            codes::FR_RESERVED_RULE,
-                            head_span.clone(),
-                            format!("a rule for the reserved symbol `{head}`"),
-                        )
-                        .with_label("Fractint 19 rejects this rule")
-                        .with_note(format!(
-                            "read as Fractint 16 read it: the rule rewrites every command starting with `{head}`"
-                        ))
-                        .with_help("rename the symbol if you meant a variable of your own"),
-                    );
-                }
-                rules.push((head, head_span.clone(), body.as_ref()));
-            }
-            LineKind::Unknown { word, span, rule } => {
-                let d = if *rule {
-                    Diagnostic::at(
-                        codes::FR_UNKNOWN_KEYWORD,
-                        span.clone(),
-                        format!("a rule for `{word}`: rule heads are one character"),
-                    )
-                    .with_label("several characters")
-                    .with_help("a rule rewrites one character, e.g. `x=F+F`")
-                } else {
-                    let d = Diagnostic::at(
-                        codes::FR_UNKNOWN_KEYWORD,
-                        span.clone(),
-                        format!("unknown keyword `{word}`"),
-                    )
-                    .with_label("not `Angle`, `Axiom` or a rule");
-                    match nearest(word, &KEYWORDS).first() {
-                        Some(k) => d.with_help(format!("did you mean `{}`?", capitalised(k))),
-                        None => {
-                            d.with_help("a line is `Angle n`, `Axiom STRING`, `x=STRING` or `}`")
-                        }
-                    }
-                };
-                cx.diags.push(d);
-            }
-        }
-        if let Some(x) = &line.extra {
-            let mut d = Diagnostic::at(
-                codes::FR_EXTRA_TEXT,
-                x.clone(),
-                "extra text after the command",
-            )
-            .with_label("Fractint reads one string per line");
-            let eq_body =
-                matches!(&line.kind, LineKind::Rule { body: Some(b), .. } if b.text == "=");
-            d = if eq_body {
-                d.with_help("write the rule without blanks around `=`, e.g. `x=-FX`")
-            } else {
-                d.with_help(
-                    "strings cannot contain blanks: remove them, or comment the rest out with `;`",
-                )
-            };
-            cx.diags.push(d);
-        }
-    }
-    if !axiom_seen {
-        cx.diags.push(
-            Diagnostic::at(
-                codes::FR_NO_AXIOM,
-                entry.name_span.clone(),
-                format!("the entry `{}` has no axiom", entry.name),
-            )
-            .with_label("no `Axiom` line in this entry")
-            .with_help("add a line `Axiom STRING`, the word the derivation starts from"),
-        );
-    }
-    if !angle_seen {
-        cx.diags.push(
-            Diagnostic::at(
-                codes::FR_BAD_ANGLE,
-                entry.name_span.clone(),
-                format!("the entry `{}` has no angle", entry.name),
-            )
-            .with_label("no `Angle` line in this entry")
-            .with_help("add a line `Angle n` (n from 3 to 50: turns of 360/n degrees)"),
-        );
-    }
-    let n = angle.unwrap_or(4);
+    let lines = cx.read_lines(entry);
+    cx.check_complete(entry, &lines);
+    let n = lines.angle.unwrap_or(4);
     cx.sys.settings.delta = (360.0 / f64::from(n)).to_radians();
     cx.sys.settings.steps = Some(DEFAULT_ORDER);
     cx.sys.settings.colour = DEFAULT_COLOUR;
     cx.sys.colours = palette();
-    if let Some(b) = axiom {
+    if let Some(b) = lines.axiom {
         let (w, spans) = cx.word(b);
         cx.sys.axiom = w;
         cx.spans.axiom = spans;
     }
-    // Bodies in file order; rules for one character concatenate.
-    let mut heads: Vec<(&str, Span, Vec<SymbolId>, Vec<Span>)> = Vec::new();
-    for (head, span, body) in &rules {
-        let (w, spans) = match body {
-            Some(b) => cx.word(b),
-            None => (Word::default(), Vec::new()),
-        };
-        match heads.iter_mut().find(|h| h.0 == *head) {
-            Some(h) => {
-                h.2.extend(w.0);
-                h.3.extend(spans);
-                h.1 = h.1.start.min(span.start)..h.1.end.max(span.end);
-            }
-            None => heads.push((head, span.clone(), w.0, spans)),
-        }
-    }
-    for (head, span, succ, succ_spans) in heads {
-        // A reserved head (Fractint ≤ 16) rewrites every command it starts.
-        let preds: Vec<SymbolId> = if RESERVED.contains(head) {
-            cx.sys
-                .symbols
-                .iter()
-                .filter(|(_, i)| i.name.starts_with(head))
-                .map(|(id, _)| id)
-                .collect()
-        } else {
-            vec![cx.sys.intern(head)]
-        };
-        for p in preds {
-            cx.spans.symbols.entry(p).or_insert_with(|| span.clone());
-            cx.sys.productions.push(Production::new(
-                Vec::new(),
-                vec![p],
-                Vec::new(),
-                vec![Alternative::new(1.0, Word::from(succ.clone()))],
-            ));
-            cx.spans.productions.push(span.clone());
-            cx.spans.successors.push(vec![succ_spans.clone()]);
-        }
-    }
-    let names: Vec<(SymbolId, String)> = cx
-        .sys
-        .symbols
-        .iter()
-        .map(|(id, i)| (id, i.name.clone()))
-        .collect();
-    for (id, name) in names {
-        if id == SymbolId::OPEN || id == SymbolId::CLOSE {
-            continue;
-        }
-        if let Some(op) = interpret(&name, n) {
-            cx.sys.set_interpretation(id, op);
-        }
-    }
+    cx.productions(&lines.rules);
+    cx.interpret_commands(n);
     Lowered {
         system: cx.sys,
         spans: cx.spans,

@@ -705,150 +705,157 @@ fn detach_numbers(cx: &Cx<'_>, items: &[Item]) -> Vec<Item> {
     out
 }
 
+/// Interns `name` with the turtle meaning `op` and appends it.
+fn push_op(cx: &mut Cx<'_>, out: &mut StringOut, name: &str, op: TurtleOp, span: Span) {
+    let id = cx.sys.intern(name);
+    cx.sys.set_interpretation(id, op);
+    out.push(id, span);
+}
+
+/// The brackets of a string not yet closed, and at each bracket depth the
+/// `{` not yet closed by `}`.
+struct Nesting {
+    open: Vec<Span>,
+    colours: Vec<Vec<Span>>,
+}
+
+impl Nesting {
+    fn new() -> Self {
+        Nesting {
+            open: Vec::new(),
+            colours: vec![Vec::new()],
+        }
+    }
+
+    fn open(&mut self, span: &Span) {
+        self.open.push(span.clone());
+        self.colours.push(Vec::new());
+    }
+
+    fn close(&mut self, cx: &mut Cx<'_>, span: &Span) {
+        if self.open.pop().is_some() {
+            self.colours.pop();
+            return;
+        }
+        cx.diags.push(
+            Diagnostic::at(
+                codes::LINF_UNBALANCED,
+                span.clone(),
+                "`]` without a matching `[`",
+            )
+            .with_label("nothing to close")
+            .with_help("remove this `]` or add the `[` that opens the branch"),
+        );
+    }
+
+    fn next_colour(&mut self, span: &Span) {
+        self.colours
+            .last_mut()
+            .expect("never empty")
+            .push(span.clone());
+    }
+
+    fn previous_colour(&mut self, cx: &mut Cx<'_>, span: &Span) {
+        if self
+            .colours
+            .last_mut()
+            .expect("never empty")
+            .pop()
+            .is_some()
+        {
+            return;
+        }
+        cx.diags.push(
+            Diagnostic::at(
+                codes::LINF_COLOUR_BALANCE,
+                span.clone(),
+                "`}` without a `{` before it in this string",
+            )
+            .with_label("goes back to a colour chosen outside this string")
+            .with_help("`}` returns to the previous colour; pair it with a `{`"),
+        );
+    }
+
+    /// Reports every `[` never closed, and the first `{` never closed
+    /// outside a branch (a branch restores the colour).
+    fn check_closed(self, cx: &mut Cx<'_>) {
+        for span in self.open {
+            cx.diags.push(
+                Diagnostic::at(codes::LINF_UNBALANCED, span, "`[` is never closed")
+                    .with_label("this branch has no `]`")
+                    .with_help("add `]` where the branch ends"),
+            );
+        }
+        if let Some(unclosed) = self.colours.first().and_then(|c| c.first()) {
+            cx.diags.push(
+                Diagnostic::at(
+                    codes::LINF_COLOUR_BALANCE,
+                    unclosed.clone(),
+                    "`{` is never closed by `}` in this string",
+                )
+                .with_label("the colour stays changed after this string")
+                .with_help(
+                    "close it with `}`, or put it inside a branch `[…]`, which restores the colour",
+                ),
+            );
+        }
+    }
+}
+
 fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
     let items = &detach_numbers(cx, items)[..];
     let mut out = StringOut {
         word: Vec::new(),
         spans: Vec::new(),
     };
-    let mut open: Vec<Span> = Vec::new();
-    // `{` not yet closed, per bracket depth.
-    let mut colour_depth: Vec<Vec<Span>> = vec![Vec::new()];
+    let mut nesting = Nesting::new();
     let mut i = 0;
     while i < items.len() {
-        match &items[i] {
+        i = match &items[i] {
             Item::Name(n) => {
                 let pieces = split(cx, &n.text, n.span.start);
                 push_pieces(cx, &mut out, &pieces, &n.text);
-                i += 1;
+                i + 1
             }
-            Item::Sign { .. } => i = lower_signs(cx, &mut out, items, i),
-            Item::Number { value, text, span } => match items.get(i + 1) {
-                Some(Item::At(at)) => {
-                    let name = format!("{text}@");
-                    let id = cx.sys.intern(&name);
-                    cx.sys.set_interpretation(id, TurtleOp::ScaleLength(*value));
-                    out.push(id, span.start..at.end);
-                    i += 2;
-                }
-                Some(Item::Question(q)) => {
-                    i = lower_guard(cx, &mut out, items, i, *value, span, q);
-                }
-                _ => {
-                    cx.diags.push(
-                            Diagnostic::at(
-                                codes::LINF_STRAY_NUMBER,
-                                span.clone(),
-                                format!("the number `{text}` is not followed by `?` or `@`"),
-                            )
-                            .with_label("a number in a string must say what it is for")
-                            .with_help(format!(
-                                "`{text}@` multiplies the length; `{text}?s` expands `s` with probability {text}"
-                            )),
-                        );
-                    i += 1;
-                }
-            },
-            Item::Question(span) | Item::At(span) => {
-                let mark = if matches!(items[i], Item::At(_)) {
-                    ("@", "`0.5@` halves the length")
-                } else {
-                    ("?", "`0.5?j` expands `j` with probability 0.5")
-                };
-                cx.diags.push(
-                    Diagnostic::at(
-                        codes::LINF_MISSING_NUMBER,
-                        span.clone(),
-                        format!("`{}` without a number before it", mark.0),
-                    )
-                    .with_label("needs a number right before it")
-                    .with_help(format!("write the number first: {}", mark.1)),
-                );
-                i += 1;
+            Item::Sign { .. } => lower_signs(cx, &mut out, items, i),
+            Item::Number { value, text, span } => {
+                lower_number(cx, &mut out, items, i, (*value, text), span)
+            }
+            Item::Question(span) => {
+                missing_number(cx, span, "?", "`0.5?j` expands `j` with probability 0.5");
+                i + 1
+            }
+            Item::At(span) => {
+                missing_number(cx, span, "@", "`0.5@` halves the length");
+                i + 1
             }
             Item::Open(span) => {
-                open.push(span.clone());
-                colour_depth.push(Vec::new());
+                nesting.open(span);
                 out.push(SymbolId::OPEN, span.clone());
-                i += 1;
+                i + 1
             }
             Item::Close(span) => {
-                if open.pop().is_none() {
-                    cx.diags.push(
-                        Diagnostic::at(
-                            codes::LINF_UNBALANCED,
-                            span.clone(),
-                            "`]` without a matching `[`",
-                        )
-                        .with_label("nothing to close")
-                        .with_help("remove this `]` or add the `[` that opens the branch"),
-                    );
-                } else {
-                    colour_depth.pop();
-                }
+                nesting.close(cx, span);
                 out.push(SymbolId::CLOSE, span.clone());
-                i += 1;
+                i + 1
             }
             Item::NextColour(span) => {
-                let id = cx.sys.intern("{");
-                cx.sys.set_interpretation(id, TurtleOp::NextColour);
-                colour_depth
-                    .last_mut()
-                    .expect("never empty")
-                    .push(span.clone());
-                out.push(id, span.clone());
-                i += 1;
+                nesting.next_colour(span);
+                push_op(cx, &mut out, "{", TurtleOp::NextColour, span.clone());
+                i + 1
             }
             Item::PreviousColour(span) => {
-                let id = cx.sys.intern("}");
-                cx.sys.set_interpretation(id, TurtleOp::PreviousColour);
-                if colour_depth
-                    .last_mut()
-                    .expect("never empty")
-                    .pop()
-                    .is_none()
-                {
-                    cx.diags.push(
-                        Diagnostic::at(
-                            codes::LINF_COLOUR_BALANCE,
-                            span.clone(),
-                            "`}` without a `{` before it in this string",
-                        )
-                        .with_label("goes back to a colour chosen outside this string")
-                        .with_help("`}` returns to the previous colour; pair it with a `{`"),
-                    );
-                }
-                out.push(id, span.clone());
-                i += 1;
+                nesting.previous_colour(cx, span);
+                push_op(cx, &mut out, "}", TurtleOp::PreviousColour, span.clone());
+                i + 1
             }
             Item::Swap(span) => {
-                let id = cx.sys.intern("!");
-                cx.sys.set_interpretation(id, TurtleOp::SwapTurns);
-                out.push(id, span.clone());
-                i += 1;
+                push_op(cx, &mut out, "!", TurtleOp::SwapTurns, span.clone());
+                i + 1
             }
-        }
+        };
     }
-    for span in open {
-        cx.diags.push(
-            Diagnostic::at(codes::LINF_UNBALANCED, span, "`[` is never closed")
-                .with_label("this branch has no `]`")
-                .with_help("add `]` where the branch ends"),
-        );
-    }
-    if let Some(unclosed) = colour_depth.first().and_then(|c| c.first()) {
-        cx.diags.push(
-            Diagnostic::at(
-                codes::LINF_COLOUR_BALANCE,
-                unclosed.clone(),
-                "`{` is never closed by `}` in this string",
-            )
-            .with_label("the colour stays changed after this string")
-            .with_help(
-                "close it with `}`, or put it inside a branch `[…]`, which restores the colour",
-            ),
-        );
-    }
+    nesting.check_closed(cx);
     // The first place each symbol is written (for diagnostics elsewhere,
     // e.g. translation).
     for (id, span) in out.word.iter().zip(&out.spans) {
@@ -857,128 +864,208 @@ fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
     (out.word, out.spans)
 }
 
+/// A number, as written: `x@` scales the length, `p?s` guards `s`; any
+/// other number is reported. Returns the index of the next item.
+fn lower_number(
+    cx: &mut Cx<'_>,
+    out: &mut StringOut,
+    items: &[Item],
+    i: usize,
+    (value, text): (f64, &str),
+    span: &Span,
+) -> usize {
+    match items.get(i + 1) {
+        Some(Item::At(at)) => {
+            let op = TurtleOp::ScaleLength(value);
+            push_op(cx, out, &format!("{text}@"), op, span.start..at.end);
+            i + 2
+        }
+        Some(Item::Question(q)) => lower_guard(cx, out, items, i, value, span, q),
+        _ => {
+            cx.diags.push(
+                Diagnostic::at(
+                    codes::LINF_STRAY_NUMBER,
+                    span.clone(),
+                    format!("the number `{text}` is not followed by `?` or `@`"),
+                )
+                .with_label("a number in a string must say what it is for")
+                .with_help(format!(
+                    "`{text}@` multiplies the length; `{text}?s` expands `s` with probability {text}"
+                )),
+            );
+            i + 1
+        }
+    }
+}
+
+/// `?` or `@` (`mark`) with no number before it.
+fn missing_number(cx: &mut Cx<'_>, span: &Span, mark: &str, example: &str) {
+    cx.diags.push(
+        Diagnostic::at(
+            codes::LINF_MISSING_NUMBER,
+            span.clone(),
+            format!("`{mark}` without a number before it"),
+        )
+        .with_label("needs a number right before it")
+        .with_help(format!("write the number first: {example}")),
+    );
+}
+
+/// A run of adjacent signs: each sign (`true` for `-`) and the run's
+/// span and text.
+struct SignRun {
+    signs: Vec<(bool, Span)>,
+    span: Span,
+    text: String,
+}
+
+impl SignRun {
+    /// The run starting at `items[i]`, and the index of the item after it.
+    fn read(items: &[Item], mut i: usize) -> (Self, usize) {
+        let mut signs: Vec<(bool, Span)> = Vec::new();
+        while let Some(Item::Sign { minus, span }) = items.get(i) {
+            if signs.last().is_some_and(|(_, s)| s.end != span.start) {
+                break;
+            }
+            signs.push((*minus, span.clone()));
+            i += 1;
+        }
+        let span = signs[0].1.start..signs[signs.len() - 1].1.end;
+        let text = signs
+            .iter()
+            .map(|(m, _)| if *m { '-' } else { '+' })
+            .collect();
+        (SignRun { signs, span, text }, i)
+    }
+}
+
 /// A run of adjacent signs and the angle named right after it; returns the
 /// index of the next item.
-fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], mut i: usize) -> usize {
-    let mut signs: Vec<(bool, Span)> = Vec::new();
-    while let Some(Item::Sign { minus, span }) = items.get(i) {
-        if signs.last().is_some_and(|(_, s)| s.end != span.start) {
-            break;
-        }
-        signs.push((*minus, span.clone()));
-        i += 1;
-    }
-    let run = signs[0].1.start..signs[signs.len() - 1].1.end;
-    let run_text: String = signs
-        .iter()
-        .map(|(m, _)| if *m { '-' } else { '+' })
-        .collect();
+fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], i: usize) -> usize {
+    let (run, mut i) = SignRun::read(items, i);
     // The name right after the run, split.
     let mut rest: Vec<(Result<Role, ()>, &str, Span)> = Vec::new();
     let mut whole = "";
     if let Some(Item::Name(n)) = items.get(i) {
-        if n.span.start == run.end {
+        if n.span.start == run.span.end {
             rest = split(cx, &n.text, n.span.start);
             whole = &n.text;
             i += 1;
         }
     }
-    let rotation = match rest.first() {
+    let (rotation, suffix) = match rest.first() {
         Some((Ok(Role::Angle(id)), text, _)) => {
-            let r = (*id, text.to_string());
+            let r = (Some(*id), text.to_string());
             let _ = rest.remove(0);
-            Some(r)
+            r
         }
         Some((Err(()), text, span)) => {
-            let angles = cx.names(true);
-            let mut near: Vec<String> = nearest(text, &angles)
-                .into_iter()
-                .map(|n| format!("{run_text}{n}"))
-                .collect();
-            if near.is_empty() {
-                // `+laef` for `+leaf`: the default rotation, then a name.
-                let others = cx.names(false);
-                if cx.default_rotation.is_some() {
-                    near = nearest(text, &others)
-                        .into_iter()
-                        .map(|n| format!("{run_text}{n}"))
-                        .collect();
-                }
-            }
-            near.sort();
-            if near.len() > 3 {
-                near.clear();
-            }
-            let d = Diagnostic::at(
-                codes::LINF_UNKNOWN_ANGLE,
-                span.clone(),
-                format!("unknown angle `{text}` after `{run_text}`"),
-            )
-            .with_label("not a declared angle")
-            .with_secondary(run.clone(), "rotates by the angle named here");
-            let d = match (near.first(), angles.is_empty()) {
-                (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
-                (None, true) => d.with_help(format!(
-                    "declare it in the angles block: `angles {text} = (0, pi/2)`"
-                )),
-                (None, false) => {
-                    let mut all = angles.clone();
-                    all.sort();
-                    d.with_help(format!(
-                        "declared angles: {}; or declare `{text} = (…, …)` in the angles block",
-                        all.join(", ")
-                    ))
-                }
-            };
-            cx.diags.push(d);
+            unknown_angle(cx, &run, text, span);
             return i;
         }
-        _ => None,
-    };
-    let (rotation, suffix) = match rotation {
-        Some((id, name)) => (Some(id), name),
-        None => match cx.default_rotation {
-            Some(id) => (Some(id), String::new()),
-            None => {
-                let angles = cx.names(true);
-                let help = match angles.iter().min() {
-                    Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
-                    None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
-                };
-                cx.diags.push(
-                    Diagnostic::at(
-                        codes::LINF_NO_DEFAULT_ROTATION,
-                        run.clone(),
-                        format!("`{run_text}` names no angle and no default rotation is declared"),
-                    )
-                    .with_label("rotates by what?")
-                    .with_help(help),
-                );
-                (None, String::new())
-            }
-        },
+        _ => (default_rotation(cx, &run), String::new()),
     };
     if let Some(rotation) = rotation {
-        for (minus, span) in &signs {
-            let name = format!("{}{suffix}", if *minus { '-' } else { '+' });
-            let id = cx.sys.intern(&name);
-            cx.sys.set_interpretation(
-                id,
-                TurtleOp::Frenet {
-                    rotation,
-                    negate: *minus,
-                },
-            );
-            let end = if suffix.is_empty() {
-                span.end
-            } else {
-                run.end + suffix.len()
-            };
-            out.push(id, span.start..end);
-        }
+        push_rotations(cx, out, &run, rotation, &suffix);
     }
     push_pieces(cx, out, &rest, whole);
     i
+}
+
+/// An undeclared name `text` right after the signs of `run`.
+fn unknown_angle(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) {
+    let run_text = &run.text;
+    let angles = cx.names(true);
+    let mut near: Vec<String> = nearest(text, &angles)
+        .into_iter()
+        .map(|n| format!("{run_text}{n}"))
+        .collect();
+    if near.is_empty() {
+        // `+laef` for `+leaf`: the default rotation, then a name.
+        let others = cx.names(false);
+        if cx.default_rotation.is_some() {
+            near = nearest(text, &others)
+                .into_iter()
+                .map(|n| format!("{run_text}{n}"))
+                .collect();
+        }
+    }
+    near.sort();
+    if near.len() > 3 {
+        near.clear();
+    }
+    let d = Diagnostic::at(
+        codes::LINF_UNKNOWN_ANGLE,
+        span.clone(),
+        format!("unknown angle `{text}` after `{run_text}`"),
+    )
+    .with_label("not a declared angle")
+    .with_secondary(run.span.clone(), "rotates by the angle named here");
+    let d = match (near.first(), angles.is_empty()) {
+        (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
+        (None, true) => d.with_help(format!(
+            "declare it in the angles block: `angles {text} = (0, pi/2)`"
+        )),
+        (None, false) => {
+            let mut all = angles.clone();
+            all.sort();
+            d.with_help(format!(
+                "declared angles: {}; or declare `{text} = (…, …)` in the angles block",
+                all.join(", ")
+            ))
+        }
+    };
+    cx.diags.push(d);
+}
+
+/// The default rotation, for signs that name no angle; reported when
+/// there is none.
+fn default_rotation(cx: &mut Cx<'_>, run: &SignRun) -> Option<RotationId> {
+    if cx.default_rotation.is_some() {
+        return cx.default_rotation;
+    }
+    let run_text = &run.text;
+    let angles = cx.names(true);
+    let help = match angles.iter().min() {
+        Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
+        None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
+    };
+    cx.diags.push(
+        Diagnostic::at(
+            codes::LINF_NO_DEFAULT_ROTATION,
+            run.span.clone(),
+            format!("`{run_text}` names no angle and no default rotation is declared"),
+        )
+        .with_label("rotates by what?")
+        .with_help(help),
+    );
+    None
+}
+
+/// One symbol per sign of `run`: `+suffix` or `-suffix`, turning by
+/// `rotation` (the angle named `suffix`, or the default rotation when it
+/// is empty).
+fn push_rotations(
+    cx: &mut Cx<'_>,
+    out: &mut StringOut,
+    run: &SignRun,
+    rotation: RotationId,
+    suffix: &str,
+) {
+    for (minus, span) in &run.signs {
+        let name = format!("{}{suffix}", if *minus { '-' } else { '+' });
+        let op = TurtleOp::Frenet {
+            rotation,
+            negate: *minus,
+        };
+        // Each symbol spans its sign and the angle's name.
+        let end = if suffix.is_empty() {
+            span.end
+        } else {
+            run.span.end + suffix.len()
+        };
+        push_op(cx, out, &name, op, span.start..end);
+    }
 }
 
 /// `p?s`: returns the index of the item after `s`.

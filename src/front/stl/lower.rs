@@ -32,8 +32,8 @@ use super::layout::{self, Outline};
 use super::parser::RESERVED;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Angle, Axis, BranchEntry, BranchTerm, Growth, SeedItem, Shape, Span, SpanTable, StlRule,
-    StlRuleId, Structure, System, TurtleOp, Word,
+    Angle, Axis, BranchEntry, BranchTerm, Growth, Rgb, SeedItem, Shape, Span, SpanTable, StlRule,
+    StlRuleId, Structure, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -151,17 +151,21 @@ impl Ctx<'_> {
             }
             let bad = &text[i..j];
             let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
-            let near = nearest(bad, &names);
-            let help = match near.first() {
-                Some(n) => format!("did you mean `{n}`?"),
-                None if names.is_empty() => format!(
+            let otherwise = if names.is_empty() {
+                format!(
                     "define it as a rule, e.g. `{bad} = [F][+F]`; drawing components are F, L, R, +, -"
-                ),
-                None => format!(
+                )
+            } else {
+                format!(
                     "the rules are {}; drawing components are F, L, R, +, -",
-                    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
-                ),
+                    names
+                        .iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
             };
+            let help = did_you_mean(bad, &names, otherwise);
             self.diags.push(
                 Diagnostic::at(
                     codes::STL_UNKNOWN_RULE,
@@ -522,11 +526,11 @@ impl Ctx<'_> {
             return Some(r);
         }
         let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
-        let near = nearest(name, &names);
-        let help = match near.first() {
-            Some(n) => format!("did you mean `{n}`?"),
-            None => "an entry is a rule name, `~` (failed) or nothing".to_string(),
-        };
+        let help = did_you_mean(
+            name,
+            &names,
+            "an entry is a rule name, `~` (failed) or nothing",
+        );
         self.diags.push(
             Diagnostic::at(
                 codes::STL_UNKNOWN_RULE,
@@ -681,135 +685,160 @@ fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
     Some(n.value)
 }
 
+/// Help for an unknown `name`: the nearest of `candidates`, or `otherwise`
+/// when none is near.
+fn did_you_mean(name: &str, candidates: &[&str], otherwise: impl Into<String>) -> String {
+    match nearest(name, candidates).first() {
+        Some(near) => format!("did you mean `{near}`?"),
+        None => otherwise.into(),
+    }
+}
+
 /// Broadness or length per level ([`Structure::per_level`]).
 pub fn per_level(base: f64, dec: f64, levels: u32) -> (Vec<f64>, Option<u32>) {
     Structure::per_level(base, dec, levels)
 }
 
+/// The layout shapes: a shape's name, matched without regard to case.
+const SHAPE_KINDS: [&str; 4] = ["Rectangle", "RoundRect", "Ellipse", "Polygon"];
+
+/// A layout shape. The colour and the kind are both checked (and both
+/// reported) before the arguments.
 fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
-    let colour = match &s.colour {
-        ColourAst::Name(n, span) => match layout::named_colour(n) {
-            Some(c) => Some(c),
-            None => {
-                let names: Vec<&str> = crate::ir::colours::delphi()
-                    .iter()
-                    .map(|(n, _)| *n)
-                    .collect();
-                let near = nearest(n, &names);
-                let help = match near.first() {
-                    Some(k) => format!("did you mean `{k}`?"),
-                    None => "use a Delphi colour name (clGreen, clOlive, …; `graftal explain E0506` lists them) or `$00BBGGRR`".into(),
-                };
+    let colour = shape_colour(diags, &s.colour);
+    let kind = shape_kind(diags, s)?;
+    let colour = colour?;
+    if kind == "Polygon" {
+        return polygon(diags, s, colour);
+    }
+    sized_shape(diags, s, kind, colour)
+}
+
+/// A shape's colour: a Delphi colour name or `$00BBGGRR`.
+fn shape_colour(diags: &mut Diagnostics, colour: &ColourAst) -> Option<Rgb> {
+    match colour {
+        ColourAst::Name(n, span) => {
+            let c = layout::named_colour(n);
+            if c.is_none() {
+                unknown_colour_name(diags, n, span);
+            }
+            c
+        }
+        ColourAst::Hex(h, span) => {
+            let c = layout::hex_colour(h);
+            if c.is_none() {
                 diags.push(
                     Diagnostic::at(
                         codes::STL_UNKNOWN_COLOUR,
                         span.clone(),
-                        format!("unknown colour `{n}`"),
+                        format!("`{h}` is not a colour"),
                     )
-                    .with_label("not a Delphi colour name")
-                    .with_help(help),
+                    .with_label("expected `$00BBGGRR`")
+                    .with_help(
+                        "write up to eight hex digits with a zero top byte: `$0000FF00` is green",
+                    ),
                 );
-                None
             }
-        },
-        ColourAst::Hex(h, span) => {
-            match layout::hex_colour(h) {
-                Some(c) => Some(c),
-                None => {
-                    diags.push(
-                    Diagnostic::at(codes::STL_UNKNOWN_COLOUR, span.clone(), format!("`{h}` is not a colour"))
-                        .with_label("expected `$00BBGGRR`")
-                        .with_help("write up to eight hex digits with a zero top byte: `$0000FF00` is green"),
-                );
-                    None
-                }
-            }
+            c
         }
-    };
-    const KINDS: [&str; 4] = ["Rectangle", "RoundRect", "Ellipse", "Polygon"];
-    let Some(kind) = KINDS.iter().find(|k| k.eq_ignore_ascii_case(&s.kind)) else {
-        let near = nearest(&s.kind, &KINDS);
-        let help = match near.first() {
-            Some(k) => format!("did you mean `{k}`?"),
-            None => "the shapes are Rectangle, RoundRect, Ellipse and Polygon".into(),
-        };
-        diags.push(
-            Diagnostic::at(
-                codes::STL_UNKNOWN_SHAPE,
-                s.kind_span.clone(),
-                format!("unknown shape `{}`", s.kind),
-            )
-            .with_label("not a layout shape")
-            .with_help(help),
-        );
-        return None;
-    };
-    let colour = colour?;
-    let args_help = |k: &str| match k {
-        "Rectangle" | "Ellipse" => format!("write `{k} (x, y), width, height`"),
+    }
+}
+
+fn unknown_colour_name(diags: &mut Diagnostics, n: &str, span: &Span) {
+    let names: Vec<&str> = crate::ir::colours::delphi()
+        .iter()
+        .map(|(n, _)| *n)
+        .collect();
+    let help = did_you_mean(
+        n,
+        &names,
+        "use a Delphi colour name (clGreen, clOlive, …; `graftal explain E0506` lists them) or `$00BBGGRR`",
+    );
+    diags.push(
+        Diagnostic::at(
+            codes::STL_UNKNOWN_COLOUR,
+            span.clone(),
+            format!("unknown colour `{n}`"),
+        )
+        .with_label("not a Delphi colour name")
+        .with_help(help),
+    );
+}
+
+/// The shape's kind, spelled as in [`SHAPE_KINDS`].
+fn shape_kind(diags: &mut Diagnostics, s: &ShapeAst) -> Option<&'static str> {
+    if let Some(kind) = SHAPE_KINDS.iter().find(|k| k.eq_ignore_ascii_case(&s.kind)) {
+        return Some(kind);
+    }
+    let help = did_you_mean(
+        &s.kind,
+        &SHAPE_KINDS,
+        "the shapes are Rectangle, RoundRect, Ellipse and Polygon",
+    );
+    diags.push(
+        Diagnostic::at(
+            codes::STL_UNKNOWN_SHAPE,
+            s.kind_span.clone(),
+            format!("unknown shape `{}`", s.kind),
+        )
+        .with_label("not a layout shape")
+        .with_help(help),
+    );
+    None
+}
+
+/// How to write the arguments of a shape of `kind`.
+fn shape_args_help(kind: &str) -> String {
+    match kind {
+        "Rectangle" | "Ellipse" => format!("write `{kind} (x, y), width, height`"),
         "RoundRect" => "write `RoundRect (x, y), width, height, corner`".to_string(),
         _ => "write `Polygon (x1, y1), (x2, y2), (x3, y3), …`".to_string(),
-    };
-    if *kind == "Polygon" {
-        let mut points = Vec::new();
-        for a in &s.args {
-            match a {
-                Arg::Point(x, y, _) => points.push((x.value, y.value)),
-                Arg::Num(n) => {
-                    diags.push(
-                        Diagnostic::at(
-                            codes::STL_SHAPE_ARGS,
-                            n.span.clone(),
-                            "a polygon takes points, not numbers",
-                        )
-                        .with_label("expected a point `(x, y)`")
-                        .with_help(args_help(kind)),
-                    );
-                    return None;
-                }
+    }
+}
+
+/// A polygon: three points or more.
+fn polygon(diags: &mut Diagnostics, s: &ShapeAst, colour: Rgb) -> Option<Shape> {
+    let mut points = Vec::new();
+    for a in &s.args {
+        match a {
+            Arg::Point(x, y, _) => points.push((x.value, y.value)),
+            Arg::Num(n) => {
+                diags.push(
+                    Diagnostic::at(
+                        codes::STL_SHAPE_ARGS,
+                        n.span.clone(),
+                        "a polygon takes points, not numbers",
+                    )
+                    .with_label("expected a point `(x, y)`")
+                    .with_help(shape_args_help("Polygon")),
+                );
+                return None;
             }
         }
-        if points.len() < 3 {
-            diags.push(
-                Diagnostic::at(
-                    codes::STL_FEW_POINTS,
-                    s.span.clone(),
-                    format!(
-                        "a polygon needs at least three points, this one has {}",
-                        points.len()
-                    ),
-                )
-                .with_label("too few points")
-                .with_help("add points: `(clGreen) Polygon (0,0), (100,0), (50,100)`"),
-            );
-            return None;
-        }
-        return Some(Shape::Polygon { colour, points });
     }
-    let want = if *kind == "RoundRect" { 4 } else { 3 };
-    let (start, nums) = match s.args.split_first() {
-        Some((Arg::Point(x, y, _), rest)) => (Some((x.value, y.value)), rest),
-        _ => (None, &s.args[..]),
-    };
-    let nums: Option<Vec<&Num>> = nums
-        .iter()
-        .map(|a| match a {
-            Arg::Num(n) => Some(n),
-            _ => None,
-        })
-        .collect();
-    let (Some((x, y)), Some(nums)) = (start, nums) else {
+    if points.len() < 3 {
         diags.push(
             Diagnostic::at(
-                codes::STL_SHAPE_ARGS,
+                codes::STL_FEW_POINTS,
                 s.span.clone(),
-                format!("wrong arguments for {kind}"),
+                format!(
+                    "a polygon needs at least three points, this one has {}",
+                    points.len()
+                ),
             )
-            .with_label("expected a starting point, then sizes")
-            .with_help(args_help(kind)),
+            .with_label("too few points")
+            .with_help("add points: `(clGreen) Polygon (0,0), (100,0), (50,100)`"),
         );
         return None;
-    };
+    }
+    Some(Shape::Polygon { colour, points })
+}
+
+/// A Rectangle, Ellipse or RoundRect: a starting point, then its sizes
+/// (width and height, and a RoundRect's corner), none negative.
+fn sized_shape(diags: &mut Diagnostics, s: &ShapeAst, kind: &str, colour: Rgb) -> Option<Shape> {
+    let ((x, y), nums) = start_and_sizes(diags, s, kind)?;
+    let want = if kind == "RoundRect" { 4 } else { 3 };
     if nums.len() + 1 != want {
         diags.push(
             Diagnostic::at(
@@ -818,7 +847,7 @@ fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
                 format!("{kind} takes {want} arguments, {} given", nums.len() + 1),
             )
             .with_label("wrong number of arguments")
-            .with_help(args_help(kind)),
+            .with_help(shape_args_help(kind)),
         );
         return None;
     }
@@ -826,7 +855,7 @@ fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
     for n in &nums {
         sizes.push(nonneg(diags, n, "a size")?);
     }
-    Some(match *kind {
+    Some(match kind {
         "Rectangle" => Shape::Rectangle {
             colour,
             x,
@@ -852,6 +881,38 @@ fn shape(diags: &mut Diagnostics, s: &ShapeAst) -> Option<Shape> {
     })
 }
 
+/// A sized shape's arguments: the starting point and the numbers after it.
+fn start_and_sizes<'s>(
+    diags: &mut Diagnostics,
+    s: &'s ShapeAst,
+    kind: &str,
+) -> Option<((f64, f64), Vec<&'s Num>)> {
+    let (start, nums) = match s.args.split_first() {
+        Some((Arg::Point(x, y, _), rest)) => (Some((x.value, y.value)), rest),
+        _ => (None, &s.args[..]),
+    };
+    let nums: Option<Vec<&Num>> = nums
+        .iter()
+        .map(|a| match a {
+            Arg::Num(n) => Some(n),
+            _ => None,
+        })
+        .collect();
+    let (Some(start), Some(nums)) = (start, nums) else {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_SHAPE_ARGS,
+                s.span.clone(),
+                format!("wrong arguments for {kind}"),
+            )
+            .with_label("expected a starting point, then sizes")
+            .with_help(shape_args_help(kind)),
+        );
+        return None;
+    };
+    Some((start, nums))
+}
+
 /// The settings a file gives.
 struct Settings {
     angle: f64,
@@ -863,219 +924,308 @@ struct Settings {
     l_span: Option<Span>,
 }
 
-/// Lowers a parsed STL file.
-pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
-    let mut st = Settings {
-        angle: DEFAULT_ANGLE,
-        levels: DEFAULT_LEVELS,
-        depth_first: false,
-        b: (DEFAULT_BROADNESS, 0.0),
-        l: (DEFAULT_LENGTH, 0.0),
-        b_span: None,
-        l_span: None,
-    };
-    let mut seen: HashMap<&'static str, Span> = HashMap::new();
-    let mut dup = |diags: &mut Diagnostics, key: &'static str, span: &Span| {
-        if let Some(first) = seen.get(key) {
-            diags.push(
-                Diagnostic::at(
-                    codes::STL_DUPLICATE,
-                    span.clone(),
-                    format!("`{key}` given twice"),
-                )
-                .with_label("given again here")
-                .with_secondary(first.clone(), "first given here")
-                .with_help("keep one of them"),
-            );
-            false
-        } else {
-            seen.insert(key, span.clone());
-            true
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            angle: DEFAULT_ANGLE,
+            levels: DEFAULT_LEVELS,
+            depth_first: false,
+            b: (DEFAULT_BROADNESS, 0.0),
+            l: (DEFAULT_LENGTH, 0.0),
+            b_span: None,
+            l_span: None,
         }
-    };
-    let mut ctx = Ctx {
-        diags,
-        rules: Vec::new(),
-        by_name: HashMap::new(),
-        max_name: 0,
-        state: Vec::new(),
-        full: Vec::new(),
-        unit: Vec::new(),
-        count: Vec::new(),
-        unit_ref: Vec::new(),
-        stack: Vec::new(),
-        too_large: false,
-    };
-    let mut seed: Option<(&Str, Span)> = None;
-    let mut shapes: Vec<Shape> = Vec::new();
-    let mut layout_span: Option<Span> = None;
-    let mut ok = true;
-    for item in &file.items {
+    }
+}
+
+/// What a file's items say besides its rules (which go into [`Ctx`]), read
+/// in file order.
+#[derive(Default)]
+struct Header<'f> {
+    st: Settings,
+    /// Where each setting and the seed was first given: each is given once.
+    seen: HashMap<&'static str, Span>,
+    seed: Option<&'f Str>,
+    shapes: Vec<Shape>,
+    /// The first LAYOUT: the file is an Outline Description.
+    layout_span: Option<Span>,
+    /// No item had an error that keeps the file from being drawn.
+    ok: bool,
+}
+
+impl<'f> Header<'f> {
+    /// Reads the items of `file`, declaring its rules in `ctx`.
+    fn read(ctx: &mut Ctx<'_>, file: &'f File) -> Self {
+        let mut hd = Header {
+            ok: true,
+            ..Header::default()
+        };
+        for item in &file.items {
+            hd.ok &= hd.item(ctx, item);
+        }
+        hd
+    }
+
+    /// Reads one item; false if it has an error that keeps the file from
+    /// being drawn.
+    fn item(&mut self, ctx: &mut Ctx<'_>, item: &'f Item) -> bool {
         match item {
             Item::Angle { value, span } => {
-                if dup(ctx.diags, "ANGLE", span) {
-                    if value.value.is_finite() {
-                        st.angle = value.value;
-                    } else {
-                        ok = false;
-                    }
+                if !self.first_given(ctx.diags, "ANGLE", span) {
+                    return true;
                 }
+                if !value.value.is_finite() {
+                    return false;
+                }
+                self.st.angle = value.value;
+                true
             }
             Item::Levels { value, span } => {
-                if !dup(ctx.diags, "LEVELS", span) {
-                    continue;
+                if !self.first_given(ctx.diags, "LEVELS", span) {
+                    return true;
                 }
-                let v = value.value;
-                if v < 0.0 || v.fract() != 0.0 || !v.is_finite() {
-                    ctx.diags.push(
-                        Diagnostic::at(
-                            codes::STL_NEGATIVE,
-                            value.span.clone(),
-                            format!("LEVELS must be a whole number of 0 or more, not {v}"),
-                        )
-                        .with_label("not a count")
-                        .with_help("write e.g. `LEVELS 12`"),
-                    );
-                    ok = false;
-                } else if v > MAX_LEVELS as f64 {
-                    ctx.diags.push(
-                        Diagnostic::at(
-                            codes::STL_TOO_DEEP,
-                            value.span.clone(),
-                            format!("LEVELS {v} is more than the {MAX_LEVELS} graftal grows"),
-                        )
-                        .with_label("too many levels")
-                        .with_help(format!("use at most `LEVELS {MAX_LEVELS}`")),
-                    );
-                    ok = false;
-                } else {
-                    st.levels = v as u32;
-                }
+                let Some(levels) = levels(ctx.diags, value) else {
+                    return false;
+                };
+                self.st.levels = levels;
+                true
             }
             Item::Growth { depth_first, span } => {
-                if dup(ctx.diags, "GROWTH", span) {
-                    st.depth_first = *depth_first;
+                if self.first_given(ctx.diags, "GROWTH", span) {
+                    self.st.depth_first = *depth_first;
                 }
+                true
             }
             Item::Param {
                 param,
                 value,
                 decrement,
                 span,
-            } => {
-                let key = if *param == 'B' { "B" } else { "L" };
-                if !dup(ctx.diags, key, span) {
-                    continue;
-                }
-                let what = if *param == 'B' {
-                    "the broadness B"
-                } else {
-                    "the length L"
-                };
-                let v = nonneg(ctx.diags, value, what);
-                let d = match decrement {
-                    Some(d) => nonneg(ctx.diags, d, "a decrement per level"),
-                    None => Some(0.0),
-                };
-                if *param == 'L' && v == Some(0.0) {
-                    ctx.diags.push(
-                        Diagnostic::at(
-                            codes::STL_NEGATIVE,
-                            value.span.clone(),
-                            "the length L must be more than zero",
-                        )
-                        .with_label("stems of length 0 draw nothing")
-                        .with_help("write e.g. `L = 40 (4)`"),
-                    );
-                    ok = false;
-                    continue;
-                }
-                match (v, d) {
-                    (Some(v), Some(d)) => {
-                        let dspan = decrement.as_ref().map_or(span.clone(), |d| d.span.clone());
-                        if *param == 'B' {
-                            st.b = (v, d);
-                            st.b_span = Some(dspan);
-                        } else {
-                            st.l = (v, d);
-                            st.l_span = Some(dspan);
-                        }
-                    }
-                    _ => ok = false,
-                }
-            }
+            } => self.param(ctx.diags, *param, value, decrement.as_ref(), span),
             Item::Rule {
                 name,
                 name_span,
                 body,
                 span,
-            } => {
-                if RESERVED.contains(&name.as_str()) || name == "DFS" {
-                    ctx.diags.push(
-                        Diagnostic::at(codes::STL_RESERVED_NAME, name_span.clone(), format!("`{name}` cannot name a rule"))
-                            .with_label("reserved")
-                            .with_help("F, L, R draw, B and L are the stem parameters, I counts rewritings; name rules R1, R2, …"),
-                    );
-                    ok = false;
-                    continue;
-                }
-                if let Some(&first) = ctx.by_name.get(name) {
-                    let fs = ctx.rules[first].name_span.clone();
-                    ctx.diags.push(
-                        Diagnostic::at(
-                            codes::STL_DUPLICATE,
-                            name_span.clone(),
-                            format!("rule `{name}` is defined twice"),
-                        )
-                        .with_label("defined again here")
-                        .with_secondary(fs, "first defined here")
-                        .with_help("give this rule another name"),
-                    );
-                    ok = false;
-                    continue;
-                }
-                ctx.by_name.insert(name.clone(), ctx.rules.len());
-                ctx.max_name = ctx.max_name.max(name.len());
-                ctx.rules.push(RuleSrc {
-                    name: name.clone(),
-                    name_span: name_span.clone(),
-                    span: span.clone(),
-                    body: body.clone(),
-                });
-            }
+            } => ctx.declare_rule(name, name_span, body, span),
             Item::Seed { body, span } => {
-                if dup(ctx.diags, "SEED", span) {
-                    seed = Some((body, span.clone()));
-                } else {
-                    ok = false;
+                if !self.first_given(ctx.diags, "SEED", span) {
+                    return false;
                 }
+                self.seed = Some(body);
+                true
             }
-            Item::Layout { shapes: ss, span } => {
-                layout_span.get_or_insert(span.clone());
-                for s in ss {
+            Item::Layout { shapes, span } => {
+                self.layout_span.get_or_insert(span.clone());
+                let mut ok = true;
+                for s in shapes {
                     match shape(ctx.diags, s) {
-                        Some(sh) => shapes.push(sh),
+                        Some(sh) => self.shapes.push(sh),
                         None => ok = false,
                     }
                 }
+                ok
             }
         }
     }
-    let n = ctx.rules.len();
-    ctx.state = vec![State::New; n];
-    ctx.full = vec![Vec::new(); n];
-    ctx.unit = vec![Vec::new(); n];
-    ctx.count = vec![None; n];
-    ctx.unit_ref = vec![None; n];
-    for r in 0..n {
-        if ctx.resolve(r).is_none() {
-            ok = false;
+
+    /// Whether `key` is given at `span` for the first time; a second one is
+    /// reported.
+    fn first_given(&mut self, diags: &mut Diagnostics, key: &'static str, span: &Span) -> bool {
+        let Some(first) = self.seen.get(key) else {
+            self.seen.insert(key, span.clone());
+            return true;
+        };
+        diags.push(
+            Diagnostic::at(
+                codes::STL_DUPLICATE,
+                span.clone(),
+                format!("`{key}` given twice"),
+            )
+            .with_label("given again here")
+            .with_secondary(first.clone(), "first given here")
+            .with_help("keep one of them"),
+        );
+        false
+    }
+
+    /// `B = value (decrement)` or `L = value (decrement)`.
+    fn param(
+        &mut self,
+        diags: &mut Diagnostics,
+        param: char,
+        value: &Num,
+        decrement: Option<&Num>,
+        span: &Span,
+    ) -> bool {
+        let key = if param == 'B' { "B" } else { "L" };
+        if !self.first_given(diags, key, span) {
+            return true;
+        }
+        let what = if param == 'B' {
+            "the broadness B"
+        } else {
+            "the length L"
+        };
+        let v = nonneg(diags, value, what);
+        let d = match decrement {
+            Some(d) => nonneg(diags, d, "a decrement per level"),
+            None => Some(0.0),
+        };
+        if param == 'L' && v == Some(0.0) {
+            diags.push(
+                Diagnostic::at(
+                    codes::STL_NEGATIVE,
+                    value.span.clone(),
+                    "the length L must be more than zero",
+                )
+                .with_label("stems of length 0 draw nothing")
+                .with_help("write e.g. `L = 40 (4)`"),
+            );
+            return false;
+        }
+        let (Some(v), Some(d)) = (v, d) else {
+            return false;
+        };
+        // The clamping warning points at the decrement, or at the whole
+        // parameter when it has none.
+        let dspan = decrement.map_or(span.clone(), |d| d.span.clone());
+        if param == 'B' {
+            self.st.b = (v, d);
+            self.st.b_span = Some(dspan);
+        } else {
+            self.st.l = (v, d);
+            self.st.l_span = Some(dspan);
+        }
+        true
+    }
+}
+
+/// The value of `LEVELS`: a whole number up to [`MAX_LEVELS`].
+fn levels(diags: &mut Diagnostics, value: &Num) -> Option<u32> {
+    let v = value.value;
+    if v < 0.0 || v.fract() != 0.0 || !v.is_finite() {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_NEGATIVE,
+                value.span.clone(),
+                format!("LEVELS must be a whole number of 0 or more, not {v}"),
+            )
+            .with_label("not a count")
+            .with_help("write e.g. `LEVELS 12`"),
+        );
+        return None;
+    }
+    if v > MAX_LEVELS as f64 {
+        diags.push(
+            Diagnostic::at(
+                codes::STL_TOO_DEEP,
+                value.span.clone(),
+                format!("LEVELS {v} is more than the {MAX_LEVELS} graftal grows"),
+            )
+            .with_label("too many levels")
+            .with_help(format!("use at most `LEVELS {MAX_LEVELS}`")),
+        );
+        return None;
+    }
+    Some(v as u32)
+}
+
+impl<'a> Ctx<'a> {
+    fn new(diags: &'a mut Diagnostics) -> Self {
+        Ctx {
+            diags,
+            rules: Vec::new(),
+            by_name: HashMap::new(),
+            max_name: 0,
+            state: Vec::new(),
+            full: Vec::new(),
+            unit: Vec::new(),
+            count: Vec::new(),
+            unit_ref: Vec::new(),
+            stack: Vec::new(),
+            too_large: false,
         }
     }
-    let od = layout_span.is_some();
+}
+
+impl Ctx<'_> {
+    /// Declares a rule (resolved later, once all rules are known); false if
+    /// its name is reserved or taken.
+    fn declare_rule(&mut self, name: &str, name_span: &Span, body: &Str, span: &Span) -> bool {
+        if RESERVED.contains(&name) || name == "DFS" {
+            self.diags.push(
+                Diagnostic::at(codes::STL_RESERVED_NAME, name_span.clone(), format!("`{name}` cannot name a rule"))
+                    .with_label("reserved")
+                    .with_help("F, L, R draw, B and L are the stem parameters, I counts rewritings; name rules R1, R2, …"),
+            );
+            return false;
+        }
+        if let Some(&first) = self.by_name.get(name) {
+            let fs = self.rules[first].name_span.clone();
+            self.diags.push(
+                Diagnostic::at(
+                    codes::STL_DUPLICATE,
+                    name_span.clone(),
+                    format!("rule `{name}` is defined twice"),
+                )
+                .with_label("defined again here")
+                .with_secondary(fs, "first defined here")
+                .with_help("give this rule another name"),
+            );
+            return false;
+        }
+        self.by_name.insert(name.to_string(), self.rules.len());
+        self.max_name = self.max_name.max(name.len());
+        self.rules.push(RuleSrc {
+            name: name.to_string(),
+            name_span: name_span.clone(),
+            span: span.clone(),
+            body: body.clone(),
+        });
+        true
+    }
+
+    /// Resolves every declared rule; false if any has errors.
+    fn resolve_rules(&mut self) -> bool {
+        let n = self.rules.len();
+        self.state = vec![State::New; n];
+        self.full = vec![Vec::new(); n];
+        self.unit = vec![Vec::new(); n];
+        self.count = vec![None; n];
+        self.unit_ref = vec![None; n];
+        let mut ok = true;
+        for r in 0..n {
+            if self.resolve(r).is_none() {
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    /// The rules in the IR: each one's expansion and count.
+    fn ir_rules(&self, comp_ids: &ComponentIds) -> Vec<StlRule> {
+        self.rules
+            .iter()
+            .enumerate()
+            .map(|(r, src)| StlRule {
+                name: src.name.clone(),
+                body: ir_word(&self.full[r], comp_ids),
+                resemblance: self.count[r],
+            })
+            .collect()
+    }
+}
+
+/// Lowers a parsed STL file.
+pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
+    let mut ctx = Ctx::new(diags);
+    let hd = Header::read(&mut ctx, file);
+    let resolved = ctx.resolve_rules();
+    let mut ok = hd.ok && resolved;
     let mut parts = Vec::new();
-    match seed {
-        Some((body, _)) => ok &= ctx.seed(body, od, &mut parts),
+    match hd.seed {
+        Some(body) => ok &= ctx.seed(body, hd.layout_span.is_some(), &mut parts),
         None => {
             ctx.diags.push(
                 Diagnostic::at(codes::STL_MISSING_SEED, src_len..src_len, "missing SEED")
@@ -1085,15 +1235,46 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
             ok = false;
         }
     }
-
+    let st = &hd.st;
     let mut system = System::new();
     system.settings.delta = st.angle.to_radians();
     system.settings.step = st.l.0;
     system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);
-    let mut structure = Structure {
+    let mut structure = new_structure(st, hd.shapes.clone());
+    let comp_ids = intern_components(&mut system);
+    // Nothing is grown or expanded in a file with errors (a parse error
+    // may have dropped part of the seed or the layout).
+    if !ok || ctx.too_large || ctx.diags.has_errors() {
+        return finish(system, structure);
+    }
+
+    // Growth (an outline) or the seed as written (a BED).
+    let max_level = st.levels.saturating_add(2).max(64);
+    let (bw, _) = per_level(st.b.0, st.b.1, max_level);
+    let (lw, _) = per_level(st.l.0, st.l.1, max_level);
+    if let Some(layout_span) = &hd.layout_span {
+        if !grow_outline(&mut ctx, &mut parts, st, &hd.shapes, &bw, &lw) {
+            no_growth(ctx.diags, layout_span);
+        }
+    }
+    let events = ctx.seed_events(&parts);
+    if ctx.too_large {
+        return finish(system, structure);
+    }
+    let (word, max_seen) = level_word(&mut system, &events, &comp_ids, st, &bw, &lw);
+    warn_clamped(ctx.diags, st, max_seen);
+    structure.rules = ctx.ir_rules(&comp_ids);
+    structure.seed = parts.iter().map(|p| ir_seed_item(p, &comp_ids)).collect();
+    system.axiom = Word::from(word);
+    finish(system, structure)
+}
+
+/// The structure before the rules and the seed go in.
+fn new_structure(st: &Settings, layout: Vec<Shape>) -> Structure {
+    Structure {
         rules: Vec::new(),
         seed: Vec::new(),
-        layout: shapes.clone(),
+        layout,
         growth: if st.depth_first {
             Growth::DepthFirst
         } else {
@@ -1102,80 +1283,53 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
         levels: st.levels,
         broadness: st.b,
         length: st.l,
-    };
-    let comp_ids = intern_components(&mut system);
-    // Nothing is grown or expanded in a file with errors (a parse error
-    // may have dropped part of the seed or the layout).
-    if !ok || ctx.too_large || ctx.diags.has_errors() {
-        system.structure = Some(structure);
-        return Lowered {
-            system,
-            spans: SpanTable::default(),
-        };
     }
+}
 
-    // Growth (an outline) or the seed as written (a BED).
-    let max_level = st.levels.saturating_add(2).max(64);
-    let (bw, _) = per_level(st.b.0, st.b.1, max_level);
-    let (lw, _) = per_level(st.l.0, st.l.1, max_level);
-    if od {
-        let has_growth = grow_outline(&mut ctx, &mut parts, &st, &shapes, &bw, &lw);
-        if !has_growth {
-            let span = layout_span.clone().unwrap_or(0..0);
-            ctx.diags.push(
-                Diagnostic::at(
-                    codes::STL_NO_GROWTH,
-                    span,
-                    "this layout has nothing to grow",
-                )
-                .with_label("an Outline Description grows the seed's rules")
-                .with_help("name a rule with branches in the seed, without `{…}`, e.g. `F R1`"),
-            );
-        }
+/// The lowered system with its structure (an STL file has no span table).
+fn finish(mut system: System, structure: Structure) -> Lowered {
+    system.structure = Some(structure);
+    Lowered {
+        system,
+        spans: SpanTable::default(),
     }
-    let events = ctx.seed_events(&parts);
-    if ctx.too_large {
-        system.structure = Some(structure);
-        return Lowered {
-            system,
-            spans: SpanTable::default(),
-        };
-    }
+}
 
-    // The word, with a silent stem-level marker wherever the level changes.
+fn no_growth(diags: &mut Diagnostics, layout_span: &Span) {
+    diags.push(
+        Diagnostic::at(
+            codes::STL_NO_GROWTH,
+            layout_span.clone(),
+            "this layout has nothing to grow",
+        )
+        .with_label("an Outline Description grows the seed's rules")
+        .with_help("name a rule with branches in the seed, without `{…}`, e.g. `F R1`"),
+    );
+}
+
+/// The word of the expanded seed, with a silent stem-level marker wherever
+/// the level changes; and the deepest level marked.
+fn level_word(
+    system: &mut System,
+    events: &[Ev],
+    comp_ids: &ComponentIds,
+    st: &Settings,
+    bw: &[f64],
+    lw: &[f64],
+) -> (Vec<SymbolId>, u32) {
     let mut word = Vec::with_capacity(events.len());
     let mut max_seen = 0u32;
-    let mut markers: HashMap<u32, crate::ir::SymbolId> = HashMap::new();
+    let mut markers: HashMap<u32, SymbolId> = HashMap::new();
     let mut last_level = None;
-    for e in &events {
+    for e in events {
         match *e {
             Ev::C(c) => word.push(comp_ids[c as usize]),
-            Ev::Level(k) => {
-                if last_level == Some(k) {
-                    continue;
-                }
+            Ev::Level(k) if last_level != Some(k) => {
                 last_level = Some(k);
                 max_seen = max_seen.max(k);
-                let id = *markers.entry(k).or_insert_with(|| {
-                    let id = system.intern_silent(&format!("stl-level-{k}"));
-                    let kk = k as usize;
-                    let w = bw
-                        .get(kk)
-                        .copied()
-                        .unwrap_or_else(|| per_level(st.b.0, st.b.1, k).0[kk]);
-                    let l = lw
-                        .get(kk)
-                        .copied()
-                        .unwrap_or_else(|| per_level(st.l.0, st.l.1, k).0[kk]);
-                    system.set_interpretation(
-                        id,
-                        TurtleOp::Stem {
-                            width: w.min(MAX_DRAWN_WIDTH),
-                            length: l,
-                        },
-                    );
-                    id
-                });
+                let id = *markers
+                    .entry(k)
+                    .or_insert_with(|| level_marker(system, st, bw, lw, k));
                 // A marker right before another marker is dead: replace it.
                 if let Some(&prev) = word.last() {
                     if markers.values().any(|&m| m == prev) {
@@ -1184,10 +1338,38 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
                 }
                 word.push(id);
             }
-            Ev::Growth(_) => {}
+            Ev::Level(_) | Ev::Growth(_) => {}
         }
     }
-    // Only levels with stems count for the clamping warnings.
+    (word, max_seen)
+}
+
+/// A new silent symbol that sets the stem of level `k`.
+fn level_marker(system: &mut System, st: &Settings, bw: &[f64], lw: &[f64], k: u32) -> SymbolId {
+    let id = system.intern_silent(&format!("stl-level-{k}"));
+    system.set_interpretation(
+        id,
+        TurtleOp::Stem {
+            width: at_level(bw, st.b, k).min(MAX_DRAWN_WIDTH),
+            length: at_level(lw, st.l, k),
+        },
+    );
+    id
+}
+
+/// The value at level `k` of a table of `per_level(base, dec, …)`, computed
+/// when `k` is past its end.
+fn at_level(table: &[f64], (base, dec): (f64, f64), k: u32) -> f64 {
+    let kk = k as usize;
+    table
+        .get(kk)
+        .copied()
+        .unwrap_or_else(|| per_level(base, dec, k).0[kk])
+}
+
+/// Warns where a decrement makes B or L non-positive. Only levels with
+/// stems count: `max_seen` is the deepest.
+fn warn_clamped(diags: &mut Diagnostics, st: &Settings, max_seen: u32) {
     for (which, (base, dec), span) in [
         ("B", st.b, st.b_span.clone()),
         ("L", st.l, st.l_span.clone()),
@@ -1195,7 +1377,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
         let (_, first) = per_level(base, dec, max_seen);
         if let (Some(k), Some(span)) = (first, span) {
             let what = if which == "B" { "broadness" } else { "length" };
-            ctx.diags.push(
+            diags.push(
                 Diagnostic::at(
                     codes::STL_CLAMPED,
                     span,
@@ -1214,33 +1396,17 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
             );
         }
     }
+}
 
-    // The IR.
-    for (r, src) in ctx.rules.iter().enumerate() {
-        structure.rules.push(StlRule {
-            name: src.name.clone(),
-            body: Word::from(
-                ctx.full[r]
-                    .iter()
-                    .map(|&c| comp_ids[c as usize])
-                    .collect::<Vec<_>>(),
-            ),
-            resemblance: ctx.count[r],
-        });
-    }
-    for p in &parts {
-        match p {
-            Part::Comps(cs) => structure.seed.push(SeedItem::Word(Word::from(
-                cs.iter().map(|&c| comp_ids[c as usize]).collect::<Vec<_>>(),
-            ))),
-            Part::Term(t) => structure.seed.push(SeedItem::Term(ir_term(t))),
-        }
-    }
-    system.axiom = Word::from(word);
-    system.structure = Some(structure);
-    Lowered {
-        system,
-        spans: SpanTable::default(),
+/// Components as a word of the IR.
+fn ir_word(cs: &[Comp], comp_ids: &ComponentIds) -> Word {
+    Word::from(cs.iter().map(|&c| comp_ids[c as usize]).collect::<Vec<_>>())
+}
+
+fn ir_seed_item(p: &Part, comp_ids: &ComponentIds) -> SeedItem {
+    match p {
+        Part::Comps(cs) => SeedItem::Word(ir_word(cs, comp_ids)),
+        Part::Term(t) => SeedItem::Term(ir_term(t)),
     }
 }
 
@@ -1265,7 +1431,10 @@ fn ir_term(t: &Term) -> BranchTerm {
 }
 
 /// The drawing components as symbols, indexed by `Comp as usize`.
-fn intern_components(sys: &mut System) -> [crate::ir::SymbolId; 7] {
+type ComponentIds = [SymbolId; 7];
+
+/// Interns the drawing components with their turtle meaning.
+fn intern_components(sys: &mut System) -> ComponentIds {
     let turn = |d: f64| TurtleOp::Rotate {
         axis: Axis::Up,
         angle: Angle::Delta(d),
@@ -1298,55 +1467,103 @@ fn grow_outline(
     bw: &[f64],
     lw: &[f64],
 ) -> bool {
-    let delta = st.angle.to_radians();
-    // Walk the seed with a turtle: the seed's stems, and where each growth
-    // point stands.
     let events = ctx.seed_events(parts);
     let mut growth_terms: Vec<usize> = Vec::new();
     collect_growth(parts, &mut growth_terms);
     if growth_terms.is_empty() {
         return false;
     }
-    // Unit rules: the rule itself, the rule named in `[I n Rk]`, or a new
-    // rule holding the string of `[I n string]`.
-    let n = ctx.rules.len();
-    let mut unit_of: Vec<Option<usize>> = vec![None; n];
-    let mut unit_comps: Vec<Vec<Comp>> = ctx.full.clone();
-    for &r in &growth_terms {
-        if unit_of[r].is_some() {
-            continue;
-        }
-        let u = match (ctx.count[r], ctx.unit_ref[r]) {
-            (None, _) => r,
-            (Some(_), Some(k)) => k,
-            (Some(_), None) => {
-                let mut name = format!("{}_unit", ctx.rules[r].name);
-                while ctx.by_name.contains_key(&name) {
-                    name.push('_');
-                }
-                // A rule of its own, so the grown terms can name it.
-                let unit = ctx.unit[r].clone();
-                let id = ctx.rules.len();
-                ctx.rules.push(RuleSrc {
-                    name: name.clone(),
-                    name_span: ctx.rules[r].name_span.clone(),
-                    span: ctx.rules[r].span.clone(),
-                    body: Str::default(),
-                });
-                ctx.by_name.insert(name, id);
-                ctx.state.push(State::Done);
-                ctx.full.push(unit.clone());
-                ctx.unit.push(unit.clone());
-                ctx.count.push(None);
-                ctx.unit_ref.push(None);
-                unit_comps.push(unit);
-                id
-            }
-        };
-        unit_of[r] = Some(u);
+    let unit_of = ctx.unit_rules(&growth_terms);
+    // Each growth point grows its unit rule for as many levels as its
+    // rule's count allows, or LEVELS.
+    let growing: Vec<(usize, u32)> = growth_terms
+        .iter()
+        .map(|&r| (unit_of[r].unwrap_or(r), ctx.count[r].unwrap_or(st.levels)))
+        .collect();
+    let (stems, points) = walk_seed(&events, &growing, st, bw, lw);
+    let delta = st.angle.to_radians();
+    let units: Vec<UnitGeom> = ctx.full.iter().map(|c| UnitGeom::new(c, delta)).collect();
+    let params = growth::Params {
+        delta,
+        depth_first: st.depth_first,
+        broadness: bw.to_vec(),
+        length: lw.to_vec(),
+        max_stems: growth::MAX_STEMS,
+    };
+    let outline = Outline::new(shapes);
+    let bounds = layout::bounds(shapes).unwrap_or([0.0, 0.0, 1.0, 1.0]);
+    // Growth points with no budget (`[I 0 X]`) grow nothing.
+    let out = growth::grow(&units, &outline, bounds, &params, &stems, &points);
+    if out.truncated {
+        ctx.diags.push(
+            Diagnostic::global(
+                codes::STL_TOO_DEEP,
+                format!("growth stopped at {} stems", growth::MAX_STEMS),
+            )
+            .with_help("use fewer LEVELS, a larger broadness B or a smaller layout"),
+        );
     }
-    let units: Vec<UnitGeom> = unit_comps.iter().map(|c| UnitGeom::new(c, delta)).collect();
+    // Replace the growth points by the grown terms.
+    let mut next = 0;
+    fill_growth(parts, &out.nodes, &points, &mut next);
+    true
+}
 
+impl Ctx<'_> {
+    /// The unit rule each rule of `growth_terms` grows by: the rule itself,
+    /// the rule named in `[I n Rk]`, or a new rule holding the string of
+    /// `[I n string]`. Indexed by rule.
+    fn unit_rules(&mut self, growth_terms: &[usize]) -> Vec<Option<usize>> {
+        let mut unit_of: Vec<Option<usize>> = vec![None; self.rules.len()];
+        for &r in growth_terms {
+            if unit_of[r].is_some() {
+                continue;
+            }
+            unit_of[r] = Some(match (self.count[r], self.unit_ref[r]) {
+                (None, _) => r,
+                (Some(_), Some(k)) => k,
+                (Some(_), None) => self.add_unit_rule(r),
+            });
+        }
+        unit_of
+    }
+
+    /// Adds the rule `NAME_unit` holding the string of rule `r`'s
+    /// `[I n string]`, a rule of its own so the grown terms can name it.
+    fn add_unit_rule(&mut self, r: usize) -> usize {
+        let mut name = format!("{}_unit", self.rules[r].name);
+        while self.by_name.contains_key(&name) {
+            name.push('_');
+        }
+        let unit = self.unit[r].clone();
+        let id = self.rules.len();
+        self.rules.push(RuleSrc {
+            name: name.clone(),
+            name_span: self.rules[r].name_span.clone(),
+            span: self.rules[r].span.clone(),
+            body: Str::default(),
+        });
+        self.by_name.insert(name, id);
+        self.state.push(State::Done);
+        self.full.push(unit.clone());
+        self.unit.push(unit);
+        self.count.push(None);
+        self.unit_ref.push(None);
+        id
+    }
+}
+
+/// Walks the expanded seed with a turtle: the seed's stems, and where each
+/// growth point stands. `growing` gives each growth point's unit rule and
+/// budget, in the order of the seed.
+fn walk_seed(
+    events: &[Ev],
+    growing: &[(usize, u32)],
+    st: &Settings,
+    bw: &[f64],
+    lw: &[f64],
+) -> (Vec<Stem>, Vec<Point>) {
+    let delta = st.angle.to_radians();
     let mut stems = Vec::new();
     let mut points = Vec::new();
     let mut pose = Pose {
@@ -1355,9 +1572,9 @@ fn grow_outline(
     };
     let mut level = 0u32;
     let mut stack = Vec::new();
-    let mut gi = 0;
+    let mut growing = growing.iter();
     for e in events {
-        match e {
+        match *e {
             Ev::C(Comp::F) => {
                 let d = [
                     -(pose.turns as f64 * delta).sin(),
@@ -1381,42 +1598,17 @@ fn grow_outline(
             Ev::C(c) => pose.turns += c.turn(),
             Ev::Level(k) => level = k,
             Ev::Growth(_) => {
-                let r = growth_terms[gi];
-                gi += 1;
-                let u = unit_of[r].unwrap_or(r);
+                let &(rule, budget) = growing.next().expect("one per growth point");
                 points.push(Point {
-                    rule: u,
+                    rule,
                     pose,
                     level,
-                    budget: ctx.count[r].unwrap_or(st.levels),
+                    budget,
                 });
             }
         }
     }
-    let outline = Outline::new(shapes);
-    let bounds = layout::bounds(shapes).unwrap_or([0.0, 0.0, 1.0, 1.0]);
-    let params = growth::Params {
-        delta,
-        depth_first: st.depth_first,
-        broadness: bw.to_vec(),
-        length: lw.to_vec(),
-        max_stems: growth::MAX_STEMS,
-    };
-    // Growth points with no budget (`[I 0 X]`) grow nothing.
-    let out = growth::grow(&units, &outline, bounds, &params, &stems, &points);
-    if out.truncated {
-        ctx.diags.push(
-            Diagnostic::global(
-                codes::STL_TOO_DEEP,
-                format!("growth stopped at {} stems", growth::MAX_STEMS),
-            )
-            .with_help("use fewer LEVELS, a larger broadness B or a smaller layout"),
-        );
-    }
-    // Replace the growth points by the grown terms.
-    let mut next = 0;
-    fill_growth(parts, &out.nodes, &points, &mut next);
-    true
+    (stems, points)
 }
 
 fn collect_growth(parts: &[Part], out: &mut Vec<usize>) {
