@@ -12,6 +12,7 @@
 //! * the turtle imports neither render nor eval (nor anything above them);
 //! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
 //!   `chumsky` and `logos` only in front ends;
+//! * a front end walks no turtle of its own;
 //! * the top-level modules form no import cycle.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -436,6 +437,32 @@ fn no_module_imports_what_the_house_rules_forbid() {
         "forbidden imports:\n{}",
         broken.join("\n")
     );
+}
+
+/// A front end never draws: it walks no turtle of its own (no sines and
+/// cosines of headings); the geometry of layouts and outline growth is the
+/// IR's (`ir::layout`, `ir::growth`), drawing the turtle's.
+#[test]
+fn no_front_end_walks_a_turtle_of_its_own() {
+    let files = sources();
+    let drawing: Vec<&str> = files
+        .iter()
+        .filter(|f| f.path.starts_with("front/"))
+        .filter(|f| {
+            [".sin()", ".cos()", ".sin_cos()"]
+                .iter()
+                .any(|t| f.code.contains(t))
+        })
+        .map(|f| f.path.as_str())
+        .collect();
+    assert!(
+        drawing.is_empty(),
+        "front ends computing headings: {drawing:?}"
+    );
+    // The check sees what it looks for: the growth walk does turn headings.
+    assert!(files
+        .iter()
+        .any(|f| f.path == "ir/growth.rs" && f.code.contains(".sin()")));
 }
 
 #[test]

@@ -44,7 +44,9 @@
 //! * **Structure** ([`Structure`]): named rules (a table of rules with
 //!   self-resemblance counts), a seed of branching terms, and a growth
 //!   constraint — layout [`Shape`]s with colours, the growth strategy and
-//!   level limit — with stem broadness and length per level.
+//!   level limit — with stem broadness and length per level. The geometry
+//!   of the shapes is [`layout`]'s and the growth inside them [`growth`]'s,
+//!   so a front end that states a growth constraint draws nothing itself.
 //! * **Settings** ([`Settings`]): derivation length, angle increment δ,
 //!   step length, scale, widths, the view, the file's own seed.
 //!
@@ -206,6 +208,7 @@
 
 pub mod colours;
 pub mod d0l;
+pub mod growth;
 pub mod layout;
 pub mod program;
 

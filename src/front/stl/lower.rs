@@ -27,7 +27,7 @@
 //!   it has no growth points left.
 
 use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
-use super::growth::{self, branches, Comp, Grown, Point, Pose, Stem, UnitGeom};
+use super::growth::{self, branches, Comp, Grown, Point, UnitGeom};
 use super::layout::{self, Outline};
 use super::parser::RESERVED;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
@@ -72,13 +72,8 @@ enum Part {
     Term(Term),
 }
 
-/// An expanded seed: components, level changes and growth points.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Ev {
-    C(Comp),
-    Level(u32),
-    Growth(usize),
-}
+/// The expanded seed as the growth walk reads it.
+type Ev = growth::SeedEvent;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum State {
@@ -394,7 +389,7 @@ impl Ctx<'_> {
                                     continue;
                                 }
                                 out.extend(evs.into_iter().filter_map(|e| match e {
-                                    Ev::C(c) => Some(c),
+                                    Ev::Component(c) => Some(c),
                                     _ => None,
                                 }));
                             }
@@ -566,19 +561,19 @@ impl Ctx<'_> {
                     match t.entries.get(k) {
                         Some(TermEntry::Failed) => {}
                         Some(TermEntry::Term(child)) => {
-                            out.extend(full[i..close].iter().map(|&c| Ev::C(c)));
+                            out.extend(full[i..close].iter().map(|&c| Ev::Component(c)));
                             self.expand_term(child, level.map(|l| l + 1), out);
                             if let Some(l) = level {
                                 out.push(Ev::Level(l));
                             }
-                            out.push(Ev::C(Comp::Close));
+                            out.push(Ev::Component(Comp::Close));
                         }
-                        _ => out.extend(full[i..=close].iter().map(|&c| Ev::C(c))),
+                        _ => out.extend(full[i..=close].iter().map(|&c| Ev::Component(c))),
                     }
                     i = close + 1;
                     k += 1;
                 } else {
-                    out.push(Ev::C(full[i]));
+                    out.push(Ev::Component(full[i]));
                     i += 1;
                 }
                 if out.len() > MAX_EXPANSION {
@@ -655,7 +650,7 @@ impl Ctx<'_> {
         let mut out = vec![Ev::Level(0)];
         for p in parts {
             match p {
-                Part::Comps(cs) => out.extend(cs.iter().map(|&c| Ev::C(c))),
+                Part::Comps(cs) => out.extend(cs.iter().map(|&c| Ev::Component(c))),
                 Part::Term(t) => {
                     self.expand_term(t, Some(1), &mut out);
                     out.push(Ev::Level(0));
@@ -1323,7 +1318,7 @@ fn level_word(
     let mut last_level = None;
     for e in events {
         match *e {
-            Ev::C(c) => word.push(comp_ids[c as usize]),
+            Ev::Component(c) => word.push(comp_ids[c as usize]),
             Ev::Level(k) if last_level != Some(k) => {
                 last_level = Some(k);
                 max_seen = max_seen.max(k);
@@ -1480,7 +1475,9 @@ fn grow_outline(
         .iter()
         .map(|&r| (unit_of[r].unwrap_or(r), ctx.count[r].unwrap_or(st.levels)))
         .collect();
-    let (stems, points) = walk_seed(&events, &growing, st, bw, lw);
+    let defaults = (st.l.0, st.b.0);
+    let (stems, points) =
+        growth::walk_seed(&events, &growing, st.angle.to_radians(), defaults, bw, lw);
     let delta = st.angle.to_radians();
     let units: Vec<UnitGeom> = ctx.full.iter().map(|c| UnitGeom::new(c, delta)).collect();
     let params = growth::Params {
@@ -1551,64 +1548,6 @@ impl Ctx<'_> {
         self.unit_ref.push(None);
         id
     }
-}
-
-/// Walks the expanded seed with a turtle: the seed's stems, and where each
-/// growth point stands. `growing` gives each growth point's unit rule and
-/// budget, in the order of the seed.
-fn walk_seed(
-    events: &[Ev],
-    growing: &[(usize, u32)],
-    st: &Settings,
-    bw: &[f64],
-    lw: &[f64],
-) -> (Vec<Stem>, Vec<Point>) {
-    let delta = st.angle.to_radians();
-    let mut stems = Vec::new();
-    let mut points = Vec::new();
-    let mut pose = Pose {
-        pos: [0.0, 0.0],
-        turns: 0,
-    };
-    let mut level = 0u32;
-    let mut stack = Vec::new();
-    let mut growing = growing.iter();
-    for e in events {
-        match *e {
-            Ev::C(Comp::F) => {
-                let d = [
-                    -(pose.turns as f64 * delta).sin(),
-                    (pose.turns as f64 * delta).cos(),
-                ];
-                let len = lw.get(level as usize).copied().unwrap_or(st.l.0);
-                let b = [pose.pos[0] + len * d[0], pose.pos[1] + len * d[1]];
-                stems.push(Stem {
-                    a: pose.pos,
-                    b,
-                    half: bw.get(level as usize).copied().unwrap_or(st.b.0) / 2.0,
-                });
-                pose.pos = b;
-            }
-            Ev::C(Comp::Open) => stack.push(pose),
-            Ev::C(Comp::Close) => {
-                if let Some(p) = stack.pop() {
-                    pose = p;
-                }
-            }
-            Ev::C(c) => pose.turns += c.turn(),
-            Ev::Level(k) => level = k,
-            Ev::Growth(_) => {
-                let &(rule, budget) = growing.next().expect("one per growth point");
-                points.push(Point {
-                    rule,
-                    pose,
-                    level,
-                    budget,
-                });
-            }
-        }
-    }
-    (stems, points)
 }
 
 fn collect_growth(parts: &[Part], out: &mut Vec<usize>) {

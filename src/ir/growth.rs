@@ -1,7 +1,11 @@
-//! Outline growth: the paper's Graphics Developer (section IV), which turns
-//! an Outline Description into a Branch-Expansion Description.
+//! Outline growth: the semantics of a growth constraint (the STL paper's
+//! Graphics Developer, section IV), which turns a seed with growth points
+//! inside layout shapes into explicit branching. A front end asks this
+//! module for the stems of its seed ([`walk_seed`]) and for the growth
+//! ([`grow`]); it walks no turtle of its own.
 //!
-//! Growth starts at the *growth points* of the seed (see [`super::lower`]):
+//! Growth starts at the *growth points* of the seed (the STL front end's
+//! lowering marks them):
 //! each is a rule applied at a turtle state and a level. Applying a rule:
 //!
 //! * its top-level stems outside any branch (a "trunk", rare in practice)
@@ -62,6 +66,15 @@ impl Comp {
             _ => 0,
         }
     }
+}
+
+/// The expanded seed, as the growth walk reads it: drawing components,
+/// changes of stem level, and growth points (with the front end's index).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeedEvent {
+    Component(Comp),
+    Level(u32),
+    Growth(usize),
 }
 
 /// The top-level branches of a string: index pairs of `[` and its `]`.
@@ -529,6 +542,65 @@ pub fn grow(
         }
     }
     g.out
+}
+
+/// Walks the expanded seed: the seed's stems, and where each growth point
+/// stands. `growing` gives each growth point's unit rule and budget, in the
+/// order of the seed; `delta` is the turning angle, `defaults` the stem
+/// length and broadness past the levels `lw` and `bw` give.
+pub fn walk_seed(
+    events: &[SeedEvent],
+    growing: &[(usize, u32)],
+    delta: f64,
+    defaults: (f64, f64),
+    bw: &[f64],
+    lw: &[f64],
+) -> (Vec<Stem>, Vec<Point>) {
+    let mut stems = Vec::new();
+    let mut points = Vec::new();
+    let mut pose = Pose {
+        pos: [0.0, 0.0],
+        turns: 0,
+    };
+    let mut level = 0u32;
+    let mut stack = Vec::new();
+    let mut growing = growing.iter();
+    for e in events {
+        match *e {
+            SeedEvent::Component(Comp::F) => {
+                let d = [
+                    -(pose.turns as f64 * delta).sin(),
+                    (pose.turns as f64 * delta).cos(),
+                ];
+                let len = lw.get(level as usize).copied().unwrap_or(defaults.0);
+                let b = [pose.pos[0] + len * d[0], pose.pos[1] + len * d[1]];
+                stems.push(Stem {
+                    a: pose.pos,
+                    b,
+                    half: bw.get(level as usize).copied().unwrap_or(defaults.1) / 2.0,
+                });
+                pose.pos = b;
+            }
+            SeedEvent::Component(Comp::Open) => stack.push(pose),
+            SeedEvent::Component(Comp::Close) => {
+                if let Some(p) = stack.pop() {
+                    pose = p;
+                }
+            }
+            SeedEvent::Component(c) => pose.turns += c.turn(),
+            SeedEvent::Level(k) => level = k,
+            SeedEvent::Growth(_) => {
+                let &(rule, budget) = growing.next().expect("one per growth point");
+                points.push(Point {
+                    rule,
+                    pose,
+                    level,
+                    budget,
+                });
+            }
+        }
+    }
+    (stems, points)
 }
 
 #[cfg(test)]
