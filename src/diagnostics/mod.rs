@@ -3,7 +3,7 @@
 //! A [`Diagnostic`] has a stable [`Code`] (see [`codes`]), a severity, a
 //! one-line message, a primary span, secondary labels, notes and a help line.
 //! Stages collect them in a [`Diagnostics`] list and keep going (a parser that
-//! never fails); the CLI renders them with ariadne ([`render`]) or as JSON.
+//! never fails); the CLI renders them with ariadne (`render`) or as JSON.
 
 pub mod codes;
 mod render;

@@ -94,7 +94,7 @@ impl Method {
     }
 }
 
-/// The method [`derive`] uses for `steps` steps of `sys`.
+/// The method [`derive()`] uses for `steps` steps of `sys`.
 pub fn plan(sys: &System, steps: u64) -> Method {
     if sys.rewrites_modules() {
         return Method::Modules;

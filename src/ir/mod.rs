@@ -438,10 +438,10 @@ impl Word {
     }
 }
 
-/// An angle as written in the source; resolved to radians by the turtle.
+/// An angle as written in the source; in radians, or a multiple of the increment δ, or an interval.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub enum Angle {
-    /// `factor` times the system's angle increment δ ([`Settings::angle`]).
+    /// `factor` times the system's angle increment δ ([`Settings::delta`]).
     Delta(f64),
     /// A fixed angle in radians.
     Radians(f64),

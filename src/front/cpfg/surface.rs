@@ -228,7 +228,7 @@ fn bernstein(t: f64) -> [f64; 4] {
 }
 
 impl Patch {
-    /// The patch at (s, t) in [0,1]²: s along the rows, t along the columns.
+    /// The patch at (s, t) in \[0,1\]²: s along the rows, t along the columns.
     pub fn point(&self, s: f64, t: f64) -> [f64; 3] {
         let (bs, bt) = (bernstein(s), bernstein(t));
         let mut p = [0.0; 3];
