@@ -85,6 +85,29 @@ struct TranslateArgs {
     format: OutputFormat,
 }
 
+#[derive(clap::Args, Debug, Clone)]
+struct RenderArgs {
+    #[command(flatten)]
+    args: DeriveArgs,
+    /// Output file: .png or .svg.
+    #[arg(short = 'o', long = "output")]
+    output: String,
+    /// Picture size in pixels.
+    #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
+    size: (u32, u32),
+    /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees
+    /// [default: the file's own view, else 0,0].
+    #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
+    view: Option<(f64, f64)>,
+    /// Draw each branch as a B-spline through the turtle's positions
+    /// (as the book draws kolams and Fig. 2.11).
+    #[arg(long)]
+    spline: bool,
+    /// Do not draw an STL file's layout shapes under the tree.
+    #[arg(long)]
+    no_layout: bool,
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Parse and validate files; diagnostics on stderr. A Fractint library's
@@ -102,27 +125,7 @@ enum Command {
     /// Print the derived word after N steps.
     Derive(DeriveArgs),
     /// Draw the system to a PNG or SVG file (by the output's extension).
-    Render {
-        #[command(flatten)]
-        args: DeriveArgs,
-        /// Output file: .png or .svg.
-        #[arg(short = 'o', long = "output")]
-        output: String,
-        /// Picture size in pixels.
-        #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
-        size: (u32, u32),
-        /// View direction for 3D systems: AZIMUTH,ELEVATION in degrees
-        /// [default: the file's own view, else 0,0].
-        #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
-        view: Option<(f64, f64)>,
-        /// Draw each branch as a B-spline through the turtle's positions
-        /// (as the book draws kolams and Fig. 2.11).
-        #[arg(long)]
-        spline: bool,
-        /// Do not draw an STL file's layout shapes under the tree.
-        #[arg(long)]
-        no_layout: bool,
-    },
+    Render(RenderArgs),
     /// Translate a file to another notation (pfg, LinF or STL); what the
     /// target cannot express is an error, or a warning with --lossy.
     Translate(TranslateArgs),
@@ -180,175 +183,198 @@ where
 {
     let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
-        Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let text = if io.terminal {
-                e.render().ansi().to_string()
-            } else {
-                e.render().to_string()
-            };
-            let out: &mut dyn Write = if e.use_stderr() { io.stderr } else { io.stdout };
-            let _ = write!(out, "{text}");
-            return code;
-        }
+        Err(e) => return usage(io, &e),
     };
     match cli.command {
         Command::Check {
             files,
             entry,
             format,
-        } => {
-            let mut status = 0;
-            for f in files {
-                let (path, named) = driver::split_entry(&f);
-                match driver::load(&path) {
-                    Ok(file) => {
-                        let c = driver::compile_entry(file, entry.as_deref().or(named.as_deref()));
-                        report(io, &c, c.diagnostics.0.iter(), format);
-                        if format == OutputFormat::Human {
-                            list_entries(io, &c);
-                        }
-                        if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry()) {
-                            status = status.max(1);
-                        }
-                    }
-                    Err(e) => {
-                        let _ = writeln!(io.stderr, "error: {e}");
-                        status = 2;
-                    }
-                }
-            }
-            status
-        }
-        Command::Derive(a) => with_system(io, &a, |io, c, sys, opts, _| {
-            let bar = step_bar(io, sys, opts);
-            let r = driver::write_derived(c.front, sys, opts, io.stdout, |step, len| {
-                if let Some(bar) = &bar {
-                    bar.set_position(step);
-                    bar.set_message(format!("{len} symbols"));
-                }
-            });
-            if let Some(bar) = bar {
-                bar.finish_and_clear();
-            }
-            r.map_err(|d| vec![d])?;
-            Ok(0)
-        }),
-        Command::Stats(a) => with_system(io, &a, |io, _c, sys, opts, parse| {
-            let mut s = driver::stats(sys, opts).map_err(|d| vec![d])?;
-            s.time.parse = parse;
-            match a.format {
-                OutputFormat::Json => {
-                    let _ = writeln!(
-                        io.stdout,
-                        "{}",
-                        serde_json::to_string(&s).expect("stats serialise")
-                    );
-                }
-                OutputFormat::Human => {
-                    let b = s.bbox;
-                    let _ = writeln!(
-                        io.stdout,
-                        "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
-                        s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
-                    );
-                }
-            }
-            Ok(0)
-        }),
-        Command::Render {
-            args,
-            output,
-            size,
-            view,
-            spline,
-            no_layout,
-        } => {
-            let Some(format) = Format::from_path(&output) else {
-                let _ = writeln!(
-                    io.stderr,
-                    "error: cannot tell the picture format of `{output}`: use .png or .svg"
-                );
-                return 2;
-            };
-            with_system(io, &args, |io, c, sys, opts, _| {
-                // `--view` is in degrees, the file's view in radians.
-                let view = view
-                    .map(|(az, el)| View::degrees(az, el))
-                    .or(sys.settings.view.map(|(az, el)| View {
-                        azimuth: az,
-                        elevation: el,
-                    }))
-                    .unwrap_or_default();
-                let ropts = RenderOptions {
-                    width: size.0,
-                    height: size.1,
-                    view,
-                    spline,
-                    ..RenderOptions::default()
-                };
-                let bar = draw_bar(io);
-                let mut progress = |drawn: u64, total: u64| {
-                    if let Some(bar) = &bar {
-                        bar.set_length(total);
-                        bar.set_position(drawn);
-                    }
-                };
-                if let Some(bytes) =
-                    driver::render_shared_with(sys, opts, format, ropts, &mut progress)
-                {
-                    if let Some(bar) = &bar {
-                        bar.finish_and_clear();
-                    }
-                    return Ok(write_picture(io, &output, bytes));
-                }
-                driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
-                let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-                let mut g = driver::interpret(sys, &word, opts, spline).map_err(|d| vec![d])?;
-                if !no_layout {
-                    driver::add_layout(sys, &mut g);
-                }
-                if g.is_empty() {
-                    report(io, c, [driver::nothing_drawn(&word)].iter(), args.format);
-                }
-                let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
-                if let Some(bar) = &bar {
-                    bar.finish_and_clear();
-                }
-                Ok(write_picture(io, &output, bytes))
-            })
-        }
+        } => check(io, &files, entry.as_deref(), format),
+        Command::Derive(a) => derive(io, &a),
+        Command::Stats(a) => stats(io, &a),
+        Command::Render(a) => render(io, &a),
         Command::Translate(a) => translate(io, &a),
-        Command::Explain { code } => match diagnostics::codes::lookup(&code) {
-            Some(info) => {
-                let _ = writeln!(
-                    io.stdout,
-                    "{} ({}): {}\n\n{}",
-                    info.code,
-                    match info.code.severity() {
-                        diagnostics::Severity::Error => "error",
-                        diagnostics::Severity::Warning => "warning",
-                    },
-                    info.title,
-                    info.explanation
-                );
-                0
+        Command::Explain { code } => explain(io, &code),
+        Command::List => list(io),
+    }
+}
+
+/// Prints clap's message for a command line it did not accept, or for
+/// `--help` and `--version`; the exit status.
+fn usage(io: &mut Io<'_>, e: &clap::Error) -> i32 {
+    let code = if e.use_stderr() { 2 } else { 0 };
+    let text = if io.terminal {
+        e.render().ansi().to_string()
+    } else {
+        e.render().to_string()
+    };
+    let out: &mut dyn Write = if e.use_stderr() { io.stderr } else { io.stdout };
+    let _ = write!(out, "{text}");
+    code
+}
+
+/// `graftal check`: each file's diagnostics, and its listing.
+fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputFormat) -> i32 {
+    let mut status = 0;
+    for f in files {
+        let (path, named) = driver::split_entry(f);
+        match driver::load(&path) {
+            Ok(file) => {
+                let c = driver::compile_entry(file, entry.or(named.as_deref()));
+                report(io, &c, c.diagnostics.0.iter(), format);
+                if format == OutputFormat::Human {
+                    list_entries(io, &c);
+                }
+                if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry()) {
+                    status = status.max(1);
+                }
             }
-            None => {
-                let _ = writeln!(
-                    io.stderr,
-                    "error: no diagnostic code `{code}` (codes look like E0004 or W0001)"
-                );
-                2
+            Err(e) => {
+                let _ = writeln!(io.stderr, "error: {e}");
+                status = 2;
             }
-        },
-        Command::List => {
-            for e in crate::stdlib::ENTRIES {
-                let _ = writeln!(io.stdout, "std:{}", e.name);
-            }
-            0
         }
     }
+    status
+}
+
+/// `graftal derive`: the derived word on stdout.
+fn derive(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
+    with_system(io, a, |io, c, sys, opts, _| {
+        let bar = step_bar(io, sys, opts);
+        let r = driver::write_derived(c.front, sys, opts, io.stdout, |step, len| {
+            if let Some(bar) = &bar {
+                bar.set_position(step);
+                bar.set_message(format!("{len} symbols"));
+            }
+        });
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+        r.map_err(|d| vec![d])?;
+        Ok(0)
+    })
+}
+
+/// `graftal stats`: counts, box, depth, method and times, as text or JSON.
+fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
+    with_system(io, a, |io, _c, sys, opts, parse| {
+        let mut s = driver::stats(sys, opts).map_err(|d| vec![d])?;
+        s.time.parse = parse;
+        match a.format {
+            OutputFormat::Json => {
+                let _ = writeln!(
+                    io.stdout,
+                    "{}",
+                    serde_json::to_string(&s).expect("stats serialise")
+                );
+            }
+            OutputFormat::Human => {
+                let b = s.bbox;
+                let _ = writeln!(
+                    io.stdout,
+                    "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
+                    s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
+                );
+            }
+        }
+        Ok(0)
+    })
+}
+
+/// `graftal render`: the picture, drawn from shared subtrees when the
+/// driver can, else from the derived word.
+fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
+    let Some(format) = Format::from_path(&a.output) else {
+        let _ = writeln!(
+            io.stderr,
+            "error: cannot tell the picture format of `{}`: use .png or .svg",
+            a.output
+        );
+        return 2;
+    };
+    with_system(io, &a.args, |io, c, sys, opts, _| {
+        let ropts = render_options(a, sys);
+        let bar = draw_bar(io);
+        let mut progress = |drawn: u64, total: u64| {
+            if let Some(bar) = &bar {
+                bar.set_length(total);
+                bar.set_position(drawn);
+            }
+        };
+        if let Some(bytes) = driver::render_shared_with(sys, opts, format, ropts, &mut progress) {
+            if let Some(bar) = &bar {
+                bar.finish_and_clear();
+            }
+            return Ok(write_picture(io, &a.output, bytes));
+        }
+        driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
+        let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+        let mut g = driver::interpret(sys, &word, opts, a.spline).map_err(|d| vec![d])?;
+        if !a.no_layout {
+            driver::add_layout(sys, &mut g);
+        }
+        if g.is_empty() {
+            report(io, c, [driver::nothing_drawn(&word)].iter(), a.args.format);
+        }
+        let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        Ok(write_picture(io, &a.output, bytes))
+    })
+}
+
+/// The picture `a` asks for; the view is `--view`, else the file's own.
+fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
+    // `--view` is in degrees, the file's view in radians.
+    let view = a
+        .view
+        .map(|(az, el)| View::degrees(az, el))
+        .or(sys.settings.view.map(|(az, el)| View {
+            azimuth: az,
+            elevation: el,
+        }))
+        .unwrap_or_default();
+    RenderOptions {
+        width: a.size.0,
+        height: a.size.1,
+        view,
+        spline: a.spline,
+        ..RenderOptions::default()
+    }
+}
+
+/// `graftal explain`: a diagnostic code's title and explanation.
+fn explain(io: &mut Io<'_>, code: &str) -> i32 {
+    let Some(info) = diagnostics::codes::lookup(code) else {
+        let _ = writeln!(
+            io.stderr,
+            "error: no diagnostic code `{code}` (codes look like E0004 or W0001)"
+        );
+        return 2;
+    };
+    let _ = writeln!(
+        io.stdout,
+        "{} ({}): {}\n\n{}",
+        info.code,
+        match info.code.severity() {
+            diagnostics::Severity::Error => "error",
+            diagnostics::Severity::Warning => "warning",
+        },
+        info.title,
+        info.explanation
+    );
+    0
+}
+
+/// `graftal list`: the standard library's names.
+fn list(io: &mut Io<'_>) -> i32 {
+    for e in crate::stdlib::ENTRIES {
+        let _ = writeln!(io.stdout, "std:{}", e.name);
+    }
+    0
 }
 
 /// `graftal translate`: source -> IR -> the target's emitter. Errors (what

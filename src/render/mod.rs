@@ -7,7 +7,7 @@ pub mod shared;
 pub mod svg;
 
 use crate::ir::Rgb;
-use crate::turtle::{Geometry, Vec3};
+use crate::turtle::{Geometry, Segment, Vec3};
 
 /// A view direction: azimuth about the y axis, then elevation about the x
 /// axis, in radians. (0, 0) looks down −z with x to the right and y up.
@@ -174,27 +174,7 @@ pub fn bspline(ctrl: &[[f64; 2]]) -> Vec<[f64; 2]> {
 /// Projects and fits `g` into a `width` × `height` picture.
 pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
     let view = opts.view;
-    let mut segs: Vec<([f64; 2], [f64; 2])> = Vec::new();
-    let mut seg_style: Vec<(Rgb, f64)> = Vec::new();
-    if opts.spline {
-        for path in &g.paths {
-            let ctrl: Vec<[f64; 2]> = path.points.iter().map(|&p| project(p, view)).collect();
-            let curve = bspline(&ctrl);
-            for w in curve.windows(2) {
-                segs.push((w[0], w[1]));
-                seg_style.push((path.colour, path.width));
-            }
-        }
-    } else {
-        let mut push = |s: &crate::turtle::Segment| {
-            segs.push((project(s.a, view), project(s.b, view)));
-            seg_style.push((s.colour, s.width));
-        };
-        match depth_order(g, view) {
-            Some(order) => order.into_iter().for_each(|i| push(&g.segments[i])),
-            None => g.segments.iter().for_each(push),
-        }
-    }
+    let segments = flat_segments(g, opts);
     let polys: Vec<Vec<[f64; 2]>> = g
         .polygons
         .iter()
@@ -207,8 +187,6 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         .iter()
         .map(|d| (project(d.centre, view), d.diameter / 2.0))
         .collect();
-    let mut min = [f64::INFINITY; 2];
-    let mut max = [f64::NEG_INFINITY; 2];
     let disc_extent: Vec<[f64; 2]> = g
         .discs
         .iter()
@@ -218,53 +196,155 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
             [[c[0] - r, c[1] - r], [c[0] + r, c[1] + r]]
         })
         .collect();
-    for p in segs
+    let fit = Fit::new(
+        segments
+            .iter()
+            .flat_map(|s| [&s.a, &s.b])
+            .chain(polys.iter().flatten())
+            .chain(disc_extent.iter()),
+        opts,
+    );
+    let runs = runs(&segments, &fit, g.world_widths);
+    let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = g
+        .polygons
         .iter()
-        .flat_map(|(a, b)| [a, b])
-        .chain(polys.iter().flatten())
-        .chain(disc_extent.iter())
-    {
-        for k in 0..2 {
-            min[k] = min[k].min(p[k]);
-            max[k] = max[k].max(p[k]);
+        .zip(polys)
+        .map(|(p, pts)| (p.colour, pts.into_iter().map(|q| fit.to_px(q)).collect()))
+        .collect();
+    for (d, (c, r)) in g.discs.iter().zip(discs) {
+        let r = if d.pixels {
+            r * fit.line_unit
+        } else {
+            r * fit.scale
+        };
+        polygons.push((d.colour, disc_outline(fit.to_px(c), r)));
+    }
+    Picture {
+        width: opts.width,
+        height: opts.height,
+        runs,
+        polygons,
+    }
+}
+
+/// A segment in the picture plane, before fitting.
+struct FlatSegment {
+    a: [f64; 2],
+    b: [f64; 2],
+    colour: Rgb,
+    width: f64,
+}
+
+/// What `g` draws as lines, in the picture plane and in drawing order:
+/// with `opts.spline` the B-splines through its paths, else its segments,
+/// farther first.
+fn flat_segments(g: &Geometry, opts: &RenderOptions) -> Vec<FlatSegment> {
+    let view = opts.view;
+    let mut flat = Vec::new();
+    if opts.spline {
+        for path in &g.paths {
+            let ctrl: Vec<[f64; 2]> = path.points.iter().map(|&p| project(p, view)).collect();
+            let curve = bspline(&ctrl);
+            flat.extend(curve.windows(2).map(|w| FlatSegment {
+                a: w[0],
+                b: w[1],
+                colour: path.colour,
+                width: path.width,
+            }));
+        }
+    } else {
+        let project_segment = |s: &Segment| FlatSegment {
+            a: project(s.a, view),
+            b: project(s.b, view),
+            colour: s.colour,
+            width: s.width,
+        };
+        match depth_order(g, view) {
+            Some(order) => flat.extend(order.into_iter().map(|i| project_segment(&g.segments[i]))),
+            None => flat.extend(g.segments.iter().map(project_segment)),
         }
     }
-    let (w, h) = (opts.width as f64, opts.height as f64);
-    let fill = 0.9 * opts.scale.clamp(1.0, 100.0) / 100.0;
-    let (bw, bh) = (max[0] - min[0], max[1] - min[1]);
-    let sx = if bw > 0.0 {
-        w * fill / bw
-    } else {
-        f64::INFINITY
-    };
-    let sy = if bh > 0.0 {
-        h * fill / bh
-    } else {
-        f64::INFINITY
-    };
-    let mut s = sx.min(sy);
-    if !s.is_finite() {
-        s = 1.0;
-    }
-    let (cx, cy) = ((min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0);
-    let to_px = |p: [f64; 2]| [w / 2.0 + (p[0] - cx) * s, h / 2.0 - (p[1] - cy) * s];
-    let base = (w.min(h) / 600.0).max(1.0);
+    flat
+}
 
+/// The picture plane fitted into the picture: what it draws, centred,
+/// filling the share of the picture the options ask for.
+struct Fit {
+    /// Pixels per picture-plane unit.
+    scale: f64,
+    centre: [f64; 2],
+    width: f64,
+    height: f64,
+    /// Pixels per pixel of line width: lines are thicker in pictures more
+    /// than 600 pixels across, so that they look the same.
+    line_unit: f64,
+}
+
+impl Fit {
+    /// The fit of everything at `points` into the picture of `opts`.
+    fn new<'p>(points: impl Iterator<Item = &'p [f64; 2]>, opts: &RenderOptions) -> Self {
+        let mut min = [f64::INFINITY; 2];
+        let mut max = [f64::NEG_INFINITY; 2];
+        for p in points {
+            for k in 0..2 {
+                min[k] = min[k].min(p[k]);
+                max[k] = max[k].max(p[k]);
+            }
+        }
+        let (w, h) = (opts.width as f64, opts.height as f64);
+        let fill = 0.9 * opts.scale.clamp(1.0, 100.0) / 100.0;
+        let (bw, bh) = (max[0] - min[0], max[1] - min[1]);
+        let sx = if bw > 0.0 {
+            w * fill / bw
+        } else {
+            f64::INFINITY
+        };
+        let sy = if bh > 0.0 {
+            h * fill / bh
+        } else {
+            f64::INFINITY
+        };
+        let mut s = sx.min(sy);
+        if !s.is_finite() {
+            s = 1.0;
+        }
+        Fit {
+            scale: s,
+            centre: [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0],
+            width: w,
+            height: h,
+            line_unit: (w.min(h) / 600.0).max(1.0),
+        }
+    }
+
+    /// `p` in pixels (y down).
+    fn to_px(&self, p: [f64; 2]) -> [f64; 2] {
+        let [cx, cy] = self.centre;
+        [
+            self.width / 2.0 + (p[0] - cx) * self.scale,
+            self.height / 2.0 - (p[1] - cy) * self.scale,
+        ]
+    }
+}
+
+/// `segments` in pixels, as runs of one colour and width in which
+/// segments that continue one another make one polyline.
+fn runs(segments: &[FlatSegment], fit: &Fit, world_widths: bool) -> Vec<Run> {
     let mut runs: Vec<Run> = Vec::new();
     let mut last_end: Option<[f64; 2]> = None;
-    for (&(colour, seg_width), (a, b)) in seg_style.iter().zip(&segs) {
-        let (pa, pb) = (to_px(*a), to_px(*b));
-        let width = if g.world_widths {
-            (seg_width * s).max(0.5)
+    for seg in segments {
+        let (pa, pb) = (fit.to_px(seg.a), fit.to_px(seg.b));
+        let width = if world_widths {
+            (seg.width * fit.scale).max(0.5)
         } else {
-            base * seg_width
+            fit.line_unit * seg.width
         };
         let same = runs
             .last()
-            .is_some_and(|r| r.colour == colour && r.width == width);
+            .is_some_and(|r| r.colour == seg.colour && r.width == width);
         if !same {
             runs.push(Run {
-                colour,
+                colour: seg.colour,
                 width,
                 lines: Vec::new(),
             });
@@ -277,30 +357,19 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         }
         last_end = Some(pb);
     }
-    let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = g
-        .polygons
-        .iter()
-        .zip(polys)
-        .map(|(p, pts)| (p.colour, pts.into_iter().map(to_px).collect()))
-        .collect();
-    for (d, (c, r)) in g.discs.iter().zip(discs) {
-        let r = if d.pixels { r * base } else { r * s };
-        let c = to_px(c);
-        let n = ((r * 2.0).ceil() as usize).clamp(8, 64);
-        let pts = (0..n)
-            .map(|k| {
-                let (sn, cs) = (k as f64 * std::f64::consts::TAU / n as f64).sin_cos();
-                [c[0] + r * cs, c[1] + r * sn]
-            })
-            .collect();
-        polygons.push((d.colour, pts));
-    }
-    Picture {
-        width: opts.width,
-        height: opts.height,
-        runs,
-        polygons,
-    }
+    runs
+}
+
+/// A disc of radius `r` around `c` (pixels) as a polygon: a point per
+/// pixel of its diameter, at least 8 and at most 64.
+fn disc_outline(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
+    let n = ((r * 2.0).ceil() as usize).clamp(8, 64);
+    (0..n)
+        .map(|k| {
+            let (sn, cs) = (k as f64 * std::f64::consts::TAU / n as f64).sin_cos();
+            [c[0] + r * cs, c[1] + r * sn]
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -172,6 +172,178 @@ impl Rotation {
     }
 }
 
+/// What the symbols of a system do, as [`Instanced::new`] finds them.
+struct Acts {
+    /// By symbol; `Keep` for the symbols no word holds.
+    acts: Vec<Act>,
+    /// The distinct rotations the symbols make.
+    turns: Vec<Rotation>,
+    /// Whether any symbol changes colour or width.
+    styled: bool,
+}
+
+impl Acts {
+    /// `None` when a symbol the words can hold does something instancing
+    /// does not cover.
+    fn of(sys: &System, tree: &D0l) -> Option<Self> {
+        let mut found = Acts {
+            acts: Vec::with_capacity(tree.symbol_count()),
+            turns: Vec::new(),
+            styled: false,
+        };
+        // Only the symbols the word can hold matter.
+        for (i, used) in symbols_used(tree).into_iter().enumerate() {
+            let s = SymbolId(i as u32);
+            let act = match sys.op(s) {
+                Some(op) if used => found.act(sys, op)?,
+                _ => Act::Keep,
+            };
+            // A bracket that is rewritten would open or close branches
+            // across subtrees.
+            if matches!(act, Act::Push | Act::Pop) && tree.successor(s).is_some() {
+                return None;
+            }
+            found.acts.push(act);
+        }
+        Some(found)
+    }
+
+    /// What `op` does; `None` when instancing does not cover it.
+    fn act(&mut self, sys: &System, op: TurtleOp) -> Option<Act> {
+        let fixed = |a: Angle| match a {
+            Angle::Delta(f) => Some(f * sys.settings.delta),
+            Angle::Radians(r) => Some(r),
+            Angle::Uniform { .. } => None,
+        };
+        let act = match op {
+            TurtleOp::Forward { draw } => Act::Forward { draw },
+            TurtleOp::Rotate { axis, angle } => self.turn(Rotation::About {
+                axis,
+                angle: fixed(angle)?,
+                fixed: false,
+            }),
+            TurtleOp::TurnUnswapped(angle) => self.turn(Rotation::About {
+                axis: Axis::Up,
+                angle: fixed(angle)?,
+                fixed: false,
+            }),
+            TurtleOp::TurnAround => self.turn(Rotation::About {
+                axis: Axis::Up,
+                angle: std::f64::consts::PI,
+                fixed: true,
+            }),
+            TurtleOp::Frenet { rotation, negate } => {
+                let r = sys.rotations.get(rotation.0 as usize)?;
+                let sign = if negate { -1.0 } else { 1.0 };
+                self.turn(Rotation::Frenet {
+                    torsion: sign * fixed(r.torsion)?,
+                    curvature: sign * fixed(r.curvature)?,
+                })
+            }
+            TurtleOp::SwapTurns => Act::Swap,
+            TurtleOp::ScaleLength(f) if f > 0.0 && f.is_finite() => Act::Scale(f),
+            TurtleOp::Push => Act::Push,
+            TurtleOp::Pop => Act::Pop,
+            TurtleOp::DecrementWidth
+            | TurtleOp::NextColour
+            | TurtleOp::PreviousColour
+            | TurtleOp::SetColour(_)
+            | TurtleOp::ShiftColour { .. }
+            | TurtleOp::ColourIndex { .. }
+            | TurtleOp::LineWidth { .. } => {
+                self.styled = true;
+                Act::Keep
+            }
+            _ => return None,
+        };
+        Some(act)
+    }
+
+    /// The turn by `r`, added to the rotations when it is new.
+    fn turn(&mut self, r: Rotation) -> Act {
+        let k = self.turns.iter().position(|&t| t == r).unwrap_or_else(|| {
+            self.turns.push(r);
+            self.turns.len() - 1
+        });
+        Act::Turn(k as u16)
+    }
+}
+
+/// By symbol, whether the words of `tree` can hold it.
+fn symbols_used(tree: &D0l) -> Vec<bool> {
+    let mut used = vec![false; tree.symbol_count()];
+    let mut todo: Vec<SymbolId> = tree.axiom().to_vec();
+    while let Some(s) = todo.pop() {
+        if !std::mem::replace(&mut used[s.index()], true) {
+            todo.extend(tree.successor(s).unwrap_or(&[]));
+        }
+    }
+    used
+}
+
+/// Whether every branch `w` opens, it closes, and none closes before it
+/// opens.
+fn balanced(acts: &[Act], w: &[SymbolId]) -> bool {
+    let mut depth = 0i64;
+    for s in w {
+        match acts[s.index()] {
+            Act::Push => depth += 1,
+            Act::Pop => {
+                depth -= 1;
+                if depth < 0 {
+                    return false;
+                }
+            }
+            _ => {}
+        }
+    }
+    depth == 0
+}
+
+/// Indices into a list of frames by the frames' [`key`].
+type FrameIndex = HashMap<[i64; 9], u32>;
+
+/// The frames reachable from the start by every turn, swapped or not, and
+/// each one's index by its key; `None` past [`MAX_FRAMES`].
+fn reachable_frames(turns: &[Rotation]) -> Option<(Vec<Frame>, FrameIndex)> {
+    let mut frames: Vec<Frame> = vec![START];
+    let mut index: FrameIndex = HashMap::from([(key(&START), 0)]);
+    let mut i = 0;
+    while i < frames.len() {
+        for swapped in [false, true] {
+            for t in turns {
+                let f = t.apply(&frames[i], swapped);
+                let k = key(&f);
+                if let std::collections::hash_map::Entry::Vacant(e) = index.entry(k) {
+                    if frames.len() >= MAX_FRAMES {
+                        return None;
+                    }
+                    e.insert(frames.len() as u32);
+                    frames.push(f);
+                }
+            }
+        }
+        i += 1;
+    }
+    Some((frames, index))
+}
+
+/// The state after each turn from each state (frame · 2 + swapped), as
+/// [`Instanced::next`] holds them.
+fn transitions(frames: &[Frame], index: &HashMap<[i64; 9], u32>, turns: &[Rotation]) -> Vec<u32> {
+    let states = frames.len() * 2;
+    let mut next: Vec<u32> = Vec::with_capacity(states * turns.len());
+    for st in 0..states {
+        let (f, sw) = (st / 2, st % 2 == 1);
+        for t in turns {
+            let g = t.apply(&frames[f], sw);
+            let id = index[&key(&g)];
+            next.push(id * 2 + sw as u32);
+        }
+    }
+    next
+}
+
 impl<'a> Instanced<'a> {
     /// `None` when `sys` is not context-free and deterministic, or draws
     /// with something instancing does not cover (see the module notes).
@@ -180,108 +352,14 @@ impl<'a> Instanced<'a> {
             return None;
         }
         let tree = D0l::of(sys)?;
-        let delta = sys.settings.delta;
-        let fixed = |a: Angle| match a {
-            Angle::Delta(f) => Some(f * delta),
-            Angle::Radians(r) => Some(r),
-            Angle::Uniform { .. } => None,
-        };
-        let mut turns: Vec<Rotation> = Vec::new();
-        // Only the symbols the word can hold matter.
-        let mut used = vec![false; tree.symbol_count()];
-        let mut todo: Vec<SymbolId> = tree.axiom().to_vec();
-        while let Some(s) = todo.pop() {
-            if !std::mem::replace(&mut used[s.index()], true) {
-                todo.extend(tree.successor(s).unwrap_or(&[]));
-            }
-        }
-        let mut acts = Vec::with_capacity(tree.symbol_count());
-        let mut styled = false;
-        for (i, &used) in used.iter().enumerate() {
-            let s = SymbolId(i as u32);
-            if !used {
-                acts.push(Act::Keep);
-                continue;
-            }
-            let mut add = |r: Rotation| {
-                let k = turns.iter().position(|&t| t == r).unwrap_or_else(|| {
-                    turns.push(r);
-                    turns.len() - 1
-                });
-                Act::Turn(k as u16)
-            };
-            let act = match sys.op(s) {
-                None => Act::Keep,
-                Some(op) => match op {
-                    TurtleOp::Forward { draw } => Act::Forward { draw },
-                    TurtleOp::Rotate { axis, angle } => add(Rotation::About {
-                        axis,
-                        angle: fixed(angle)?,
-                        fixed: false,
-                    }),
-                    TurtleOp::TurnUnswapped(angle) => add(Rotation::About {
-                        axis: Axis::Up,
-                        angle: fixed(angle)?,
-                        fixed: false,
-                    }),
-                    TurtleOp::TurnAround => add(Rotation::About {
-                        axis: Axis::Up,
-                        angle: std::f64::consts::PI,
-                        fixed: true,
-                    }),
-                    TurtleOp::Frenet { rotation, .. } => {
-                        let r = sys.rotations.get(rotation.0 as usize)?;
-                        let sign = match op {
-                            TurtleOp::Frenet { negate: true, .. } => -1.0,
-                            _ => 1.0,
-                        };
-                        add(Rotation::Frenet {
-                            torsion: sign * fixed(r.torsion)?,
-                            curvature: sign * fixed(r.curvature)?,
-                        })
-                    }
-                    TurtleOp::SwapTurns => Act::Swap,
-                    TurtleOp::ScaleLength(f) if f > 0.0 && f.is_finite() => Act::Scale(f),
-                    TurtleOp::Push => Act::Push,
-                    TurtleOp::Pop => Act::Pop,
-                    TurtleOp::DecrementWidth
-                    | TurtleOp::NextColour
-                    | TurtleOp::PreviousColour
-                    | TurtleOp::SetColour(_)
-                    | TurtleOp::ShiftColour { .. }
-                    | TurtleOp::ColourIndex { .. }
-                    | TurtleOp::LineWidth { .. } => {
-                        styled = true;
-                        Act::Keep
-                    }
-                    _ => return None,
-                },
-            };
-            // A bracket that is rewritten would open or close branches
-            // across subtrees.
-            if matches!(act, Act::Push | Act::Pop) && tree.successor(s).is_some() {
-                return None;
-            }
-            acts.push(act);
-        }
+        let Acts {
+            acts,
+            turns,
+            styled,
+        } = Acts::of(sys, &tree)?;
         // Every successor and the axiom must be balanced, so that each
         // subtree's branches close inside it.
-        let balanced = |w: &[SymbolId]| {
-            let mut depth = 0i64;
-            for s in w {
-                match acts[s.index()] {
-                    Act::Push => depth += 1,
-                    Act::Pop => {
-                        depth -= 1;
-                        if depth < 0 {
-                            return false;
-                        }
-                    }
-                    _ => {}
-                }
-            }
-            depth == 0
-        };
+        let balanced = |w: &[SymbolId]| balanced(&acts, w);
         if !balanced(tree.axiom())
             || !(0..tree.symbol_count())
                 .filter_map(|i| tree.successor(SymbolId(i as u32)))
@@ -289,38 +367,8 @@ impl<'a> Instanced<'a> {
         {
             return None;
         }
-        // The frames reachable from the start, by every turn, swapped or
-        // not.
-        let mut frames: Vec<Frame> = vec![START];
-        let mut index: HashMap<[i64; 9], u32> = HashMap::from([(key(&START), 0)]);
-        let mut i = 0;
-        while i < frames.len() {
-            for swapped in [false, true] {
-                for t in &turns {
-                    let f = t.apply(&frames[i], swapped);
-                    let k = key(&f);
-                    if let std::collections::hash_map::Entry::Vacant(e) = index.entry(k) {
-                        if frames.len() >= MAX_FRAMES {
-                            return None;
-                        }
-                        e.insert(frames.len() as u32);
-                        frames.push(f);
-                    }
-                }
-            }
-            i += 1;
-        }
-        // Transitions per state (frame · 2 + swapped).
-        let states = frames.len() * 2;
-        let mut next: Vec<u32> = Vec::with_capacity(states * turns.len());
-        for st in 0..states {
-            let (f, sw) = (st / 2, st % 2 == 1);
-            for t in &turns {
-                let g = t.apply(&frames[f], sw);
-                let id = index[&key(&g)];
-                next.push(id * 2 + sw as u32);
-            }
-        }
+        let (frames, index) = reachable_frames(&turns)?;
+        let next = transitions(&frames, &index, &turns);
         Some(Instanced {
             sys,
             tree,

@@ -14,7 +14,7 @@
 
 pub mod instanced;
 
-use crate::ir::{Angle, Axis, QueryKind, Rgb, SymbolId, System, TurtleOp, Word};
+use crate::ir::{Angle, Axis, QueryKind, Rgb, RotationId, SymbolId, System, TurtleOp, Word};
 use crate::random::{Rng, Stream};
 use serde::Serialize;
 
@@ -155,6 +155,22 @@ struct Cylinder {
     tangents: (f64, f64),
 }
 
+/// cpfg's default tangent coefficients: the tangents at a Hermite
+/// segment's ends are this many times the distance between its control
+/// points.
+const DEFAULT_TANGENTS: (f64, f64) = (1.2, 1.2);
+
+impl Cylinder {
+    /// A cylinder whose last control point is where the turtle is.
+    fn at(st: &State) -> Self {
+        Cylinder {
+            point: st.pos,
+            heading: st.h,
+            tangents: DEFAULT_TANGENTS,
+        }
+    }
+}
+
 fn cross(a: Vec3, b: Vec3) -> Vec3 {
     [
         a[1] * b[2] - a[2] * b[1],
@@ -243,6 +259,54 @@ impl State {
             Axis::Heading => (self.u, self.l) = rotate(self.u, self.l, c, s),
         }
     }
+
+    /// A turn about U by `angle`, whether turns are swapped or not.
+    fn turn_unswapped(&mut self, angle: f64) {
+        let (s, c) = angle.sin_cos();
+        (self.h, self.l) = rotate(self.h, self.l, c, s);
+    }
+
+    /// cpfg `@R`: heading along `heading` (unless it is zero), and up as
+    /// near to `up` as it can be.
+    fn set_heading(&mut self, heading: Vec3, up: Vec3) {
+        if dot(heading, heading) > 0.0 {
+            let h = normalised(heading);
+            let l = if dot(up, up) > 0.0 && dot(cross(up, h), cross(up, h)) > 1e-18 {
+                normalised(cross(normalised(up), h))
+            } else {
+                // Keep L as close as it can be: remove its part along the
+                // new heading.
+                let l = add_scaled(self.l, h, -dot(self.l, h));
+                if dot(l, l) > 1e-18 {
+                    normalised(l)
+                } else {
+                    normalised(cross(self.u, h))
+                }
+            };
+            self.h = h;
+            self.l = l;
+            self.u = cross(h, l);
+        }
+    }
+
+    /// cpfg `@v`: a roll about H bringing U as near to +y as it can be.
+    fn roll_to_vertical(&mut self) {
+        let l = cross([0.0, 1.0, 0.0], self.h);
+        if dot(l, l) > 1e-18 {
+            self.l = normalised(l);
+            self.u = cross(self.h, self.l);
+        }
+    }
+
+    /// The vector a query module asks for.
+    fn vector(&self, kind: QueryKind) -> Vec3 {
+        match kind {
+            QueryKind::Position => self.pos,
+            QueryKind::Heading => self.h,
+            QueryKind::Left => self.l,
+            QueryKind::Up => self.u,
+        }
+    }
 }
 
 /// Interprets `word` as turtle commands of `sys`. `seed` drives interval
@@ -328,387 +392,504 @@ fn run(
     query: &mut dyn FnMut(usize, QueryKind, Vec3),
     sink: &mut dyn Sink,
 ) -> Geometry {
-    let palette: Vec<Rgb> = if sys.colours.is_empty() {
-        DEFAULT_PALETTE.to_vec()
-    } else {
-        sys.colours.clone()
-    };
     let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
         .map(|i| sys.op(SymbolId(i as u32)))
         .collect();
-    let delta = sys.settings.delta;
-    let mut rng = Rng::new(seed, Stream::Turtle);
-    let mut resolve = |a: Angle| match a {
-        Angle::Delta(f) => f * delta,
-        Angle::Radians(r) => r,
-        Angle::Uniform { lo, hi } => lo + (hi - lo) * rng.next_f64(),
-    };
-    let mut st = State {
-        pos: [0.0; 3],
-        h: [0.0, 1.0, 0.0],
-        l: [-1.0, 0.0, 0.0],
-        u: [0.0, 0.0, 1.0],
-        length: sys.settings.step,
-        width: sys.settings.width,
-        colour: sys.settings.colour.min(palette.len() - 1),
-        history: NO_HISTORY,
-        swapped: false,
-        cylinder: None,
-        real: 0.0,
-    };
-    let mut stack: Vec<State> = Vec::new();
-    // Arena of the colour histories: (previous entry, colour).
-    let mut history: Vec<(u32, usize)> = Vec::new();
-    let mut polys: Vec<(Vec<Vec3>, usize)> = Vec::new();
-    let mut g = Geometry::default();
-    // Index into g.paths of the current branch's path, and of the enclosing
-    // branches' paths.
-    let mut path_stack: Vec<usize> = Vec::new();
-    let new_path = |g: &mut Geometry, st: &State| {
-        g.paths.push(TurtlePath {
-            points: vec![st.pos],
-            width: st.width,
-            colour: palette[st.colour.min(palette.len() - 1)],
-        });
-        g.paths.len() - 1
-    };
-    let mut path = if options.paths {
-        new_path(&mut g, &st)
-    } else {
-        usize::MAX
-    };
-    let mut rotations: u32 = 0;
-    let top = palette.len() - 1;
+    let mut turtle = Turtle::new(sys, seed, options, sink, query);
     for (i, sym) in word.enumerate() {
         let Some(op) = ops.get(sym.index()).copied().flatten() else {
             continue;
         };
-        let args: &[f64] = match params {
+        let args = Args(match params {
             Some(w) => w.args(i),
             None => &[],
-        };
-        // A parameter that is not a number draws nothing odd: it is
-        // treated as absent.
-        let arg = |k: usize| args.get(k).copied().filter(|v| v.is_finite());
-        if rotations >= RENORMALISE_EVERY {
-            st.renormalise();
-            rotations = 0;
-        }
-        match op {
-            TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. } => {
-                let (dir, draw) = match op {
-                    // Along the real heading in the plane of the initial
-                    // H = +y and L = −x.
-                    TurtleOp::ForwardReal { draw } => ([-st.real.sin(), st.real.cos(), 0.0], draw),
-                    TurtleOp::Forward { draw } => (st.h, draw),
-                    _ => unreachable!("matched above"),
-                };
-                let a = st.pos;
-                let length = arg(0).unwrap_or(st.length);
-                let b = [
-                    a[0] + dir[0] * length,
-                    a[1] + dir[1] * length,
-                    a[2] + dir[2] * length,
-                ];
-                st.pos = b;
-                if options.paths {
-                    g.paths[path].points.push(b);
-                }
-                if let Some((pts, _)) = polys.last_mut() {
-                    pts.push(b);
-                } else if draw {
-                    sink.segment(Segment {
-                        a,
-                        b,
-                        width: st.width,
-                        colour: palette[st.colour.min(palette.len() - 1)],
-                    });
-                }
-            }
-            TurtleOp::Rotate { axis, angle } => {
-                let a = match (arg(0), angle) {
-                    (Some(deg), Angle::Delta(k)) => k.signum() * deg.to_radians(),
-                    _ => resolve(angle),
-                };
-                st.turn(axis, a);
-                rotations += 1;
-            }
-            TurtleOp::Frenet { rotation, negate } => {
-                if let Some(r) = sys.rotations.get(rotation.0 as usize) {
-                    let sign = if negate { -1.0 } else { 1.0 };
-                    let (t, k) = (resolve(r.torsion), resolve(r.curvature));
-                    st.turn(Axis::Heading, -sign * t);
-                    st.turn(Axis::Up, -sign * k);
-                    rotations += 1;
-                }
-            }
-            TurtleOp::TurnUnswapped(angle) => {
-                let a = resolve(angle);
-                let (s, c) = a.sin_cos();
-                (st.h, st.l) = rotate(st.h, st.l, c, s);
-                rotations += 1;
-            }
-            TurtleOp::RotateReal(angle) => {
-                let a = resolve(angle);
-                // Positive turns right, as `Rotate` about U does.
-                st.real -= if st.swapped { -a } else { a };
-            }
-            TurtleOp::SetColour(n) => st.colour = n as usize % palette.len(),
-            TurtleOp::ShiftColour { by, up } => {
-                let len = palette.len() as i64;
-                let by = i64::from(by) % len;
-                let mut c = (st.colour as i64 + if up { by } else { -by }).rem_euclid(len);
-                if c == 0 {
-                    c = if up { 1 } else { len - 1 };
-                }
-                st.colour = (c.min(len - 1)) as usize;
-            }
-            TurtleOp::TurnAround => {
-                // Not affected by swapped turns: a half turn either way.
-                let (s, c) = std::f64::consts::PI.sin_cos();
-                (st.h, st.l) = rotate(st.h, st.l, c, s);
-            }
-            TurtleOp::Push => {
-                stack.push(st);
-                g.max_depth = g.max_depth.max(stack.len());
-                if options.paths {
-                    path_stack.push(path);
-                    path = new_path(&mut g, &st);
-                }
-            }
-            TurtleOp::Pop => {
-                if let Some(s) = stack.pop() {
-                    st = s;
-                    if let Some(p) = path_stack.pop() {
-                        path = p;
-                    }
-                }
-            }
-            // cpfg `{(n)`: a generalized cylinder, not a polygon.
-            TurtleOp::PolygonBegin if arg(0).is_some() => {
-                st.cylinder = Some(Cylinder {
-                    point: st.pos,
-                    heading: st.h,
-                    tangents: (1.2, 1.2),
-                });
-            }
-            TurtleOp::PolygonBegin => polys.push((vec![st.pos], st.colour)),
-            TurtleOp::PolygonEnd if arg(0).is_some() => {
-                cylinder_point(&mut st, sink, &palette, 4, true);
-            }
-            TurtleOp::PolygonEnd => {
-                if let Some((pts, colour)) = polys.pop() {
-                    if pts.len() >= 3 {
-                        sink.polygon(Polygon {
-                            points: pts,
-                            colour: palette[colour.min(palette.len() - 1)],
-                        });
-                    }
-                }
-            }
-            TurtleOp::DecrementWidth => st.width *= sys.settings.width_factor,
-            TurtleOp::NextColour => {
-                history.push((st.history, st.colour));
-                st.history = (history.len() - 1) as u32;
-                if sys.colours.is_empty() {
-                    st.colour = (st.colour + 1) % palette.len();
-                } else {
-                    st.colour = (st.colour + 1).min(palette.len() - 1);
-                }
-            }
-            TurtleOp::PreviousColour => {
-                if st.history != NO_HISTORY {
-                    let (previous, c) = history[st.history as usize];
-                    st.colour = c;
-                    st.history = previous;
-                }
-            }
-            TurtleOp::SwapTurns => st.swapped = !st.swapped,
-            TurtleOp::ScaleLength(f) => st.length *= f,
-            TurtleOp::Stem { width, length } => {
-                st.width = width;
-                st.length = length;
-            }
-            TurtleOp::ColourIndex { up } => {
-                let c = match arg(0) {
-                    Some(v) => v,
-                    None if up => st.colour as f64 + sys.settings.colour_step,
-                    None => st.colour as f64 - sys.settings.colour_step,
-                };
-                st.colour = c.round().clamp(0.0, top as f64) as usize;
-            }
-            TurtleOp::LineWidth { up } => {
-                st.width = match arg(0) {
-                    Some(v) => v.max(0.0),
-                    None if up => st.width + sys.settings.width_step,
-                    None => (st.width - sys.settings.width_step).max(0.0),
-                };
-            }
-            TurtleOp::PolygonVertex => {
-                if let Some(n) = arg(0) {
-                    let pieces = n.clamp(1.0, 64.0) as usize;
-                    cylinder_point(&mut st, sink, &palette, pieces, false);
-                } else if let Some((pts, _)) = polys.last_mut() {
-                    pts.push(st.pos);
-                }
-            }
-            TurtleOp::Sphere | TurtleOp::ScreenDisc => {
-                let (diameter, pixels) = match arg(0) {
-                    Some(d) => (d.abs(), false),
-                    None => (st.width, !sys.settings.world_widths),
-                };
-                sink.disc(Disc {
-                    centre: st.pos,
-                    diameter,
-                    pixels,
-                    colour: palette[st.colour.min(top)],
-                });
-            }
-            TurtleOp::Circle => {
-                let r = arg(0).unwrap_or(st.width).abs() / 2.0;
-                let points = (0..24)
-                    .map(|k| {
-                        let (s, c) = (k as f64 * std::f64::consts::TAU / 24.0).sin_cos();
-                        add_scaled(add_scaled(st.pos, st.h, r * c), st.l, r * s)
-                    })
-                    .collect();
-                sink.polygon(Polygon {
-                    points,
-                    colour: palette[st.colour.min(top)],
-                });
-            }
-            TurtleOp::MoveTo => {
-                for k in 0..3 {
-                    if let Some(v) = arg(k) {
-                        st.pos[k] = v;
-                    }
-                }
-                if options.paths {
-                    g.paths[path].points.push(st.pos);
-                }
-            }
-            TurtleOp::SetHeading => {
-                let v: Vec3 = [arg(0), arg(1), arg(2)].map(|x| x.unwrap_or(0.0));
-                if dot(v, v) > 0.0 {
-                    let h = normalised(v);
-                    let u: Vec3 = [arg(3), arg(4), arg(5)].map(|x| x.unwrap_or(0.0));
-                    let l = if dot(u, u) > 0.0 && dot(cross(u, h), cross(u, h)) > 1e-18 {
-                        normalised(cross(normalised(u), h))
-                    } else {
-                        // Keep L as close as it can be: remove its part
-                        // along the new heading.
-                        let l = add_scaled(st.l, h, -dot(st.l, h));
-                        if dot(l, l) > 1e-18 {
-                            normalised(l)
-                        } else {
-                            normalised(cross(st.u, h))
-                        }
-                    };
-                    st.h = h;
-                    st.l = l;
-                    st.u = cross(h, l);
-                }
-            }
-            TurtleOp::RollToVertical => {
-                let v = [0.0, 1.0, 0.0];
-                let l = cross(v, st.h);
-                if dot(l, l) > 1e-18 {
-                    st.l = normalised(l);
-                    st.u = cross(st.h, st.l);
-                }
-            }
-            TurtleOp::Surface(k) => {
-                if let Some(mesh) = sys.surfaces.get(k as usize) {
-                    let scale: Vec3 = match (arg(0), arg(1), arg(2)) {
-                        (Some(x), Some(y), Some(z)) => [x, y, z],
-                        (Some(s), _, _) => [s, s, s],
-                        _ => [1.0, 1.0, 1.0],
-                    };
-                    for tri in &mesh.triangles {
-                        let points = tri
-                            .iter()
-                            .map(|p| {
-                                let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
-                                let q = add_scaled(q, st.h, p[1] * scale[1]);
-                                add_scaled(q, st.u, p[2] * scale[2])
-                            })
-                            .collect();
-                        sink.polygon(Polygon {
-                            points,
-                            colour: palette[st.colour.min(top)],
-                        });
-                    }
-                }
-            }
-            TurtleOp::CylinderStart => {
-                st.cylinder = Some(Cylinder {
-                    point: st.pos,
-                    heading: st.h,
-                    tangents: (1.2, 1.2),
-                });
-            }
-            TurtleOp::CylinderPoint { end } => {
-                let pieces = arg(0).unwrap_or(1.0).clamp(1.0, 64.0) as usize;
-                cylinder_point(&mut st, sink, &palette, pieces, end);
-            }
-            TurtleOp::CylinderTangents => {
-                if let Some(c) = st.cylinder.as_mut() {
-                    c.tangents = (arg(0).unwrap_or(1.2), arg(1).unwrap_or(1.2));
-                }
-            }
-            TurtleOp::Query(kind) => {
-                let v = match kind {
-                    QueryKind::Position => st.pos,
-                    QueryKind::Heading => st.h,
-                    QueryKind::Left => st.l,
-                    QueryKind::Up => st.u,
-                };
-                query(i, kind, v);
-            }
-        }
+        });
+        turtle.apply(i, op, args);
     }
-    g.paths.retain(|p| p.points.len() >= 2);
-    g.world_widths = sys.settings.world_widths;
-    g
+    turtle.finish()
 }
 
-/// A control point of the current generalized cylinder at the turtle:
-/// the axis from the previous control point is drawn as a Hermite curve
-/// of `pieces` segments (at least 4, so that curves look like curves).
-fn cylinder_point(st: &mut State, sink: &mut dyn Sink, palette: &[Rgb], pieces: usize, end: bool) {
-    let Some(c) = st.cylinder else {
-        return;
-    };
-    let d = {
-        let v = [
-            st.pos[0] - c.point[0],
-            st.pos[1] - c.point[1],
-            st.pos[2] - c.point[2],
-        ];
-        dot(v, v).sqrt()
-    };
-    let t0 = c.heading.map(|x| x * d * c.tangents.0);
-    let t1 = st.h.map(|x| x * d * c.tangents.1);
-    let colour = palette[st.colour.min(palette.len() - 1)];
-    let mut a = c.point;
-    for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
-        sink.segment(Segment {
-            a,
-            b,
-            width: st.width,
+/// The parameters of the module being interpreted.
+#[derive(Clone, Copy)]
+struct Args<'w>(&'w [f64]);
+
+impl Args<'_> {
+    /// Parameter `k`. A parameter that is not a number draws nothing odd:
+    /// it is treated as absent.
+    fn get(self, k: usize) -> Option<f64> {
+        self.0.get(k).copied().filter(|v| v.is_finite())
+    }
+
+    /// Parameters `k`, `k + 1` and `k + 2` as a vector, absent ones 0.
+    fn vector(self, k: usize) -> Vec3 {
+        [self.get(k), self.get(k + 1), self.get(k + 2)].map(|x| x.unwrap_or(0.0))
+    }
+}
+
+/// How many pieces a cylinder module's parameter asks for.
+fn pieces(n: f64) -> usize {
+    n.clamp(1.0, 64.0) as usize
+}
+
+/// The turtle interpreting a word: its state and the enclosing branches'
+/// states, and what it is building; what it draws goes to `sink`.
+struct Turtle<'a> {
+    sys: &'a System,
+    palette: Vec<Rgb>,
+    /// The stream interval angles are drawn from.
+    rng: Rng,
+    state: State,
+    /// The states of the enclosing branches.
+    stack: Vec<State>,
+    /// Arena of the colour histories: (previous entry, colour).
+    history: Vec<(u32, usize)>,
+    /// The polygons being collected, innermost last: vertices and colour.
+    open_polygons: Vec<(Vec<Vec3>, usize)>,
+    /// The paths and the deepest nesting (segments, polygons and discs go
+    /// to `sink`).
+    geometry: Geometry,
+    record_paths: bool,
+    /// Index into `geometry.paths` of the current branch's path, and of
+    /// the enclosing branches' paths.
+    path: usize,
+    path_stack: Vec<usize>,
+    /// Rotations since the frame was last re-orthonormalised.
+    rotations: u32,
+    sink: &'a mut dyn Sink,
+    query: &'a mut dyn FnMut(usize, QueryKind, Vec3),
+}
+
+impl<'a> Turtle<'a> {
+    fn new(
+        sys: &'a System,
+        seed: u64,
+        options: TurtleOptions,
+        sink: &'a mut dyn Sink,
+        query: &'a mut dyn FnMut(usize, QueryKind, Vec3),
+    ) -> Self {
+        let palette: Vec<Rgb> = if sys.colours.is_empty() {
+            DEFAULT_PALETTE.to_vec()
+        } else {
+            sys.colours.clone()
+        };
+        let state = State {
+            pos: [0.0; 3],
+            h: [0.0, 1.0, 0.0],
+            l: [-1.0, 0.0, 0.0],
+            u: [0.0, 0.0, 1.0],
+            length: sys.settings.step,
+            width: sys.settings.width,
+            colour: sys.settings.colour.min(palette.len() - 1),
+            history: NO_HISTORY,
+            swapped: false,
+            cylinder: None,
+            real: 0.0,
+        };
+        let mut turtle = Turtle {
+            sys,
+            palette,
+            rng: Rng::new(seed, Stream::Turtle),
+            state,
+            stack: Vec::new(),
+            history: Vec::new(),
+            open_polygons: Vec::new(),
+            geometry: Geometry::default(),
+            record_paths: options.paths,
+            path: usize::MAX,
+            path_stack: Vec::new(),
+            rotations: 0,
+            sink,
+            query,
+        };
+        if options.paths {
+            turtle.path = turtle.start_path();
+        }
+        turtle
+    }
+
+    /// Interprets `op`, the module at index `i` of the word.
+    // Inlined into `run`'s loop, as `forward` is: called as functions they
+    // made interpretation (benches/throughput.rs, `interpret`) a fifth
+    // slower.
+    #[inline(always)]
+    fn apply(&mut self, i: usize, op: TurtleOp, args: Args) {
+        if self.rotations >= RENORMALISE_EVERY {
+            self.state.renormalise();
+            self.rotations = 0;
+        }
+        match op {
+            TurtleOp::Forward { draw } => self.forward(self.state.h, draw, args),
+            TurtleOp::ForwardReal { draw } => {
+                // Along the real heading in the plane of the initial
+                // H = +y and L = −x.
+                let real = self.state.real;
+                self.forward([-real.sin(), real.cos(), 0.0], draw, args);
+            }
+            TurtleOp::MoveTo => self.move_to(args),
+            TurtleOp::Rotate { axis, angle } => self.rotate(axis, angle, args),
+            TurtleOp::Frenet { rotation, negate } => self.frenet(rotation, negate),
+            TurtleOp::TurnUnswapped(angle) => {
+                let a = self.resolve(angle);
+                self.state.turn_unswapped(a);
+                self.rotations += 1;
+            }
+            TurtleOp::RotateReal(angle) => {
+                let a = self.resolve(angle);
+                // Positive turns right, as `Rotate` about U does.
+                self.state.real -= if self.state.swapped { -a } else { a };
+            }
+            // Not affected by swapped turns: a half turn either way.
+            TurtleOp::TurnAround => self.state.turn_unswapped(std::f64::consts::PI),
+            TurtleOp::SwapTurns => self.state.swapped = !self.state.swapped,
+            TurtleOp::SetHeading => self.state.set_heading(args.vector(0), args.vector(3)),
+            TurtleOp::RollToVertical => self.state.roll_to_vertical(),
+            TurtleOp::Push => self.push(),
+            TurtleOp::Pop => self.pop(),
+            // cpfg `{(n)`: a generalized cylinder, not a polygon.
+            TurtleOp::PolygonBegin if args.get(0).is_some() => self.start_cylinder(),
+            TurtleOp::PolygonBegin => self
+                .open_polygons
+                .push((vec![self.state.pos], self.state.colour)),
+            TurtleOp::PolygonEnd if args.get(0).is_some() => self.cylinder_point(4, true),
+            TurtleOp::PolygonEnd => self.end_polygon(),
+            TurtleOp::PolygonVertex => self.polygon_vertex(args),
+            TurtleOp::CylinderStart => self.start_cylinder(),
+            TurtleOp::CylinderPoint { end } => {
+                self.cylinder_point(pieces(args.get(0).unwrap_or(1.0)), end);
+            }
+            TurtleOp::CylinderTangents => {
+                if let Some(c) = self.state.cylinder.as_mut() {
+                    c.tangents = (
+                        args.get(0).unwrap_or(DEFAULT_TANGENTS.0),
+                        args.get(1).unwrap_or(DEFAULT_TANGENTS.1),
+                    );
+                }
+            }
+            TurtleOp::SetColour(n) => self.state.colour = n as usize % self.palette.len(),
+            TurtleOp::ShiftColour { by, up } => self.shift_colour(by, up),
+            TurtleOp::NextColour => self.next_colour(),
+            TurtleOp::PreviousColour => self.previous_colour(),
+            TurtleOp::ColourIndex { up } => self.colour_index(up, args),
+            TurtleOp::DecrementWidth => self.state.width *= self.sys.settings.width_factor,
+            TurtleOp::LineWidth { up } => self.line_width(up, args),
+            TurtleOp::ScaleLength(f) => self.state.length *= f,
+            TurtleOp::Stem { width, length } => {
+                self.state.width = width;
+                self.state.length = length;
+            }
+            TurtleOp::Sphere | TurtleOp::ScreenDisc => self.disc(args),
+            TurtleOp::Circle => self.circle(args),
+            TurtleOp::Surface(k) => self.surface(k, args),
+            TurtleOp::Query(kind) => {
+                let v = self.state.vector(kind);
+                (self.query)(i, kind, v);
+            }
+        }
+    }
+
+    /// What the turtle leaves: the paths with a move, and the deepest
+    /// nesting.
+    fn finish(mut self) -> Geometry {
+        self.geometry.paths.retain(|p| p.points.len() >= 2);
+        self.geometry.world_widths = self.sys.settings.world_widths;
+        self.geometry
+    }
+
+    /// The angle `a` stands for, drawing an interval angle from the
+    /// turtle's stream.
+    fn resolve(&mut self, a: Angle) -> f64 {
+        match a {
+            Angle::Delta(f) => f * self.sys.settings.delta,
+            Angle::Radians(r) => r,
+            Angle::Uniform { lo, hi } => lo + (hi - lo) * self.rng.next_f64(),
+        }
+    }
+
+    /// The palette's colour `index`, the last one past its end.
+    fn colour_of(&self, index: usize) -> Rgb {
+        self.palette[index.min(self.palette.len() - 1)]
+    }
+
+    /// The colour the turtle draws with.
+    fn colour(&self) -> Rgb {
+        self.colour_of(self.state.colour)
+    }
+}
+
+/// Moves.
+impl Turtle<'_> {
+    /// A step along `direction`, drawn (when `draw`) as a segment, or a
+    /// vertex of the polygon being collected.
+    #[inline(always)]
+    fn forward(&mut self, direction: Vec3, draw: bool, args: Args) {
+        let a = self.state.pos;
+        let b = add_scaled(a, direction, args.get(0).unwrap_or(self.state.length));
+        self.state.pos = b;
+        self.record_position();
+        if let Some((points, _)) = self.open_polygons.last_mut() {
+            points.push(b);
+        } else if draw {
+            let colour = self.colour();
+            self.sink.segment(Segment {
+                a,
+                b,
+                width: self.state.width,
+                colour,
+            });
+        }
+    }
+
+    /// cpfg `@M(x, y, z)`: a move to absolute coordinates, those given.
+    fn move_to(&mut self, args: Args) {
+        for k in 0..3 {
+            if let Some(v) = args.get(k) {
+                self.state.pos[k] = v;
+            }
+        }
+        self.record_position();
+    }
+
+    fn record_position(&mut self) {
+        if self.record_paths {
+            self.geometry.paths[self.path].points.push(self.state.pos);
+        }
+    }
+
+    /// Starts a path at the turtle; its index in `geometry.paths`.
+    fn start_path(&mut self) -> usize {
+        let colour = self.colour();
+        self.geometry.paths.push(TurtlePath {
+            points: vec![self.state.pos],
+            width: self.state.width,
             colour,
         });
-        a = b;
+        self.geometry.paths.len() - 1
     }
-    st.cylinder = if end {
-        None
-    } else {
-        Some(Cylinder {
-            point: st.pos,
-            heading: st.h,
-            tangents: (1.2, 1.2),
-        })
-    };
+}
+
+/// Rotations.
+impl Turtle<'_> {
+    /// A turn about `axis`; a module's parameter gives the angle in
+    /// degrees, in the direction of the symbol's own.
+    fn rotate(&mut self, axis: Axis, angle: Angle, args: Args) {
+        let a = match (args.get(0), angle) {
+            (Some(degrees), Angle::Delta(k)) => k.signum() * degrees.to_radians(),
+            _ => self.resolve(angle),
+        };
+        self.state.turn(axis, a);
+        self.rotations += 1;
+    }
+
+    /// A named LinF rotation: torsion about H, then curvature about U.
+    fn frenet(&mut self, rotation: RotationId, negate: bool) {
+        let Some(r) = self.sys.rotations.get(rotation.0 as usize) else {
+            return;
+        };
+        let sign = if negate { -1.0 } else { 1.0 };
+        let (t, k) = (self.resolve(r.torsion), self.resolve(r.curvature));
+        self.state.turn(Axis::Heading, -sign * t);
+        self.state.turn(Axis::Up, -sign * k);
+        self.rotations += 1;
+    }
+}
+
+/// Branches.
+impl Turtle<'_> {
+    fn push(&mut self) {
+        self.stack.push(self.state);
+        self.geometry.max_depth = self.geometry.max_depth.max(self.stack.len());
+        if self.record_paths {
+            self.path_stack.push(self.path);
+            self.path = self.start_path();
+        }
+    }
+
+    fn pop(&mut self) {
+        if let Some(s) = self.stack.pop() {
+            self.state = s;
+            if let Some(p) = self.path_stack.pop() {
+                self.path = p;
+            }
+        }
+    }
+}
+
+/// Polygons and generalized cylinders.
+impl Turtle<'_> {
+    fn end_polygon(&mut self) {
+        if let Some((points, colour)) = self.open_polygons.pop() {
+            if points.len() >= 3 {
+                let colour = self.colour_of(colour);
+                self.sink.polygon(Polygon { points, colour });
+            }
+        }
+    }
+
+    /// `.`: a vertex of the polygon being collected, or, with a parameter
+    /// (cpfg `.(n)`), a control point of a generalized cylinder.
+    fn polygon_vertex(&mut self, args: Args) {
+        if let Some(n) = args.get(0) {
+            self.cylinder_point(pieces(n), false);
+        } else if let Some((points, _)) = self.open_polygons.last_mut() {
+            points.push(self.state.pos);
+        }
+    }
+
+    fn start_cylinder(&mut self) {
+        self.state.cylinder = Some(Cylinder::at(&self.state));
+    }
+
+    /// A control point of the current generalized cylinder at the turtle:
+    /// the axis from the previous control point is drawn as a Hermite curve
+    /// of `pieces` segments (at least 4, so that curves look like curves).
+    fn cylinder_point(&mut self, pieces: usize, end: bool) {
+        let Some(c) = self.state.cylinder else {
+            return;
+        };
+        let st = &self.state;
+        let d = {
+            let v = [
+                st.pos[0] - c.point[0],
+                st.pos[1] - c.point[1],
+                st.pos[2] - c.point[2],
+            ];
+            dot(v, v).sqrt()
+        };
+        let t0 = c.heading.map(|x| x * d * c.tangents.0);
+        let t1 = st.h.map(|x| x * d * c.tangents.1);
+        let colour = self.colour();
+        let mut a = c.point;
+        for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
+            self.sink.segment(Segment {
+                a,
+                b,
+                width: st.width,
+                colour,
+            });
+            a = b;
+        }
+        self.state.cylinder = if end {
+            None
+        } else {
+            Some(Cylinder::at(&self.state))
+        };
+    }
+}
+
+/// Colours, widths and lengths.
+impl Turtle<'_> {
+    /// Fractint's `<n` / `>n`: the colour `by` places up or down the
+    /// palette, wrapping around and skipping colour 0.
+    fn shift_colour(&mut self, by: u32, up: bool) {
+        let len = self.palette.len() as i64;
+        let by = i64::from(by) % len;
+        let mut c = (self.state.colour as i64 + if up { by } else { -by }).rem_euclid(len);
+        if c == 0 {
+            c = if up { 1 } else { len - 1 };
+        }
+        self.state.colour = (c.min(len - 1)) as usize;
+    }
+
+    /// `'`: the next colour (wrapping around the default palette, staying
+    /// at the last of a system's own), remembered for `PreviousColour`.
+    fn next_colour(&mut self) {
+        self.history.push((self.state.history, self.state.colour));
+        self.state.history = (self.history.len() - 1) as u32;
+        if self.sys.colours.is_empty() {
+            self.state.colour = (self.state.colour + 1) % self.palette.len();
+        } else {
+            self.state.colour = (self.state.colour + 1).min(self.palette.len() - 1);
+        }
+    }
+
+    fn previous_colour(&mut self) {
+        if self.state.history != NO_HISTORY {
+            let (previous, c) = self.history[self.state.history as usize];
+            self.state.colour = c;
+            self.state.history = previous;
+        }
+    }
+
+    /// cpfg `;` / `,`: the colour index given, or one colour step up or
+    /// down.
+    fn colour_index(&mut self, up: bool, args: Args) {
+        let step = self.sys.settings.colour_step;
+        let c = match args.get(0) {
+            Some(v) => v,
+            None if up => self.state.colour as f64 + step,
+            None => self.state.colour as f64 - step,
+        };
+        self.state.colour = c.round().clamp(0.0, (self.palette.len() - 1) as f64) as usize;
+    }
+
+    /// cpfg `#` / `!`: the line width given, or one width step up or down.
+    fn line_width(&mut self, up: bool, args: Args) {
+        let step = self.sys.settings.width_step;
+        self.state.width = match args.get(0) {
+            Some(v) => v.max(0.0),
+            None if up => self.state.width + step,
+            None => (self.state.width - step).max(0.0),
+        };
+    }
+}
+
+/// cpfg's shapes: discs, circles and surfaces.
+impl Turtle<'_> {
+    /// `@O` / `@o`: a disc at the turtle, of the diameter given (turtle
+    /// units), else of the line width.
+    fn disc(&mut self, args: Args) {
+        let (diameter, pixels) = match args.get(0) {
+            Some(d) => (d.abs(), false),
+            None => (self.state.width, !self.sys.settings.world_widths),
+        };
+        let colour = self.colour();
+        self.sink.disc(Disc {
+            centre: self.state.pos,
+            diameter,
+            pixels,
+            colour,
+        });
+    }
+
+    /// `@c`: a circle in the plane of H and L, as a 24-gon.
+    fn circle(&mut self, args: Args) {
+        let st = &self.state;
+        let r = args.get(0).unwrap_or(st.width).abs() / 2.0;
+        let points = (0..24)
+            .map(|k| {
+                let (s, c) = (k as f64 * std::f64::consts::TAU / 24.0).sin_cos();
+                add_scaled(add_scaled(st.pos, st.h, r * c), st.l, r * s)
+            })
+            .collect();
+        let colour = self.colour();
+        self.sink.polygon(Polygon { points, colour });
+    }
+
+    /// `~k`: surface `k`'s triangles placed in the turtle's frame, scaled
+    /// by the parameters (one for all three axes, or one each).
+    fn surface(&mut self, k: u16, args: Args) {
+        let Some(mesh) = self.sys.surfaces.get(k as usize) else {
+            return;
+        };
+        let scale: Vec3 = match (args.get(0), args.get(1), args.get(2)) {
+            (Some(x), Some(y), Some(z)) => [x, y, z],
+            (Some(s), _, _) => [s, s, s],
+            _ => [1.0, 1.0, 1.0],
+        };
+        let colour = self.colour();
+        let st = &self.state;
+        for tri in &mesh.triangles {
+            let points = tri
+                .iter()
+                .map(|p| {
+                    let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
+                    let q = add_scaled(q, st.h, p[1] * scale[1]);
+                    add_scaled(q, st.u, p[2] * scale[2])
+                })
+                .collect();
+            self.sink.polygon(Polygon { points, colour });
+        }
+    }
 }
 
 #[cfg(test)]
