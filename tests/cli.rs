@@ -267,3 +267,13 @@ fn a_huge_file_is_refused_with_a_diagnostic() {
     assert_eq!(o.status, 1);
     assert!(o.stderr.contains("E0011"), "{}", o.stderr);
 }
+
+#[test]
+fn help_names_every_notation_of_the_registry() {
+    let out = graftal(&["--help"]);
+    assert_eq!(out.status, 0);
+    for f in graftal::front::FRONTS {
+        let named = format!("{} .{}", f.title(), f.extensions()[0]);
+        assert!(out.stdout.contains(&named), "{named}: {}", out.stdout);
+    }
+}

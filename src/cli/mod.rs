@@ -9,14 +9,14 @@ use crate::diagnostics::{self, render_all, render_json, Diagnostic};
 use crate::driver::{self, Compiled, Format, RunOptions};
 use crate::eval::DEFAULT_MAX_SYMBOLS;
 use crate::render::{RenderOptions, View};
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 
 #[derive(Parser, Debug)]
 #[command(
     name = "graftal",
     version,
-    about = "Read, check, derive, draw, translate and explain L-systems (pfg .l, LinF .linf, STL .stl)"
+    about = "Read, check, derive, draw, translate and explain L-systems"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -174,6 +174,18 @@ pub struct Io<'a> {
     pub terminal: bool,
 }
 
+/// The one-line description, naming the notations the registry reads.
+fn about() -> String {
+    let notations: Vec<String> = crate::front::FRONTS
+        .iter()
+        .map(|f| format!("{} .{}", f.title(), f.extensions().join(" .")))
+        .collect();
+    format!(
+        "Read, check, derive, draw, translate and explain L-systems ({})",
+        notations.join(", ")
+    )
+}
+
 /// Runs the command line `args` (with the program name first); returns the
 /// exit status.
 pub fn run<I, T>(args: I, io: &mut Io<'_>) -> i32
@@ -181,7 +193,11 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let parsed = Cli::command()
+        .about(about())
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(c) => c,
         Err(e) => return usage(io, &e),
     };

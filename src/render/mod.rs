@@ -269,9 +269,9 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions) -> Vec<FlatSegment> {
 
 /// The picture plane fitted into the picture: what it draws, centred,
 /// filling the share of the picture the options ask for.
-struct Fit {
+pub(crate) struct Fit {
     /// Pixels per picture-plane unit.
-    scale: f64,
+    pub(crate) scale: f64,
     centre: [f64; 2],
     width: f64,
     height: f64,
@@ -282,7 +282,10 @@ struct Fit {
 
 impl Fit {
     /// The fit of everything at `points` into the picture of `opts`.
-    fn new<'p>(points: impl Iterator<Item = &'p [f64; 2]>, opts: &RenderOptions) -> Self {
+    pub(crate) fn new<'p>(
+        points: impl Iterator<Item = &'p [f64; 2]>,
+        opts: &RenderOptions,
+    ) -> Self {
         let mut min = [f64::INFINITY; 2];
         let mut max = [f64::NEG_INFINITY; 2];
         for p in points {
@@ -317,8 +320,18 @@ impl Fit {
         }
     }
 
+    /// A line of `width` in pixels: turtle units scaled with the picture,
+    /// or pixels that grow with pictures over 600 pixels.
+    pub(crate) fn line_width(&self, width: f64, world_widths: bool) -> f64 {
+        if world_widths {
+            (width * self.scale).max(0.5)
+        } else {
+            self.line_unit * width
+        }
+    }
+
     /// `p` in pixels (y down).
-    fn to_px(&self, p: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn to_px(&self, p: [f64; 2]) -> [f64; 2] {
         let [cx, cy] = self.centre;
         [
             self.width / 2.0 + (p[0] - cx) * self.scale,
@@ -334,11 +347,7 @@ fn runs(segments: &[FlatSegment], fit: &Fit, world_widths: bool) -> Vec<Run> {
     let mut last_end: Option<[f64; 2]> = None;
     for seg in segments {
         let (pa, pb) = (fit.to_px(seg.a), fit.to_px(seg.b));
-        let width = if world_widths {
-            (seg.width * fit.scale).max(0.5)
-        } else {
-            fit.line_unit * seg.width
-        };
+        let width = fit.line_width(seg.width, world_widths);
         let same = runs
             .last()
             .is_some_and(|r| r.colour == seg.colour && r.width == width);
