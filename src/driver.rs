@@ -402,7 +402,8 @@ pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Dia
 pub fn add_layout(sys: &System, g: &mut Geometry) {
     let Some(st) = &sys.structure else { return };
     let shapes: Vec<turtle::Polygon> = st
-        .layout
+        .constraint
+        .outline
         .iter()
         .map(|s| turtle::Polygon {
             points: crate::ir::layout::outline(s)

@@ -42,7 +42,7 @@ fn every_stl_stdlib_entry_checks_derives_and_renders() {
         let (word, mut g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
         assert!(!word.is_empty() && !g.segments.is_empty(), "{}", e.name);
         driver::add_layout(&sys, &mut g);
-        let layout = sys.structure.as_ref().unwrap().layout.len();
+        let layout = sys.structure.as_ref().unwrap().constraint.outline.len();
         assert_eq!(g.polygons.len(), layout, "{}", e.name);
         let opts = RenderOptions {
             width: 64,

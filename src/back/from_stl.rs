@@ -210,14 +210,18 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         return (out, problems);
     };
     out.axiom = Word::default();
-    if !st.layout.is_empty() {
+    if !st.constraint.outline.is_empty() {
         problems.push(Problem {
             kind: Kind::Layout,
             span: None,
             what: format!(
                 "the layout ({} shape{}): only STL draws shapes",
-                st.layout.len(),
-                if st.layout.len() == 1 { "" } else { "s" }
+                st.constraint.outline.len(),
+                if st.constraint.outline.len() == 1 {
+                    ""
+                } else {
+                    "s"
+                }
             ),
             change: "the shapes are dropped; the grown tree is kept".into(),
         });
@@ -231,8 +235,8 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         })
         .max()
         .unwrap_or(0);
-    let (lengths, _) = Structure::per_level(st.length.0, st.length.1, max_depth);
-    let (widths, _) = Structure::per_level(st.broadness.0, st.broadness.1, max_depth);
+    let (lengths, _) = Structure::per_level(st.stems.length.0, st.stems.length.1, max_depth);
+    let (widths, _) = Structure::per_level(st.stems.broadness.0, st.stems.broadness.1, max_depth);
     if widths
         .iter()
         .any(|&w| w.min(Structure::MAX_DRAWN_WIDTH) != 1.0)
@@ -242,8 +246,8 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
             span: None,
             what: format!(
                 "the stem broadness B = {} ({}): the target has no per-stem widths",
-                super::number(st.broadness.0),
-                super::number(st.broadness.1)
+                super::number(st.stems.broadness.0),
+                super::number(st.stems.broadness.1)
             ),
             change: "every stem is drawn 1 wide".into(),
         });

@@ -42,9 +42,10 @@
 //! * **Colours and widths**: [`System::colours`] (a list stepped through or an
 //!   indexed palette), [`Settings::colour`], widths with decrements.
 //! * **Structure** ([`Structure`]): named rules (a table of rules with
-//!   self-resemblance counts), a seed of branching terms, and a growth
-//!   constraint — layout [`Shape`]s with colours, the growth strategy and
-//!   level limit — with stem broadness and length per level. The geometry
+//!   self-resemblance counts), a seed of branching terms, a
+//!   [`GrowthConstraint`] — layout [`Shape`]s with colours, the growth
+//!   strategy and level limit — and [`Stems`]: broadness and length per
+//!   level. The geometry
 //!   of the shapes is [`layout`]'s and the growth inside them [`growth`]'s,
 //!   so a front end that states a growth constraint draws nothing itself.
 //! * **Settings** ([`Settings`]): derivation length, angle increment δ,
@@ -159,7 +160,8 @@
 //! let SeedItem::Term(term) = &st.seed[1] else { panic!() };
 //! assert!(matches!(term.entries[..], [BranchEntry::Term(_), BranchEntry::Empty, BranchEntry::Term(_)]));
 //! assert_eq!(sys.axiom.display(&sys.symbols), "F[F[F][+F][-F]][+F][-F[++F][-F]]");
-//! assert_eq!((st.broadness, st.length), ((8.0, 1.0), (40.0, 4.0)));
+//! assert_eq!((st.stems.broadness, st.stems.length), ((8.0, 1.0), (40.0, 4.0)));
+//! assert!(st.constraint.outline.is_empty());
 //! assert!((sys.settings.delta - 30f64.to_radians()).abs() < 1e-15);
 //! ```
 //!
@@ -781,15 +783,32 @@ impl Default for Settings {
 /// STL structural syntax, kept as structure (see the module docs).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Structure {
+    /// Named rules (a table of rules, each with its self-resemblance count).
     pub rules: Vec<StlRule>,
+    /// The seed: strings and branching terms over the rules.
     pub seed: Vec<SeedItem>,
-    pub layout: Vec<Shape>,
-    pub growth: Growth,
-    /// Levels for rules without a self-resemblance count (`LEVELS n`).
+    /// Where and how the seed grows, for an outline.
+    pub constraint: GrowthConstraint,
+    /// Stem broadness and length per level.
+    pub stems: Stems,
+}
+
+/// A growth constraint: the seed grows inside the union of the `outline`'s
+/// shapes (with the stems keeping clear of each other) by the `strategy`,
+/// each rule for at most its self-resemblance count of levels, `levels`
+/// for rules without one. An empty outline constrains nothing.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct GrowthConstraint {
+    pub outline: Vec<Shape>,
+    pub strategy: Growth,
     pub levels: u32,
-    /// Stem broadness and its decrement per level (`B = 8 (1)`).
+}
+
+/// Stem broadness and length, each with its decrement per level (`B = 8
+/// (1)`, `L = 40 (4)`): a stem at level k has `B − k·ΔB` and `L − k·ΔL`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Stems {
     pub broadness: (f64, f64),
-    /// Stem length and its decrement per level (`L = 40 (4)`).
     pub length: (f64, f64),
 }
 

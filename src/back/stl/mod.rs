@@ -59,17 +59,21 @@ pub fn write(sys: &System) -> Option<String> {
     let mut out = String::new();
     out.push_str("# Branch-Expansion Description written by graftal\n");
     let _ = writeln!(out, "ANGLE {}", super::degrees(sys.settings.delta));
-    let _ = writeln!(out, "B = {} ({})", st.broadness.0, st.broadness.1);
-    let _ = writeln!(out, "L = {} ({})", st.length.0, st.length.1);
+    let _ = writeln!(
+        out,
+        "B = {} ({})",
+        st.stems.broadness.0, st.stems.broadness.1
+    );
+    let _ = writeln!(out, "L = {} ({})", st.stems.length.0, st.stems.length.1);
     let _ = writeln!(
         out,
         "GROWTH {}",
-        match st.growth {
+        match st.constraint.strategy {
             crate::ir::Growth::BreadthFirst => "BFS",
             crate::ir::Growth::DepthFirst => "DFS",
         }
     );
-    let _ = writeln!(out, "LEVELS {}", st.levels);
+    let _ = writeln!(out, "LEVELS {}", st.constraint.levels);
     for r in &st.rules {
         let _ = writeln!(out, "{} = {}", r.name, word(sys, &r.body, spaced));
     }
@@ -86,9 +90,9 @@ pub fn write(sys: &System) -> Option<String> {
     }
     out.push_str(line.trim());
     out.push_str("\nENDSEED\n");
-    if !st.layout.is_empty() {
+    if !st.constraint.outline.is_empty() {
         out.push_str("LAYOUT\n");
-        for s in &st.layout {
+        for s in &st.constraint.outline {
             out.push_str(&shape(s));
             out.push('\n');
         }

@@ -32,8 +32,8 @@ use super::layout::{self, Outline};
 use super::parser::RESERVED;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::ir::{
-    Angle, Axis, BranchEntry, BranchTerm, Growth, Rgb, SeedItem, Shape, Span, SpanTable, StlRule,
-    StlRuleId, Structure, SymbolId, System, TurtleOp, Word,
+    Angle, Axis, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span,
+    SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -1269,15 +1269,19 @@ fn new_structure(st: &Settings, layout: Vec<Shape>) -> Structure {
     Structure {
         rules: Vec::new(),
         seed: Vec::new(),
-        layout,
-        growth: if st.depth_first {
-            Growth::DepthFirst
-        } else {
-            Growth::BreadthFirst
+        constraint: GrowthConstraint {
+            outline: layout,
+            strategy: if st.depth_first {
+                Growth::DepthFirst
+            } else {
+                Growth::BreadthFirst
+            },
+            levels: st.levels,
         },
-        levels: st.levels,
-        broadness: st.b,
-        length: st.l,
+        stems: Stems {
+            broadness: st.b,
+            length: st.l,
+        },
     }
 }
 
