@@ -293,12 +293,14 @@ pub fn derive_with_progress(
     progress: impl FnMut(u64, usize),
 ) -> Result<Word, Diagnostic> {
     let dopts = opts.derive_options(sys);
-    match eval::plan(sys, dopts.steps) {
-        eval::Method::Modules => {
-            eval::parametric::derive(sys, &dopts, progress, &mut |w| answer_queries(sys, w, opts))
-        }
-        _ => Deriver::new(sys).derive(&dopts, progress),
+    // The module test alone ([`eval::plan`] would build the Deriver, and
+    // its table, a second time): the plain methods are the Deriver's.
+    if sys.rewrites_modules() {
+        return eval::parametric::derive(sys, &dopts, progress, &mut |w| {
+            answer_queries(sys, w, opts)
+        });
     }
+    Deriver::new(sys).derive(&dopts, progress)
 }
 
 /// Derives the word.

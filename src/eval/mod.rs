@@ -683,10 +683,11 @@ impl ContextIndex {
 /// (Query modules, `?P` and the like, are answered by the turtle: the
 /// driver derives systems that have them.)
 pub fn derive(sys: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
-    match plan(sys, opts.steps) {
-        Method::Modules => parametric::derive(sys, opts, |_, _| {}, &mut |_| {}),
-        _ => Deriver::new(sys).derive(opts, |_, _| {}),
+    // As `plan` decides, without building the Deriver twice.
+    if sys.rewrites_modules() {
+        return parametric::derive(sys, opts, |_, _| {}, &mut |_| {});
     }
+    Deriver::new(sys).derive(opts, |_, _| {})
 }
 
 #[cfg(test)]

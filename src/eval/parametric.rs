@@ -563,12 +563,20 @@ impl Engine<'_> {
                 self.locals = locals;
                 return Ok(Some(p.predecessor.len()));
             }
+            let last = p.alternatives.len().saturating_sub(1);
             for (a, alt) in p.alternatives.iter().enumerate() {
                 let w = match &alt.computed_weight {
                     Some(e) => self.m.eval(e, &mut locals)?,
                     None => alt.weight,
                 };
-                applicable.push((k, a, w.max(0.0), locals.clone()));
+                // The locals go with the last alternative; earlier ones (a
+                // production of several) get a copy.
+                let mine = if a == last {
+                    std::mem::take(&mut locals)
+                } else {
+                    locals.clone()
+                };
+                applicable.push((k, a, w.max(0.0), mine));
             }
         }
         if applicable.is_empty() {

@@ -404,9 +404,12 @@ impl Word {
             self.push(other.0[i], other.args(i));
         }
     }
+    /// Empties the word, keeping its buffers (rewriting reuses words as
+    /// scratch space).
     pub fn clear(&mut self) {
         self.0.clear();
-        self.1 = Params::default();
+        self.1.values.clear();
+        self.1.starts.clear();
     }
     /// Sets the parameters of module `i`, which has as many already.
     pub fn set_args(&mut self, i: usize, args: &[f64]) {

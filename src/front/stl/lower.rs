@@ -44,9 +44,7 @@ pub const DEFAULT_LENGTH: f64 = 10.0;
 /// The most levels an outline grows (`LEVELS`).
 pub const MAX_LEVELS: u32 = 256;
 /// The most drawing components an expansion may have.
-pub const MAX_EXPANSION: usize = Structure::MAX_EXPANSION;
-/// The widest stroke drawn ([`Structure::MAX_DRAWN_WIDTH`]).
-pub const MAX_DRAWN_WIDTH: f64 = Structure::MAX_DRAWN_WIDTH;
+const MAX_EXPANSION: usize = Structure::MAX_EXPANSION;
 
 pub use crate::ir::Lowered;
 
@@ -689,11 +687,6 @@ fn did_you_mean(name: &str, candidates: &[&str], otherwise: impl Into<String>) -
     }
 }
 
-/// Broadness or length per level ([`Structure::per_level`]).
-pub fn per_level(base: f64, dec: f64, levels: u32) -> (Vec<f64>, Option<u32>) {
-    Structure::per_level(base, dec, levels)
-}
-
 /// The layout shapes: a shape's name, matched without regard to case.
 const SHAPE_KINDS: [&str; 4] = ["Rectangle", "RoundRect", "Ellipse", "Polygon"];
 
@@ -1234,7 +1227,7 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     let mut system = System::new();
     system.settings.delta = st.angle.to_radians();
     system.settings.step = st.l.0;
-    system.settings.width = st.b.0.min(MAX_DRAWN_WIDTH);
+    system.settings.width = st.b.0.min(Structure::MAX_DRAWN_WIDTH);
     let mut structure = new_structure(st, hd.shapes.clone());
     let comp_ids = intern_components(&mut system);
     // Nothing is grown or expanded in a file with errors (a parse error
@@ -1245,8 +1238,8 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
 
     // Growth (an outline) or the seed as written (a BED).
     let max_level = st.levels.saturating_add(2).max(64);
-    let (bw, _) = per_level(st.b.0, st.b.1, max_level);
-    let (lw, _) = per_level(st.l.0, st.l.1, max_level);
+    let (bw, _) = Structure::per_level(st.b.0, st.b.1, max_level);
+    let (lw, _) = Structure::per_level(st.l.0, st.l.1, max_level);
     if let Some(layout_span) = &hd.layout_span {
         if !grow_outline(&mut ctx, &mut parts, st, &hd.shapes, &bw, &lw) {
             no_growth(ctx.diags, layout_span);
@@ -1349,21 +1342,21 @@ fn level_marker(system: &mut System, st: &Settings, bw: &[f64], lw: &[f64], k: u
     system.set_interpretation(
         id,
         TurtleOp::Stem {
-            width: at_level(bw, st.b, k).min(MAX_DRAWN_WIDTH),
+            width: at_level(bw, st.b, k).min(Structure::MAX_DRAWN_WIDTH),
             length: at_level(lw, st.l, k),
         },
     );
     id
 }
 
-/// The value at level `k` of a table of `per_level(base, dec, …)`, computed
+/// The value at level `k` of a table of `Structure::per_level(base, dec, …)`, computed
 /// when `k` is past its end.
 fn at_level(table: &[f64], (base, dec): (f64, f64), k: u32) -> f64 {
     let kk = k as usize;
     table
         .get(kk)
         .copied()
-        .unwrap_or_else(|| per_level(base, dec, k).0[kk])
+        .unwrap_or_else(|| Structure::per_level(base, dec, k).0[kk])
 }
 
 /// Warns where a decrement makes B or L non-positive. Only levels with
@@ -1373,7 +1366,7 @@ fn warn_clamped(diags: &mut Diagnostics, st: &Settings, max_seen: u32) {
         ("B", st.b, st.b_span.clone()),
         ("L", st.l, st.l_span.clone()),
     ] {
-        let (_, first) = per_level(base, dec, max_seen);
+        let (_, first) = Structure::per_level(base, dec, max_seen);
         if let (Some(k), Some(span)) = (first, span) {
             let what = if which == "B" { "broadness" } else { "length" };
             diags.push(
