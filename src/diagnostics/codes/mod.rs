@@ -96,6 +96,27 @@ Example:
 kilobytes: a larger one is most likely a derived word or another kind of
 file given by mistake.";
 
+    NOT_TEXT = "E0012", "not a text file",
+"The file is not text: it holds NUL bytes, or mostly bytes that are neither
+printable characters nor white space (an image, a program, compressed
+data). graftal reads L-system notations, which are plain text, and says so
+once instead of reporting every byte.
+
+Example:
+    graftal check plant.png     <- give the `.l`, `.linf` or `.stl` file";
+
+    NESTED_TOO_DEEPLY = "E0013", "nested too deeply",
+"graftal follows nesting (parentheses in expressions, brackets and braces,
+branches of a structure, the levels of a derivation an emitter walks) to a
+depth of at most 256 in every notation. The limit keeps every input within
+the stack: a deeper file is almost always generated or damaged, and the
+first place past the limit is reported.
+
+Example:
+    A(((((((((((...1...)))))))))))   <- 2000 parentheses deep
+
+Flatten the expression, or split the structure into named parts.";
+
     INVALID_CHARACTER = "E0001", "invalid character",
 "The file contains a control character (or another character that cannot be
 an L-system symbol). Symbols are printable characters; tabs, spaces and line
