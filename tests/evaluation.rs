@@ -128,3 +128,35 @@ fn stats_in_json_name_the_derivation_method() {
         assert_eq!(v["derivation"], method, "{file}: {}", out.stdout);
     }
 }
+
+/// A derivation that must pass `--max-symbols` whatever its random choices
+/// is refused before its first step, and one whose growth its contexts
+/// decide is refused in the step that passes the limit: no step beyond.
+#[test]
+fn a_refused_derivation_stops_before_the_work_that_would_pass_the_limit() {
+    let opts = RunOptions {
+        steps: Some(60),
+        max_symbols: 100_000,
+        ..RunOptions::default()
+    };
+    let bush = std_system("stochastic-bush");
+    let mut steps_done = 0;
+    let err = driver::derive_with_progress(&bush, &opts, |_, _| steps_done += 1).unwrap_err();
+    assert_eq!(err.code.0, "E0301");
+    assert_eq!(steps_done, 0, "refused only after deriving");
+    assert!(err
+        .notes
+        .iter()
+        .any(|n| n.contains("known before deriving")));
+
+    let hh = std_system("hogeweg-hesper-a");
+    let mut lengths = Vec::new();
+    let err = driver::derive_with_progress(&hh, &opts, |_, len| lengths.push(len)).unwrap_err();
+    assert_eq!(err.code.0, "E0301");
+    assert!(lengths.iter().all(|&l| l <= 100_000), "{lengths:?}");
+    let last = *lengths.last().unwrap();
+    assert!(
+        last * 2 > 100_000,
+        "refused at {last} symbols, far below the limit"
+    );
+}

@@ -12,6 +12,7 @@
 //! symbols in all stops with [`codes::TOO_MUCH_WORK`], so no input can exhaust
 //! memory or run without end.
 
+mod bound;
 pub mod parametric;
 
 mod table;
@@ -207,6 +208,7 @@ impl<'a> Deriver<'a> {
                 return Ok(Word::from(word));
             }
         }
+        refuse_early(self.sys, opts)?;
         self.derive_stepwise(opts, progress)
     }
 
@@ -558,6 +560,18 @@ fn too_many(step: u64, opts: &DeriveOptions) -> Diagnostic {
         opts.steps, opts.max_symbols
     ))
     .with_help("derive fewer steps with `-n`, or raise the limit with `--max-symbols`")
+}
+
+/// [`codes::TOO_MANY_SYMBOLS`] before deriving, when even the shortest
+/// choices at every step make a word longer than the limit ([`bound`]).
+pub(crate) fn refuse_early(sys: &System, opts: &DeriveOptions) -> Result<(), Diagnostic> {
+    match bound::first_step_over(sys, opts.steps, opts.max_symbols) {
+        Some(step) => Err(too_many(step, opts).with_note(
+            "known before deriving: whatever the contexts, conditions and random choices, \
+             every production that can apply makes the word at least this long",
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Per-step cost added to the word's length in the work count.

@@ -820,6 +820,7 @@ pub fn derive(
     mut progress: impl FnMut(u64, usize),
     query: &mut dyn FnMut(&mut Word),
 ) -> Result<Word, Diagnostic> {
+    super::refuse_early(sys, opts)?;
     let n = sys.symbols.len();
     let main = Group::new(&sys.productions, n);
     let decomposition = Group::new(&sys.decomposition.productions, n);

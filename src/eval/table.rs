@@ -29,6 +29,9 @@ const MAX_CELLS: usize = 1 << 22;
 
 /// Symbols rewritten between checks of the output's room and length.
 const CHUNK: usize = 4096;
+/// The most one chunk of [`TableStepper::rewrite`] reserves ahead of the
+/// `max` check: 1 Mi symbols.
+const RESERVE: usize = 1 << 20;
 
 /// A system's productions as a look-up table. Rules are the productions,
 /// then one identity rule per symbol (`s` stays `s`) for symbols nothing
@@ -309,7 +312,11 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         // length stays in a register (pushing reloads it every symbol).
         let mut w = out.len();
         let mut at = 0;
-        for chunk in cur.chunks(CHUNK) {
+        // A chunk may grow the output by at most `RESERVE` symbols before the
+        // limit is checked, so a very long successor shortens the chunk
+        // instead of sizing one allocation from the input.
+        let chunk_len = (RESERVE / longest).clamp(1, CHUNK);
+        for chunk in cur.chunks(chunk_len) {
             let need = w + chunk.len() * longest + COPY;
             if out.len() < need {
                 out.resize(need, none);
