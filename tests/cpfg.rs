@@ -697,3 +697,69 @@ fn check_says_the_dialect() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Side files resolve inside the object's folder: a view file naming a
+/// file above it (`..`), an absolute path or a link that leaves the folder
+/// gets E0815 and the file is not read; the same file inside is read.
+#[test]
+fn side_files_stay_inside_the_objects_folder() {
+    let src =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/cpfg/02-Mod-vis-3D-05-monopodial");
+    let root = std::env::temp_dir().join(format!("graftal-cpfg-inside-{}", std::process::id()));
+    let dir = root.join("object");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in [
+        "leaf.l",
+        "leaf.v",
+        "leaf.a",
+        "material.mat",
+        "internode.func",
+        "leaf-length.func",
+    ] {
+        std::fs::copy(src.join(f), dir.join(f)).unwrap();
+    }
+    std::fs::copy(src.join("leaf-length.func"), root.join("outside.func")).unwrap();
+    let view = std::fs::read_to_string(src.join("leaf.v")).unwrap();
+    let check = |named: &str| {
+        let v = view.replace("function: leaf-length.func", &format!("function: {named}"));
+        std::fs::write(dir.join("leaf.v"), v).unwrap();
+        let mut out = Vec::new();
+        let mut err = Vec::new();
+        let mut io = graftal::cli::Io {
+            stdout: &mut out,
+            stderr: &mut err,
+            terminal: false,
+        };
+        let l = dir.join("leaf.l");
+        let argv = ["graftal", "check", "--format", "json", l.to_str().unwrap()];
+        let code = graftal::cli::run(argv, &mut io);
+        (
+            code,
+            String::from_utf8_lossy(&out).into_owned() + &String::from_utf8_lossy(&err),
+        )
+    };
+    let (code, out) = check("leaf-length.func");
+    assert_eq!(code, 0, "{out}");
+    assert!(!out.contains("E0815"), "{out}");
+    let absolute = root.join("outside.func");
+    for named in [
+        "../outside.func",
+        "./../outside.func",
+        absolute.to_str().unwrap(),
+    ] {
+        let (code, out) = check(named);
+        assert_eq!(code, 1, "{named}: {out}");
+        assert!(
+            out.contains("E0815") && out.contains("outside the object"),
+            "{named}: {out}"
+        );
+    }
+    #[cfg(unix)]
+    {
+        std::os::unix::fs::symlink(&absolute, dir.join("link.func")).unwrap();
+        let (code, out) = check("link.func");
+        assert_eq!(code, 1, "{out}");
+        assert!(out.contains("E0815"), "{out}");
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}

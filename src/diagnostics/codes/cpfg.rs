@@ -187,6 +187,18 @@ Example of a patch:
     -0.60 1.21 0.10  0.47 2.02 -0.61  -0.36 2.03 -0.61  0.75 1.23 0.16
     ... (three more rows)";
 
+    CPFG_OUTSIDE_FOLDER = "E0815", "side file outside the object's folder",
+"A cpfg object is a folder: the `.l` file and the files it names (the view
+file's `function:`, `function set:`, `surface:` and `contours:` files, and
+`#include`s) are read from that folder only. A name that leaves it (an
+absolute path, `..`, or a link that points elsewhere) is not read, so that
+opening an object never reads files it does not hold.
+
+Example:
+    function: ../../shared/leaf.func     <- outside the object's folder
+
+Copy the file into the object's folder and name it there.";
+
     CPFG_MACRO_REDEFINED = "W0801", "macro redefined",
 "A macro is defined again with a different body (or different parameters)
 without an `#undef` first. The C preprocessor warns and uses the later

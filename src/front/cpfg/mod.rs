@@ -146,9 +146,10 @@ struct Beside<'a> {
 }
 
 impl Beside<'_> {
-    /// The text of the file `name` of the folder, if it can be read.
+    /// The text of the file `name` of the folder, if it can be read and
+    /// lies inside the folder ([`inside`]).
     fn read(&self, name: &str) -> Option<String> {
-        read_lossy(&self.dir?.join(name))
+        read_lossy(&inside(self.dir?, name)?)
     }
 
     /// The file `name` of the folder (a `what` file named by the view file)
@@ -161,7 +162,12 @@ impl Beside<'_> {
         diags: &mut Diagnostics,
     ) -> Option<T> {
         let Some(text) = self.read(name) else {
-            diags.push(missing_file(name, what));
+            let outside = self.dir.is_some_and(|d| inside(d, name).is_none());
+            diags.push(if outside {
+                outside_folder(name, what)
+            } else {
+                missing_file(name, what)
+            });
             return None;
         };
         match read(&text) {
@@ -252,6 +258,33 @@ impl Beside<'_> {
             }
         }
     }
+}
+
+/// The path of the side file `name` when it lies inside `dir`: a
+/// relative name without `..` whose file, links followed, is in the folder
+/// (checked when the file exists; a missing file is reported as missing).
+fn inside(dir: &Path, name: &str) -> Option<std::path::PathBuf> {
+    use std::path::Component;
+    let relative = Path::new(name);
+    if !relative
+        .components()
+        .all(|c| matches!(c, Component::Normal(_) | Component::CurDir))
+    {
+        return None;
+    }
+    let path = dir.join(relative);
+    match (path.canonicalize(), dir.canonicalize()) {
+        (Ok(file), Ok(folder)) if !file.starts_with(&folder) => None,
+        _ => Some(path),
+    }
+}
+
+fn outside_folder(name: &str, what: &str) -> crate::diagnostics::Diagnostic {
+    crate::diagnostics::Diagnostic::global(
+        crate::diagnostics::codes::CPFG_OUTSIDE_FOLDER,
+        format!("the {what} file `{name}` named in the view file is outside the object's folder"),
+    )
+    .with_help("copy the file into the object's folder and name it there")
 }
 
 fn read_lossy(path: &Path) -> Option<String> {
