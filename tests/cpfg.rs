@@ -763,3 +763,18 @@ fn side_files_stay_inside_the_objects_folder() {
     }
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Decomposition and homomorphism recurse to their `maximum depth:` without
+/// using the stack: a depth of 200 000 (the test thread has 2 MiB of stack)
+/// expands in order, and a rewrite that branches keeps the order of a
+/// depth-first expansion.
+#[test]
+fn maximum_depth_recursion_needs_no_stack() {
+    let chain = "lsystem: 1\nderivation length: 1\naxiom: Z\ndecomposition\nmaximum depth: 200000\nZ --> QZ\nendlsystem\n";
+    let word = derive_text(chain, 1);
+    assert_eq!(word.len(), 200_001);
+    assert_eq!(word.matches('Q').count(), 200_000);
+    assert!(word.ends_with("QZ"));
+    let tree = "lsystem: 1\nderivation length: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> [BA]C\nendlsystem\n";
+    assert_eq!(derive_text(tree, 1), "[B[B[BA]C]C]C");
+}

@@ -700,7 +700,10 @@ impl Engine<'_> {
     }
 
     /// Applies `group` again to the modules `sub` produced from module
-    /// `at` of `ctx`, `depth` more times.
+    /// `at` of `ctx`, `depth` more times. Iterative: a `maximum depth:` of
+    /// a million costs memory for the words still being expanded, never
+    /// stack, and a word done is dropped before the next one is pushed, so
+    /// a chain of single rewrites (`A --> A`) keeps one word at a time.
     fn deeper(
         &mut self,
         group: &Group<'_>,
@@ -714,20 +717,33 @@ impl Engine<'_> {
             return Ok(sub.clone());
         }
         let mut out = Word::new();
-        let mut scratch = Word::new();
-        let mut i = 0;
-        while i < sub.len() {
-            scratch.clear();
-            match self.apply(group, (sub, i), (ctx, at), choice, &mut scratch)? {
-                Some(n) => {
-                    let deeper = self.deeper(group, &scratch, ctx, at, depth - 1, choice)?;
-                    out.extend_from(&deeper, 0..deeper.len());
-                    i += n.max(1);
-                }
+        // Words being expanded: each with the next module to rewrite and
+        // how many more times its modules are rewritten.
+        let mut pending: Vec<(Word, usize, u32)> = vec![(sub.clone(), 0, depth)];
+        while let Some((word, i, levels)) = pending.last_mut() {
+            if *i >= word.len() {
+                pending.pop();
+                continue;
+            }
+            let (i0, levels) = (*i, *levels);
+            let mut scratch = Word::new();
+            let applied = if levels == 0 {
+                None
+            } else {
+                self.apply(group, (word, i0), (ctx, at), choice, &mut scratch)?
+            };
+            match applied {
+                Some(n) => *i += n.max(1),
                 None => {
-                    out.push(sub.0[i], sub.args(i));
-                    i += 1;
+                    out.push(word.0[i0], word.args(i0));
+                    *i += 1;
                 }
+            }
+            if *i >= word.len() {
+                pending.pop();
+            }
+            if applied.is_some() && !scratch.is_empty() {
+                pending.push((scratch, 0, levels - 1));
             }
             if out.len() > self.max_symbols {
                 return Err(Halt::Work);
