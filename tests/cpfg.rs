@@ -723,20 +723,9 @@ fn side_files_stay_inside_the_objects_folder() {
     let check = |named: &str| {
         let v = view.replace("function: leaf-length.func", &format!("function: {named}"));
         std::fs::write(dir.join("leaf.v"), v).unwrap();
-        let mut out = Vec::new();
-        let mut err = Vec::new();
-        let mut io = graftal::cli::Io {
-            stdout: &mut out,
-            stderr: &mut err,
-            terminal: false,
-        };
         let l = dir.join("leaf.l");
-        let argv = ["graftal", "check", "--format", "json", l.to_str().unwrap()];
-        let code = graftal::cli::run(argv, &mut io);
-        (
-            code,
-            String::from_utf8_lossy(&out).into_owned() + &String::from_utf8_lossy(&err),
-        )
+        let o = common::graftal(&["check", "--format", "json", l.to_str().unwrap()]);
+        (o.status, o.stdout + &o.stderr)
     };
     let (code, out) = check("leaf-length.func");
     assert_eq!(code, 0, "{out}");
