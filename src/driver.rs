@@ -473,29 +473,42 @@ pub fn render_bytes_with(
     encode(&render::layout(g, &opts), format, &opts, progress)
 }
 
-/// Refuses, before deriving, to draw a context-free deterministic system
-/// whose word would move the turtle more than [`RunOptions::max_moves`]
-/// times when it must be drawn segment by segment (its moves are counted
-/// on the shared derivation tree).
+/// Refuses, before deriving, to draw a system whose word would move the
+/// turtle more than [`RunOptions::max_moves`] times when it must be drawn
+/// segment by segment: counted on the shared derivation tree of a
+/// context-free deterministic system, and bounded from below for the
+/// others ([`eval::fewest_at`]: the fewest moves any choices can make).
 pub fn check_moves_up_front(sys: &System, opts: &RunOptions) -> Result<(), Diagnostic> {
     let steps = opts.derive_options(sys).steps;
-    let Some(t) = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten() else {
-        return Ok(());
+    let is_move = |s: crate::ir::SymbolId| {
+        u128::from(matches!(
+            sys.op(s),
+            Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
+        ))
     };
-    let moves: Vec<u128> = (0..sys.symbols.len() as u32)
-        .map(|i| {
-            u128::from(matches!(
-                sys.op(crate::ir::SymbolId(i)),
-                Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
-            ))
-        })
-        .collect();
     let max = opts.max_moves as u128;
-    match t.weighed(steps, &moves, max) {
-        Ok(_) => Ok(()),
-        Err(step) => Err(too_much_geometry(max, opts.max_moves).with_note(format!(
-            "known before deriving: the word of step {step} of {steps} already moves it more"
-        ))),
+    if let Some(t) = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten() {
+        let moves: Vec<u128> = (0..sys.symbols.len() as u32)
+            .map(|i| is_move(crate::ir::SymbolId(i)))
+            .collect();
+        return match t.weighed(steps, &moves, max) {
+            Ok(_) => Ok(()),
+            Err(step) => Err(too_much_geometry(max, opts.max_moves).with_note(format!(
+                "known before deriving: the word of step {step} of {steps} already moves it more"
+            ))),
+        };
+    }
+    // A homomorphism decides what draws: the word's own moves tell nothing.
+    if !sys.homomorphism.productions.is_empty() {
+        return Ok(());
+    }
+    match eval::fewest_at(sys, steps, is_move, u128::from(u64::MAX)) {
+        Some(fewest) if fewest > max => Err(too_much_geometry(
+            format!("at least {fewest}"),
+            opts.max_moves,
+        )
+        .with_note("known before deriving: whatever the contexts, conditions and random choices")),
+        _ => Ok(()),
     }
 }
 

@@ -160,3 +160,21 @@ fn a_refused_derivation_stops_before_the_work_that_would_pass_the_limit() {
         "refused at {last} symbols, far below the limit"
     );
 }
+
+/// Drawing's limit is checked before deriving too: when even the fewest
+/// moves any random choices make pass `max_moves`, `render` is refused up
+/// front; when they may not, the check leaves it to the derivation.
+#[test]
+fn a_picture_with_too_many_moves_whatever_the_choices_is_refused_before_deriving() {
+    let bush = std_system("stochastic-bush");
+    let opts = |n| RunOptions {
+        steps: Some(n),
+        max_moves: 100_000,
+        ..RunOptions::default()
+    };
+    // Every alternative of F has at least three Fs: at least 3^11 moves.
+    let err = driver::check_moves_up_front(&bush, &opts(11)).unwrap_err();
+    assert_eq!(err.code.0, "E0303");
+    assert!(err.message.contains("at least 177147"), "{}", err.message);
+    assert!(driver::check_moves_up_front(&bush, &opts(10)).is_ok());
+}

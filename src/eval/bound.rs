@@ -32,7 +32,7 @@ const BUDGET: u64 = 1 << 24;
 pub(super) fn first_step_over(sys: &System, steps: u64, max: usize) -> Option<u64> {
     let cap = max as u128 + 1;
     let mut step = 0;
-    for shortest in shortest_words(sys, steps, cap)? {
+    for shortest in shortest_words(sys, steps, |_| 1, cap)? {
         step += 1;
         if shortest > max as u128 {
             return Some(step);
@@ -41,41 +41,99 @@ pub(super) fn first_step_over(sys: &System, steps: u64, max: usize) -> Option<u6
     None
 }
 
-/// For steps 1, 2, … up to `steps`: the length (capped at `cap`) below
-/// which no derivation of `sys` can make that step's word. It ends early at
-/// a fixed point of the recurrence (no later step is known to be longer)
-/// or when [`BUDGET`] is spent.
-fn shortest_words(sys: &System, steps: u64, cap: u128) -> Option<impl Iterator<Item = u128> + '_> {
+/// The fewest symbols counted by `weight` (1 for every symbol: the
+/// length; 1 for the symbols that move the turtle: the moves) that the word
+/// of step `steps` can have, or `None` when that is not known.
+pub fn fewest_at(
+    sys: &System,
+    steps: u64,
+    weight: impl Fn(SymbolId) -> u128,
+    cap: u128,
+) -> Option<u128> {
+    let mut bounds = shortest_words(sys, steps, weight, cap)?;
+    let last = bounds.by_ref().last();
+    // The recurrence stops early at a fixed point (the same from then on)
+    // or when its budget is spent (nothing is known then).
+    bounds.fixed().then_some(last).flatten()
+}
+
+/// For steps 1, 2, … up to `steps`: the weighted length (capped at `cap`)
+/// below which no derivation of `sys` can make that step's word, each
+/// symbol counting `weight(symbol)`. It ends early at a fixed point of the
+/// recurrence (no later step is known to be longer) or when [`BUDGET`] is
+/// spent.
+fn shortest_words(
+    sys: &System,
+    steps: u64,
+    weight: impl Fn(SymbolId) -> u128,
+    cap: u128,
+) -> Option<Shortest<'_>> {
     let outcomes = Outcomes::of(sys)?;
     let cost = outcomes.size() + sys.axiom.len() as u64;
-    let steps = steps.min(BUDGET / cost.max(1));
-    let mut shortest = vec![1u128; sys.symbols.len()];
-    let mut next = vec![0u128; sys.symbols.len()];
-    let mut fixed = false;
-    Some((1..=steps).map_while(move |_| {
-        if fixed {
+    let shortest: Vec<u128> = (0..sys.symbols.len())
+        .map(|s| weight(SymbolId(s as u32)).min(cap))
+        .collect();
+    Some(Shortest {
+        next: vec![0; shortest.len()],
+        shortest,
+        outcomes,
+        axiom: &sys.axiom.0,
+        steps_left: steps.min(BUDGET / cost.max(1)),
+        complete: steps <= BUDGET / cost.max(1),
+        fixed: false,
+        cap,
+    })
+}
+
+/// The iterator of [`shortest_words`].
+struct Shortest<'a> {
+    outcomes: Outcomes<'a>,
+    axiom: &'a [SymbolId],
+    /// Per symbol: its fewest weighted symbols after the steps so far.
+    shortest: Vec<u128>,
+    next: Vec<u128>,
+    steps_left: u64,
+    /// Whether the budget covers every step asked for.
+    complete: bool,
+    fixed: bool,
+    cap: u128,
+}
+
+impl Shortest<'_> {
+    /// Whether the steps not yielded are known: every step was yielded
+    /// within the budget, or a fixed point makes them all the same.
+    fn fixed(&self) -> bool {
+        self.fixed || (self.complete && self.steps_left == 0)
+    }
+}
+
+impl Iterator for Shortest<'_> {
+    type Item = u128;
+
+    fn next(&mut self) -> Option<u128> {
+        if self.fixed || self.steps_left == 0 {
             return None;
         }
-        for (s, slot) in next.iter_mut().enumerate() {
-            let stays = outcomes.may_stay[s].then_some(shortest[s]);
-            *slot = outcomes.words[s]
+        self.steps_left -= 1;
+        let (shortest, cap) = (&self.shortest, self.cap);
+        for (s, slot) in self.next.iter_mut().enumerate() {
+            let stays = self.outcomes.may_stay[s].then_some(shortest[s]);
+            *slot = self.outcomes.words[s]
                 .iter()
                 .map(|w| w.iter().map(|t| shortest[t.index()]).sum::<u128>().min(cap))
                 .chain(stays)
                 .min()
-                .unwrap_or(1);
+                .unwrap_or(shortest[s]);
         }
-        fixed = next == shortest;
-        std::mem::swap(&mut shortest, &mut next);
-        Some(
-            sys.axiom
-                .0
-                .iter()
-                .map(|s| shortest[s.index()])
-                .sum::<u128>()
-                .min(cap),
-        )
-    }))
+        self.fixed = self.next == self.shortest;
+        std::mem::swap(&mut self.shortest, &mut self.next);
+        let total = self
+            .axiom
+            .iter()
+            .map(|s| self.shortest[s.index()])
+            .sum::<u128>();
+        Some(total.min(cap))
+    }
 }
 
 /// What each symbol may become in one step.
@@ -144,7 +202,7 @@ mod tests {
 
     /// The bound at each step of `steps`, uncapped for these small words.
     fn bounds(sys: &System, steps: u64) -> Vec<u128> {
-        shortest_words(sys, steps, u128::MAX)
+        shortest_words(sys, steps, |_| 1, u128::MAX)
             .map(|b| b.collect())
             .unwrap_or_default()
     }
@@ -226,5 +284,19 @@ mod tests {
         let conditional =
             cpfg("Lsystem: 1\nAxiom: A(0)\nA(x) : x < 5 --> A(x+1)A(x)\nendlsystem\n");
         assert_eq!(first_step_over(&conditional, 40, 1000), None);
+    }
+
+    #[test]
+    fn fewest_counts_only_the_weighted_symbols_and_knows_fixed_points() {
+        let sys = pfg("axiom: A\nA --> AB\nB --> B\n");
+        let b = sys.symbols.get("B").unwrap();
+        let is_b = |s: SymbolId| u128::from(s == b);
+        // A grows one B per step, forever: step k has k Bs.
+        assert_eq!(fewest_at(&sys, 5, is_b, u128::MAX), Some(5));
+        // Past the budget nothing is known…
+        assert_eq!(fewest_at(&sys, u64::MAX, is_b, u128::MAX), None);
+        // …but a fixed point is known for every step.
+        let still = pfg("axiom: AB\nA --> A\n");
+        assert_eq!(fewest_at(&still, u64::MAX, |_| 1, u128::MAX), Some(2));
     }
 }
