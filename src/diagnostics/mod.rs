@@ -9,7 +9,7 @@ pub mod codes;
 mod render;
 
 pub use codes::Code;
-pub use render::{render_all, render_human, render_json, to_json, MAX_SHOWN};
+pub use render::{escaped, render_all, render_human, render_json, shortened, to_json, MAX_SHOWN};
 
 use crate::ir::Span;
 use crate::source::SourceFile;
