@@ -9,7 +9,7 @@ use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::front::{self, Front, Library};
 use crate::ir::{SpanTable, System, TurtleOp, Word};
 use crate::render::{self, RenderOptions};
-use crate::source::SourceFile;
+use crate::source::{NotText, SourceFile};
 use crate::stdlib;
 use crate::turtle::instanced::Instanced;
 use crate::turtle::{self, Geometry};
@@ -17,6 +17,8 @@ use serde::Serialize;
 use std::io::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
+
+pub use crate::source::MAX_SOURCE_BYTES;
 
 /// Why a file could not be read (a usage or I/O problem: exit status 2).
 #[derive(Debug)]
@@ -106,10 +108,6 @@ pub fn translate(c: &Compiled, sys: &System, req: &back::Request) -> back::Trans
     back::translate(sys, &c.spans, &c.file.text, &origin, req)
 }
 
-/// The largest source file read (8 MiB): L-system files are a few KB, and
-/// reading keeps per-character spans (about 150 bytes per input byte).
-pub const MAX_SOURCE_BYTES: usize = 8 << 20;
-
 /// Parses, lowers and validates `file`, collecting every diagnostic.
 pub fn compile(file: SourceFile) -> Compiled {
     compile_entry(file, None)
@@ -121,29 +119,16 @@ pub fn compile(file: SourceFile) -> Compiled {
 /// [`Compiled::needs_entry`] holds.
 pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
     let mut diags = Diagnostics::default();
-    if file.text.len() > MAX_SOURCE_BYTES {
+    if let Some(refused) = refuse_unread(&file) {
         // Not read, so not told apart either: the first front end stands
         // for it.
-        let front = front::FRONTS[0];
-        diags.push(
-            Diagnostic::global(
-                codes::FILE_TOO_LARGE,
-                format!(
-                    "the file has {} bytes, more than the {} graftal reads",
-                    file.text.len(),
-                    MAX_SOURCE_BYTES
-                ),
-            )
-            .with_help(
-                "an L-system file holds rules, not derived words: write the axiom and productions",
-            ),
-        );
+        diags.push(refused);
         return Compiled {
             file,
             system: None,
             spans: SpanTable::default(),
             diagnostics: diags,
-            front,
+            front: front::FRONTS[0],
             library: None,
         };
     }
@@ -185,6 +170,55 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
         front,
         library: read.library,
     }
+}
+
+/// The notations graftal reads, with their extensions: `pfg .l, …`.
+pub fn notations() -> String {
+    let each: Vec<String> = front::FRONTS
+        .iter()
+        .map(|f| format!("{} .{}", f.title(), f.extensions().join(" .")))
+        .collect();
+    each.join(", ")
+}
+
+/// The one diagnostic for a file no front end reads: larger than
+/// [`MAX_SOURCE_BYTES`], or not text (a picture, a program, random bytes),
+/// which would otherwise give one diagnostic per byte.
+fn refuse_unread(file: &SourceFile) -> Option<Diagnostic> {
+    if let Some(over) = file.oversize() {
+        let message = match over.size {
+            Some(n) => {
+                format!("the file has {n} bytes, more than the {MAX_SOURCE_BYTES} graftal reads")
+            }
+            // A pipe or a device: read no further than the limit.
+            None => format!("the file has more than the {MAX_SOURCE_BYTES} bytes graftal reads"),
+        };
+        return Some(
+            Diagnostic::global(codes::FILE_TOO_LARGE, message).with_help(
+                "an L-system file holds rules, not derived words: write the axiom and productions",
+            ),
+        );
+    }
+    let why = match file.not_text()? {
+        NotText::Nul(at) => {
+            let (line, col) = file.line_col(at);
+            format!("it holds a NUL byte (line {line}, column {col})")
+        }
+        NotText::Unprintable(percent) => {
+            format!("{percent}% of its first characters are neither printable nor white space")
+        }
+    };
+    Some(
+        Diagnostic::global(
+            codes::NOT_TEXT,
+            format!("`{}` is not a text file", file.name),
+        )
+        .with_note(why)
+        .with_help(format!(
+            "graftal reads L-system files, which are plain text: {}",
+            notations()
+        )),
+    )
 }
 
 /// Derives and writes the word as [`Front::word_text`] would, followed by a

@@ -176,13 +176,9 @@ pub struct Io<'a> {
 
 /// The one-line description, naming the notations the registry reads.
 fn about() -> String {
-    let notations: Vec<String> = crate::front::FRONTS
-        .iter()
-        .map(|f| format!("{} .{}", f.title(), f.extensions().join(" .")))
-        .collect();
     format!(
         "Read, check, derive, draw, translate and explain L-systems ({})",
-        notations.join(", ")
+        driver::notations()
     )
 }
 
@@ -238,7 +234,7 @@ fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputF
         match driver::load(&path) {
             Ok(file) => {
                 let c = driver::compile_entry(file, entry.or(named.as_deref()));
-                report(io, &c, c.diagnostics.0.iter(), format);
+                report(io, &c, &c.diagnostics.0, format);
                 if format == OutputFormat::Human {
                     list_entries(io, &c);
                 }
@@ -332,7 +328,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             driver::add_layout(sys, &mut g);
         }
         if g.is_empty() {
-            report(io, c, [driver::nothing_drawn(&word)].iter(), a.args.format);
+            report(io, c, &[driver::nothing_drawn(&word)], a.args.format);
         }
         let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
         if let Some(bar) = &bar {
@@ -412,7 +408,7 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
         steps: a.steps,
     };
     let t = driver::translate(&c, sys, &req);
-    report(io, &c, t.diagnostics.0.iter(), a.format);
+    report(io, &c, &t.diagnostics.0, a.format);
     if a.format == OutputFormat::Json {
         let span = |s: &Option<crate::ir::Span>| {
             s.as_ref().map(|s| {
@@ -502,7 +498,7 @@ fn with_system(
     match f(io, &c, sys, &opts, parse_seconds) {
         Ok(code) => code,
         Err(ds) => {
-            report(io, &c, ds.iter(), a.format);
+            report(io, &c, &ds, a.format);
             1
         }
     }
@@ -527,32 +523,40 @@ fn load_and_compile(
         }
     };
     let c = driver::compile_entry(file, entry.or(named.as_deref()));
-    report(io, &c, c.diagnostics.0.iter(), format);
+    report(io, &c, &c.diagnostics.0, format);
     if c.needs_entry() {
-        report(io, &c, [driver::choose_entry(&c)].iter(), format);
+        report(io, &c, &[driver::choose_entry(&c)], format);
     }
     Some(c)
 }
 
+/// The widest entry name `check` lists; a longer one is shortened.
+const LISTED_NAME: usize = 40;
+
 /// `check`'s listing: which notation a file shared by several was read
 /// as (`FILE: dialect: …`), then a library's entries with their lines and
-/// what was found.
+/// what was found. Names come from the file: shown escaped and shortened.
 fn list_entries(io: &mut Io<'_>, c: &Compiled) {
     let summary = match &c.library {
         Some(lib) => Some(lib.summary.clone()),
         None => c.front.describe(c.system.as_ref()),
     };
     if let Some(summary) = summary {
-        let _ = writeln!(io.stdout, "{}: dialect: {summary}", c.file.name);
+        let _ = writeln!(
+            io.stdout,
+            "{}: dialect: {}",
+            diagnostics::escaped(&c.file.name),
+            diagnostics::shortened(&summary, 4 * LISTED_NAME)
+        );
     }
     let Some(lib) = &c.library else { return };
-    let width = lib
+    let names: Vec<_> = lib
         .entries
         .iter()
-        .map(|e| e.name.chars().count())
-        .max()
-        .unwrap_or(0);
-    for (i, e) in lib.entries.iter().enumerate() {
+        .map(|e| diagnostics::shortened(&e.name, LISTED_NAME))
+        .collect();
+    let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    for (i, (e, name)) in lib.entries.iter().zip(&names).enumerate() {
         let (line, _) = c.file.line_col(e.span.start);
         let state = match (e.errors, e.warnings) {
             (0, 0) => "ok".to_string(),
@@ -564,11 +568,7 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
         } else {
             ""
         };
-        let _ = writeln!(
-            io.stdout,
-            "  {:width$}  line {line:<4} {state}{chosen}",
-            e.name
-        );
+        let _ = writeln!(io.stdout, "  {name:width$}  line {line:<4} {state}{chosen}");
     }
 }
 
@@ -644,16 +644,10 @@ fn step_bar(
     Some(bar)
 }
 
-fn report<'d>(
-    io: &mut Io<'_>,
-    c: &Compiled,
-    ds: impl Iterator<Item = &'d Diagnostic>,
-    format: OutputFormat,
-) {
-    let ds: Vec<Diagnostic> = ds.cloned().collect();
+fn report(io: &mut Io<'_>, c: &Compiled, ds: &[Diagnostic], format: OutputFormat) {
     let text = match format {
-        OutputFormat::Json => render_json(&ds, &c.file),
-        OutputFormat::Human => render_all(&ds, &c.file, io.terminal),
+        OutputFormat::Json => render_json(ds, &c.file),
+        OutputFormat::Human => render_all(ds, &c.file, io.terminal),
     };
     let _ = write!(io.stderr, "{text}");
 }

@@ -9,7 +9,7 @@ pub mod codes;
 mod render;
 
 pub use codes::Code;
-pub use render::{render_all, render_human, render_json, to_json, MAX_SHOWN};
+pub use render::{escaped, render_all, render_human, render_json, shortened, to_json, MAX_SHOWN};
 
 use crate::ir::Span;
 use crate::source::SourceFile;
@@ -43,7 +43,39 @@ pub struct Diagnostic {
     pub labels: Vec<Label>,
     pub notes: Vec<String>,
     pub help: Option<String>,
+    /// Set on the last diagnostic kept once a list is full ([`MAX_KEPT`]):
+    /// what came after it and was counted, not kept.
+    pub not_kept: Option<NotKept>,
 }
+
+/// Diagnostics found after a list was full ([`MAX_KEPT`]), counted only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NotKept {
+    pub errors: usize,
+    pub warnings: usize,
+}
+
+impl NotKept {
+    pub fn total(&self) -> usize {
+        self.errors + self.warnings
+    }
+
+    fn count(&mut self, d: &Diagnostic) {
+        match d.severity {
+            Severity::Error => self.errors += 1,
+            Severity::Warning => self.warnings += 1,
+        }
+        if let Some(more) = d.not_kept {
+            self.errors += more.errors;
+            self.warnings += more.warnings;
+        }
+    }
+}
+
+/// The most diagnostics a list keeps: one long line of repeated mistakes
+/// can hold millions, and each costs a few hundred bytes. Those after are
+/// counted on the last one kept ([`Diagnostic::not_kept`]).
+pub const MAX_KEPT: usize = 100_000;
 
 impl Diagnostic {
     fn new(code: Code, message: impl Into<String>) -> Self {
@@ -56,6 +88,7 @@ impl Diagnostic {
             labels: Vec::new(),
             notes: Vec::new(),
             help: None,
+            not_kept: None,
         }
     }
 
@@ -97,6 +130,23 @@ impl Diagnostic {
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }
+
+    /// The notes, and for the last diagnostic kept of a full list, one
+    /// that says how many more were found.
+    pub fn all_notes(&self) -> impl Iterator<Item = std::borrow::Cow<'_, str>> {
+        let more = self.not_kept.map(|n| {
+            std::borrow::Cow::Owned(format!(
+                "graftal keeps the first {MAX_KEPT} diagnostics of a file: {} more ({} errors, {} warnings) were found after them and not kept",
+                n.total(),
+                n.errors,
+                n.warnings
+            ))
+        });
+        self.notes
+            .iter()
+            .map(|n| std::borrow::Cow::Borrowed(n.as_str()))
+            .chain(more)
+    }
 }
 
 /// Diagnostics collected by a stage, in the order found.
@@ -104,11 +154,45 @@ impl Diagnostic {
 pub struct Diagnostics(pub Vec<Diagnostic>);
 
 impl Diagnostics {
+    /// Adds `d`, or counts it once [`MAX_KEPT`] are kept.
     pub fn push(&mut self, d: Diagnostic) {
-        self.0.push(d);
+        if self.0.len() < MAX_KEPT {
+            self.0.push(d);
+        } else {
+            self.count_not_kept(d);
+        }
     }
+
+    /// Counts `d` on the last diagnostic kept. An error takes the place of
+    /// a warning there, so a list with errors still has one.
+    fn count_not_kept(&mut self, d: Diagnostic) {
+        let Some(last) = self.0.last_mut() else {
+            return self.0.push(d);
+        };
+        let mut counted = last.not_kept.take().unwrap_or_default();
+        let dropped = if d.is_error() && !last.is_error() {
+            std::mem::replace(last, d)
+        } else {
+            d
+        };
+        counted.count(&dropped);
+        if let Some(more) = last.not_kept.take() {
+            counted.errors += more.errors;
+            counted.warnings += more.warnings;
+        }
+        last.not_kept = Some(counted);
+    }
+
+    /// Whether [`MAX_KEPT`] are kept: what is pushed now is only counted,
+    /// so a stage may stop building diagnostics for repeated mistakes.
+    pub fn is_full(&self) -> bool {
+        self.0.len() >= MAX_KEPT
+    }
+
     pub fn extend(&mut self, other: Diagnostics) {
-        self.0.extend(other.0);
+        for d in other.0 {
+            self.push(d);
+        }
     }
     /// Reports the invalid character at `span` of `src` (E0001), merging it
     /// into the previous report when that one ends where this begins: a run
@@ -215,5 +299,59 @@ mod tests {
         );
         assert_eq!(nearest("Axiom", &keys), vec!["axiom"]);
         assert!(nearest("colour table", &keys).is_empty());
+    }
+
+    fn warning(at: usize) -> Diagnostic {
+        Diagnostic::at(codes::SHADOWED_PRODUCTION, at..at + 1, "shadowed")
+    }
+
+    #[test]
+    fn a_full_list_counts_what_comes_after_and_keeps_an_error() {
+        let mut list = Diagnostics::default();
+        for i in 0..MAX_KEPT + 10 {
+            list.push(warning(i));
+        }
+        assert_eq!(list.len(), MAX_KEPT);
+        assert!(list.is_full());
+        assert!(!list.has_errors());
+        let last = list.0.last().unwrap();
+        assert_eq!(last.span, Some(MAX_KEPT - 1..MAX_KEPT));
+        assert_eq!(
+            last.not_kept,
+            Some(NotKept {
+                errors: 0,
+                warnings: 10
+            })
+        );
+        // An error past the limit takes the last place: the list still
+        // has errors.
+        let error = Diagnostic::at(codes::SYNTAX, 7..8, "late error");
+        list.push(error.clone());
+        list.push(warning(0));
+        assert_eq!(list.len(), MAX_KEPT);
+        assert!(list.has_errors());
+        let last = list.0.last().unwrap();
+        assert_eq!(last.message, "late error");
+        assert_eq!(
+            last.not_kept,
+            Some(NotKept {
+                errors: 0,
+                warnings: 12
+            })
+        );
+        let note = last.all_notes().last().unwrap().into_owned();
+        assert!(note.contains("12 more (0 errors, 12 warnings)"), "{note}");
+        // Sorting and merging lists keep the count.
+        list.sort();
+        let mut merged = Diagnostics::default();
+        merged.push(error);
+        merged.extend(list);
+        assert_eq!(merged.len(), MAX_KEPT);
+        let counted: usize = merged
+            .iter()
+            .filter_map(|d| d.not_kept)
+            .map(|n| n.total())
+            .sum();
+        assert_eq!(counted, 13);
     }
 }
