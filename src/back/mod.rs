@@ -149,6 +149,8 @@ pub enum Kind {
     Rule,
     Move,
     TooLarge,
+    /// Nesting the target's readers refuse (past [`crate::ir::MAX_NESTING`]).
+    TooDeep,
 }
 
 impl Kind {
@@ -170,6 +172,7 @@ impl Kind {
             Kind::Rule => (TR_RULE, Some(TR_RULE_APPROX)),
             Kind::Move => (TR_MOVE, Some(TR_MOVE_APPROX)),
             Kind::TooLarge => (TR_TOO_LARGE, None),
+            Kind::TooDeep => (NESTED_TOO_DEEPLY, None),
         }
     }
 }
