@@ -118,6 +118,9 @@ fn has_branches(sys: &System, body: &Word) -> bool {
     body.0.contains(&SymbolId::OPEN)
 }
 
+/// Writes `t` and its entries (by recursion, as deep as the terms nest:
+/// the STL front end, which alone makes them, keeps that within
+/// [`MAX_NESTING`]).
 fn term(sys: &System, st: &Structure, t: &BranchTerm, out: &mut String) {
     let Some(rule) = st.rules.get(t.rule.0 as usize) else {
         return;
