@@ -429,6 +429,13 @@ pub fn translate(
         if let Some(text) = target.write_structure(sys) {
             let mut e = Emitter::new(sys, spans, source, origin, req);
             e.exact("the STL file, as a Branch-Expansion Description", None, "");
+            // Rules are written expanded: `[I n [F]]` is n brackets deep.
+            if let Some(st) = &sys.structure {
+                let bodies: Vec<(&str, String)> = (st.rules.iter())
+                    .map(|r| (r.name.as_str(), r.body.display(&sys.symbols)))
+                    .collect();
+                stl::too_deep_to_read(&mut e, bodies.iter().map(|(n, b)| (*n, b)));
+            }
             return e.finish(text);
         }
         return translate_structure(sys, source, origin, req);

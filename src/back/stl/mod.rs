@@ -16,8 +16,8 @@
 //! under them).
 
 use super::walk::{
-    distinct_colours, dropped, fractint_only, no_chance, no_length_factor, no_polygons, no_scale,
-    no_widths, spell_each, turn_text, turning, write_word, Does, Sym, Symbols, Turning,
+    distinct_colours, dropped, fractint_only, nesting_of, no_chance, no_length_factor, no_polygons,
+    no_scale, no_widths, spell_each, turn_text, turning, write_word, Does, Sym, Symbols, Turning,
 };
 use super::{
     hash_comment, number, numbered, opening, single_symbol_rules, Emitter, Kind, Names, Rules,
@@ -272,7 +272,30 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     } else {
         (Vec::new(), String::new())
     };
+    let bodies = out_rules
+        .iter()
+        .map(|(_, name, body)| (name.as_str(), body));
+    too_deep_to_read(e, bodies.chain([("the seed", &seed)]));
     text(e, n, &rules, &out_rules, &seed)
+}
+
+/// Reports the first of `bodies` (what a rule or the seed holds) whose
+/// brackets nest deeper than STL reads (past [`MAX_NESTING`]).
+pub fn too_deep_to_read<'b>(
+    e: &mut Emitter<'_>,
+    bodies: impl Iterator<Item = (&'b str, &'b String)>,
+) {
+    let deep = bodies
+        .map(|(name, body)| (name, nesting_of(body)))
+        .find(|&(_, depth)| depth > MAX_NESTING);
+    if let Some((name, depth)) = deep {
+        e.problem(
+            Kind::TooDeep,
+            None,
+            format!("`{name}` nests {depth} deep written out; STL reads brackets and braces at most {MAX_NESTING} deep"),
+            "translate to a notation that reads branches to any depth (pfg, LinF)",
+        );
+    }
 }
 
 /// The drawing components STL writes for a symbol, with the angle factor
