@@ -353,7 +353,8 @@ impl Ctx<'_> {
         for e in &s.elems {
             match e {
                 Elem::Turn { left, .. } => out.push(if *left { Comp::Plus } else { Comp::Minus }),
-                Elem::Branch { body, span } => match self.deeper(span, |c| c.expand(body)) {
+                Elem::Branch { body, span } => match self.deeper(&opener(span), |c| c.expand(body))
+                {
                     Some(b) if self.room(out.len(), b.len() + 2, span) => {
                         out.push(Comp::Open);
                         out.extend(b);
@@ -362,7 +363,7 @@ impl Ctx<'_> {
                     _ => ok = false,
                 },
                 Elem::Resemble { count, body, span } => {
-                    let x = self.deeper(span, |c| c.expand(body));
+                    let x = self.deeper(&opener(span), |c| c.expand(body));
                     let n = self.count(count);
                     match (x, n) {
                         (Some(x), Some(n)) => match self.rewrite(&x, n, span) {
@@ -637,7 +638,7 @@ impl Ctx<'_> {
                 Elem::Branch { body, span } => {
                     push(parts, Comp::Open);
                     ok &= self
-                        .deeper(span, |c| Some(c.seed(body, od, parts)))
+                        .deeper(&opener(span), |c| Some(c.seed(body, od, parts)))
                         .unwrap_or(false);
                     push(parts, Comp::Close);
                 }
@@ -701,6 +702,11 @@ impl Ctx<'_> {
         }
         out
     }
+}
+
+/// The opening `[` of a bracket written at `span`.
+fn opener(span: &Span) -> Span {
+    span.start..span.start + 1
 }
 
 fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
