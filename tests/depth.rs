@@ -182,10 +182,14 @@ fn cpfg_preprocessor_nests_to_the_same_limit() {
         )
     };
     assert!(clean(&read("mac.l", &calls(M))));
-    let c = read("mac.l", &calls(M + 1));
-    assert_eq!(too_deep(&c).len(), 1, "{:?}", codes_of(&c));
+    // The 257th call (after the `f(` of the definition) is where.
+    let past = calls(M + 1);
+    one_at(&read("mac.l", &past), nth(&past, "f(", M + 2), 1);
     let c = read("mac.l", &calls(5000));
     assert_eq!(too_deep(&c).len(), 1, "{:?}", codes_of(&c));
+    // Each level holds the arguments inside it: the nesting is counted
+    // before that work, which would take gigabytes here.
+    refused_quickly("mac.l", &calls(100_000), "check");
     // `#if` conditions are evaluated by recursion.
     let cond = |inner: &str| format!("#if {inner}\n#endif\nLsystem: 1\nAxiom: F(1)\nendlsystem\n");
     assert!(clean(&read("if.l", &cond(&parens(M, "1")))));

@@ -903,15 +903,25 @@ impl Pp<'_> {
         if let Some(s) = span_of(&call) {
             origin = origin.start.min(s.start)..origin.end.max(s.end);
         }
+        // Arguments are expanded by recursion, one level per call, each
+        // level holding the arguments of the levels inside it: the calls
+        // written nested are counted first, in one pass, rather than found
+        // too deep after that much work. (Calls that expansion makes are
+        // counted as they are expanded.)
+        let too_deep_at = match depth {
+            0 => self.first_call_too_deep(&call[k + 1..close], MAX_NESTING),
+            _ => None,
+        }
+        .or((depth >= MAX_NESTING).then_some(&t))
+        .map(|x| x.origin.clone());
         let refused = if args.len() != params.len() {
             self.wrong_argument_count(&t, m, params, args.len(), origin.clone());
             true
-        } else if depth >= MAX_NESTING {
-            // Arguments are expanded by recursion, one level per call.
+        } else if let Some(at) = too_deep_at {
             if !std::mem::replace(&mut self.aborted, true) {
                 self.too_deep = true;
                 self.diags.push(too_deep(
-                    origin.clone(),
+                    at,
                     "call fewer macros inside the arguments of macros",
                 ));
             }
@@ -942,6 +952,37 @@ impl Pp<'_> {
         for x in repl.into_iter().rev() {
             input.push_front(x);
         }
+    }
+
+    /// The first call of a function-like macro in `toks` that is the
+    /// `room`th or deeper nested in the arguments of others there.
+    fn first_call_too_deep<'t>(&self, toks: &'t [Tok], room: usize) -> Option<&'t Tok> {
+        let mut calls = 0usize;
+        // Per open parenthesis: whether it holds the arguments of a call.
+        let mut open: Vec<bool> = Vec::new();
+        let mut name: Option<&Tok> = None;
+        for x in toks {
+            match (x.kind, &*x.text) {
+                (Kind::Ws | Kind::Splice, _) => continue,
+                (Kind::Ident, n) if self.macros.get(n).is_some_and(|m| m.params.is_some()) => {
+                    name = Some(x);
+                    continue;
+                }
+                (Kind::Other, "(") => {
+                    if name.is_some() {
+                        if calls + 1 >= room {
+                            return name;
+                        }
+                        calls += 1;
+                    }
+                    open.push(name.is_some());
+                }
+                (Kind::Other, ")") if open.pop() == Some(true) => calls -= 1,
+                _ => {}
+            }
+            name = None;
+        }
+        None
     }
 
     fn wrong_argument_count(
