@@ -371,6 +371,24 @@ fn pfg_branches_100000_deep_are_read_derived_and_translated() {
 }
 
 #[test]
+fn linf_and_cpfg_branches_100000_deep_are_read_and_derived() {
+    let n = 100_000;
+    let branch = format!("{}f{}", "[".repeat(n), "]".repeat(n));
+    let linf = format!("lines f\naxiom f\nrules f = {branch}\n");
+    let cpfg = format!(
+        "Lsystem: 1\nderivation length: 1\nAxiom: F\nF --> {}\nendlsystem\n",
+        branch.replace('f', "F")
+    );
+    for (name, text) in [("deep.linf", linf), ("deep.l", cpfg)] {
+        let c = read(name, &text);
+        assert!(clean(&c), "{name}: {:?}", codes_of(&c));
+        let (out, _) = run(name, &text, &["derive", "-n", "1"]);
+        assert_eq!(out.status, 0, "{name}: {}", out.stderr);
+        assert_eq!(out.stdout.trim().len(), 2 * n + 1, "{name}");
+    }
+}
+
+#[test]
 fn fractint_branches_100000_deep_are_read_and_derived() {
     let n = 100_000;
     let text = format!(
