@@ -35,6 +35,10 @@ struct Builder<'a> {
     explicit: bool,
 }
 
+// The walks over terms below recurse as deep as the terms nest, which the
+// STL front end (the only one that makes them) keeps within
+// `ir::MAX_NESTING`: braces in the seed, and growth counted from the seed.
+
 fn key(t: &BranchTerm) -> String {
     let mut s = format!("{}{{", t.rule.0);
     for e in &t.entries {

@@ -149,6 +149,8 @@ pub enum Kind {
     Rule,
     Move,
     TooLarge,
+    /// Nesting the target's readers refuse (past [`crate::ir::MAX_NESTING`]).
+    TooDeep,
 }
 
 impl Kind {
@@ -170,6 +172,7 @@ impl Kind {
             Kind::Rule => (TR_RULE, Some(TR_RULE_APPROX)),
             Kind::Move => (TR_MOVE, Some(TR_MOVE_APPROX)),
             Kind::TooLarge => (TR_TOO_LARGE, None),
+            Kind::TooDeep => (NESTED_TOO_DEEPLY, None),
         }
     }
 }
@@ -426,6 +429,13 @@ pub fn translate(
         if let Some(text) = target.write_structure(sys) {
             let mut e = Emitter::new(sys, spans, source, origin, req);
             e.exact("the STL file, as a Branch-Expansion Description", None, "");
+            // Rules are written expanded: `[I n [F]]` is n brackets deep.
+            if let Some(st) = &sys.structure {
+                let bodies: Vec<(&str, String)> = (st.rules.iter())
+                    .map(|r| (r.name.as_str(), r.body.display(&sys.symbols)))
+                    .collect();
+                stl::too_deep_to_read(&mut e, bodies.iter().map(|(n, b)| (*n, b)));
+            }
             return e.finish(text);
         }
         return translate_structure(sys, source, origin, req);

@@ -163,6 +163,24 @@ pub fn write_word<T>(
     join(w.iter().copied().filter_map(spell).collect())
 }
 
+/// How deep brackets `[ ]` and braces `{ }` nest in `text` as written (each
+/// opener one level deeper until its closer): what a target's reader
+/// descends into, at most [`crate::ir::MAX_NESTING`] deep.
+pub fn nesting_of(text: &str) -> usize {
+    let (mut depth, mut deepest) = (0usize, 0usize);
+    for c in text.chars() {
+        match c {
+            '[' | '{' => {
+                depth += 1;
+                deepest = deepest.max(depth);
+            }
+            ']' | '}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    deepest
+}
+
 /// How many colours the system lists, a run of the same colour counted
 /// once: more than one means its colour symbols change the colour.
 pub fn distinct_colours(sys: &System) -> usize {

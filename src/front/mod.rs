@@ -15,6 +15,7 @@
 //! everything else is pfg, graftal's oldest front end.
 
 pub mod cpfg;
+pub mod depth;
 pub mod fractint;
 pub mod linf;
 pub mod pfg;

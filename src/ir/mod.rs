@@ -221,6 +221,19 @@ use serde::Serialize;
 use std::collections::HashMap;
 use std::ops::Range;
 
+/// How deep nesting may go, in every notation: parentheses and operations
+/// in expressions, brackets and braces a parser descends into, rules
+/// written through rules, the levels of a derivation an emitter writes out
+/// one by one. The front ends refuse deeper input with one
+/// [`NESTED_TOO_DEEPLY`](crate::diagnostics::codes::NESTED_TOO_DEEPLY)
+/// (E0013) at the first place past it, so that the code that follows
+/// nesting by recursion (parsers, lowering, the walks over
+/// [`program::Expr`] trees, emitters) stays well within a 2 MiB stack, a
+/// test thread's in an unoptimised build included. Branches `[ ]` in a
+/// *word* are not limited: everything that walks a word does so with an
+/// explicit stack.
+pub const MAX_NESTING: usize = 256;
+
 /// An interned symbol: an index into [`SymbolTable`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct SymbolId(pub u32);

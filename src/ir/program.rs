@@ -85,7 +85,11 @@ pub enum Builtin {
     GetDerivationLength,
 }
 
-/// An expression.
+/// An expression. Its tree is at most [`MAX_NESTING`](super::MAX_NESTING)
+/// deep, and blocks of statements nest no deeper: the front ends refuse
+/// deeper input (E0013) and lowering maps one source node to one node here.
+/// So the code that walks them by recursion ([`Expr::constant`], the
+/// evaluator, the emitters, dropping them) stays within the stack.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Expr {
     Num(f64),

@@ -16,14 +16,14 @@
 //! under them).
 
 use super::walk::{
-    distinct_colours, dropped, fractint_only, no_chance, no_length_factor, no_polygons, no_scale,
-    no_widths, spell_each, turn_text, turning, write_word, Does, Sym, Symbols, Turning,
+    distinct_colours, dropped, fractint_only, nesting_of, no_chance, no_length_factor, no_polygons,
+    no_scale, no_widths, spell_each, turn_text, turning, write_word, Does, Sym, Symbols, Turning,
 };
 use super::{
     hash_comment, number, numbered, opening, single_symbol_rules, Emitter, Kind, Names, Rules,
 };
 use crate::ir::{
-    Axis, BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word,
+    Axis, BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word, MAX_NESTING,
 };
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -118,6 +118,9 @@ fn has_branches(sys: &System, body: &Word) -> bool {
     body.0.contains(&SymbolId::OPEN)
 }
 
+/// Writes `t` and its entries (by recursion, as deep as the terms nest:
+/// the STL front end, which alone makes them, keeps that within
+/// [`MAX_NESTING`]).
 fn term(sys: &System, st: &Structure, t: &BranchTerm, out: &mut String) {
     let Some(rule) = st.rules.get(t.rule.0 as usize) else {
         return;
@@ -226,35 +229,73 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
     no_scale(e, "STL pictures fill the frame");
 
     let steps = e.steps;
+    let sizes = Sizes::new(sys, &rules, &comps);
     let mut x = Expansion {
         sys,
         rules: &rules,
         comps,
-        size: HashMap::new(),
+        sizes,
         names: Names::new(&crate::ir::Structure::RESERVED),
         stems: HashMap::new(),
         defined: HashMap::new(),
         stack: Vec::new(),
     };
-    let total = x.total(steps);
-    if total > MAX_COMPONENTS {
+    let resembling = x.self_resembling(steps);
+    // Without a self-resemblance count, each step is a rule holding the
+    // rules of the step before: a chain as long as the steps, which the
+    // STL reader (like every reader) follows at most MAX_NESTING deep.
+    if resembling.is_none() && steps > MAX_NESTING as u64 && x.rewrites_from_axiom() {
+        e.problem(
+            Kind::TooDeep,
+            None,
+            format!(
+                "after {steps} steps the rules nest {steps} deep, one rule per step; STL reads rules through rules at most {MAX_NESTING} deep"
+            ),
+            format!("translate with at most {MAX_NESTING} steps (`-n`)"),
+        );
+        return text(e, n, &rules, &[], "");
+    }
+    if x.total(steps) > MAX_COMPONENTS {
         e.problem(
             Kind::TooLarge,
             None,
             format!(
-                "after {steps} steps the word has {total} drawing components, more than STL expands ({MAX_COMPONENTS})"
+                "after {steps} steps the word has more than {MAX_COMPONENTS} drawing components, the most STL expands"
             ),
             "translate with fewer steps (`-n`)",
         );
     }
-    let (out_rules, seed) = if let Some(d) = x.self_resembling(steps) {
+    let (out_rules, seed) = if let Some(d) = resembling {
         x.self_resemblance(d, steps)
-    } else if total <= MAX_COMPONENTS {
+    } else if x.total(steps) <= MAX_COMPONENTS {
         x.macros(steps)
     } else {
         (Vec::new(), String::new())
     };
+    let bodies = out_rules
+        .iter()
+        .map(|(_, name, body)| (name.as_str(), body));
+    too_deep_to_read(e, bodies.chain([("the seed", &seed)]));
     text(e, n, &rules, &out_rules, &seed)
+}
+
+/// Reports the first of `bodies` (what a rule or the seed holds) whose
+/// brackets nest deeper than STL reads (past [`MAX_NESTING`]).
+pub fn too_deep_to_read<'b>(
+    e: &mut Emitter<'_>,
+    bodies: impl Iterator<Item = (&'b str, &'b String)>,
+) {
+    let deep = bodies
+        .map(|(name, body)| (name, nesting_of(body)))
+        .find(|&(_, depth)| depth > MAX_NESTING);
+    if let Some((name, depth)) = deep {
+        e.problem(
+            Kind::TooDeep,
+            None,
+            format!("`{name}` nests {depth} deep written out; STL reads brackets and braces at most {MAX_NESTING} deep"),
+            "translate to a notation that reads branches to any depth (pfg, LinF)",
+        );
+    }
 }
 
 /// The drawing components STL writes for a symbol, with the angle factor
@@ -305,14 +346,115 @@ fn components(e: &mut Emitter<'_>, sym: &Sym, n: u64, distinct: usize) -> String
 /// One rule as written: the steps it stands for, its name, its body.
 type Macro = (u64, String, String);
 
+/// How many drawing components each rewritten symbol has after 0, 1, 2, …
+/// steps, worked out level by level from the level before (not by
+/// recursion: a translation may ask for any number of steps), and capped
+/// just past [`MAX_COMPONENTS`] (a sum of capped counts is past the cap
+/// exactly when the true sum is).
+struct Sizes {
+    /// The rewritten symbols (each a guarded occurrence's base), numbered.
+    heads: HashMap<SymbolId, usize>,
+    /// Per head: the components its successor writes itself, and the heads
+    /// in it with how often each occurs.
+    recipes: Vec<(u64, Vec<(usize, u64)>)>,
+    /// The counts of the heads after 0, 1, … steps, kept up to
+    /// [`MAX_NESTING`] steps (as many as the macros of a translation use).
+    levels: Vec<Vec<u64>>,
+    /// Whether the last level kept is the last there is: the level after
+    /// it is the same, and so every one after.
+    settled: bool,
+}
+
+/// Just past the most components STL expands: counts stop here.
+const CAP: u64 = MAX_COMPONENTS + 1;
+
+impl Sizes {
+    fn new(sys: &System, rules: &Rules, comps: &HashMap<SymbolId, String>) -> Self {
+        let base = |s: SymbolId| sys.symbols.info(s).guard.map_or(s, |g| g.base);
+        let own = |s: SymbolId| comps.get(&s).map_or(0, |c| c.len() as u64);
+        let heads: HashMap<SymbolId, usize> = rules
+            .heads()
+            .into_iter()
+            .enumerate()
+            .map(|(i, (s, _))| (s, i))
+            .collect();
+        let mut recipes = vec![(0, Vec::new()); heads.len()];
+        let mut first = vec![0; heads.len()];
+        for (&h, &i) in &heads {
+            first[i] = own(h);
+            let mut uses: HashMap<usize, u64> = HashMap::new();
+            let mut written = 0u64;
+            for &t in rules.successor(sys, h).unwrap_or_default() {
+                match heads.get(&base(t)) {
+                    Some(&j) => *uses.entry(j).or_default() += 1,
+                    None => written = written.saturating_add(own(base(t))),
+                }
+            }
+            let mut uses: Vec<(usize, u64)> = uses.into_iter().collect();
+            uses.sort_unstable();
+            recipes[i] = (written.min(CAP), uses);
+        }
+        Sizes {
+            heads,
+            recipes,
+            levels: vec![first],
+            settled: false,
+        }
+    }
+
+    /// The counts one step after `counts`, into `next`.
+    fn step(&self, counts: &[u64], next: &mut Vec<u64>) {
+        next.clear();
+        next.extend(self.recipes.iter().map(|(written, uses)| {
+            uses.iter()
+                .fold(*written, |sum, &(j, n)| {
+                    sum.saturating_add(counts[j].saturating_mul(n))
+                })
+                .min(CAP)
+        }));
+    }
+
+    /// The count of head `h` after `k` steps.
+    fn count(&mut self, h: usize, k: u64) -> u64 {
+        let mut next = Vec::new();
+        while !self.settled && (self.levels.len() as u64) <= k.min(MAX_NESTING as u64) {
+            let last = &self.levels[self.levels.len() - 1];
+            self.step(last, &mut next);
+            self.settled = next == *last;
+            if !self.settled {
+                self.levels.push(std::mem::take(&mut next));
+            }
+        }
+        let last = &self.levels[self.levels.len() - 1];
+        match self.levels.get(k as usize) {
+            Some(level) => level[h],
+            None if self.settled => last[h],
+            // Past the levels kept: on from the last, without keeping them,
+            // until the counts settle (growth reaches the cap; a translation
+            // that asks for more steps than kept has one rewritten symbol,
+            // whose count only grows).
+            None => {
+                let mut counts = last.clone();
+                for _ in self.levels.len() as u64 - 1..k {
+                    self.step(&counts, &mut next);
+                    if next == counts {
+                        break;
+                    }
+                    std::mem::swap(&mut counts, &mut next);
+                }
+                counts[h]
+            }
+        }
+    }
+}
+
 /// The derived word as STL rules: each symbol's drawing components, and
 /// the macros defined so far.
 struct Expansion<'a> {
     sys: &'a System,
     rules: &'a Rules,
     comps: HashMap<SymbolId, String>,
-    /// The number of components of each symbol after k steps.
-    size: HashMap<(SymbolId, u64), u64>,
+    sizes: Sizes,
     names: Names,
     /// The stem of each symbol's macro names.
     stems: HashMap<SymbolId, String>,
@@ -336,33 +478,32 @@ impl<'a> Expansion<'a> {
         self.comps.get(&s).filter(|c| !c.is_empty())
     }
 
-    /// The number of components of `s` after `k` steps.
+    /// The number of components of `s` after `k` steps (capped just past
+    /// [`MAX_COMPONENTS`]).
     fn size(&mut self, s: SymbolId, k: u64) -> u64 {
-        if let Some(&v) = self.size.get(&(s, k)) {
-            return v;
-        }
         let b = self.base(s);
-        let v = match (k, self.successor(b)) {
-            (0, _) | (_, None) => self.comps.get(&b).map_or(0, |c| c.len() as u64),
-            (_, Some(w)) => {
-                let mut total: u64 = 0;
-                for &t in w {
-                    total = total.saturating_add(self.size(t, k - 1));
-                }
-                total
-            }
-        };
-        self.size.insert((s, k), v);
-        v
+        match self.sizes.heads.get(&b) {
+            Some(&h) => self.sizes.count(h, k),
+            None => self.comps.get(&b).map_or(0, |c| c.len() as u64),
+        }
     }
 
-    /// The number of components of the axiom after `steps` steps.
+    /// The number of components of the axiom after `steps` steps (capped
+    /// just past [`MAX_COMPONENTS`]).
     fn total(&mut self, steps: u64) -> u64 {
         let mut total: u64 = 0;
         for &s in &self.sys.axiom.0 {
-            total = total.saturating_add(self.size(s, steps));
+            total = total.saturating_add(self.size(s, steps)).min(CAP);
         }
         total
+    }
+
+    /// Whether the axiom holds a symbol that is rewritten.
+    fn rewrites_from_axiom(&self) -> bool {
+        let axiom = &self.sys.axiom.0;
+        axiom
+            .iter()
+            .any(|&s| self.successor(self.base(s)).is_some())
     }
 
     /// The symbol whose successor is the paper's self-resemblance count

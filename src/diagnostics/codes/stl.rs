@@ -126,10 +126,10 @@ Example:
 
 Write `ANGLE 30`.";
 
-    STL_TOO_DEEP = "E0513", "too deeply nested or too large",
-"graftal reads at most 1000 nested brackets and braces, grows at most 256
-levels (LEVELS) and 1 000 000 stems. These limits keep every input within
-memory and time.
+    STL_TOO_DEEP = "E0513", "too many levels or stems",
+"graftal grows at most 256 levels (LEVELS) and 1 000 000 stems. These limits
+keep every input within memory and time. (Brackets, braces and rules used
+through rules nested more than 256 deep are E0013, as in every notation.)
 
 Example:
     LEVELS 100000

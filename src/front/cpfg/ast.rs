@@ -2,7 +2,7 @@
 //! preprocessor). Every node keeps its span in the preprocessed text.
 
 use crate::ir::program::{BinOp, UnOp};
-use crate::ir::Span;
+use crate::ir::{Span, MAX_NESTING};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
@@ -24,6 +24,73 @@ pub enum ExprKind {
 pub struct Expr {
     pub kind: ExprKind,
     pub span: Span,
+    /// How deep the tree is: 1 for a value or a name, one more than the
+    /// deepest operand for an operation. Past [`MAX_NESTING`] the
+    /// expression is *cut* (see [`Expr::operation`]).
+    pub depth: usize,
+}
+
+impl Expr {
+    /// A value, a name, or anything else without operands.
+    pub fn leaf(kind: ExprKind, span: Span) -> Self {
+        Expr {
+            kind,
+            span,
+            depth: 1,
+        }
+    }
+
+    /// An operation whose operands are in `kind`, written at `span`; `at`
+    /// is the operator. The tree is kept within [`MAX_NESTING`] as it is
+    /// built: an operation that would go deeper becomes a *cut*, a leaf at
+    /// `at`, and an operation on a cut is that cut. So no tree the parser
+    /// makes is deeper than the limit (chains like `1+1+…+1` are built by
+    /// iteration, and the code that walks trees recursively, dropping them
+    /// included, stays within the stack), and the first place past the
+    /// limit is kept for the parser to report.
+    pub fn operation(kind: ExprKind, span: Span, at: Span) -> Self {
+        let operands = kind.operands();
+        if let Some(cut) = operands.iter().find(|e| e.is_cut()) {
+            return (*cut).clone();
+        }
+        let depth = 1 + operands.iter().map(|e| e.depth).max().unwrap_or(0);
+        if depth > MAX_NESTING {
+            return Expr::cut(at);
+        }
+        Expr { kind, span, depth }
+    }
+
+    /// A cut at `at`: where an expression went past [`MAX_NESTING`]. It
+    /// stands for what was left out (as a value it is NaN; the parser
+    /// reports it and replaces it before anything evaluates it).
+    pub fn cut(at: Span) -> Self {
+        Expr {
+            kind: ExprKind::Num(f64::NAN),
+            span: at,
+            depth: MAX_NESTING + 1,
+        }
+    }
+
+    /// Whether this is where an expression went past [`MAX_NESTING`] (its
+    /// span is the operator there).
+    pub fn is_cut(&self) -> bool {
+        self.depth > MAX_NESTING
+    }
+}
+
+impl ExprKind {
+    /// The expressions this one is made of.
+    fn operands(&self) -> Vec<&Expr> {
+        match self {
+            ExprKind::Num(_) | ExprKind::Str(_) | ExprKind::Name(_) | ExprKind::Address(_) => {
+                Vec::new()
+            }
+            ExprKind::Index(_, v) | ExprKind::Call(_, _, v) => v.iter().collect(),
+            ExprKind::Unary(_, a) => vec![a],
+            ExprKind::Binary(_, a, b) => vec![a, b],
+            ExprKind::Cond(c, a, b) => vec![c, a, b],
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -132,6 +132,9 @@ pub enum Token {
     Name(String),
     Number(f64),
     Str(String),
+    /// Not lexed: what the parser is given in place of a part nested past
+    /// the depth limit ([`crate::front::depth::cut_too_deep`]).
+    TooDeep,
 }
 
 impl fmt::Display for Token {
@@ -173,6 +176,7 @@ impl fmt::Display for Token {
             Token::Slash => "`/`",
             Token::Percent => "`%`",
             Token::Caret => "`^`",
+            Token::TooDeep => "a part nested too deeply",
         };
         f.write_str(s)
     }

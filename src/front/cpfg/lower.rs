@@ -185,6 +185,8 @@ impl Lowerer<'_> {
         }
     }
 
+    /// `e` in the IR, node for node. The recursion is as deep as `e`, which
+    /// the parser keeps within [`crate::ir::MAX_NESTING`].
     fn expr(&mut self, scope: &mut Scope, e: &ast::Expr) -> Expr {
         match &e.kind {
             ExprKind::Num(v) => Expr::Num(*v),
@@ -397,6 +399,8 @@ impl Lowerer<'_> {
         }
     }
 
+    /// The statements in the IR (blocks nest as deep as their braces, which
+    /// the parser keeps within [`crate::ir::MAX_NESTING`]).
     fn stmts(&mut self, scope: &mut Scope, stmts: &[ast::Stmt]) -> Vec<Stmt> {
         let mut out = Vec::new();
         for s in stmts {

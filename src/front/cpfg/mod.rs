@@ -230,6 +230,11 @@ impl Beside<'_> {
         let mut lowered = read(&pre.text, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
         for mut d in own.0 {
+            // Where expansion stopped too deep the text is left as written:
+            // the parser meets the same nesting again.
+            if pre.stopped_too_deep && d.code == crate::diagnostics::codes::NESTED_TOO_DEEPLY {
+                continue;
+            }
             d.span = d.span.as_ref().map(map);
             for l in &mut d.labels {
                 l.span = map(&l.span);

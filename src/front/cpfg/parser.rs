@@ -12,6 +12,7 @@ use super::ast::{
 };
 use super::lexer::{lex, Keyword, Token};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::front::depth::{cut_too_deep, too_deep, Nest};
 use crate::front::syntax_error;
 use crate::ir::program::{BinOp, UnOp};
 use crate::ir::Span;
@@ -49,7 +50,12 @@ where
 
 /// C expressions with cpfg's precedences (lowest first): `?:`, `||`, `&&`,
 /// `== !=`, `< <= > >=`, `+ -`, `* / %`, `^` (left-associative), unary `-`
-/// and `!`.
+/// and `!`. The binary operators are read as one flat run and put into a
+/// tree by [`by_precedence`]: a parenthesis then costs one level of the
+/// parser's recursion rather than one per precedence level, which keeps
+/// nesting up to [`crate::ir::MAX_NESTING`] within a small stack. Trees are
+/// built by [`Expr::leaf`] and [`Expr::operation`], which cut them at the
+/// limit.
 pub fn expr_parser<'t, I>() -> P<'t, I, Expr>
 where
     I: ValueInput<'t, Token = Token, Span = SimpleSpan>,
@@ -70,96 +76,134 @@ where
             .at_least(1)
             .collect::<Vec<Vec<Expr>>>()
             .map(|v| v.into_iter().flatten().collect::<Vec<_>>());
+        let leaf = |kind, e: &mut chumsky::input::MapExtra<'t, '_, I, Extra<'t>>| {
+            Expr::leaf(kind, range(e.span()))
+        };
         let atom = choice((
-            select! { Token::Number(v) => ExprKind::Num(v) },
-            select! { Token::Str(s) => ExprKind::Str(s) },
-            name()
-                .then(args)
-                .map(|((n, span), a)| ExprKind::Call(n, span, a)),
-            name()
-                .then(subscripts)
-                .map(|((n, _), s)| ExprKind::Index(n, s)),
-            name().map(|(n, _)| ExprKind::Name(n)),
+            select! { Token::Number(v) => ExprKind::Num(v) }.map_with(leaf),
+            select! { Token::Str(s) => ExprKind::Str(s) }.map_with(leaf),
+            name().then(args).map_with(|((n, span), a), e| {
+                Expr::operation(ExprKind::Call(n, span.clone(), a), range(e.span()), span)
+            }),
+            name().then(subscripts).map_with(|((n, span), s), e| {
+                Expr::operation(ExprKind::Index(n, s), range(e.span()), span)
+            }),
+            name().map(|(n, span)| Expr::leaf(ExprKind::Name(n), span)),
+            just(Token::TooDeep).map_with(|_, e| Expr::cut(range(e.span()))),
             just(Token::Amp)
                 .ignore_then(name())
-                .map(|(n, _)| ExprKind::Address(n)),
+                .map_with(move |(n, _), e| leaf(ExprKind::Address(n), e)),
         ))
-        .map_with(|kind, e| Expr {
-            kind,
-            span: range(e.span()),
-        })
         .or(expr
             .clone()
             .delimited_by(just(Token::LParen), just(Token::RParen))
-            .map_with(|inner: Expr, e| Expr {
-                span: range(e.span()),
-                ..inner
+            .map_with(|inner: Expr, e| {
+                if inner.is_cut() {
+                    // Where it went too deep, not the parentheses around.
+                    inner
+                } else {
+                    Expr {
+                        span: range(e.span()),
+                        ..inner
+                    }
+                }
             }))
-        .labelled("an expression")
-        .boxed();
+        .labelled("an expression");
         let unary = select! { Token::Minus => UnOp::Neg, Token::Not => UnOp::Not }
             .map_with(|op, e| (op, range(e.span())))
             .repeated()
-            .foldr(atom, |(op, span), rhs: Expr| Expr {
-                span: span.start..rhs.span.end,
-                kind: ExprKind::Unary(op, Box::new(rhs)),
-            })
-            .boxed();
-        let binary = |lhs: Expr, (op, rhs): (BinOp, Expr)| Expr {
-            span: lhs.span.start..rhs.span.end,
-            kind: ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)),
-        };
-        let pow = unary
-            .clone()
-            .foldl(just(Token::Caret).to(BinOp::Pow).then(unary).repeated(), binary).boxed();
-        let product = pow.clone().foldl(
-            select! { Token::Star => BinOp::Mul, Token::Slash => BinOp::Div, Token::Percent => BinOp::Rem }
-                .then(pow)
-                .repeated(),
-            binary,
-        ).boxed();
-        let sum = product.clone().foldl(
-            select! { Token::Plus => BinOp::Add, Token::Minus => BinOp::Sub }
-                .then(product)
-                .repeated(),
-            binary,
-        ).boxed();
-        let compare = sum.clone().foldl(
-            select! { Token::Lt => BinOp::Lt, Token::Le => BinOp::Le, Token::Gt => BinOp::Gt, Token::Ge => BinOp::Ge }
-                .then(sum)
-                .repeated(),
-            binary,
-        ).boxed();
-        let equality = compare.clone().foldl(
-            select! { Token::EqEq => BinOp::Eq, Token::Ne => BinOp::Ne }
-                .then(compare)
-                .repeated(),
-            binary,
-        ).boxed();
-        let and = equality.clone().foldl(
-            just(Token::And).to(BinOp::And).then(equality).repeated(),
-            binary,
-        ).boxed();
-        let or = and
-            .clone()
-            .foldl(just(Token::Or).to(BinOp::Or).then(and).repeated(), binary);
-        or.then(
-            just(Token::Question)
-                .ignore_then(expr.clone())
-                .then_ignore(just(Token::Colon))
-                .then(expr)
-                .or_not(),
-        )
-        .map(|(c, rest)| match rest {
-            None => c,
-            Some((a, b)) => Expr {
-                span: c.span.start..b.span.end,
-                kind: ExprKind::Cond(Box::new(c), Box::new(a), Box::new(b)),
+            .foldr(atom, |(op, at), rhs: Expr| {
+                let span = at.start..rhs.span.end;
+                Expr::operation(ExprKind::Unary(op, Box::new(rhs)), span, at)
+            });
+        let operator = choice((
+            just(Token::Caret).to(BinOp::Pow),
+            select! {
+                Token::Star => BinOp::Mul,
+                Token::Slash => BinOp::Div,
+                Token::Percent => BinOp::Rem,
+                Token::Plus => BinOp::Add,
+                Token::Minus => BinOp::Sub,
+                Token::Lt => BinOp::Lt,
+                Token::Le => BinOp::Le,
+                Token::Gt => BinOp::Gt,
+                Token::Ge => BinOp::Ge,
+                Token::EqEq => BinOp::Eq,
+                Token::Ne => BinOp::Ne,
             },
-        })
-        .boxed()
+            just(Token::And).to(BinOp::And),
+            just(Token::Or).to(BinOp::Or),
+        ))
+        .map_with(|op, e| (op, range(e.span())));
+        let operations = unary
+            .clone()
+            .then(operator.then(unary).repeated().collect::<Vec<_>>())
+            .map(|(first, rest)| by_precedence(first, rest));
+        let question = just(Token::Question).map_with(|_, e| range(e.span()));
+        operations
+            .then(
+                question
+                    .then(expr.clone())
+                    .then_ignore(just(Token::Colon))
+                    .then(expr)
+                    .or_not(),
+            )
+            .map(|(c, rest)| match rest {
+                None => c,
+                Some(((at, a), b)) => {
+                    let span = c.span.start..b.span.end;
+                    Expr::operation(
+                        ExprKind::Cond(Box::new(c), Box::new(a), Box::new(b)),
+                        span,
+                        at,
+                    )
+                }
+            })
+            .boxed()
     })
     .boxed()
+}
+
+/// How tightly a binary operator binds (the tightest highest).
+fn precedence(op: BinOp) -> u8 {
+    match op {
+        BinOp::Pow => 7,
+        BinOp::Mul | BinOp::Div | BinOp::Rem => 6,
+        BinOp::Add | BinOp::Sub => 5,
+        BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => 4,
+        BinOp::Eq | BinOp::Ne => 3,
+        BinOp::And => 2,
+        BinOp::Or => 1,
+    }
+}
+
+/// `first op operand op operand …` as a tree, every operator
+/// left-associative and the tighter ones first: operator-precedence
+/// parsing with a stack of left operands waiting for their right one, so
+/// that a chain of any length is built without recursion.
+fn by_precedence(first: Expr, rest: Vec<((BinOp, Span), Expr)>) -> Expr {
+    let binary = |op, at, l: Expr, r: Expr| {
+        let span = l.span.start..r.span.end;
+        Expr::operation(ExprKind::Binary(op, Box::new(l), Box::new(r)), span, at)
+    };
+    let mut waiting: Vec<(Expr, BinOp, Span)> = Vec::new();
+    let mut current = first;
+    for ((op, at), operand) in rest {
+        while waiting
+            .last()
+            .is_some_and(|(_, top, _)| precedence(*top) >= precedence(op))
+        {
+            if let Some((l, top, top_at)) = waiting.pop() {
+                current = binary(top, top_at, l, current);
+            }
+        }
+        waiting.push((current, op, at));
+        current = operand;
+    }
+    while let Some((l, top, at)) = waiting.pop() {
+        current = binary(top, at, l, current);
+    }
+    current
 }
 
 /// A block of statements `{ … }`.
@@ -194,12 +238,15 @@ where
             .then_ignore(just(Token::Semi))
             .map(|(target, value)| Stmt::Assign { target, value });
         let eval = expr.then_ignore(just(Token::Semi)).map(Stmt::Eval);
+        // The marker for a block nested past the depth limit.
+        let cut = just(Token::TooDeep).map_with(|_, e| Stmt::Eval(Expr::cut(range(e.span()))));
         let stmt = choice((
             if_stmt.boxed(),
             while_stmt.boxed(),
             do_stmt.boxed(),
             assign.boxed(),
             eval.boxed(),
+            cut.boxed(),
         ));
         stmt.repeated()
             .collect::<Vec<_>>()
@@ -428,8 +475,117 @@ fn help_for(t: &Token) -> Option<&'static str> {
     }
 }
 
+/// How to keep a cpfg item within the depth limit.
+const DEPTH_HELP: &str =
+    "compute part of it apart, in a statement `{ x = …; }` or a `#define`, and use the result";
+
+/// What a token does to the nesting the parser descends into.
+fn nesting(t: &Token) -> Nest {
+    match t {
+        Token::LParen | Token::LBracket | Token::LBrace => Nest::Open,
+        Token::RParen | Token::RBracket | Token::RBrace => Nest::Close,
+        Token::Question => Nest::Question,
+        Token::Colon => Nest::Else,
+        Token::Comma | Token::Semi | Token::Arrow => Nest::Separator,
+        _ => Nest::Other,
+    }
+}
+
+/// What the parser reads in place of what `opener` holds past the depth
+/// limit: a marker, and for a `?` its two branches.
+fn filler((t, s): &(Token, SimpleSpan)) -> Vec<(Token, SimpleSpan)> {
+    match t {
+        Token::Question => vec![
+            (Token::TooDeep, *s),
+            (Token::Colon, *s),
+            (Token::TooDeep, *s),
+        ],
+        _ => vec![(Token::TooDeep, *s)],
+    }
+}
+
+/// The closer of the group `opener` opens.
+fn closer(opener: &Token) -> Token {
+    match opener {
+        Token::LBracket => Token::RBracket,
+        Token::LBrace => Token::RBrace,
+        _ => Token::RParen,
+    }
+}
+
+/// Replaces each cut in `item` (see [`Expr::operation`]) with 0, so that
+/// lowering reads the item without further complaint, and says where the
+/// first one was. A cut is carried up to the root of its expression, so
+/// only the roots are looked at.
+fn take_cuts(item: &mut Item) -> Option<Span> {
+    let mut roots: Vec<&mut Expr> = Vec::new();
+    match item {
+        Item::Seed(e, _) | Item::DerivationLength(e, _) | Item::MaximumDepth(e, _) => roots.push(e),
+        Item::Axiom(mods, _) => module_roots(mods, &mut roots),
+        Item::Define(defs) => {
+            for d in defs {
+                roots.extend(d.dims.iter_mut().chain(&mut d.init));
+            }
+        }
+        Item::Block(_, stmts, _) => statement_roots(stmts, &mut roots),
+        Item::Production(p) => {
+            let p = &mut **p;
+            for mods in [&mut p.left, &mut p.predecessor, &mut p.right] {
+                module_roots(mods, &mut roots);
+            }
+            statement_roots(&mut p.before, &mut roots);
+            roots.extend(&mut p.condition);
+            statement_roots(&mut p.after, &mut roots);
+            module_roots(&mut p.successor, &mut roots);
+            roots.extend(&mut p.probability);
+        }
+        Item::Lsystem { .. }
+        | Item::Ignore(_)
+        | Item::Consider(_)
+        | Item::Ring(_)
+        | Item::Section(..)
+        | Item::EndLsystem(_) => {}
+    }
+    let mut first = None;
+    for e in roots.into_iter().filter(|e| e.is_cut()) {
+        first.get_or_insert(e.span.clone());
+        *e = Expr::leaf(ExprKind::Num(0.0), e.span.clone());
+    }
+    first
+}
+
+fn module_roots<'a>(mods: &'a mut [Module], out: &mut Vec<&'a mut Expr>) {
+    out.extend(mods.iter_mut().flat_map(|m| &mut m.args));
+}
+
+/// The expressions of `stmts` and of the blocks inside them (as deep as
+/// the braces, which the limit bounds).
+fn statement_roots<'a>(stmts: &'a mut [Stmt], out: &mut Vec<&'a mut Expr>) {
+    for s in stmts {
+        match s {
+            Stmt::Assign { target, value } => out.extend([target, value]),
+            Stmt::Eval(e) => out.push(e),
+            Stmt::If(c, then, otherwise) => {
+                out.push(c);
+                statement_roots(then, out);
+                statement_roots(otherwise, out);
+            }
+            Stmt::While(c, body) => {
+                out.push(c);
+                statement_roots(body, out);
+            }
+            Stmt::Do(body, c) => {
+                statement_roots(body, out);
+                out.push(c);
+            }
+        }
+    }
+}
+
 /// Parses a preprocessed cpfg text. Never fails: each malformed item is
-/// reported and skipped.
+/// reported and skipped. An item nested past [`crate::ir::MAX_NESTING`]
+/// gets one E0013, at the first place past it, and is read with that part
+/// left out.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let lexed = lex(src, diags);
     let mut file = File::default();
@@ -439,6 +595,15 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
             lines.push(Vec::new());
         } else if let Some(line) = lines.last_mut() {
             line.push((t, SimpleSpan::from(s)));
+        }
+    }
+    // The parser recurses into brackets: it is not shown what lies past
+    // the depth limit, only a marker it reads as a cut.
+    for line in &mut lines {
+        let end = line.last().map_or(0, |(_, s)| s.end);
+        let closer = |(t, _): &(Token, SimpleSpan)| (closer(t), SimpleSpan::from(end..end));
+        if let Some(cut) = cut_too_deep(line, |(t, _)| nesting(t), filler, closer) {
+            *line = cut;
         }
     }
     let parser = item();
@@ -478,8 +643,19 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         let (out, errors) = parser
             .parse(line.as_slice().map(eoi, |(t, s)| (t, s)))
             .into_output_errors();
+        let cut = || line.iter().find(|(t, _)| *t == Token::TooDeep);
         match out {
-            Some(item) if errors.is_empty() => file.items.push(item),
+            Some(mut item) if errors.is_empty() => {
+                if let Some(at) = take_cuts(&mut item) {
+                    diags.push(too_deep(at, DEPTH_HELP));
+                }
+                file.items.push(item);
+            }
+            // A part nested too deeply comes first, whatever else is wrong.
+            _ if cut().is_some() => {
+                let at = cut().map_or(end..end, |(_, s)| range(*s));
+                diags.push(too_deep(at, DEPTH_HELP));
+            }
             _ => {
                 if let Some(err) = errors.first() {
                     let mut d = syntax_error(err, help_for);

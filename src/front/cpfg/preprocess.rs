@@ -22,17 +22,20 @@
 //!   bytes to themselves, bytes made by an expansion to the whole macro call
 //!   (name and arguments), bytes of an included file to the `#include` line.
 //!
-//! It never panics and always ends: output is capped at 8 MiB, argument
-//! nesting at 64 and expansion at 20 million steps ([`codes::CPFG_EXPANSION_LIMIT`]).
+//! It never panics and always ends: output is capped at 8 MiB and expansion
+//! at 20 million steps ([`codes::CPFG_EXPANSION_LIMIT`]); macro calls in
+//! arguments and `#if` conditions nest at most [`MAX_NESTING`] deep (E0013,
+//! graftal's one depth limit), since both are followed by recursion.
 
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::depth::too_deep;
+use crate::ir::MAX_NESTING;
 use std::collections::{HashMap, VecDeque};
 use std::ops::Range;
 use std::rc::Rc;
 
 /// Output larger than this is cut off.
 pub const MAX_OUTPUT: usize = 8 << 20;
-const MAX_ARG_DEPTH: usize = 64;
 const MAX_STEPS: u64 = 20_000_000;
 const MAX_PENDING_TOKENS: usize = 2_000_000;
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -43,6 +46,9 @@ pub struct Preprocessed {
     pub text: String,
     pub map: SourceMap,
     pub diagnostics: Diagnostics,
+    /// Expansion stopped at macro calls nested past the depth limit
+    /// (reported): the rest of the text is left as written, nesting and all.
+    pub stopped_too_deep: bool,
 }
 
 /// Maps byte ranges of the preprocessed text to byte ranges of the original
@@ -133,6 +139,7 @@ pub fn preprocess_with_defines(
         include,
         steps: 0,
         aborted: false,
+        too_deep: false,
         stack: Vec::new(),
         diags: Diagnostics::default(),
     };
@@ -162,6 +169,7 @@ pub fn preprocess_with_defines(
             src_len: text.len(),
         },
         diagnostics,
+        stopped_too_deep: pp.too_deep,
     }
 }
 
@@ -682,6 +690,8 @@ struct Pp<'a> {
     include: &'a mut dyn FnMut(&str) -> Option<String>,
     steps: u64,
     aborted: bool,
+    /// Expansion stopped at calls nested past the depth limit.
+    too_deep: bool,
     /// Names of the files being included (for recursion).
     stack: Vec<String>,
     diags: Diagnostics,
@@ -893,11 +903,28 @@ impl Pp<'_> {
         if let Some(s) = span_of(&call) {
             origin = origin.start.min(s.start)..origin.end.max(s.end);
         }
+        // Arguments are expanded by recursion, one level per call, each
+        // level holding the arguments of the levels inside it: the calls
+        // written nested are counted first, in one pass, rather than found
+        // too deep after that much work. (Calls that expansion makes are
+        // counted as they are expanded.)
+        let too_deep_at = match depth {
+            0 => self.first_call_too_deep(&call[k + 1..close], MAX_NESTING),
+            _ => None,
+        }
+        .or((depth >= MAX_NESTING).then_some(&t))
+        .map(|x| x.origin.clone());
         let refused = if args.len() != params.len() {
             self.wrong_argument_count(&t, m, params, args.len(), origin.clone());
             true
-        } else if depth >= MAX_ARG_DEPTH {
-            self.abort(origin.clone(), "macro calls nested too deep in arguments");
+        } else if let Some(at) = too_deep_at {
+            if !std::mem::replace(&mut self.aborted, true) {
+                self.too_deep = true;
+                self.diags.push(too_deep(
+                    at,
+                    "call fewer macros inside the arguments of macros",
+                ));
+            }
             true
         } else {
             false
@@ -925,6 +952,37 @@ impl Pp<'_> {
         for x in repl.into_iter().rev() {
             input.push_front(x);
         }
+    }
+
+    /// The first call of a function-like macro in `toks` that is the
+    /// `room`th or deeper nested in the arguments of others there.
+    fn first_call_too_deep<'t>(&self, toks: &'t [Tok], room: usize) -> Option<&'t Tok> {
+        let mut calls = 0usize;
+        // Per open parenthesis: whether it holds the arguments of a call.
+        let mut open: Vec<bool> = Vec::new();
+        let mut name: Option<&Tok> = None;
+        for x in toks {
+            match (x.kind, &*x.text) {
+                (Kind::Ws | Kind::Splice, _) => continue,
+                (Kind::Ident, n) if self.macros.get(n).is_some_and(|m| m.params.is_some()) => {
+                    name = Some(x);
+                    continue;
+                }
+                (Kind::Other, "(") => {
+                    if name.is_some() {
+                        if calls + 1 >= room {
+                            return name;
+                        }
+                        calls += 1;
+                    }
+                    open.push(name.is_some());
+                }
+                (Kind::Other, ")") if open.pop() == Some(true) => calls -= 1,
+                _ => {}
+            }
+            name = None;
+        }
+        None
     }
 
     fn wrong_argument_count(
@@ -1406,10 +1464,18 @@ impl Pp<'_> {
             toks: &words,
             pos: 0,
             err: None,
+            too_deep: None,
         };
         let v = p.ternary(0);
         if p.err.is_none() && p.pos < words.len() {
             p.err = Some(format!("unexpected `{}`", words[p.pos].text));
+        }
+        if let Some(at) = p.too_deep {
+            self.diags.push(too_deep(
+                at,
+                "write the condition with fewer parentheses, signs and `?:`",
+            ));
+            return false;
         }
         match p.err {
             Some(e) => {
@@ -1436,6 +1502,8 @@ struct Expr<'a> {
     toks: &'a [&'a Tok],
     pos: usize,
     err: Option<String>,
+    /// The token that went past [`MAX_NESTING`], if one did.
+    too_deep: Option<Range<usize>>,
 }
 
 impl Expr<'_> {
@@ -1459,9 +1527,22 @@ impl Expr<'_> {
         0
     }
 
+    /// Whether `depth` (the levels of parentheses, signs and `?:` around
+    /// the token at `pos`) is past the limit; if so, evaluation stops there
+    /// and the token that opened the level is kept to be reported.
+    fn past_limit(&mut self, depth: usize) -> bool {
+        if depth <= MAX_NESTING {
+            return false;
+        }
+        let opener = self.toks.get(self.pos.saturating_sub(1));
+        self.too_deep = opener.map(|t| t.origin.clone());
+        self.fail("nested too deeply".to_string());
+        true
+    }
+
     fn ternary(&mut self, depth: usize) -> i64 {
-        if depth > 200 {
-            return self.fail("expression nested too deep".to_string());
+        if self.past_limit(depth) {
+            return 0;
         }
         let c = self.binary(0, depth);
         if self.peek() == "?" {
@@ -1545,8 +1626,8 @@ impl Expr<'_> {
     }
 
     fn unary(&mut self, depth: usize) -> i64 {
-        if depth > 200 {
-            return self.fail("expression nested too deep".to_string());
+        if self.past_limit(depth) {
+            return 0;
         }
         let Some(t) = self.toks.get(self.pos) else {
             return self.fail("the condition ends too early".to_string());

@@ -5,7 +5,7 @@
 //! knows.
 
 use super::lexer::BlockKind;
-use crate::ir::Span;
+use crate::ir::{Span, MAX_NESTING};
 
 /// A parsed file: its blocks in order, and its `#:` directives.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -77,6 +77,60 @@ impl Component {
 pub struct Expr {
     pub kind: ExprKind,
     pub span: Span,
+    /// How deep the tree is: 1 for a number or a name, one more than the
+    /// deepest operand for an operation. Past [`MAX_NESTING`] the
+    /// expression is *cut* (see [`Expr::operation`]).
+    pub depth: usize,
+}
+
+impl Expr {
+    /// A number or a name.
+    pub fn leaf(kind: ExprKind, span: Span) -> Self {
+        Expr {
+            kind,
+            span,
+            depth: 1,
+        }
+    }
+
+    /// An operation whose operands are in `kind`, written at `span`; `at`
+    /// is the operator. The tree is kept within [`MAX_NESTING`] as it is
+    /// built: an operation that would go deeper becomes a *cut*, a leaf at
+    /// `at`, and an operation on a cut is that cut. So no tree is deeper
+    /// than the limit (a chain `1+1+…+1` is built by iteration; evaluating
+    /// and dropping trees recurse), and the first place past it is kept for
+    /// the parser to report.
+    pub fn operation(kind: ExprKind, span: Span, at: Span) -> Self {
+        let operands: Vec<&Expr> = match &kind {
+            ExprKind::Number(_) | ExprKind::Name(_) => Vec::new(),
+            ExprKind::Neg(a) => vec![a],
+            ExprKind::Binary(_, a, b) => vec![a, b],
+        };
+        if let Some(cut) = operands.iter().find(|e| e.is_cut()) {
+            return (*cut).clone();
+        }
+        let depth = 1 + operands.iter().map(|e| e.depth).max().unwrap_or(0);
+        if depth > MAX_NESTING {
+            return Expr::cut(at);
+        }
+        Expr { kind, span, depth }
+    }
+
+    /// A cut at `at`: where an expression went past [`MAX_NESTING`]. It
+    /// stands for what was left out (as a value it is NaN; the parser
+    /// reports it and replaces it before anything evaluates it).
+    pub fn cut(at: Span) -> Self {
+        Expr {
+            kind: ExprKind::Number(f64::NAN),
+            span: at,
+            depth: MAX_NESTING + 1,
+        }
+    }
+
+    /// Whether this is where an expression went past [`MAX_NESTING`].
+    pub fn is_cut(&self) -> bool {
+        self.depth > MAX_NESTING
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -103,6 +103,9 @@ pub enum Token<'src> {
     At,
     #[token("!")]
     Bang,
+    /// Not lexed: what the parser is given in place of a part nested past
+    /// the depth limit ([`crate::front::depth::cut_too_deep`]).
+    TooDeep,
 }
 
 /// Whether the sign just lexed looks like a prefix sign: preceded by
@@ -148,6 +151,7 @@ impl fmt::Display for Token<'_> {
             Token::Question => "`?`",
             Token::At => "`@`",
             Token::Bang => "`!`",
+            Token::TooDeep => "a part nested too deeply",
         };
         f.write_str(s)
     }

@@ -401,7 +401,8 @@ fn value(cx: &mut Cx<'_>, e: &Expr) -> Option<f64> {
     }
 }
 
-/// Evaluates an expression over numbers and `pi`.
+/// Evaluates an expression over numbers and `pi` (by recursion, as deep as
+/// the tree, which the parser keeps within [`crate::ir::MAX_NESTING`]).
 pub fn eval(e: &Expr) -> Result<f64, Diagnostic> {
     let bad = |msg: String| Diagnostic::at(codes::LINF_BAD_EXPRESSION, e.span.clone(), msg);
     let v = match &e.kind {

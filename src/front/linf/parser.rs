@@ -14,6 +14,7 @@ use super::ast::{
 };
 use super::lexer::{lex, BlockKind, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::depth::{cut_too_deep, too_deep, Nest};
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -76,23 +77,23 @@ where
     let unary = select! { Token::Minus(_) => true, Token::Plus(_) => false }
         .map_with(|minus, e| (minus, range(e.span())))
         .repeated()
-        .foldr(atom, |(minus, span), rhs: Expr| {
-            let span = span.start..rhs.span.end;
+        .foldr(atom, |(minus, at), rhs: Expr| {
+            let span = at.start..rhs.span.end;
             if minus {
-                Expr {
-                    kind: ExprKind::Neg(Box::new(rhs)),
-                    span,
-                }
+                Expr::operation(ExprKind::Neg(Box::new(rhs)), span, at)
+            } else if rhs.is_cut() {
+                rhs
             } else {
                 Expr { span, ..rhs }
             }
         });
-    let binary = |lhs: Expr, (op, rhs): (BinOp, Expr)| Expr {
-        span: lhs.span.start..rhs.span.end,
-        kind: ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)),
+    let binary = |lhs: Expr, ((op, at), rhs): ((BinOp, Span), Expr)| {
+        let span = lhs.span.start..rhs.span.end;
+        Expr::operation(ExprKind::Binary(op, Box::new(lhs), Box::new(rhs)), span, at)
     };
     let product = unary.clone().foldl(
         select! { Token::Star => BinOp::Mul, Token::Slash => BinOp::Div }
+            .map_with(|op, e| (op, range(e.span())))
             .then(unary)
             .repeated(),
         binary,
@@ -100,7 +101,8 @@ where
     let sum_op = select! {
         Token::Plus(prefix) if !(tight_signs && prefix) => BinOp::Add,
         Token::Minus(prefix) if !(tight_signs && prefix) => BinOp::Sub,
-    };
+    }
+    .map_with(|op, e| (op, range(e.span())));
     product
         .clone()
         .foldl(sum_op.then(product).repeated(), binary)
@@ -206,18 +208,20 @@ where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
 {
     choice((
-        number().map(|(v, span)| Expr {
-            kind: ExprKind::Number(v),
-            span,
-        }),
-        name().map(|n| Expr {
-            kind: ExprKind::Name(n.text),
-            span: n.span,
-        }),
+        number().map(|(v, span)| Expr::leaf(ExprKind::Number(v), span)),
+        name().map(|n| Expr::leaf(ExprKind::Name(n.text), n.span)),
+        just(Token::TooDeep).map_with(|_, e| Expr::cut(range(e.span()))),
         expr.delimited_by(just(Token::LParen), just(Token::RParen))
-            .map_with(|inner: Expr, e| Expr {
-                span: range(e.span()),
-                ..inner
+            .map_with(|inner: Expr, e| {
+                if inner.is_cut() {
+                    // Where it went too deep, not the parentheses around.
+                    inner
+                } else {
+                    Expr {
+                        span: range(e.span()),
+                        ..inner
+                    }
+                }
             }),
     ))
 }
@@ -471,11 +475,7 @@ where
 /// `diags` and malformed items are left out of the AST.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let lexed = lex(src, diags);
-    let tokens: Vec<(Token<'_>, SimpleSpan)> = lexed
-        .tokens
-        .into_iter()
-        .map(|(t, s)| (t, SimpleSpan::from(s)))
-        .collect();
+    let tokens = cut_nesting(lexed.tokens);
     let eoi = SimpleSpan::from(src.len()..src.len());
     let (out, errors) = file_parser()
         .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
@@ -484,7 +484,10 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     for err in errors {
         // Recovery may meet one mistake twice; report it once.
         if seen.insert((err.span().start, err.span().end)) {
-            diags.push(syntax_error(&err));
+            diags.push(match err.found() {
+                Some(Token::TooDeep) => too_deep(range(*err.span()), DEPTH_HELP),
+                _ => syntax_error(&err),
+            });
         }
     }
     let mut file = File {
@@ -518,8 +521,24 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         }
         let body = match body {
             RawBody::Names(names) => BlockBody::Names(names.into_iter().flatten().collect()),
-            RawBody::Angles(r) => BlockBody::Angles(r.into_iter().flatten().collect()),
-            RawBody::Colors(c) => BlockBody::Colors(c.into_iter().flatten().collect()),
+            RawBody::Angles(r) => {
+                let mut r: Vec<RotationDecl> = r.into_iter().flatten().collect();
+                for rotation in &mut r {
+                    let exprs = rotation.components.iter_mut().flat_map(|c| match c {
+                        Component::Value(e) => vec![e],
+                        Component::Interval { lo, hi, .. } => vec![lo, hi],
+                    });
+                    report_cuts(exprs, diags);
+                }
+                BlockBody::Angles(r)
+            }
+            RawBody::Colors(c) => {
+                let mut c: Vec<ColourDecl> = c.into_iter().flatten().collect();
+                for colour in &mut c {
+                    report_cuts(colour.components.iter_mut(), diags);
+                }
+                BlockBody::Colors(c)
+            }
             RawBody::Axiom(items, rules) => {
                 for r in &rules {
                     diags.push(
@@ -563,6 +582,62 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         });
     }
     file
+}
+
+/// How to keep a LinF value within the depth limit.
+const DEPTH_HELP: &str = "write the value with fewer parentheses and operations, or as a number";
+
+/// `tokens` with what the `angles` and `colors` blocks nest past the depth
+/// limit cut out (see [`cut_too_deep`]): the expression parser and the
+/// recovery of a malformed rotation recurse into parentheses and brackets,
+/// which nest only there (a string's brackets are branches, read without
+/// recursion).
+fn cut_nesting(tokens: Vec<(Token<'_>, Span)>) -> Vec<(Token<'_>, SimpleSpan)> {
+    let mut in_values = false;
+    let tagged: Vec<(Token<'_>, SimpleSpan, Nest)> = tokens
+        .into_iter()
+        .map(|(t, s)| {
+            let nest = match t {
+                Token::Keyword(k) => {
+                    in_values = matches!(k, BlockKind::Angles | BlockKind::Colors);
+                    Nest::Reset
+                }
+                Token::LParen | Token::LBracket if in_values => Nest::Open,
+                Token::RParen | Token::RBracket if in_values => Nest::Close,
+                _ => Nest::Other,
+            };
+            (t, SimpleSpan::from(s), nest)
+        })
+        .collect();
+    let filler =
+        |&(_, s, _): &(Token<'_>, SimpleSpan, Nest)| vec![(Token::TooDeep, s, Nest::Other)];
+    let closer = |&(t, s, _): &(Token<'_>, SimpleSpan, Nest)| {
+        let t = if t == Token::LBracket {
+            Token::RBracket
+        } else {
+            Token::RParen
+        };
+        (t, s, Nest::Close)
+    };
+    let cut = cut_too_deep(&tagged, |t| t.2, filler, closer);
+    cut.unwrap_or(tagged)
+        .into_iter()
+        .map(|(t, s, _)| (t, s))
+        .collect()
+}
+
+/// Reports the first cut among `exprs` (the values of one rotation or
+/// colour, see [`Expr::operation`]) and replaces each with 0, so that
+/// lowering reads them without further complaint. A cut is carried up to
+/// the root of its expression.
+fn report_cuts<'a>(exprs: impl Iterator<Item = &'a mut Expr>, diags: &mut Diagnostics) {
+    let mut reported = false;
+    for e in exprs.filter(|e| e.is_cut()) {
+        if !std::mem::replace(&mut reported, true) {
+            diags.push(too_deep(e.span.clone(), DEPTH_HELP));
+        }
+        *e = Expr::leaf(ExprKind::Number(0.0), e.span.clone());
+    }
 }
 
 /// What a block holds, for help lines.

@@ -31,9 +31,10 @@ use super::growth::{self, branches, Comp, Grown, Point, UnitGeom};
 use super::layout::{self, Outline};
 use super::parser::RESERVED;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::depth::too_deep;
 use crate::ir::{
     Angle, Axis, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span,
-    SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word,
+    SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
 };
 use std::collections::HashMap;
 
@@ -41,8 +42,9 @@ pub const DEFAULT_ANGLE: f64 = 30.0;
 pub const DEFAULT_LEVELS: u32 = 12;
 pub const DEFAULT_BROADNESS: f64 = 1.0;
 pub const DEFAULT_LENGTH: f64 = 10.0;
-/// The most levels an outline grows (`LEVELS`).
-pub const MAX_LEVELS: u32 = 256;
+/// The most levels an outline grows (`LEVELS`): the one depth limit, since
+/// each level of the grown tree is a term nested in the one before.
+pub const MAX_LEVELS: u32 = MAX_NESTING as u32;
 /// The most drawing components an expansion may have.
 const MAX_EXPANSION: usize = Structure::MAX_EXPANSION;
 
@@ -102,6 +104,11 @@ struct Ctx<'a> {
     stack: Vec<usize>,
     /// Set once an expansion went past [`MAX_EXPANSION`] (reported once).
     too_large: bool,
+    /// How deep the expansion under way is: brackets, braces and rules
+    /// used through rules, each a level of recursion here.
+    level: usize,
+    /// Set once the expansion went past [`MAX_NESTING`] (reported once).
+    too_deep: bool,
 }
 
 enum Piece {
@@ -190,6 +197,27 @@ impl Ctx<'_> {
             );
         }
         false
+    }
+
+    /// `f` one level deeper (a bracket, a brace, a rule used through
+    /// another, written at `span`); past [`MAX_NESTING`] levels, `None`
+    /// instead, reported once. This bounds the recursion of expanding
+    /// nested rules, which the parser's limit on each string does not: a
+    /// chain of rules each using the next nests as deep as it is long.
+    fn deeper<T>(&mut self, span: &Span, f: impl FnOnce(&mut Self) -> Option<T>) -> Option<T> {
+        if self.level >= MAX_NESTING {
+            if !std::mem::replace(&mut self.too_deep, true) {
+                self.diags.push(too_deep(
+                    span.clone(),
+                    "use fewer rules through rules here: write some of them out in place",
+                ));
+            }
+            return None;
+        }
+        self.level += 1;
+        let out = f(self);
+        self.level -= 1;
+        out
     }
 
     /// Resolves rule `r` (its expansion, unit and count); `None` if it has
@@ -325,7 +353,8 @@ impl Ctx<'_> {
         for e in &s.elems {
             match e {
                 Elem::Turn { left, .. } => out.push(if *left { Comp::Plus } else { Comp::Minus }),
-                Elem::Branch { body, span } => match self.expand(body) {
+                Elem::Branch { body, span } => match self.deeper(&opener(span), |c| c.expand(body))
+                {
                     Some(b) if self.room(out.len(), b.len() + 2, span) => {
                         out.push(Comp::Open);
                         out.extend(b);
@@ -334,7 +363,7 @@ impl Ctx<'_> {
                     _ => ok = false,
                 },
                 Elem::Resemble { count, body, span } => {
-                    let x = self.expand(body);
+                    let x = self.deeper(&opener(span), |c| c.expand(body));
                     let n = self.count(count);
                     match (x, n) {
                         (Some(x), Some(n)) => match self.rewrite(&x, n, span) {
@@ -434,7 +463,14 @@ impl Ctx<'_> {
             );
             return None;
         }
-        self.resolve(r)?;
+        if self.state[r] == State::New {
+            // Expanding the rule's body is one level deeper. (Every rule is
+            // resolved before the seed is read, so only a rule used through
+            // a rule gets here unresolved.)
+            self.deeper(span, |c| c.resolve(r))?;
+        } else {
+            self.resolve(r)?;
+        }
         let nb = branches(&self.full[r]).len();
         let Some(entries) = entries else {
             return Some(Term {
@@ -499,7 +535,9 @@ impl Ctx<'_> {
                         ok = false;
                         continue;
                     };
-                    match self.term(k, name_span, entries.as_ref(), od) {
+                    let term =
+                        self.deeper(name_span, |c| c.term(k, name_span, entries.as_ref(), od));
+                    match term {
                         Some(t) => list.push(TermEntry::Term(t)),
                         None => ok = false,
                     }
@@ -560,6 +598,8 @@ impl Ctx<'_> {
                         Some(TermEntry::Failed) => {}
                         Some(TermEntry::Term(child)) => {
                             out.extend(full[i..close].iter().map(|&c| Ev::Component(c)));
+                            // Terms nest no deeper than the braces and the
+                            // growth that made them, both within the limit.
                             self.expand_term(child, level.map(|l| l + 1), out);
                             if let Some(l) = level {
                                 out.push(Ev::Level(l));
@@ -595,9 +635,11 @@ impl Ctx<'_> {
                 Elem::Turn { left, .. } => {
                     push(parts, if *left { Comp::Plus } else { Comp::Minus })
                 }
-                Elem::Branch { body, .. } => {
+                Elem::Branch { body, span } => {
                     push(parts, Comp::Open);
-                    ok &= self.seed(body, od, parts);
+                    ok &= self
+                        .deeper(&opener(span), |c| Some(c.seed(body, od, parts)))
+                        .unwrap_or(false);
                     push(parts, Comp::Close);
                 }
                 Elem::Resemble { .. } => {
@@ -660,6 +702,11 @@ impl Ctx<'_> {
         }
         out
     }
+}
+
+/// The opening `[` of a bracket written at `span`.
+fn opener(span: &Span) -> Span {
+    span.start..span.start + 1
 }
 
 fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
@@ -1133,6 +1180,8 @@ impl<'a> Ctx<'a> {
             unit_ref: Vec::new(),
             stack: Vec::new(),
             too_large: false,
+            level: 0,
+            too_deep: false,
         }
     }
 }
@@ -1460,17 +1509,24 @@ fn grow_outline(
     lw: &[f64],
 ) -> bool {
     let events = ctx.seed_events(parts);
-    let mut growth_terms: Vec<usize> = Vec::new();
-    collect_growth(parts, &mut growth_terms);
-    if growth_terms.is_empty() {
+    let mut growth_points: Vec<(usize, usize)> = Vec::new();
+    collect_growth(parts, &mut growth_points);
+    if growth_points.is_empty() {
         return false;
     }
+    let growth_terms: Vec<usize> = growth_points.iter().map(|&(r, _)| r).collect();
     let unit_of = ctx.unit_rules(&growth_terms);
     // Each growth point grows its unit rule for as many levels as its
-    // rule's count allows, or LEVELS.
-    let growing: Vec<(usize, u32)> = growth_terms
+    // rule's count allows, or LEVELS; and no deeper than the depth limit,
+    // counted from the seed (each level is a term nested in the one
+    // before, and the code that reads terms recurses).
+    let growing: Vec<(usize, u32)> = growth_points
         .iter()
-        .map(|&r| (unit_of[r].unwrap_or(r), ctx.count[r].unwrap_or(st.levels)))
+        .map(|&(r, depth)| {
+            let room = (MAX_NESTING + 1).saturating_sub(depth) as u32;
+            let levels = ctx.count[r].unwrap_or(st.levels).min(room);
+            (unit_of[r].unwrap_or(r), levels)
+        })
         .collect();
     let defaults = (st.l.0, st.b.0);
     let (stems, points) =
@@ -1547,20 +1603,22 @@ impl Ctx<'_> {
     }
 }
 
-fn collect_growth(parts: &[Part], out: &mut Vec<usize>) {
-    fn term(t: &Term, out: &mut Vec<usize>) {
+/// The growth points of `parts`, in order: each one's rule and how deep
+/// its term is (1 for a term of the seed).
+fn collect_growth(parts: &[Part], out: &mut Vec<(usize, usize)>) {
+    fn term(t: &Term, depth: usize, out: &mut Vec<(usize, usize)>) {
         if t.growth {
-            out.push(t.rule);
+            out.push((t.rule, depth));
         }
         for e in &t.entries {
             if let TermEntry::Term(c) = e {
-                term(c, out);
+                term(c, depth + 1, out);
             }
         }
     }
     for p in parts {
         if let Part::Term(t) = p {
-            term(t, out);
+            term(t, 1, out);
         }
     }
 }

@@ -11,12 +11,14 @@
 //!    what is wrong (an unclosed `[`, a shape without its colour, …) with a
 //!    code, a span and a help line; after an error it recovers at the next
 //!    token that can start something, so every error of a file is reported
-//!    in one run. Nesting deeper than [`MAX_NESTING`] is an error, so no
-//!    input can exhaust the stack.
+//!    in one run. Nesting deeper than [`MAX_NESTING`] (graftal's one depth
+//!    limit) is an error (E0013, once per item), so no input can exhaust
+//!    the stack.
 
 use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
 use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::depth::too_deep;
 use crate::ir::{Span, Structure};
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -27,8 +29,8 @@ pub const KEYWORDS: [&str; 7] = ["ANGLE", "B", "L", "GROWTH", "LEVELS", "SEED", 
 /// Names that cannot be rule names ([`Structure::RESERVED`]).
 pub const RESERVED: [&str; 13] = Structure::RESERVED;
 
-/// The deepest nesting of `[ ]` and `{ }` read.
-pub const MAX_NESTING: usize = 1000;
+/// The deepest nesting of `[ ]` and `{ }` read: the one depth limit.
+pub const MAX_NESTING: usize = crate::ir::MAX_NESTING;
 
 type Tok<'src> = (Token<'src>, SimpleSpan);
 
@@ -191,7 +193,7 @@ impl<'src> Cursor<'_, 'src> {
     }
 
     /// A string of elements up to (not including) a token `stop` accepts,
-    /// or the end. `depth` counts enclosing brackets and braces.
+    /// or the end. `depth` counts the brackets and braces around it.
     fn string(&mut self, stop: fn(&Token) -> bool, depth: usize) -> Str {
         let start = self.span().start;
         let mut elems = Vec::new();
@@ -206,7 +208,7 @@ impl<'src> Cursor<'_, 'src> {
                 Token::Ident(name) => {
                     let (_, span) = self.bump();
                     let entries = if self.peek() == Some(Token::LBrace) {
-                        self.entries(depth + 1)
+                        self.entries(depth)
                     } else {
                         None
                     };
@@ -250,7 +252,7 @@ impl<'src> Cursor<'_, 'src> {
                             .with_label("a branching `{…}` must follow a rule name")
                             .with_help("write the rule before its entries: `R1{R2, ~, R1}`"),
                     );
-                    let _ = self.entries(depth + 1);
+                    let _ = self.entries(depth);
                 }
                 _ => {
                     self.unexpected(
@@ -274,15 +276,10 @@ impl<'src> Cursor<'_, 'src> {
 
     fn too_deep(&mut self) {
         let span = self.span();
-        self.diags.push(
-            Diagnostic::at(
-                codes::STL_TOO_DEEP,
-                span,
-                format!("nesting deeper than {MAX_NESTING} levels"),
-            )
-            .with_label("too deep")
-            .with_help("flatten the string; graftal reads at most this many nested `[` and `{`"),
-        );
+        self.diags.push(too_deep(
+            span,
+            "split the string into rules: a rule's name stands for its whole body",
+        ));
         // Skip the rest of the item.
         self.pos = self.toks.len();
         self.aborted = true;
@@ -335,7 +332,8 @@ impl<'src> Cursor<'_, 'src> {
         }
     }
 
-    /// `{ e1, …, em }`, the cursor at `{`.
+    /// `{ e1, …, em }`, the cursor at `{`; `depth` counts the brackets and
+    /// braces around it.
     fn entries(&mut self, depth: usize) -> Option<Entries> {
         if depth >= MAX_NESTING {
             self.too_deep();
@@ -819,11 +817,19 @@ mod tests {
     }
 
     #[test]
-    fn deep_nesting_is_an_error_not_a_crash() {
+    fn deep_nesting_is_one_error_not_a_crash() {
         let src = format!("SEED\n{}F{}\nENDSEED", "[".repeat(5000), "]".repeat(5000));
-        let codes = codes_of(&src);
-        assert!(codes.contains(&"E0513"), "{codes:?}");
+        assert_eq!(codes_of(&src), ["E0013"]);
         let src = format!("SEED\n{}\nENDSEED", "R1{".repeat(5000));
-        assert!(codes_of(&src).contains(&"E0513"));
+        assert_eq!(codes_of(&src), ["E0013"]);
+    }
+
+    #[test]
+    fn brackets_and_braces_nest_to_the_same_limit() {
+        for (open, close) in [("[", "]"), ("R1{", "}")] {
+            let at = |n: usize| format!("SEED\n{}F{}\nENDSEED", open.repeat(n), close.repeat(n));
+            assert_eq!(codes_of(&at(MAX_NESTING)), Vec::<&str>::new(), "{open}");
+            assert_eq!(codes_of(&at(MAX_NESTING + 1)), ["E0013"], "{open}");
+        }
     }
 }
