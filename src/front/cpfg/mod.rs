@@ -292,10 +292,12 @@ fn outside_folder(name: &str, what: &str) -> crate::diagnostics::Diagnostic {
     .with_help("copy the file into the object's folder and name it there")
 }
 
+/// A side file's text, read no further than the size cap (a link to a
+/// device or a pipe cannot make graftal read without end); `None` when it
+/// cannot be read or is too large.
 fn read_lossy(path: &Path) -> Option<String> {
-    std::fs::read(path)
-        .ok()
-        .map(|b| String::from_utf8_lossy(&b).into_owned())
+    let file = crate::source::SourceFile::read(path).ok()?;
+    file.oversize().is_none().then_some(file.text)
 }
 
 /// Reports the diagnostics of a file beside the `.l` (see [`side_file`]).
