@@ -56,11 +56,10 @@ const ADDRESS_SPACE_KIB: u64 = 4_000_000;
 /// 300 short lines with an error on each gives 71 KB for 200 diagnostics):
 /// more means snippets or messages that repeat the input.
 const MAX_STDERR_HUMAN: usize = (graftal::diagnostics::MAX_SHOWN + 1) * 1024;
-/// `--format json` lists every diagnostic, one line each, by design (a file
-/// of 300 short lines gives 225 KB for 599; 10 000 `Name {` lines in a
-/// Fractint library, 17 MB for 43 000), so its bound is per line: this is
-/// the longest JSON diagnostic: a message or a label that quotes more of the
-/// input than this repeats the input.
+/// The longest line of `--format json`: a longer diagnostic quotes the
+/// input at length. JSON lists every diagnostic by design (a file of 300
+/// short lines gives 225 KB for 599; 10 000 `Name {` lines in a Fractint
+/// library, 17 MB for 43 000), so only each line is bounded.
 const MAX_JSON_LINE: usize = 4096;
 /// More stdout than this is a flood: derived words are bounded by
 /// `--max-symbols`, but a symbol may print as a module with long numbers.
@@ -481,7 +480,8 @@ fn edit_target<'a>(input: &'a mut Input, rng: &mut Rng) -> &'a mut Vec<u8> {
     }
 }
 
-/// A range of `len` bytes: a start, and a length that is mostly short.
+/// A range of `len` bytes: a start, and a length that is mostly short
+/// (empty at the end).
 fn some_range(rng: &mut Rng, len: usize) -> std::ops::Range<usize> {
     let start = rng.below(len + 1);
     let end = start + rng.size(len - start).min(len - start);
@@ -493,10 +493,7 @@ fn some_range(rng: &mut Rng, len: usize) -> std::ops::Range<usize> {
 fn some_entries(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     let starts: Vec<usize> = line_starts(text)
         .filter(|&s| {
-            let line = &text[s..text[s..]
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(text.len(), |e| s + e)];
+            let line = text[s..].split(|&b| b == b'\n').next().unwrap_or_default();
             line.contains(&b'{') && !line.starts_with(b";")
         })
         .collect();
@@ -684,19 +681,24 @@ fn entry_names(input: &Input) -> Vec<String> {
         .collect()
 }
 
+/// Choices at random for a mutant. Derivations are bounded: small steps or
+/// the file's own, and [`MAX_SYMBOLS`] (huge steps that do not grow the word
+/// are work no symbol limit bounds: `each-step-block` in the regressions).
+/// Translation takes huge steps too (issue 16's case 2).
 fn random_knobs(rng: &mut Rng, input: &Input) -> Knobs {
-    let mut steps = |small: u64, own: u64| match rng.below(100) as u64 {
+    // `small` and `own` percent of small steps and of none.
+    let mut pick_steps = |small: u64, own: u64| match rng.below(100) as u64 {
         p if p < small => Some(*rng.pick(SMALL_STEPS)),
         p if p < small + own => None,
         _ => Some(*rng.pick(HUGE_STEPS)),
     };
-    let steps_ = steps(65, 20);
-    let translate_steps = steps(30, 40);
+    let steps = pick_steps(75, 25);
+    let translate_steps = pick_steps(30, 40);
     let names = entry_names(input);
     let entry =
         (!names.is_empty() && rng.chance(80)).then(|| (rng.pick(&names).clone(), rng.chance(50)));
     Knobs {
-        steps: steps_,
+        steps,
         translate_steps,
         max_symbols: Some(MAX_SYMBOLS),
         lossy: rng.chance(60),
@@ -750,54 +752,45 @@ fn regression_knobs(input: &Input) -> Vec<Knobs> {
 /// one set of choices: check, derive, translate to every target, render.
 fn commands(name: &str, k: &Knobs) -> Vec<Vec<String>> {
     let file = format!("./{name}");
-    let own = |xs: &[&str]| xs.iter().map(|s| s.to_string()).collect::<Vec<_>>();
-    let mut target = vec![file.clone()];
-    match &k.entry {
-        Some((entry, true)) => target = vec![format!("{file}:{entry}")],
-        Some((entry, false)) => target.extend(own(&["--entry", entry])),
-        None => {}
-    }
-    let flag = |name: &str, value: Option<&str>| value.map_or(Vec::new(), |v| own(&[name, v]));
-    let format = if k.json {
-        own(&["--format", "json"])
-    } else {
-        Vec::new()
+    let args = |xs: &[&str]| xs.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let given = |yes: bool, xs: &[&str]| if yes { args(xs) } else { Vec::new() };
+    let flag = |name: &str, value: Option<&str>| value.map_or(Vec::new(), |v| args(&[name, v]));
+    let target = match &k.entry {
+        Some((entry, true)) => args(&[&format!("{file}:{entry}")]),
+        Some((entry, false)) => args(&[&file, "--entry", entry]),
+        None => args(&[&file]),
     };
-    let seed = own(&["--seed", &k.seed.to_string()]);
+    let format = given(k.json, &["--format", "json"]);
     let derivation = [
         flag("-n", k.steps),
         flag("--max-symbols", k.max_symbols),
-        seed,
+        args(&["--seed", &k.seed.to_string()]),
     ]
     .concat();
-    let mut runs = vec![[own(&["check", &file]), format.clone()].concat()];
-    runs.push(
-        [
-            own(&["derive"]),
-            target.clone(),
-            derivation.clone(),
-            format.clone(),
-        ]
-        .concat(),
-    );
+    let mut runs = vec![
+        [args(&["check", &file]), format.clone()].concat(),
+        [args(&["derive"]), target.clone(), derivation.clone()].concat(),
+    ];
     for to in ["pfg", "linf", "stl"] {
-        let lossy = if k.lossy {
-            own(&["--lossy"])
-        } else {
-            Vec::new()
-        };
         let steps = flag("-n", k.translate_steps);
-        let head = own(&["translate", "--to", to]);
-        runs.push([head, target.clone(), steps, lossy, format.clone()].concat());
+        let lossy = given(k.lossy, &["--lossy"]);
+        runs.push(
+            [
+                args(&["translate", "--to", to]),
+                target.clone(),
+                steps,
+                lossy,
+            ]
+            .concat(),
+        );
     }
     let out = if k.svg { "out.svg" } else { "out.png" };
-    let view = if k.view {
-        own(&["--view", "30,20"])
-    } else {
-        Vec::new()
-    };
-    let head = own(&["render", "-o", out, "--size", "64x64"]);
-    runs.push([head, target, derivation, view, format].concat());
+    let render = args(&["render", "-o", out, "--size", "64x64"]);
+    let view = given(k.view, &["--view", "30,20"]);
+    runs.push([render, target, derivation, view].concat());
+    for run in &mut runs[1..] {
+        run.extend(format.iter().cloned());
+    }
     runs
 }
 
@@ -1655,6 +1648,40 @@ fn mutants_are_the_same_every_run_and_differ_from_each_other() {
         side_edits >= 20,
         "only {side_edits} of 200 cpfg mutants edit a file beside the .l"
     );
+}
+
+/// The regression runs include the command lines of issue 16's cases, and
+/// name a Fractint library's entry.
+#[test]
+fn regression_runs_include_the_commands_of_the_issue() {
+    let lines = |input: &Input| -> Vec<String> {
+        regression_knobs(input)
+            .iter()
+            .flat_map(|k| commands(&input.name, k))
+            .map(|args| args.join(" "))
+            .collect()
+    };
+    let pfg = lines(&Input::file("a.l", "axiom: F\nF --> F\n"));
+    for expected in [
+        "check ./a.l",
+        "derive ./a.l -n 2 --seed 0",
+        "translate --to stl ./a.l -n 100000 --lossy",
+        "translate --to linf ./a.l --lossy --format json",
+        "render -o out.svg --size 64x64 ./a.l --max-symbols 20000 --seed 0 --format json",
+    ] {
+        assert!(
+            pfg.iter().any(|l| l == expected),
+            "no `{expected}` in {pfg:#?}"
+        );
+    }
+    let library = Input::file("lib.l", "Koch {\n Axiom F\n}\nDragon {\n Axiom F\n}\n");
+    let fractint = lines(&library);
+    assert!(fractint
+        .iter()
+        .any(|l| l == "derive ./lib.l --entry Koch -n 2 --seed 0"));
+    assert!(lines(&Input::file("a.l", "Koch {\n Axiom F\n --> F\n}\n"))
+        .iter()
+        .all(|l| !l.contains("--entry")));
 }
 
 /// The judge calls a crash, a hang, a flood, a panic and dirty stderr
