@@ -1,0 +1,11 @@
+angle increment: 45
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
+function: /dev/zero
