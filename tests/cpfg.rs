@@ -767,3 +767,24 @@ fn maximum_depth_recursion_needs_no_stack() {
     let tree = "lsystem: 1\nderivation length: 1\naxiom: A\ndecomposition\nmaximum depth: 3\nA --> [BA]C\nendlsystem\n";
     assert_eq!(derive_text(tree, 1), "[B[B[BA]C]C]C");
 }
+
+/// Every step costs work, however small the word: a block run in each of
+/// 99 999 999 999 steps of a word that never grows ends at the work limit
+/// (E0302, naming the step) instead of running for hours.
+#[test]
+fn steps_of_a_word_that_does_not_grow_end_at_the_work_limit() {
+    let c = compile_text("Lsystem: 0\nStart: {t=0;}\nEndEach: {t=t+1;}\nAxiom: A\nendlsystem\n");
+    let sys = c.system.unwrap();
+    let opts = RunOptions {
+        steps: Some(99_999_999_999),
+        max_symbols: 1_000_000,
+        ..RunOptions::default()
+    };
+    let err = driver::derive(&sys, &opts).unwrap_err();
+    assert_eq!(err.code.0, "E0302");
+    assert!(
+        err.notes.iter().any(|n| n.starts_with("stopped in step ")),
+        "{:?}",
+        err.notes
+    );
+}

@@ -575,8 +575,13 @@ pub(crate) fn refuse_early(sys: &System, opts: &DeriveOptions) -> Result<(), Dia
     }
 }
 
-/// Per-step cost added to the word's length in the work count.
-const STEP_COST: u64 = 64;
+/// Per-step cost added to the word's length in the work count: a step
+/// costs at least this much whatever the word, so that a derivation of a
+/// word that does not grow (with a block run every step, or random
+/// choices that rule out skipping a cycle) ends at the work limit after
+/// max_work / STEP_COST steps: 3.9 million at the default limit, about a
+/// second of tiny steps.
+pub(crate) const STEP_COST: u64 = 1024;
 /// Cycle detection looks at words up to this length…
 const CYCLE_WORD_LIMIT: usize = 1 << 16;
 /// …and remembers at most this many of them.

@@ -854,7 +854,7 @@ pub fn derive(
         .iter()
         .any(|(id, _)| matches!(sys.op(id), Some(crate::ir::TurtleOp::Query(_))));
     let program = &sys.program;
-    let mut len = 0;
+    let (mut len, mut done) = (0, 0);
     let result: Result<Word, Halt> = (|| {
         e.m.run(&program.start, &mut [])?;
         let mut word = axiom(sys, &mut e.m)?;
@@ -863,6 +863,7 @@ pub fn derive(
             if has_query {
                 query(&mut word);
             }
+            e.m.charge(super::STEP_COST)?;
             e.m.run(&program.start_each, &mut [])?;
             let mut next = e.step(&main, &word, choice)?;
             if let Some(c) = cut_symbol {
@@ -881,6 +882,7 @@ pub fn derive(
             len = word.len();
             e.m.run(&program.end_each, &mut [])?;
             step += 1;
+            done = step;
             progress(step, word.len());
             if e.m.stop {
                 break;
@@ -892,7 +894,13 @@ pub fn derive(
         }
         Ok(word)
     })();
-    result.map_err(|h| halt_error(h, opts, len))
+    result.map_err(|h| {
+        let mut d = halt_error(h, opts, len);
+        if opts.steps > 0 {
+            d = d.with_note(format!("stopped in step {} of {}", done + 1, opts.steps));
+        }
+        d
+    })
 }
 
 /// The word the turtle draws: `word` rewritten by the homomorphism, and
