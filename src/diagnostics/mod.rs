@@ -77,12 +77,32 @@ impl NotKept {
 /// counted on the last one kept ([`Diagnostic::not_kept`]).
 pub const MAX_KEPT: usize = 100_000;
 
+/// The most characters a message, label, note or help keeps: a message
+/// that quotes the input (an unknown header, an unexpected token) would
+/// otherwise be as long as the input, in JSON as well as for people.
+pub const MAX_TEXT_CHARS: usize = 1000;
+
+/// `text` cut to [`MAX_TEXT_CHARS`]: its start and its end, `…` between.
+fn bounded(text: String) -> String {
+    if text.len() <= MAX_TEXT_CHARS {
+        return text;
+    }
+    let n = text.chars().count();
+    if n <= MAX_TEXT_CHARS {
+        return text;
+    }
+    let tail = MAX_TEXT_CHARS / 3;
+    let head: String = text.chars().take(MAX_TEXT_CHARS - tail - 1).collect();
+    let end: String = text.chars().skip(n - tail).collect();
+    format!("{head}…{end}")
+}
+
 impl Diagnostic {
     fn new(code: Code, message: impl Into<String>) -> Self {
         Diagnostic {
             code,
             severity: code.severity(),
-            message: message.into(),
+            message: bounded(message.into()),
             span: None,
             label: None,
             labels: Vec::new(),
@@ -105,25 +125,25 @@ impl Diagnostic {
     }
 
     pub fn with_label(mut self, message: impl Into<String>) -> Self {
-        self.label = Some(message.into());
+        self.label = Some(bounded(message.into()));
         self
     }
 
     pub fn with_secondary(mut self, span: Span, message: impl Into<String>) -> Self {
         self.labels.push(Label {
             span,
-            message: message.into(),
+            message: bounded(message.into()),
         });
         self
     }
 
     pub fn with_note(mut self, note: impl Into<String>) -> Self {
-        self.notes.push(note.into());
+        self.notes.push(bounded(note.into()));
         self
     }
 
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
-        self.help = Some(help.into());
+        self.help = Some(bounded(help.into()));
         self
     }
 
@@ -281,6 +301,34 @@ pub fn nearest<'a>(name: &str, candidates: &[&'a str]) -> Vec<&'a str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn texts_that_quote_the_input_are_cut_to_their_ends() {
+        let token = format!("<{}>", "é".repeat(50_000));
+        let d = Diagnostic::global(codes::SYNTAX, format!("unexpected `{token}`"))
+            .with_label(token.clone())
+            .with_note(token.clone())
+            .with_help(token.clone())
+            .with_secondary(0..1, token.clone());
+        for text in [
+            &d.message,
+            d.label.as_ref().unwrap(),
+            &d.notes[0],
+            d.help.as_ref().unwrap(),
+            &d.labels[0].message,
+        ] {
+            assert_eq!(text.chars().count(), MAX_TEXT_CHARS);
+            assert!(text.contains('…'));
+            assert!(
+                text.ends_with(">`") || text.ends_with('>'),
+                "{}",
+                &text[text.len() - 8..]
+            );
+        }
+        assert!(d.message.starts_with("unexpected `<é"));
+        let short = Diagnostic::global(codes::SYNTAX, "unexpected `x`");
+        assert_eq!(short.message, "unexpected `x`");
+    }
 
     #[test]
     fn edit_distance_counts_single_edits() {

@@ -98,16 +98,17 @@ pub const FUNCTION_SAMPLES: usize = 1025;
 /// fit).
 const MAX_SURFACE_TRIANGLES: usize = 20_000;
 
-/// A diagnostic about a file beside the `.l` (view, function, surface):
-/// reported without a span in the `.l`, naming the file and line.
+/// A diagnostic `d` about a file `name` beside the `.l` (view, function,
+/// surface): reported without a span in the `.l`, naming the file and the
+/// line (found in `newlines`, the offsets of the side file's line ends).
 fn side_file(
     d: &crate::diagnostics::Diagnostic,
     name: &str,
-    text: &str,
+    newlines: &[usize],
 ) -> crate::diagnostics::Diagnostic {
     let mut g = d.clone();
     if let Some(span) = d.span.clone() {
-        let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
+        let line = newlines.partition_point(|&n| n < span.start) + 1;
         g.message = format!("{name}, line {line}: {}", d.message);
     } else {
         g.message = format!("{name}: {}", d.message);
@@ -302,8 +303,12 @@ fn read_lossy(path: &Path) -> Option<String> {
 
 /// Reports the diagnostics of a file beside the `.l` (see [`side_file`]).
 fn push_side_file(diags: &mut Diagnostics, d: &Diagnostics, name: &str, text: &str) {
+    if d.is_empty() {
+        return;
+    }
+    let newlines: Vec<usize> = text.match_indices('\n').map(|(i, _)| i).collect();
     for x in d.iter() {
-        diags.push(side_file(x, name, text));
+        diags.push(side_file(x, name, &newlines));
     }
 }
 
