@@ -1275,7 +1275,11 @@ fn run_tasks(settings: &Settings, next_task: impl Fn(usize) -> Option<Task> + Sy
     let counter = AtomicUsize::new(0);
     let report = Mutex::new(Report::default());
     let _ = std::fs::remove_dir_all(&settings.findings);
-    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("fuzz-{}", std::process::id()));
+    // One folder per call: the tests of this file run at the same time.
+    static CALLS: AtomicUsize = AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, Ordering::Relaxed);
+    let root =
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("fuzz-{}-{call}", std::process::id()));
     std::thread::scope(|scope| {
         for worker in 0..settings.jobs {
             let (dir, scratch) = (

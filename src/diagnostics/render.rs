@@ -676,14 +676,41 @@ pub fn to_json(d: &Diagnostic, file: &SourceFile) -> Value {
 pub fn render_json(ds: &[Diagnostic], file: &SourceFile) -> String {
     let mut out = String::new();
     for d in ds {
-        out.push_str(&to_json(d, file).to_string());
-        out.push('\n');
+        push_json_line(&mut out, &to_json(d, file).to_string());
     }
     out
 }
 
+/// Appends one JSON line with DEL and the C1 controls escaped too: JSON
+/// lets them stand raw (serde_json escapes only U+0000–U+001F), but a
+/// terminal acts on them (U+009B starts an escape sequence).
+fn push_json_line(out: &mut String, json: &str) {
+    for c in json.chars() {
+        if c == '\u{7f}' || ('\u{80}'..='\u{9f}').contains(&c) {
+            out.push_str(&format!("\\u{:04x}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    out.push('\n');
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn json_lines_escape_del_and_c1_controls() {
+        let file = SourceFile::new("x.l", "A\u{7f}B\u{9b}C");
+        let d = Diagnostic::at(codes::SYNTAX, 1..2, "unexpected `\u{7f}` before `\u{9b}`");
+        let out = render_json(std::slice::from_ref(&d), &file);
+        assert!(
+            !out.chars()
+                .any(|c| c == '\u{7f}' || ('\u{80}'..='\u{9f}').contains(&c)),
+            "{out:?}"
+        );
+        let v: serde_json::Value = serde_json::from_str(out.trim_end()).unwrap();
+        assert_eq!(v["message"], "unexpected `\u{7f}` before `\u{9b}`");
+    }
+
     use super::*;
     use crate::diagnostics::{codes, Diagnostics};
 
