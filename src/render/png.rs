@@ -58,7 +58,7 @@ pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pi
     }
     for run in &pic.runs {
         let stroke = Stroke {
-            width: run.width as f32,
+            width: stroke_width(run.width, pic),
             line_cap: LineCap::Round,
             line_join: LineJoin::Round,
             ..Stroke::default()
@@ -93,6 +93,17 @@ pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pi
     Some(pixmap)
 }
 
+/// A run's width as stroked: at most twice the picture's perimeter (a
+/// wider line covers the picture all the same, and tiny-skia's scan
+/// converter overflows on widths like 10^11 pixels); NaN draws hairlines.
+fn stroke_width(width: f64, pic: &Picture) -> f32 {
+    let widest = 4.0 * (f64::from(pic.width) + f64::from(pic.height));
+    if width.is_nan() {
+        return 0.0;
+    }
+    width.clamp(0.0, widest) as f32
+}
+
 /// The picture as PNG bytes.
 pub fn encode(pic: &Picture) -> Option<Vec<u8>> {
     encode_with(pic, &mut |_, _| {})
@@ -101,4 +112,33 @@ pub fn encode(pic: &Picture) -> Option<Vec<u8>> {
 /// [`encode`], reporting progress as [`draw_with`] does.
 pub fn encode_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Vec<u8>> {
     draw_with(pic, progress)?.encode_png().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::Run;
+
+    /// A width of 10^11 pixels (a view file's `initial line width`)
+    /// made tiny-skia's scan converter panic; drawn at the widest that
+    /// matters, it covers the picture.
+    #[test]
+    fn a_line_wider_than_the_picture_covers_it() {
+        for width in [99_999_999_999.0, f64::INFINITY, f64::NAN, -5.0] {
+            let pic = Picture {
+                width: 32,
+                height: 32,
+                runs: vec![Run {
+                    colour: Rgb(0, 0, 0),
+                    width,
+                    lines: vec![vec![[10.0, 16.0], [22.0, 16.0]]],
+                }],
+                polygons: Vec::new(),
+            };
+            let pixmap = draw(&pic).unwrap();
+            let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();
+            let covers = width.is_finite() && width > 0.0 || width == f64::INFINITY;
+            assert_eq!(dark == 32 * 32, covers, "{width}: {dark} dark pixels");
+        }
+    }
 }

@@ -1,0 +1,1 @@
+initial line width: 99999999999 pixels
