@@ -19,6 +19,7 @@ pub mod depth;
 pub mod fractint;
 pub mod linf;
 pub mod pfg;
+pub mod repeats;
 pub mod stl;
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
