@@ -533,30 +533,40 @@ fn load_and_compile(
 /// The widest entry name `check` lists; a longer one is shortened.
 const LISTED_NAME: usize = 40;
 
+/// The most entries `check` lists: a library may hold 100,000, and one
+/// line each would flood the terminal. The largest library known
+/// (Fractint's own `fractint.l`) has 69, listed whole.
+const LISTED_ENTRIES: usize = 100;
+
 /// `check`'s listing: which notation a file shared by several was read
 /// as (`FILE: dialect: …`), then a library's entries with their lines and
-/// what was found. Names come from the file: shown escaped and shortened.
+/// what was found: the first [`LISTED_ENTRIES`], and the chosen one if it
+/// comes later, then how many more there are. Names come from the file:
+/// shown escaped and shortened.
 fn list_entries(io: &mut Io<'_>, c: &Compiled) {
     let summary = match &c.library {
         Some(lib) => Some(lib.summary.clone()),
         None => c.front.describe(c.system.as_ref()),
     };
+    let file_name = diagnostics::escaped(&c.file.name);
     if let Some(summary) = summary {
         let _ = writeln!(
             io.stdout,
-            "{}: dialect: {}",
-            diagnostics::escaped(&c.file.name),
+            "{file_name}: dialect: {}",
             diagnostics::shortened(&summary, 4 * LISTED_NAME)
         );
     }
     let Some(lib) = &c.library else { return };
-    let names: Vec<_> = lib
-        .entries
+    let listed: Vec<usize> = (0..lib.entries.len().min(LISTED_ENTRIES))
+        .chain(lib.chosen.filter(|&i| i >= LISTED_ENTRIES))
+        .collect();
+    let names: Vec<_> = listed
         .iter()
-        .map(|e| diagnostics::shortened(&e.name, LISTED_NAME))
+        .map(|&i| diagnostics::shortened(&lib.entries[i].name, LISTED_NAME))
         .collect();
     let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
-    for (i, (e, name)) in lib.entries.iter().zip(&names).enumerate() {
+    for (&i, name) in listed.iter().zip(&names) {
+        let e = &lib.entries[i];
         let (line, _) = c.file.line_col(e.span.start);
         let state = match (e.errors, e.warnings) {
             (0, 0) => "ok".to_string(),
@@ -569,6 +579,13 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
             ""
         };
         let _ = writeln!(io.stdout, "  {name:width$}  line {line:<4} {state}{chosen}");
+    }
+    let more = lib.entries.len() - listed.len();
+    if more > 0 {
+        let _ = writeln!(
+            io.stdout,
+            "  … and {more} more; `graftal check {file_name}:NAME` checks one"
+        );
     }
 }
 

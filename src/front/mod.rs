@@ -19,6 +19,7 @@ pub mod depth;
 pub mod fractint;
 pub mod linf;
 pub mod pfg;
+pub mod repeats;
 pub mod stl;
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
@@ -185,10 +186,24 @@ pub fn choose_entry(file_name: &str, title: &str, lib: &Library) -> Diagnostic {
             names.len()
         ),
     )
-    .with_note(format!("entries: {}", names.join(", ")))
+    .with_note(format!("entries: {}", name_list(&names)))
     .with_help(format!(
         "write `{file_name}:{first}` or add `--entry {first}`; `graftal check` lists the entries"
     ))
+}
+
+/// The most names a diagnostic lists (the entries of a library): a note
+/// is one line, and a library may have 100,000 entries.
+pub const LISTED_NAMES: usize = 20;
+
+/// `names` separated by commas, the first [`LISTED_NAMES`] of them, then
+/// how many more there are.
+pub fn name_list(names: &[&str]) -> String {
+    let shown = names[..names.len().min(LISTED_NAMES)].join(", ");
+    match names.len().checked_sub(LISTED_NAMES) {
+        Some(more) if more > 0 => format!("{shown}, … and {more} more"),
+        _ => shown,
+    }
 }
 
 /// A parser's syntax error as a diagnostic: at the end of input E0007
@@ -323,6 +338,20 @@ mod tests {
         assert_eq!(named("linf", fr), "linf");
         assert_eq!(named("stl", fr), "stl");
         assert_eq!(named("l", ""), "pfg");
+    }
+
+    #[test]
+    fn name_lists_stop_after_a_few_names() {
+        assert_eq!(name_list(&["a", "b"]), "a, b");
+        let many: Vec<String> = (0..LISTED_NAMES + 5).map(|i| format!("e{i}")).collect();
+        let many: Vec<&str> = many.iter().map(String::as_str).collect();
+        let listed = name_list(&many);
+        assert!(listed.starts_with("e0, e1, "), "{listed}");
+        assert!(listed.ends_with(&format!("e{}, … and 5 more", LISTED_NAMES - 1)));
+        assert_eq!(
+            name_list(&many[..LISTED_NAMES]).matches(", ").count(),
+            LISTED_NAMES - 1
+        );
     }
 
     #[test]

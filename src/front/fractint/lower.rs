@@ -30,6 +30,12 @@ pub use crate::ir::Lowered;
 /// (white on Fractint's screen) is black, and colour 0 (Fractint's
 /// background) is white.
 pub fn palette() -> Vec<Rgb> {
+    // Built once: every entry of a library of thousands gets a copy.
+    static PALETTE: std::sync::LazyLock<Vec<Rgb>> = std::sync::LazyLock::new(build_palette);
+    PALETTE.clone()
+}
+
+fn build_palette() -> Vec<Rgb> {
     const EGA: [(u8, u8, u8); 16] = [
         (255, 255, 255),
         (0, 0, 170),

@@ -24,11 +24,13 @@ use super::ast::{
     Rule,
 };
 use super::lexer::BlockKind;
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
+use crate::front::repeats::Repeats;
 use crate::ir::{
     Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
 };
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 pub use crate::ir::Lowered;
@@ -55,6 +57,17 @@ impl Role {
 }
 
 impl Cx<'_> {
+    /// Reports what `build` makes, a diagnostic of `code` found in the
+    /// string being lowered, unless the string has reported enough of that
+    /// code already: a mistake repeated a million times in one string is
+    /// reported a few times, then counted ([`Repeats`]).
+    fn report(&mut self, code: Code, build: impl FnOnce(&Self) -> Diagnostic) {
+        if self.repeats.admit(self.diags, code) {
+            let d = build(self);
+            self.repeats.push(self.diags, d);
+        }
+    }
+
     /// The declared angle names (`angles`), or all the other names.
     fn names(&self, angles: bool) -> Vec<&str> {
         self.roles
@@ -75,6 +88,8 @@ struct Cx<'a> {
     default_rotation: Option<RotationId>,
     /// Heads with a rule.
     has_rule: HashMap<String, Span>,
+    /// What the string being lowered reported.
+    repeats: Repeats,
 }
 
 /// Lowers `file`, reporting problems to `diags`. The system is usable only
@@ -90,6 +105,7 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         longest: 0,
         default_rotation: None,
         has_rule: HashMap::new(),
+        repeats: Repeats::default(),
     };
     directives(file, &mut cx);
     let blocks = winning_blocks(file, cx.diags);
@@ -590,6 +606,12 @@ impl StringOut {
 }
 
 fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
+    cx.report(codes::LINF_UNDECLARED, |cx| {
+        undeclared_name(cx, text, span, whole)
+    });
+}
+
+fn undeclared_name(cx: &Cx<'_>, text: &str, span: Span, whole: &str) -> Diagnostic {
     // Angles are not suggested: alone in a string they would be wrong too.
     let names = cx.names(false);
     let mut near = nearest(text, &names);
@@ -607,7 +629,7 @@ fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
         format!("`{text}` is not declared"),
     )
     .with_label("not a line, blank, angle or rule head");
-    let d = match near.as_slice() {
+    match near.as_slice() {
         [] => d.with_help(format!(
             "declare it: `lines {text}` to draw it, `blanks {text}` to move without drawing, or give it a rule `{text} = …`"
         )),
@@ -619,8 +641,7 @@ fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
                 .collect::<Vec<_>>()
                 .join(", ")
         )),
-    };
-    cx.diags.push(d);
+    }
 }
 
 /// Appends the pieces of a name (already split) to `out`.
@@ -633,7 +654,7 @@ fn push_pieces(
     for (role, text, span) in pieces {
         match role {
             Err(()) => undeclared(cx, text, span.clone(), whole),
-            Ok(Role::Angle(_)) => cx.diags.push(
+            Ok(Role::Angle(_)) => cx.report(codes::LINF_BARE_ANGLE, |_| {
                 Diagnostic::at(
                     codes::LINF_BARE_ANGLE,
                     span.clone(),
@@ -642,8 +663,8 @@ fn push_pieces(
                 .with_label("an angle name must follow `+` or `-`")
                 .with_help(format!(
                     "write `+{text}` or `-{text}` (no space) to rotate by it"
-                )),
-            ),
+                ))
+            }),
             Ok(_) => {
                 let id = cx.sys.intern(text);
                 out.push(id, span.clone());
@@ -656,7 +677,13 @@ fn push_pieces(
 /// `f0` or `f2` and what follows. When the trailing digits of such a name
 /// are no declared name, and a number, `?` or `@` follows, they are the
 /// number: `f0.5?j` is `f 0.5?j`, `f2@` is `f 2@`.
-fn detach_numbers(cx: &Cx<'_>, items: &[Item]) -> Vec<Item> {
+fn detach_numbers<'i>(cx: &Cx<'_>, items: &'i [Item]) -> Cow<'i, [Item]> {
+    // Most strings have no name ending in digits: they are not copied.
+    let ends_in_digit =
+        |i: &Item| matches!(i, Item::Name(n) if n.text.ends_with(|c: char| c.is_ascii_digit()));
+    if !items.iter().any(ends_in_digit) {
+        return Cow::Borrowed(items);
+    }
     let mut out: Vec<Item> = Vec::with_capacity(items.len());
     let mut i = 0;
     while i < items.len() {
@@ -703,7 +730,7 @@ fn detach_numbers(cx: &Cx<'_>, items: &[Item]) -> Vec<Item> {
         });
         i += if fraction.is_some() { 2 } else { 1 };
     }
-    out
+    Cow::Owned(out)
 }
 
 /// Interns `name` with the turtle meaning `op` and appends it.
@@ -738,15 +765,15 @@ impl Nesting {
             self.colours.pop();
             return;
         }
-        cx.diags.push(
+        cx.report(codes::LINF_UNBALANCED, |_| {
             Diagnostic::at(
                 codes::LINF_UNBALANCED,
                 span.clone(),
                 "`]` without a matching `[`",
             )
             .with_label("nothing to close")
-            .with_help("remove this `]` or add the `[` that opens the branch"),
-        );
+            .with_help("remove this `]` or add the `[` that opens the branch")
+        });
     }
 
     fn next_colour(&mut self, span: &Span) {
@@ -766,26 +793,26 @@ impl Nesting {
         {
             return;
         }
-        cx.diags.push(
+        cx.report(codes::LINF_COLOUR_BALANCE, |_| {
             Diagnostic::at(
                 codes::LINF_COLOUR_BALANCE,
                 span.clone(),
                 "`}` without a `{` before it in this string",
             )
             .with_label("goes back to a colour chosen outside this string")
-            .with_help("`}` returns to the previous colour; pair it with a `{`"),
-        );
+            .with_help("`}` returns to the previous colour; pair it with a `{`")
+        });
     }
 
     /// Reports every `[` never closed, and the first `{` never closed
     /// outside a branch (a branch restores the colour).
     fn check_closed(self, cx: &mut Cx<'_>) {
         for span in self.open {
-            cx.diags.push(
+            cx.report(codes::LINF_UNBALANCED, |_| {
                 Diagnostic::at(codes::LINF_UNBALANCED, span, "`[` is never closed")
                     .with_label("this branch has no `]`")
-                    .with_help("add `]` where the branch ends"),
-            );
+                    .with_help("add `]` where the branch ends")
+            });
         }
         if let Some(unclosed) = self.colours.first().and_then(|c| c.first()) {
             cx.diags.push(
@@ -857,6 +884,7 @@ fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
         };
     }
     nesting.check_closed(cx);
+    cx.repeats.end_item(cx.diags, "in this string");
     // The first place each symbol is written (for diagnostics elsewhere,
     // e.g. translation).
     for (id, span) in out.word.iter().zip(&out.spans) {
@@ -883,7 +911,7 @@ fn lower_number(
         }
         Some(Item::Question(q)) => lower_guard(cx, out, items, i, value, span, q),
         _ => {
-            cx.diags.push(
+            cx.report(codes::LINF_STRAY_NUMBER, |_| {
                 Diagnostic::at(
                     codes::LINF_STRAY_NUMBER,
                     span.clone(),
@@ -892,8 +920,8 @@ fn lower_number(
                 .with_label("a number in a string must say what it is for")
                 .with_help(format!(
                     "`{text}@` multiplies the length; `{text}?s` expands `s` with probability {text}"
-                )),
-            );
+                ))
+            });
             i + 1
         }
     }
@@ -901,15 +929,15 @@ fn lower_number(
 
 /// `?` or `@` (`mark`) with no number before it.
 fn missing_number(cx: &mut Cx<'_>, span: &Span, mark: &str, example: &str) {
-    cx.diags.push(
+    cx.report(codes::LINF_MISSING_NUMBER, |_| {
         Diagnostic::at(
             codes::LINF_MISSING_NUMBER,
             span.clone(),
             format!("`{mark}` without a number before it"),
         )
         .with_label("needs a number right before it")
-        .with_help(format!("write the number first: {example}")),
-    );
+        .with_help(format!("write the number first: {example}"))
+    });
 }
 
 /// A run of adjacent signs: each sign (`true` for `-`) and the run's
@@ -975,6 +1003,12 @@ fn lower_signs(cx: &mut Cx<'_>, out: &mut StringOut, items: &[Item], i: usize) -
 
 /// An undeclared name `text` right after the signs of `run`.
 fn unknown_angle(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) {
+    cx.report(codes::LINF_UNKNOWN_ANGLE, |cx| {
+        unknown_angle_diagnostic(cx, run, text, span)
+    });
+}
+
+fn unknown_angle_diagnostic(cx: &Cx<'_>, run: &SignRun, text: &str, span: &Span) -> Diagnostic {
     let run_text = &run.text;
     let angles = cx.names(true);
     let mut near: Vec<String> = nearest(text, &angles)
@@ -1002,7 +1036,7 @@ fn unknown_angle(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) {
     )
     .with_label("not a declared angle")
     .with_secondary(run.span.clone(), "rotates by the angle named here");
-    let d = match (near.first(), angles.is_empty()) {
+    match (near.first(), angles.is_empty()) {
         (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
         (None, true) => d.with_help(format!(
             "declare it in the angles block: `angles {text} = (0, pi/2)`"
@@ -1012,11 +1046,10 @@ fn unknown_angle(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) {
             all.sort();
             d.with_help(format!(
                 "declared angles: {}; or declare `{text} = (…, …)` in the angles block",
-                all.join(", ")
+                crate::front::name_list(&all)
             ))
         }
-    };
-    cx.diags.push(d);
+    }
 }
 
 /// The default rotation, for signs that name no angle; reported when
@@ -1025,21 +1058,21 @@ fn default_rotation(cx: &mut Cx<'_>, run: &SignRun) -> Option<RotationId> {
     if cx.default_rotation.is_some() {
         return cx.default_rotation;
     }
-    let run_text = &run.text;
-    let angles = cx.names(true);
-    let help = match angles.iter().min() {
-        Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
-        None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
-    };
-    cx.diags.push(
+    cx.report(codes::LINF_NO_DEFAULT_ROTATION, |cx| {
+        let run_text = &run.text;
+        let angles = cx.names(true);
+        let help = match angles.iter().min() {
+            Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
+            None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
+        };
         Diagnostic::at(
             codes::LINF_NO_DEFAULT_ROTATION,
             run.span.clone(),
             format!("`{run_text}` names no angle and no default rotation is declared"),
         )
         .with_label("rotates by what?")
-        .with_help(help),
-    );
+        .with_help(help)
+    });
     None
 }
 
@@ -1081,26 +1114,26 @@ fn lower_guard(
 ) -> usize {
     let valid = p > 0.0 && p < 1.0;
     if !valid {
-        cx.diags.push(
+        cx.report(codes::LINF_PROBABILITY, |_| {
             Diagnostic::at(
                 codes::LINF_PROBABILITY,
                 number.clone(),
                 format!("probability {p} is not between 0 and 1"),
             )
             .with_label("must be greater than 0 and less than 1")
-            .with_help("`p?s` expands `s` with probability p, 0 < p < 1; to always expand it, write `s` alone"),
-        );
+            .with_help("`p?s` expands `s` with probability p, 0 < p < 1; to always expand it, write `s` alone")
+        });
     }
     let Some(Item::Name(n)) = items.get(i + 2) else {
-        cx.diags.push(
+        cx.report(codes::LINF_GUARD_TARGET, |_| {
             Diagnostic::at(
                 codes::LINF_GUARD_TARGET,
                 question.clone(),
                 "`?` is not followed by a symbol",
             )
             .with_label("guards nothing")
-            .with_help("write the symbol right after `?`: `0.5?j`"),
-        );
+            .with_help("write the symbol right after `?`: `0.5?j`")
+        });
         return i + 2;
     };
     let mut pieces = split(cx, &n.text, n.span.start);

@@ -15,6 +15,7 @@ use super::ast::{
 use super::lexer::{lex, BlockKind, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::front::depth::{cut_too_deep, too_deep, Nest};
+use crate::front::repeats::Repeats;
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -246,6 +247,36 @@ where
     items(rotation(), rotation_start).map(RawBody::Angles)
 }
 
+/// A group `(…)` or `[…]` skipped whole, groups inside it included: how
+/// recovery passes over a malformed rotation or colour. Any closer ends
+/// the innermost group, as the depth limit counts them, and
+/// [`close_value_groups`] has closed every group before its block ends:
+/// so the skip never fails and never leaves its block, and each token is
+/// skipped at most once (reading to the end of the file for each unclosed
+/// `(` made a file of `angles (` blocks take seconds).
+fn skipped_group<'t, 's: 't, I>() -> impl Parser<'t, I, (), Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
+{
+    recursive(|group| {
+        let inside = any().filter(|t: &Token| {
+            !matches!(
+                t,
+                Token::Keyword(_)
+                    | Token::LParen
+                    | Token::RParen
+                    | Token::LBracket
+                    | Token::RBracket
+            )
+        });
+        just(Token::LParen)
+            .or(just(Token::LBracket))
+            .ignore_then(group.or(inside.ignored()).repeated())
+            .then_ignore(just(Token::RParen).or(just(Token::RBracket)))
+            .ignored()
+    })
+}
+
 /// A rotation `(torsion, curvature)`, named `t = (…)` or not.
 fn rotation<'t, 's: 't, I>() -> impl Parser<'t, I, RotationDecl, Extra<'t, 's>> + Clone
 where
@@ -262,12 +293,7 @@ where
                 .delimited_by(just(Token::LParen), just(Token::RParen))
                 // A malformed pair is reported and skipped to its `)`, and
                 // the name stays declared (no cascade at its uses).
-                .recover_with(via_parser(nested_delimiters(
-                    Token::LParen,
-                    Token::RParen,
-                    [(Token::LBracket, Token::RBracket)],
-                    |_| None,
-                )))
+                .recover_with(via_parser(skipped_group().map(|_| None)))
                 .map_with(|c, e| (c, range(e.span())))
                 .labelled("a rotation `(torsion, curvature)`"),
         )
@@ -300,27 +326,54 @@ where
     interval.or(expr.map(Component::Value))
 }
 
+/// Whether a token can stand in a string.
+fn is_string_token(t: &Token<'_>) -> bool {
+    matches!(
+        t,
+        Token::Name(_)
+            | Token::Plus(_)
+            | Token::Minus(_)
+            | Token::Number(_)
+            | Token::Question
+            | Token::At
+            | Token::LBracket
+            | Token::RBracket
+            | Token::LBrace
+            | Token::RBrace
+            | Token::Bang
+    )
+}
+
 /// A token that can stand in a string.
 fn string_token<'t, 's: 't, I>() -> impl Parser<'t, I, Token<'s>, Extra<'t, 's>> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
 {
-    any().filter(|t: &Token| {
-        matches!(
-            t,
-            Token::Name(_)
-                | Token::Plus(_)
-                | Token::Minus(_)
-                | Token::Number(_)
-                | Token::Question
-                | Token::At
-                | Token::LBracket
-                | Token::RBracket
-                | Token::LBrace
-                | Token::RBrace
-                | Token::Bang
-        )
-    })
+    any().filter(is_string_token)
+}
+
+/// The symbol a string token at `span` stands for.
+fn string_symbol(t: Token<'_>, span: Span) -> Item {
+    match t {
+        Token::Name(s) => Item::Name(Name {
+            text: s.to_string(),
+            span,
+        }),
+        Token::Plus(_) => Item::Sign { minus: false, span },
+        Token::Minus(_) => Item::Sign { minus: true, span },
+        Token::Number(s) => Item::Number {
+            value: s.parse().unwrap_or(f64::NAN),
+            text: s.to_string(),
+            span,
+        },
+        Token::Question => Item::Question(span),
+        Token::At => Item::At(span),
+        Token::LBracket => Item::Open(span),
+        Token::RBracket => Item::Close(span),
+        Token::LBrace => Item::NextColour(span),
+        Token::RBrace => Item::PreviousColour(span),
+        _ => Item::Swap(span),
+    }
 }
 
 /// A symbol of a string. A token followed by `=` starts the next rule.
@@ -330,37 +383,44 @@ where
 {
     string_token()
         .and_is(any().then(just(Token::Eq)).not())
-        .map_with(|t: Token, e| {
-            let span = range(e.span());
-            match t {
-                Token::Name(s) => Item::Name(Name {
-                    text: s.to_string(),
-                    span,
-                }),
-                Token::Plus(_) => Item::Sign { minus: false, span },
-                Token::Minus(_) => Item::Sign { minus: true, span },
-                Token::Number(s) => Item::Number {
-                    value: s.parse().unwrap_or(f64::NAN),
-                    text: s.to_string(),
-                    span,
-                },
-                Token::Question => Item::Question(span),
-                Token::At => Item::At(span),
-                Token::LBracket => Item::Open(span),
-                Token::RBracket => Item::Close(span),
-                Token::LBrace => Item::NextColour(span),
-                Token::RBrace => Item::PreviousColour(span),
-                _ => Item::Swap(span),
-            }
-        })
+        .map_with(|t: Token, e| string_symbol(t, range(e.span())))
         .labelled("a symbol")
 }
 
+/// The symbols of a string, up to a token that cannot stand in one or one
+/// followed by `=` (which starts the next rule). They are read in a loop:
+/// per symbol, the lookahead of [`string_item`] costs more than the rest
+/// of reading a file (a string of a million symbols took half a second).
+/// [`string_item`] then fails where the loop stopped, so that an error
+/// there expects a symbol, as it would after a string read item by item.
 fn string<'t, 's: 't, I>() -> impl Parser<'t, I, Vec<Item>, Extra<'t, 's>> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
 {
-    string_item().repeated().collect::<Vec<_>>()
+    let run = custom(|inp| {
+        let mut items = Vec::new();
+        loop {
+            let start = inp.cursor();
+            match inp.peek() {
+                Some(t) if is_string_token(&t) => {
+                    let before = inp.save();
+                    inp.skip();
+                    if inp.peek() == Some(Token::Eq) {
+                        inp.rewind(before);
+                        break;
+                    }
+                    items.push(string_symbol(t, range(inp.span_since(&start))));
+                }
+                _ => break,
+            }
+        }
+        Ok(items)
+    });
+    run.then(string_item().repeated().collect::<Vec<_>>())
+        .map(|(mut run, rest)| {
+            run.extend(rest);
+            run
+        })
 }
 
 /// A rule `name = string`.
@@ -390,12 +450,20 @@ where
     let start = string_token()
         .ignored()
         .or(name().then(just(Token::Eq)).ignored());
-    items(rule().map(Err).or(string_item().map(Ok)), start).map(|all| {
-        let (items, rules): (Vec<_>, Vec<_>) = all.into_iter().flatten().partition(Result::is_ok);
-        RawBody::Axiom(
-            items.into_iter().filter_map(Result::ok).map(Some).collect(),
-            rules.into_iter().filter_map(Result::err).collect(),
-        )
+    let symbols = string_item().then(string()).map(|(first, mut rest)| {
+        rest.insert(0, first);
+        rest
+    });
+    items(rule().map(Err).or(symbols.map(Ok)), start).map(|all| {
+        let mut symbols = Vec::new();
+        let mut rules = Vec::new();
+        for part in all.into_iter().flatten() {
+            match part {
+                Ok(run) => symbols.extend(run.into_iter().map(Some)),
+                Err(rule) => rules.push(rule),
+            }
+        }
+        RawBody::Axiom(symbols, rules)
     })
 }
 
@@ -404,7 +472,9 @@ fn rules_body<'t, 's: 't, I>() -> impl Parser<'t, I, RawBody, Extra<'t, 's>> + C
 where
     I: ValueInput<'t, Token = Token<'s>, Span = SimpleSpan>,
 {
-    let rule_start = any().then(just(Token::Eq)).ignored();
+    // Only a token that can head a rule starts one: a run of stray `=`
+    // is one mistake.
+    let rule_start = string_token().then(just(Token::Eq)).ignored();
     items(rule().map(RawRule::Rule).or(reserved_rule()), rule_start).map(RawBody::Rules)
 }
 
@@ -445,7 +515,11 @@ where
     let colour_start = just(Token::LParen)
         .ignored()
         .or(number().then(just(Token::Colon)).ignored());
-    items(colour(), colour_start).map(RawBody::Colors)
+    // A malformed colour is reported and skipped to its `)`.
+    let colour = colour()
+        .map(Some)
+        .recover_with(via_parser(skipped_group().map(|_| None)));
+    items(colour, colour_start).map(|c| RawBody::Colors(c.into_iter().flatten().collect()))
 }
 
 /// A colour `(r, g, b)`, with an optional label `n:`.
@@ -475,21 +549,12 @@ where
 /// `diags` and malformed items are left out of the AST.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let lexed = lex(src, diags);
-    let tokens = cut_nesting(lexed.tokens);
+    let tokens = close_value_groups(cut_nesting(lexed.tokens), diags);
     let eoi = SimpleSpan::from(src.len()..src.len());
     let (out, errors) = file_parser()
-        .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
+        .parse(tokens.as_slice().map(eoi, |(t, s, _)| (t, s)))
         .into_output_errors();
-    let mut seen = std::collections::HashSet::new();
-    for err in errors {
-        // Recovery may meet one mistake twice; report it once.
-        if seen.insert((err.span().start, err.span().end)) {
-            diags.push(match err.found() {
-                Some(Token::TooDeep) => too_deep(range(*err.span()), DEPTH_HELP),
-                _ => syntax_error(&err),
-            });
-        }
-    }
+    report_syntax_errors(src, errors, diags);
     let mut file = File {
         blocks: Vec::new(),
         directives: lexed
@@ -584,6 +649,36 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     file
 }
 
+/// Reports the parser's errors, each mistake once (recovery may meet one
+/// twice), and a mistake repeated along a line a few times, then counted
+/// ([`Repeats`]).
+fn report_syntax_errors(src: &str, mut errors: Vec<Rich<'_, Token<'_>>>, diags: &mut Diagnostics) {
+    errors.sort_by_key(|e| e.span().start);
+    let mut seen = std::collections::HashSet::new();
+    let mut repeats = Repeats::default();
+    let mut last = 0;
+    for err in errors {
+        let span = range(*err.span());
+        if !seen.insert((span.start, span.end)) {
+            continue;
+        }
+        if src[last..span.start].contains('\n') {
+            repeats.end_item(diags, "on this line");
+        }
+        last = span.start;
+        let code = match err.found() {
+            Some(Token::TooDeep) => codes::NESTED_TOO_DEEPLY,
+            Some(_) => codes::SYNTAX,
+            None => codes::UNEXPECTED_EOF,
+        };
+        repeats.report(diags, code, || match err.found() {
+            Some(Token::TooDeep) => too_deep(span, DEPTH_HELP),
+            _ => syntax_error(&err),
+        });
+    }
+    repeats.end_item(diags, "on this line");
+}
+
 /// How to keep a LinF value within the depth limit.
 const DEPTH_HELP: &str = "write the value with fewer parentheses and operations, or as a number";
 
@@ -592,9 +687,9 @@ const DEPTH_HELP: &str = "write the value with fewer parentheses and operations,
 /// recovery of a malformed rotation recurse into parentheses and brackets,
 /// which nest only there (a string's brackets are branches, read without
 /// recursion).
-fn cut_nesting(tokens: Vec<(Token<'_>, Span)>) -> Vec<(Token<'_>, SimpleSpan)> {
+fn cut_nesting<'s>(tokens: Vec<(Token<'s>, Span)>) -> Vec<Tagged<'s>> {
     let mut in_values = false;
-    let tagged: Vec<(Token<'_>, SimpleSpan, Nest)> = tokens
+    let tagged: Vec<Tagged<'s>> = tokens
         .into_iter()
         .map(|(t, s)| {
             let nest = match t {
@@ -609,21 +704,88 @@ fn cut_nesting(tokens: Vec<(Token<'_>, Span)>) -> Vec<(Token<'_>, SimpleSpan)> {
             (t, SimpleSpan::from(s), nest)
         })
         .collect();
-    let filler =
-        |&(_, s, _): &(Token<'_>, SimpleSpan, Nest)| vec![(Token::TooDeep, s, Nest::Other)];
-    let closer = |&(t, s, _): &(Token<'_>, SimpleSpan, Nest)| {
-        let t = if t == Token::LBracket {
-            Token::RBracket
-        } else {
-            Token::RParen
+    let filler = |&(_, s, _): &Tagged<'s>| vec![(Token::TooDeep, s, Nest::Other)];
+    let closer = |&(t, s, _): &Tagged<'s>| (closer_of(t), s, Nest::Close);
+    cut_too_deep(&tagged, |t| t.2, filler, closer).unwrap_or(tagged)
+}
+
+/// A token with what it does to the nesting of values (see
+/// [`cut_nesting`]).
+type Tagged<'s> = (Token<'s>, SimpleSpan, Nest);
+
+/// The closer of the group `opener` opens.
+fn closer_of(opener: Token<'_>) -> Token<'_> {
+    if opener == Token::LBracket {
+        Token::RBracket
+    } else {
+        Token::RParen
+    }
+}
+
+/// `tokens` with every group `(…)` or `[…]` of an `angles` or `colors`
+/// block closed before the block ends: a group still open at the next
+/// keyword (or the end of the file) is reported, once per block at the
+/// outermost, and closed there, so that the rotation or colour reads as
+/// far as it goes and the recovery of a malformed one ([`skipped_group`])
+/// stays within its block. As for the depth limit, any closer closes the
+/// innermost group.
+fn close_value_groups<'s>(tokens: Vec<Tagged<'s>>, diags: &mut Diagnostics) -> Vec<Tagged<'s>> {
+    // Each block that ends with groups open: where it ends (its next
+    // keyword, or the end), its kind, and the openers.
+    let mut unclosed: Vec<(usize, BlockKind, Vec<usize>)> = Vec::new();
+    let mut block = None;
+    let mut open: Vec<usize> = Vec::new();
+    for (i, (t, _, nest)) in tokens.iter().enumerate() {
+        match nest {
+            Nest::Open => open.push(i),
+            Nest::Close => {
+                open.pop();
+            }
+            _ => {}
+        }
+        if let Token::Keyword(k) = t {
+            if let (Some(b), false) = (block, open.is_empty()) {
+                unclosed.push((i, b, std::mem::take(&mut open)));
+            }
+            block = Some(*k);
+        }
+    }
+    if let (Some(b), false) = (block, open.is_empty()) {
+        unclosed.push((tokens.len(), b, open));
+    }
+    if unclosed.is_empty() {
+        return tokens;
+    }
+    let mut out =
+        Vec::with_capacity(tokens.len() + unclosed.iter().map(|u| u.2.len()).sum::<usize>());
+    let mut from = 0;
+    for (end, block, openers) in unclosed {
+        out.extend_from_slice(&tokens[from..end]);
+        from = end;
+        let (opener, at, _) = tokens[openers[0]];
+        let block_end = out.last().map_or(at.end, |t| t.1.end);
+        let ends = match tokens.get(end) {
+            Some((keyword, _, _)) => {
+                format!("the `{}` block ends before the {keyword}", block.keyword())
+            }
+            None => "the file ends here".to_string(),
         };
-        (t, s, Nest::Close)
-    };
-    let cut = cut_too_deep(&tagged, |t| t.2, filler, closer);
-    cut.unwrap_or(tagged)
-        .into_iter()
-        .map(|(t, s, _)| (t, s))
-        .collect()
+        diags.push(
+            Diagnostic::at(codes::SYNTAX, range(at), format!("unclosed {opener}"))
+                .with_label("never closed")
+                .with_secondary(block_end..block_end, ends)
+                .with_help(format!("close it with {}", closer_of(opener))),
+        );
+        let here = SimpleSpan::from(block_end..block_end);
+        out.extend(
+            openers
+                .iter()
+                .rev()
+                .map(|&k| (closer_of(tokens[k].0), here, Nest::Close)),
+        );
+    }
+    out.extend_from_slice(&tokens[from..]);
+    out
 }
 
 /// Reports the first cut among `exprs` (the values of one rotation or
@@ -773,6 +935,84 @@ mod tests {
             panic!()
         };
         assert_eq!(c.len(), 2);
+    }
+
+    #[test]
+    fn an_unclosed_group_is_closed_at_the_end_of_its_block() {
+        // Reported once, at the outermost `(`; the rotation reads as far as
+        // it goes, and the blocks after it read as usual.
+        let src = "angles (0, (pi/2\naxiom f\nlines f\nangles t = ([0 1\n";
+        let mut d = Diagnostics::default();
+        let f = parse(src, &mut d);
+        let found: Vec<_> = d
+            .iter()
+            .map(|d| (d.code, d.span.clone().unwrap()))
+            .collect();
+        assert_eq!(
+            found,
+            [(codes::SYNTAX, 7..8), (codes::SYNTAX, 44..45)],
+            "{d:#?}"
+        );
+        assert_eq!(d.0[0].message, "unclosed `(`");
+        assert_eq!(d.0[1].message, "unclosed `(`");
+        assert!(d.0[0].labels[0]
+            .message
+            .contains("before the keyword `axiom`"));
+        assert!(d.0[1].labels[0].message.contains("the file ends here"));
+        let kinds: Vec<BlockKind> = f.blocks.iter().map(|b| b.kind).collect();
+        use BlockKind::*;
+        assert_eq!(kinds, [Angles, Axiom, Lines, Angles]);
+        let BlockBody::Angles(a) = &f.blocks[0].body else {
+            panic!()
+        };
+        assert_eq!(a.len(), 1);
+        assert_eq!(a[0].components.len(), 2);
+        let BlockBody::Angles(a) = &f.blocks[3].body else {
+            panic!()
+        };
+        assert!(matches!(a[0].components[..], [Component::Interval { .. }]));
+    }
+
+    #[test]
+    fn a_malformed_group_is_skipped_to_its_closer_within_its_block() {
+        // Recovery skips the whole group, brackets inside and mismatched
+        // closers included, and never the next block.
+        let src = "angles t = (0 [1 2) 3) u = (0, 1)\ncolors (1 (2] 3) (4, 5, 6)\naxiom f";
+        let mut d = Diagnostics::default();
+        let f = parse(src, &mut d);
+        assert_eq!(d.len(), 2, "{d:#?}");
+        let BlockBody::Angles(a) = &f.blocks[0].body else {
+            panic!()
+        };
+        let names: Vec<_> = a
+            .iter()
+            .map(|r| r.name.as_ref().unwrap().text.as_str())
+            .collect();
+        assert_eq!(names, ["t", "u"]);
+        assert!(a[0].recovered && !a[1].recovered);
+        let BlockBody::Colors(c) = &f.blocks[1].body else {
+            panic!()
+        };
+        assert_eq!(c.len(), 1);
+        assert_eq!(c[0].components.len(), 3);
+        assert_eq!(f.blocks.len(), 3);
+    }
+
+    #[test]
+    fn a_mistake_repeated_along_a_line_is_reported_three_times() {
+        let src = format!("rules f = f{}\ng = g) h = h)\n", ") f = f".repeat(1000));
+        let e = errors(&src);
+        // Three on the first line (the third says how many more), two on
+        // the next.
+        assert_eq!(e.len(), 5, "{e:?}");
+        let mut d = Diagnostics::default();
+        parse(&src, &mut d);
+        assert_eq!(
+            d.0[2].notes,
+            ["997 more E0003 diagnostics on this line are not shown one by one"]
+        );
+        // A run of stray `=` is one mistake.
+        assert_eq!(errors(&format!("rules {}", "= ".repeat(1000))).len(), 1);
     }
 
     #[test]

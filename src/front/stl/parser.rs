@@ -1,27 +1,28 @@
-//! The STL parser (chumsky 0.12 over logos tokens, then precise checks).
+//! The STL parser (logos tokens, then precise checks).
 //!
 //! Two passes, as in the pfg front end:
 //!
-//! 1. A permissive chumsky grammar cuts the token stream into *raw items*:
-//!    `SEED … ENDSEED` and `LAYOUT … ENDLAYOUT` blocks (which may span lines;
-//!    a block whose end keyword is missing runs to the end of the file) and
+//! 1. [`raw_items`] cuts the token stream into *raw items*: `SEED …
+//!    ENDSEED` and `LAYOUT … ENDLAYOUT` blocks (which may span lines; a
+//!    block whose end keyword is missing runs to the end of the file) and
 //!    single lines (settings and rule definitions). It accepts every token
-//!    sequence, so it never fails.
+//!    sequence, so it never fails, and it is one scan (a parser combinator
+//!    here cost more per token than everything else together).
 //! 2. [`build`] reads each raw item by recursive descent and says precisely
 //!    what is wrong (an unclosed `[`, a shape without its colour, …) with a
 //!    code, a span and a help line; after an error it recovers at the next
 //!    token that can start something, so every error of a file is reported
 //!    in one run. Nesting deeper than [`MAX_NESTING`] (graftal's one depth
 //!    limit) is an error (E0013, once per item), so no input can exhaust
-//!    the stack.
+//!    the stack. A mistake repeated along a line is reported a few times,
+//!    then counted ([`Repeats`]).
 
 use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst, Str};
 use super::lexer::{lex, Token};
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::depth::too_deep;
+use crate::front::repeats::Repeats;
 use crate::ir::{Span, Structure};
-use chumsky::input::ValueInput;
-use chumsky::prelude::*;
 
 /// The statement keywords (upper case, as the paper writes them).
 pub const KEYWORDS: [&str; 7] = ["ANGLE", "B", "L", "GROWTH", "LEVELS", "SEED", "LAYOUT"];
@@ -32,94 +33,76 @@ pub const RESERVED: [&str; 13] = Structure::RESERVED;
 /// The deepest nesting of `[ ]` and `{ }` read: the one depth limit.
 pub const MAX_NESTING: usize = crate::ir::MAX_NESTING;
 
-type Tok<'src> = (Token<'src>, SimpleSpan);
+type Tok<'src> = (Token<'src>, Span);
 
-/// What chumsky hands to [`build`].
+/// An item as the first pass cuts it from the tokens.
 #[derive(Clone, Debug)]
-enum Raw<'src> {
-    Line(Vec<Tok<'src>>),
+enum Raw<'t, 'src> {
+    Line(&'t [Tok<'src>]),
     Block {
         seed: bool,
-        open: SimpleSpan,
-        body: Vec<Tok<'src>>,
-        close: Option<SimpleSpan>,
+        open: Span,
+        body: &'t [Tok<'src>],
+        close: Option<Span>,
     },
 }
 
-fn raw_parser<'tokens, 'src: 'tokens, I>(
-) -> impl Parser<'tokens, I, Vec<Option<Raw<'src>>>, extra::Err<Rich<'tokens, Token<'src>>>>
-where
-    I: ValueInput<'tokens, Token = Token<'src>, Span = SimpleSpan>,
-{
-    let kw = |k: &'static str| select! { Token::Ident(s) if s == k => () };
-    let block = |open: &'static str, close: &'static str, seed: bool| {
-        kw(open)
-            .map_with(|_, e| e.span())
-            .then(
-                any()
-                    .and_is(kw(close).not())
-                    .map_with(|t, e| (t, e.span()))
-                    .repeated()
-                    .collect::<Vec<_>>(),
-            )
-            .then(kw(close).map_with(|_, e| e.span()).or_not())
-            .map(move |((open, body), close)| Raw::Block {
-                seed,
-                open,
-                body,
-                close,
-            })
-    };
-    let line = any()
-        .filter(|t: &Token| *t != Token::Newline)
-        .map_with(|t, e| (t, e.span()))
-        .repeated()
-        .at_least(1)
-        .collect::<Vec<_>>()
-        .map(Raw::Line);
-    choice((
-        block("SEED", "ENDSEED", true).map(Some),
-        block("LAYOUT", "ENDLAYOUT", false).map(Some),
-        just(Token::Newline).to(None),
-        line.map(Some),
-    ))
-    .repeated()
-    .collect::<Vec<_>>()
-    .then_ignore(end())
+/// Cuts the tokens into raw items: a `SEED` or `LAYOUT` that starts an
+/// item runs to its end keyword (or the end of the file); anything else
+/// runs to the end of its line. Every token sequence is accepted. The
+/// items are slices of `tokens`: nothing is copied per token.
+fn raw_items<'t, 'src>(tokens: &'t [Tok<'src>]) -> Vec<Raw<'t, 'src>> {
+    let mut items = Vec::new();
+    let mut i = 0;
+    while let Some((t, span)) = tokens.get(i) {
+        let end_keyword = match t {
+            Token::Newline => {
+                i += 1;
+                continue;
+            }
+            Token::Ident("SEED") => Some("ENDSEED"),
+            Token::Ident("LAYOUT") => Some("ENDLAYOUT"),
+            _ => None,
+        };
+        let rest = &tokens[i + 1..];
+        let Some(end_keyword) = end_keyword else {
+            let len = tokens[i..]
+                .iter()
+                .position(|t| t.0 == Token::Newline)
+                .unwrap_or(tokens.len() - i);
+            items.push(Raw::Line(&tokens[i..i + len]));
+            i += len;
+            continue;
+        };
+        let body_len = rest
+            .iter()
+            .position(|t| t.0 == Token::Ident(end_keyword))
+            .unwrap_or(rest.len());
+        items.push(Raw::Block {
+            seed: end_keyword == "ENDSEED",
+            open: span.clone(),
+            body: &rest[..body_len],
+            close: rest.get(body_len).map(|t| t.1.clone()),
+        });
+        i += 1 + body_len + 1;
+    }
+    items
 }
 
 /// Parses STL source text into an AST. Never fails: problems are pushed to
 /// `diags` and what they affect is left out of the AST.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
-    let tokens: Vec<Tok<'_>> = lex(src, diags)
-        .into_iter()
-        .map(|(t, s)| (t, SimpleSpan::from(s)))
-        .collect();
-    let eoi = SimpleSpan::from(src.len()..src.len());
-    let (raws, errors) = raw_parser()
-        .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
-        .into_output_errors();
-    for err in errors {
-        // The raw grammar accepts every token sequence; report defensively.
-        diags.push(
-            Diagnostic::at(codes::SYNTAX, err.span().into_range(), "unexpected token")
-                .with_help("see grammar/stl.ebnf for the format"),
-        );
-    }
+    let tokens = lex(src, diags);
     let mut file = File::default();
-    for raw in raws.unwrap_or_default().into_iter().flatten() {
+    for raw in raw_items(&tokens) {
         build(raw, src, diags, &mut file);
     }
     file
 }
 
-fn range(s: SimpleSpan) -> Span {
-    s.into_range()
-}
-
 /// A cursor over the tokens of one raw item.
 struct Cursor<'a, 'src> {
-    toks: Vec<(Token<'src>, Span)>,
+    toks: &'a [Tok<'src>],
     pos: usize,
     diags: &'a mut Diagnostics,
     /// Where the item ends (for "expected … here" at the end).
@@ -127,6 +110,9 @@ struct Cursor<'a, 'src> {
     /// Set when nesting went too deep: the rest of the item is skipped and
     /// the enclosing brackets are not reported again.
     aborted: bool,
+    /// What the current line reported: a mistake repeated along a line
+    /// (`SEED F(1)F(1)…`) is reported a few times, then counted.
+    repeats: Repeats,
 }
 
 impl<'src> Cursor<'_, 'src> {
@@ -144,19 +130,33 @@ impl<'src> Cursor<'_, 'src> {
     fn bump(&mut self) -> (Token<'src>, Span) {
         let t = self.toks[self.pos].clone();
         self.pos += 1;
+        if t.0 == Token::Newline {
+            self.end_line();
+        }
         t
+    }
+    /// Reports what `build` makes, a diagnostic of `code` on the current
+    /// line, unless the line has reported enough of that code already.
+    fn report(&mut self, code: Code, build: impl FnOnce() -> Diagnostic) {
+        self.repeats.report(self.diags, code, build);
+    }
+    /// Ends a line: says how many repeated diagnostics it did not show.
+    fn end_line(&mut self) {
+        self.repeats.end_item(self.diags, "on this line");
     }
     fn at_end(&self) -> bool {
         self.pos >= self.toks.len()
     }
     fn unexpected(&mut self, expected: &str, help: &str) {
         let span = self.span();
-        let d = match self.peek() {
-            Some(t) => Diagnostic::at(codes::SYNTAX, span, format!("unexpected {t}")),
-            None => Diagnostic::at(codes::SYNTAX, span, "unexpected end of line"),
-        };
-        self.diags
-            .push(d.with_label(format!("expected {expected}")).with_help(help));
+        let found = self.peek();
+        self.report(codes::SYNTAX, || {
+            let d = match found {
+                Some(t) => Diagnostic::at(codes::SYNTAX, span, format!("unexpected {t}")),
+                None => Diagnostic::at(codes::SYNTAX, span, "unexpected end of line"),
+            };
+            d.with_label(format!("expected {expected}")).with_help(help)
+        });
     }
 
     /// A number, with an optional leading `-`.
@@ -239,19 +239,19 @@ impl<'src> Cursor<'_, 'src> {
                 }
                 Token::Close => {
                     let (_, span) = self.bump();
-                    self.diags.push(
+                    self.report(codes::STL_UNBALANCED, || {
                         Diagnostic::at(codes::STL_UNBALANCED, span, "unmatched `]`")
                             .with_label("no `[` opens this branch")
-                            .with_help("remove this `]` or add the `[` that opens the branch"),
-                    );
+                            .with_help("remove this `]` or add the `[` that opens the branch")
+                    });
                 }
                 Token::LBrace => {
                     let span = self.span();
-                    self.diags.push(
+                    self.report(codes::SYNTAX, || {
                         Diagnostic::at(codes::SYNTAX, span, "unexpected `{`")
                             .with_label("a branching `{…}` must follow a rule name")
-                            .with_help("write the rule before its entries: `R1{R2, ~, R1}`"),
-                    );
+                            .with_help("write the rule before its entries: `R1{R2, ~, R1}`")
+                    });
                     let _ = self.entries(depth);
                 }
                 _ => {
@@ -304,12 +304,13 @@ impl<'src> Cursor<'_, 'src> {
             Some(Token::Close) => self.bump().1.end,
             _ if self.aborted => return None,
             _ => {
-                self.diags.push(
+                let end = self.end;
+                self.report(codes::STL_UNBALANCED, || {
                     Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `[`")
                         .with_label("this branch is never closed")
-                        .with_secondary(self.end..self.end, "the string ends here")
-                        .with_help("close the branch with `]`"),
-                );
+                        .with_secondary(end..end, "the string ends here")
+                        .with_help("close the branch with `]`")
+                });
                 return None;
             }
         };
@@ -317,13 +318,13 @@ impl<'src> Cursor<'_, 'src> {
         if resemble {
             let count = count?;
             if body.elems.is_empty() {
-                self.diags.push(
+                self.report(codes::SYNTAX, || {
                     Diagnostic::at(codes::SYNTAX, span, "`[I n]` without a rule")
                         .with_label("nothing to repeat")
                         .with_help(
                             "write the rule or string to rewrite: `[I 3 R1]` or `[I 2 F[+F]]`",
-                        ),
-                );
+                        )
+                });
                 return None;
             }
             Some(Elem::Resemble { count, body, span })
@@ -398,12 +399,13 @@ impl<'src> Cursor<'_, 'src> {
                 }
                 _ if self.aborted => return None,
                 _ => {
-                    self.diags.push(
+                    let here = self.span();
+                    self.report(codes::STL_UNBALANCED, || {
                         Diagnostic::at(codes::STL_UNBALANCED, open.clone(), "unclosed `{`")
                             .with_label("these branching entries are never closed")
-                            .with_secondary(self.span(), "expected `,` or `}` here")
-                            .with_help("separate entries with `,` and close them with `}`"),
-                    );
+                            .with_secondary(here, "expected `,` or `}` here")
+                            .with_help("separate entries with `,` and close them with `}`")
+                    });
                     return None;
                 }
             }
@@ -412,7 +414,7 @@ impl<'src> Cursor<'_, 'src> {
 }
 
 /// Reads one raw item into the AST.
-fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
+fn build(raw: Raw<'_, '_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
     match raw {
         Raw::Block {
             seed,
@@ -425,12 +427,12 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
             } else {
                 ("LAYOUT", "ENDLAYOUT")
             };
-            let end = close.map_or(src.len(), |c| c.end);
+            let end = close.as_ref().map_or(src.len(), |c| c.end);
             if close.is_none() {
                 diags.push(
                     Diagnostic::at(
                         codes::STL_UNTERMINATED,
-                        range(open),
+                        open.clone(),
                         format!("unterminated `{open_kw}`"),
                     )
                     .with_label(format!("this `{open_kw}` has no `{close_kw}`"))
@@ -438,15 +440,14 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
                     .with_help(format!("end the block with `{close_kw}` on its own line")),
                 );
             }
-            let toks: Vec<(Token<'_>, Span)> =
-                body.into_iter().map(|(t, s)| (t, range(s))).collect();
-            let body_end = toks.last().map_or(open.end, |t| t.1.end);
+            let body_end = body.last().map_or(open.end, |t| t.1.end);
             let mut cur = Cursor {
-                toks,
+                toks: body,
                 pos: 0,
                 diags,
                 end: body_end,
                 aborted: false,
+                repeats: Repeats::default(),
             };
             let span = open.start..end;
             if seed {
@@ -469,10 +470,9 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
                 }
                 file.items.push(Item::Layout { shapes, span });
             }
+            cur.end_line();
         }
         Raw::Line(toks) => {
-            let toks: Vec<(Token<'_>, Span)> =
-                toks.into_iter().map(|(t, s)| (t, range(s))).collect();
             let end = toks.last().map_or(0, |t| t.1.end);
             let mut cur = Cursor {
                 toks,
@@ -480,10 +480,12 @@ fn build(raw: Raw<'_>, src: &str, diags: &mut Diagnostics, file: &mut File) {
                 diags,
                 end,
                 aborted: false,
+                repeats: Repeats::default(),
             };
             if let Some(item) = line(&mut cur) {
                 file.items.push(item);
             }
+            cur.end_line();
         }
     }
 }
@@ -558,15 +560,15 @@ fn growth(cur: &mut Cursor<'_, '_>, span: Span) -> Option<Item> {
                 Some(n) => format!("did you mean `{n}`?"),
                 None => "write `GROWTH BFS` (breadth first) or `GROWTH DFS` (depth first)".into(),
             };
-            cur.diags.push(
+            cur.report(codes::SYNTAX, || {
                 Diagnostic::at(
                     codes::SYNTAX,
                     s,
                     format!("unknown growth strategy `{other}`"),
                 )
                 .with_label("expected `BFS` or `DFS`")
-                .with_help(help),
-            );
+                .with_help(help)
+            });
             return None;
         }
         _ => {
