@@ -240,5 +240,10 @@ mod tests {
         assert_eq!(last.message, "unexpected `(`");
         let not_kept = last.not_kept.unwrap();
         assert_eq!((not_kept.errors, not_kept.warnings), (9, 11));
+        // The last kept is an error now: nothing more is built.
+        push_lazily(&mut diags, codes::SYNTAX, || unreachable!("built"));
+        push_lazily(&mut diags, codes::FR_LONG_LINE, || unreachable!("built"));
+        let not_kept = diags.0.last().unwrap().not_kept.unwrap();
+        assert_eq!((not_kept.errors, not_kept.warnings), (10, 12));
     }
 }
