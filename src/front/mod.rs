@@ -18,9 +18,11 @@ pub mod cpfg;
 pub mod depth;
 pub mod fractint;
 pub mod linf;
+pub mod names;
 pub mod pfg;
 pub mod repeats;
 pub mod stl;
+pub mod suggest;
 
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::ir::{Lowered, Span, System, Word};
@@ -186,7 +188,10 @@ pub fn choose_entry(file_name: &str, title: &str, lib: &Library) -> Diagnostic {
             names.len()
         ),
     )
-    .with_note(format!("entries: {}", name_list(&names)))
+    .with_note(format!(
+        "entries: {}",
+        name_list(names.iter().copied(), false)
+    ))
     .with_help(format!(
         "write `{file_name}:{first}` or add `--entry {first}`; `graftal check` lists the entries"
     ))
@@ -196,11 +201,28 @@ pub fn choose_entry(file_name: &str, title: &str, lib: &Library) -> Diagnostic {
 /// is one line, and a library may have 100,000 entries.
 pub const LISTED_NAMES: usize = 20;
 
-/// `names` separated by commas, the first [`LISTED_NAMES`] of them, then
-/// how many more there are.
-pub fn name_list(names: &[&str]) -> String {
-    let shown = names[..names.len().min(LISTED_NAMES)].join(", ");
-    match names.len().checked_sub(LISTED_NAMES) {
+/// `names` separated by commas (each in backticks when `quoted`), the
+/// first [`LISTED_NAMES`] of them, then how many more there are. Only
+/// those shown are read from `names`.
+pub fn name_list<'a, I>(names: I, quoted: bool) -> String
+where
+    I: IntoIterator<Item = &'a str>,
+    I::IntoIter: ExactSizeIterator,
+{
+    let names = names.into_iter();
+    let total = names.len();
+    let shown: Vec<String> = names
+        .take(LISTED_NAMES)
+        .map(|n| {
+            if quoted {
+                format!("`{n}`")
+            } else {
+                n.to_string()
+            }
+        })
+        .collect();
+    let shown = shown.join(", ");
+    match total.checked_sub(LISTED_NAMES) {
         Some(more) if more > 0 => format!("{shown}, … and {more} more"),
         _ => shown,
     }
@@ -342,14 +364,17 @@ mod tests {
 
     #[test]
     fn name_lists_stop_after_a_few_names() {
-        assert_eq!(name_list(&["a", "b"]), "a, b");
+        assert_eq!(name_list(["a", "b"], false), "a, b");
+        assert_eq!(name_list(["a", "b"], true), "`a`, `b`");
         let many: Vec<String> = (0..LISTED_NAMES + 5).map(|i| format!("e{i}")).collect();
         let many: Vec<&str> = many.iter().map(String::as_str).collect();
-        let listed = name_list(&many);
+        let listed = name_list(many.iter().copied(), false);
         assert!(listed.starts_with("e0, e1, "), "{listed}");
         assert!(listed.ends_with(&format!("e{}, … and 5 more", LISTED_NAMES - 1)));
         assert_eq!(
-            name_list(&many[..LISTED_NAMES]).matches(", ").count(),
+            name_list(many[..LISTED_NAMES].iter().copied(), false)
+                .matches(", ")
+                .count(),
             LISTED_NAMES - 1
         );
     }

@@ -27,10 +27,14 @@ struct Seen {
     more: usize,
 }
 
-/// What an item reported so far, code by code (see the module).
+/// What an item reported so far, code by code (see the module). Items
+/// may nest ([`Repeats::begin_item`]): a rule read while reading another
+/// counts its own mistakes.
 #[derive(Debug, Default)]
 pub struct Repeats {
     seen: Vec<Seen>,
+    /// Where each item begun inside another starts in `seen`.
+    starts: Vec<usize>,
 }
 
 impl Repeats {
@@ -74,10 +78,18 @@ impl Repeats {
         diags.push(d);
     }
 
+    /// Begins an item inside the current one, ended by the next
+    /// [`Repeats::end_item`]. Without it, each item ends where the next
+    /// begins.
+    pub fn begin_item(&mut self) {
+        self.starts.push(self.seen.len());
+    }
+
     /// Ends the item: the last diagnostic of each code reported in it says
     /// how many more followed `place` (`on this line`, `in this string`).
     pub fn end_item(&mut self, diags: &mut Diagnostics, place: &str) {
-        for seen in self.seen.drain(..) {
+        let start = self.starts.pop().unwrap_or(0);
+        for seen in self.seen.drain(start..) {
             if seen.more == 0 {
                 continue;
             }
@@ -92,8 +104,9 @@ impl Repeats {
     }
 
     fn seen(&mut self, code: Code) -> &mut Seen {
-        let i = match self.seen.iter().position(|s| s.code == code) {
-            Some(i) => i,
+        let start = self.starts.last().copied().unwrap_or(0);
+        let i = match self.seen[start..].iter().position(|s| s.code == code) {
+            Some(i) => start + i,
             None => {
                 self.seen.push(Seen {
                     code,
@@ -105,6 +118,17 @@ impl Repeats {
             }
         };
         &mut self.seen[i]
+    }
+}
+
+/// Pushes to `diags` what `build` makes, a diagnostic of `code`, unless
+/// the list is full: then it is counted without being built (see
+/// [`count_without_building`]). For a mistake a file may repeat on every
+/// line, where what the diagnostic says costs more than finding it (a
+/// suggestion's edit distances, a formatted list).
+pub fn push_lazily(diags: &mut Diagnostics, code: Code, build: impl FnOnce() -> Diagnostic) {
+    if !count_without_building(diags, code) {
+        diags.push(build());
     }
 }
 
@@ -165,6 +189,30 @@ mod tests {
     }
 
     #[test]
+    fn a_nested_item_counts_its_own() {
+        let mut diags = Diagnostics::default();
+        let mut r = Repeats::default();
+        let report = |r: &mut Repeats, diags: &mut Diagnostics, n: usize| {
+            for at in 0..n {
+                r.report(diags, codes::SYNTAX, || syntax(at));
+            }
+        };
+        r.begin_item();
+        report(&mut r, &mut diags, 2);
+        r.begin_item();
+        report(&mut r, &mut diags, 5);
+        r.end_item(&mut diags, "in this rule");
+        // The outer item had two: one more is reported, then counted.
+        report(&mut r, &mut diags, 4);
+        r.end_item(&mut diags, "in this rule");
+        assert_eq!(diags.len(), 2 + 3 + 1);
+        let notes: Vec<usize> = diags.iter().map(|d| d.notes.len()).collect();
+        assert_eq!(notes, [0, 0, 0, 0, 1, 1]);
+        assert!(diags.0[4].notes[0].starts_with("2 more E0003"));
+        assert!(diags.0[5].notes[0].starts_with("3 more E0003"));
+    }
+
+    #[test]
     fn a_full_list_counts_without_building() {
         let mut diags = Diagnostics::default();
         let warning = || Diagnostic::at(codes::FR_LONG_LINE, 0..1, "a warning");
@@ -192,5 +240,10 @@ mod tests {
         assert_eq!(last.message, "unexpected `(`");
         let not_kept = last.not_kept.unwrap();
         assert_eq!((not_kept.errors, not_kept.warnings), (9, 11));
+        // The last kept is an error now: nothing more is built.
+        push_lazily(&mut diags, codes::SYNTAX, || unreachable!("built"));
+        push_lazily(&mut diags, codes::FR_LONG_LINE, || unreachable!("built"));
+        let not_kept = diags.0.last().unwrap().not_kept.unwrap();
+        assert_eq!((not_kept.errors, not_kept.warnings), (10, 12));
     }
 }

@@ -5,7 +5,9 @@
 //! ([`super::read`]).
 
 use super::ast::{self, BlockKind, ExprKind, Item, Section};
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
+use crate::front::repeats::Repeats;
+use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{
     Alternative, Angle, Axis, ContextFilter, Formals, Phase, Production, QueryKind, RulePolicy,
@@ -132,9 +134,24 @@ struct Lowerer<'d> {
     warned_not_drawn: std::collections::HashSet<String>,
     warned_io: bool,
     warned_env: bool,
+    /// What the item being lowered reported: a mistake repeated through a
+    /// line (`F(foo(1))` a million times) is reported a few times, then
+    /// counted.
+    repeats: Repeats,
+    /// What suggestions for undefined names may still cost.
+    suggester: Suggester,
+    /// The length of the longest global variable's name.
+    longest_global: usize,
 }
 
 impl Lowerer<'_> {
+    /// Reports what `build` makes, a diagnostic of `code` found in the item
+    /// being lowered, unless the item has reported enough of that code
+    /// already ([`Repeats`]).
+    fn report(&mut self, code: Code, build: impl FnOnce() -> Diagnostic) {
+        self.repeats.report(self.diags, code, build);
+    }
+
     fn symbol(&mut self, name: &str, span: &Span) -> crate::ir::SymbolId {
         let id = self.sys.intern(name);
         self.spans.symbols.entry(id).or_insert_with(|| span.clone());
@@ -148,7 +165,7 @@ impl Lowerer<'_> {
 
     fn check_module(&mut self, m: &ast::Module) {
         if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
-            self.diags.push(
+            self.report(codes::CPFG_UNSUPPORTED, || {
                 Diagnostic::at(
                     codes::CPFG_UNSUPPORTED,
                     m.span.clone(),
@@ -159,8 +176,8 @@ impl Lowerer<'_> {
                 } else {
                     "`?(n, s)` calls sub-L-system n"
                 })
-                .with_help("write the sub-L-system's productions into this L-system"),
-            );
+                .with_help("write the sub-L-system's productions into this L-system")
+            });
         } else if m.name == "?E" && !self.warned_env {
             self.warned_env = true;
             self.diags.push(
@@ -223,14 +240,14 @@ impl Lowerer<'_> {
             return Expr::Var(Var::Global(g));
         }
         if self.arrays.contains_key(n) {
-            self.diags.push(
+            self.report(codes::CPFG_NOT_ARRAY, || {
                 Diagnostic::at(
                     codes::CPFG_NOT_ARRAY,
                     span.clone(),
                     format!("array `{n}` used without subscripts"),
                 )
-                .with_label("needs `[i]`"),
-            );
+                .with_label("needs `[i]`")
+            });
             return Expr::Num(0.0);
         }
         if self.undefined.insert(n.to_string()) {
@@ -241,6 +258,18 @@ impl Lowerer<'_> {
     }
 
     fn warn_undefined(&mut self, scope: &Scope, n: &str, span: &Span) {
+        let d = Diagnostic::at(
+            codes::CPFG_UNDEFINED_NAME,
+            span.clone(),
+            format!("`{n}` is not defined; its value is 0"),
+        )
+        .with_label("not a parameter, local or global variable");
+        let count = scope.locals.len() + self.globals.len();
+        let longest = scope.locals.iter().map(String::len).max().unwrap_or(0);
+        let longest = longest.max(self.longest_global);
+        if !self.suggester.afford(n.len(), count, longest) {
+            return self.diags.push(d);
+        }
         let mut known: Vec<&str> = scope
             .locals
             .iter()
@@ -248,12 +277,6 @@ impl Lowerer<'_> {
             .filter(|l| !l.is_empty())
             .collect();
         known.extend(self.globals.keys().map(String::as_str));
-        let d = Diagnostic::at(
-            codes::CPFG_UNDEFINED_NAME,
-            span.clone(),
-            format!("`{n}` is not defined; its value is 0"),
-        )
-        .with_label("not a parameter, local or global variable");
         self.diags.push(with_nearest(d, n, &known));
     }
 
@@ -263,26 +286,26 @@ impl Lowerer<'_> {
         match self.arrays.get(n).copied() {
             Some((id, dims)) if dims == subs.len() => Expr::Element(id, subs),
             Some((_, dims)) => {
-                self.diags.push(
+                self.report(codes::CPFG_NOT_ARRAY, || {
                     Diagnostic::at(
                         codes::CPFG_NOT_ARRAY,
                         span.clone(),
                         format!("`{n}` has {dims} dimension(s), not {}", subs.len()),
                     )
-                    .with_label("subscripts do not match the declaration"),
-                );
+                    .with_label("subscripts do not match the declaration")
+                });
                 Expr::Num(0.0)
             }
             None => {
-                self.diags.push(
+                self.report(codes::CPFG_NOT_ARRAY, || {
                     Diagnostic::at(
                         codes::CPFG_NOT_ARRAY,
                         span.clone(),
                         format!("`{n}` is not an array"),
                     )
                     .with_label("subscripted here")
-                    .with_help(format!("declare it: `define: {{ array {n}[size]; }}`")),
-                );
+                    .with_help(format!("declare it: `define: {{ array {n}[size]; }}`"))
+                });
                 Expr::Num(0.0)
             }
         }
@@ -299,19 +322,21 @@ impl Lowerer<'_> {
         span: &Span,
     ) -> Expr {
         let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
-            let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
-            let d = Diagnostic::at(
-                codes::CPFG_UNKNOWN_FUNCTION,
-                name_span.clone(),
-                format!("unknown function `{name}`"),
-            )
-            .with_label("not a cpfg function");
-            self.diags.push(with_nearest(d, name, &names));
+            self.report(codes::CPFG_UNKNOWN_FUNCTION, || {
+                let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
+                let d = Diagnostic::at(
+                    codes::CPFG_UNKNOWN_FUNCTION,
+                    name_span.clone(),
+                    format!("unknown function `{name}`"),
+                )
+                .with_label("not a cpfg function");
+                with_nearest(d, name, &names)
+            });
             return Expr::Num(0.0);
         };
         if !arities.is_empty() && !arities.contains(&args.len()) {
-            let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
-            self.diags.push(
+            self.report(codes::CPFG_ARITY, || {
+                let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
                 Diagnostic::at(
                     codes::CPFG_ARITY,
                     span.clone(),
@@ -321,8 +346,8 @@ impl Lowerer<'_> {
                         args.len()
                     ),
                 )
-                .with_label("called here"),
-            );
+                .with_label("called here")
+            });
         }
         self.warn_not_run(name, name_span, builtin);
         let args: Vec<Expr> = args.iter().map(|a| self.expr(scope, a)).collect();
@@ -342,15 +367,15 @@ impl Lowerer<'_> {
             builtin,
             Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
         ) {
-            self.diags.push(
+            self.report(codes::CPFG_UNSUPPORTED, || {
                 Diagnostic::at(
                     codes::CPFG_UNSUPPORTED,
                     name_span.clone(),
                     format!("`{name}` needs contour files, which graftal does not read yet"),
                 )
                 .with_label("a contour function")
-                .with_help("replace the contour by a user function (`func`) or a formula"),
-            );
+                .with_help("replace the contour by a user function (`func`) or a formula")
+            });
         }
         if builtin == Builtin::Io && !self.warned_io {
             self.warned_io = true;
@@ -386,14 +411,14 @@ impl Lowerer<'_> {
                 _ => None,
             },
             _ => {
-                self.diags.push(
+                self.report(codes::SYNTAX, || {
                     Diagnostic::at(
                         codes::SYNTAX,
                         target.span.clone(),
                         "only a variable or an array element can be assigned",
                     )
-                    .with_label("not assignable"),
-                );
+                    .with_label("not assignable")
+                });
                 None
             }
         }
@@ -454,15 +479,15 @@ impl Lowerer<'_> {
                         params.push((scope.locals.len() - 1) as u16);
                     }
                     _ => {
-                        self.diags.push(
+                        self.report(codes::CPFG_NOT_FORMAL, || {
                             Diagnostic::at(
                                 codes::CPFG_NOT_FORMAL,
                                 a.span.clone(),
                                 "a predecessor parameter must be a name",
                             )
                             .with_label("an expression cannot be matched")
-                            .with_help("name the parameter and test it in the condition"),
-                        );
+                            .with_help("name the parameter and test it in the condition")
+                        });
                         scope.locals.push(String::new());
                         params.push((scope.locals.len() - 1) as u16);
                     }
@@ -688,6 +713,9 @@ impl<'d> Lowerer<'d> {
             warned_not_drawn: Default::default(),
             warned_io: false,
             warned_env: false,
+            repeats: Repeats::default(),
+            suggester: Suggester::default(),
+            longest_global: 0,
         }
     }
 }
@@ -734,6 +762,7 @@ impl Lowerer<'_> {
         }
         for n in global_names {
             if !self.arrays.contains_key(&n) {
+                self.longest_global = self.longest_global.max(n.len());
                 self.globals.insert(n.clone(), program.globals.len() as u16);
                 program.globals.push(n);
             }
@@ -961,6 +990,7 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
     for item in items {
         if l.in_order(item, rd.stage) {
             l.item(item, &mut rd);
+            l.repeats.end_item(l.diags, "on this line");
         }
     }
     l.check_complete(&rd);

@@ -369,6 +369,24 @@ where
         .boxed()
 }
 
+/// A production alone: the item a line starting with a module is. The
+/// keyword items of [`item`] all fail at such a line's first token, and
+/// trying them (each failure merged into the expected tokens) cost more
+/// than reading the production; what they would expect there never shows,
+/// since the production reads past that token.
+fn production_item<'t, I>() -> P<'t, I, Item>
+where
+    I: ValueInput<'t, Token = Token, Span = SimpleSpan>,
+{
+    let expr = expr_parser();
+    let block_p = block_parser(expr.clone());
+    let mods = modules(expr.clone(), 1);
+    production(expr, block_p, mods)
+        .map(|p| Item::Production(Box::new(p)))
+        .then_ignore(end())
+        .boxed()
+}
+
 /// One item (a logical line).
 fn item<'t, I>() -> P<'t, I, Item>
 where
@@ -607,6 +625,7 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         }
     }
     let parser = item();
+    let production_parser = production_item();
     for line in lines.iter().filter(|l| !l.is_empty()) {
         if let Some((_, s)) = line.iter().find(|(t, _)| *t == Token::ObjectArrow) {
             diags.push(
@@ -640,6 +659,10 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         }
         let end = line.last().map_or(0, |(_, s)| s.end);
         let eoi = SimpleSpan::from(end..end);
+        let parser = match line.first() {
+            Some((Token::Symbol(_), _)) => &production_parser,
+            _ => &parser,
+        };
         let (out, errors) = parser
             .parse(line.as_slice().map(eoi, |(t, s)| (t, s)))
             .into_output_errors();

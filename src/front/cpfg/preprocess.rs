@@ -829,9 +829,12 @@ impl Pp<'_> {
     /// Expands a token list (Prosser's algorithm, iteratively).
     fn expand(&mut self, mut input: VecDeque<Tok>, depth: usize) -> Vec<Tok> {
         let mut output = Vec::with_capacity(input.len());
+        // What expansion adds is bounded, not the text given: a file of a
+        // million plain tokens is no runaway expansion.
+        let most_pending = input.len().saturating_add(MAX_PENDING_TOKENS);
         while let Some(t) = input.pop_front() {
             self.steps += 1;
-            if self.steps > MAX_STEPS || input.len() > MAX_PENDING_TOKENS {
+            if self.steps > MAX_STEPS || input.len() > most_pending {
                 self.abort(t.origin.clone(), "too many expansion steps");
             }
             if self.aborted || t.kind != Kind::Ident {

@@ -182,7 +182,10 @@ fn choose(entries: &[Entry], entry: Option<&str>, diags: &mut Diagnostics) -> Op
             codes::FR_UNKNOWN_ENTRY,
             format!("no entry `{name}` in this file"),
         )
-        .with_note(format!("entries: {}", crate::front::name_list(&names)));
+        .with_note(format!(
+            "entries: {}",
+            crate::front::name_list(names.iter().copied(), false)
+        ));
         if let Some(n) = nearest(name, &names).first() {
             d = d.with_help(format!("did you mean `{n}`?"));
         }

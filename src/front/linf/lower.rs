@@ -25,7 +25,10 @@ use super::ast::{
 };
 use super::lexer::BlockKind;
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
+use crate::front::name_list;
+use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
+use crate::front::suggest::Suggester;
 use crate::ir::{
     Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
@@ -61,7 +64,7 @@ impl Cx<'_> {
     /// string being lowered, unless the string has reported enough of that
     /// code already: a mistake repeated a million times in one string is
     /// reported a few times, then counted ([`Repeats`]).
-    fn report(&mut self, code: Code, build: impl FnOnce(&Self) -> Diagnostic) {
+    fn report(&mut self, code: Code, build: impl FnOnce(&mut Self) -> Diagnostic) {
         if self.repeats.admit(self.diags, code) {
             let d = build(self);
             self.repeats.push(self.diags, d);
@@ -90,6 +93,14 @@ struct Cx<'a> {
     has_rule: HashMap<String, Span>,
     /// What the string being lowered reported.
     repeats: Repeats,
+    /// What suggestions for unknown names may still cost.
+    suggester: Suggester,
+    /// The declared angles, sorted (for help lines, once they are all
+    /// declared).
+    angle_names: Vec<String>,
+    /// The declared names, for splitting runs of them (once they are all
+    /// declared).
+    name_index: Option<LongestNames>,
 }
 
 /// Lowers `file`, reporting problems to `diags`. The system is usable only
@@ -106,6 +117,9 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         default_rotation: None,
         has_rule: HashMap::new(),
         repeats: Repeats::default(),
+        suggester: Suggester::default(),
+        angle_names: Vec::new(),
+        name_index: None,
     };
     directives(file, &mut cx);
     let blocks = winning_blocks(file, cx.diags);
@@ -131,6 +145,9 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         Some(BlockBody::Colors(colours)) => lower_colours(&mut cx, colours),
         _ => cx.sys.colours = vec![Rgb(0, 0, 0)],
     }
+    cx.angle_names = cx.names(true).into_iter().map(String::from).collect();
+    cx.angle_names.sort();
+    cx.name_index = Some(LongestNames::new(cx.roles.keys().map(String::as_str)));
 
     match blocks.iter().find(|b| b.kind == BlockKind::Axiom) {
         Some(Block {
@@ -564,13 +581,22 @@ fn lower_colours(cx: &mut Cx<'_>, decls: &[ColourDecl]) {
 /// Splits a run of name characters into declared names, longest first.
 /// Undeclared stretches come back as `Err` pieces.
 fn split<'n>(cx: &Cx<'_>, text: &'n str, start: usize) -> Vec<(Result<Role, ()>, &'n str, Span)> {
+    let built;
+    let index = match &cx.name_index {
+        Some(index) => index,
+        None => {
+            built = LongestNames::new(cx.roles.keys().map(String::as_str));
+            &built
+        }
+    };
+    let longest = index.longest_at(text);
     let mut out: Vec<(Result<Role, ()>, &str, Span)> = Vec::new();
     let mut p = 0;
     while p < text.len() {
-        let max = cx.longest.min(text.len() - p);
-        let found = (1..=max)
-            .rev()
-            .find_map(|len| cx.roles.get(&text[p..p + len]).map(|(r, _)| (*r, len)));
+        let len = longest[p];
+        let found = (len > 0)
+            .then(|| cx.roles.get(&text[p..p + len]).map(|(r, _)| (*r, len)))
+            .flatten();
         match found {
             Some((role, len)) => {
                 out.push((Ok(role), &text[p..p + len], start + p..start + p + len));
@@ -611,9 +637,16 @@ fn undeclared(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) {
     });
 }
 
-fn undeclared_name(cx: &Cx<'_>, text: &str, span: Span, whole: &str) -> Diagnostic {
+fn undeclared_name(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) -> Diagnostic {
     // Angles are not suggested: alone in a string they would be wrong too.
-    let names = cx.names(false);
+    let affordable = cx
+        .suggester
+        .afford(text.len() + whole.len(), cx.roles.len(), cx.longest);
+    let names = if affordable {
+        cx.names(false)
+    } else {
+        Vec::new()
+    };
     let mut near = nearest(text, &names);
     if near.is_empty() && whole != text {
         near = nearest(whole, &names);
@@ -1008,22 +1041,24 @@ fn unknown_angle(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) {
     });
 }
 
-fn unknown_angle_diagnostic(cx: &Cx<'_>, run: &SignRun, text: &str, span: &Span) -> Diagnostic {
+fn unknown_angle_diagnostic(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &Span) -> Diagnostic {
     let run_text = &run.text;
-    let angles = cx.names(true);
+    let affordable = cx.suggester.afford(text.len(), cx.roles.len(), cx.longest);
+    let angles: Vec<&str> = match affordable {
+        true => cx.angle_names.iter().map(String::as_str).collect(),
+        false => Vec::new(),
+    };
     let mut near: Vec<String> = nearest(text, &angles)
         .into_iter()
         .map(|n| format!("{run_text}{n}"))
         .collect();
-    if near.is_empty() {
+    if near.is_empty() && affordable && cx.default_rotation.is_some() {
         // `+laef` for `+leaf`: the default rotation, then a name.
         let others = cx.names(false);
-        if cx.default_rotation.is_some() {
-            near = nearest(text, &others)
-                .into_iter()
-                .map(|n| format!("{run_text}{n}"))
-                .collect();
-        }
+        near = nearest(text, &others)
+            .into_iter()
+            .map(|n| format!("{run_text}{n}"))
+            .collect();
     }
     near.sort();
     if near.len() > 3 {
@@ -1036,19 +1071,15 @@ fn unknown_angle_diagnostic(cx: &Cx<'_>, run: &SignRun, text: &str, span: &Span)
     )
     .with_label("not a declared angle")
     .with_secondary(run.span.clone(), "rotates by the angle named here");
-    match (near.first(), angles.is_empty()) {
+    match (near.first(), cx.angle_names.is_empty()) {
         (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
         (None, true) => d.with_help(format!(
             "declare it in the angles block: `angles {text} = (0, pi/2)`"
         )),
-        (None, false) => {
-            let mut all = angles.clone();
-            all.sort();
-            d.with_help(format!(
-                "declared angles: {}; or declare `{text} = (…, …)` in the angles block",
-                crate::front::name_list(&all)
-            ))
-        }
+        (None, false) => d.with_help(format!(
+            "declared angles: {}; or declare `{text} = (…, …)` in the angles block",
+            name_list(cx.angle_names.iter().map(String::as_str), false)
+        )),
     }
 }
 
@@ -1060,8 +1091,7 @@ fn default_rotation(cx: &mut Cx<'_>, run: &SignRun) -> Option<RotationId> {
     }
     cx.report(codes::LINF_NO_DEFAULT_ROTATION, |cx| {
         let run_text = &run.text;
-        let angles = cx.names(true);
-        let help = match angles.iter().min() {
+        let help = match cx.angle_names.first() {
             Some(a) => format!("name the angle right after the signs, e.g. `{run_text}{a}`, or declare a default rotation: `angles (0, pi/2)`"),
             None => "declare a default rotation in the angles block, e.g. `angles (0, pi/2)`".to_string(),
         };

@@ -3,6 +3,7 @@
 use super::ast::{File, Header, Item, Production as AstProduction, Symbols};
 use super::parser::HEADERS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::repeats::push_lazily;
 use crate::ir::{
     Alternative, Angle, Axis, ContextFilter, Production, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
@@ -175,20 +176,21 @@ fn lower_headers(cx: &mut Ctx<'_>, headers: &[&Header]) -> [bool; 5] {
     for h in headers {
         let key = h.key.to_lowercase();
         let Some(idx) = HEADERS.iter().position(|k| *k == key) else {
-            let mut d = Diagnostic::at(
-                codes::UNKNOWN_HEADER,
-                h.key_span.clone(),
-                format!("unknown header `{}`", h.key),
-            )
-            .with_label("not a pfg header");
-            d = match nearest(&h.key, &HEADERS).first() {
-                Some(k) => d.with_help(format!("did you mean `{k}`?")),
-                None => d.with_help(format!(
-                    "pfg headers are: {}",
-                    HEADERS.map(|k| format!("`{k}:`")).join(", ")
-                )),
-            };
-            cx.diags.push(d);
+            push_lazily(cx.diags, codes::UNKNOWN_HEADER, || {
+                let d = Diagnostic::at(
+                    codes::UNKNOWN_HEADER,
+                    h.key_span.clone(),
+                    format!("unknown header `{}`", h.key),
+                )
+                .with_label("not a pfg header");
+                match nearest(&h.key, &HEADERS).first() {
+                    Some(k) => d.with_help(format!("did you mean `{k}`?")),
+                    None => d.with_help(format!(
+                        "pfg headers are: {}",
+                        HEADERS.map(|k| format!("`{k}:`")).join(", ")
+                    )),
+                }
+            });
             continue;
         };
         if let Some(first) = &seen[idx] {

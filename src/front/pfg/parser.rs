@@ -13,6 +13,7 @@
 use super::ast::{File, Header, Item, Production, Symbols};
 use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::repeats::push_lazily;
 use crate::ir::Span;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
@@ -142,7 +143,13 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
         .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
     for err in errors {
-        diags.push(syntax_error(&err));
+        // A file may repeat a mistake on every line: past the most kept,
+        // the diagnostics are counted without being built.
+        let code = match err.found() {
+            Some(_) => codes::SYNTAX,
+            None => codes::UNEXPECTED_EOF,
+        };
+        push_lazily(diags, code, || syntax_error(&err));
     }
     let mut file = File::default();
     for line in lines.unwrap_or_default().into_iter().flatten() {
@@ -264,7 +271,9 @@ fn build_rule(
     let errors_before = diags.len();
     let (parts, seps) = split_at_separators(lhs);
     let Some(arrow) = arrow else {
-        diags.push(missing_arrow(lhs, span, src));
+        push_lazily(diags, codes::MISSING_ARROW, || {
+            missing_arrow(lhs, span, src)
+        });
         return None;
     };
     if let Token::BadArrow(s) = arrow.0 {

@@ -30,8 +30,12 @@ use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst
 use super::growth::{self, branches, Comp, Grown, Point, UnitGeom};
 use super::layout::{self, Outline};
 use super::parser::RESERVED;
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::depth::too_deep;
+use crate::front::name_list;
+use crate::front::names::LongestNames;
+use crate::front::repeats::Repeats;
+use crate::front::suggest::Suggester;
 use crate::ir::{
     Angle, Axis, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span,
     SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
@@ -109,6 +113,14 @@ struct Ctx<'a> {
     level: usize,
     /// Set once the expansion went past [`MAX_NESTING`] (reported once).
     too_deep: bool,
+    /// What the rule or seed being read reported: a mistake repeated
+    /// through it is reported a few times, then counted.
+    repeats: Repeats,
+    /// What suggestions for unknown rule names may still cost.
+    suggester: Suggester,
+    /// The rule names, for splitting runs of them; made when the first
+    /// run is split, after every rule is declared.
+    name_index: Option<LongestNames>,
 }
 
 enum Piece {
@@ -119,13 +131,18 @@ enum Piece {
 impl Ctx<'_> {
     /// Splits an identifier run into components and rule names.
     fn split(&mut self, text: &str, span: &Span) -> Option<Vec<Piece>> {
+        let index = self
+            .name_index
+            .get_or_insert_with(|| LongestNames::new(self.by_name.keys().map(String::as_str)));
+        let longest_at = index.longest_at(text);
         let mut out = Vec::new();
         let bytes = text.as_bytes();
         let mut i = 0;
         while i < text.len() {
-            let longest = (1..=self.max_name.min(text.len() - i))
-                .rev()
-                .find_map(|n| self.by_name.get(&text[i..i + n]).map(|&r| (r, n)));
+            let n = longest_at[i];
+            let longest = (n > 0)
+                .then(|| self.by_name.get(&text[i..i + n]).map(|&r| (r, n)))
+                .flatten();
             if let Some((r, n)) = longest {
                 out.push(Piece::Rule(r, span.start + i..span.start + i + n));
                 i += n;
@@ -150,34 +167,51 @@ impl Ctx<'_> {
                 j += 1;
             }
             let bad = &text[i..j];
-            let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
-            let otherwise = if names.is_empty() {
-                format!(
-                    "define it as a rule, e.g. `{bad} = [F][+F]`; drawing components are F, L, R, +, -"
-                )
-            } else {
-                format!(
-                    "the rules are {}; drawing components are F, L, R, +, -",
-                    names
-                        .iter()
-                        .map(|n| format!("`{n}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            };
-            let help = did_you_mean(bad, &names, otherwise);
-            self.diags.push(
+            self.report(codes::STL_UNKNOWN_RULE, |c| {
+                let otherwise = if c.rules.is_empty() {
+                    format!(
+                        "define it as a rule, e.g. `{bad} = [F][+F]`; drawing components are F, L, R, +, -"
+                    )
+                } else {
+                    format!(
+                        "the rules are {}; drawing components are F, L, R, +, -",
+                        name_list(c.rules.iter().map(|r| r.name.as_str()), true)
+                    )
+                };
                 Diagnostic::at(
                     codes::STL_UNKNOWN_RULE,
                     span.start + i..span.start + j,
                     format!("unknown rule `{bad}`"),
                 )
                 .with_label("not a rule or a drawing component")
-                .with_help(help),
-            );
+                .with_help(c.did_you_mean(bad, otherwise))
+            });
             return None;
         }
         Some(out)
+    }
+
+    /// Reports what `build` makes, a diagnostic of `code` found in the
+    /// rule or seed being read, unless that has reported enough of the
+    /// code already ([`Repeats`]).
+    fn report(&mut self, code: Code, build: impl FnOnce(&mut Self) -> Diagnostic) {
+        if self.repeats.admit(self.diags, code) {
+            let d = build(self);
+            self.repeats.push(self.diags, d);
+        }
+    }
+
+    /// Help for an unknown rule `name`: the nearest rule name, when one is
+    /// near and the file's budget for suggestions allows, or `otherwise`.
+    fn did_you_mean(&mut self, name: &str, otherwise: String) -> String {
+        if !self
+            .suggester
+            .afford(name.len(), self.rules.len(), self.max_name)
+        {
+            return otherwise;
+        }
+        let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
+        did_you_mean(name, &names, otherwise)
     }
 
     fn room(&mut self, have: usize, add: usize, span: &Span) -> bool {
@@ -230,6 +264,7 @@ impl Ctx<'_> {
         }
         self.state[r] = State::Busy;
         self.stack.push(r);
+        self.repeats.begin_item();
         let body = self.rules[r].body.clone();
         let ok = if let [Elem::Resemble {
             count,
@@ -272,6 +307,7 @@ impl Ctx<'_> {
                 None => false,
             }
         };
+        self.repeats.end_item(self.diags, "in this rule");
         self.stack.pop();
         self.state[r] = if ok { State::Done } else { State::Failed };
         ok.then_some(())
@@ -429,15 +465,15 @@ impl Ctx<'_> {
     }
 
     fn no_branches_component(&mut self, span: &Span, c: Comp) {
-        self.diags.push(
+        self.report(codes::STL_NO_BRANCHES, |_| {
             Diagnostic::at(
                 codes::STL_NO_BRANCHES,
                 span.clone(),
                 format!("branching entries after the drawing component `{c:?}`"),
             )
             .with_label("only a rule with branches takes `{…}`")
-            .with_help("write the entries after a rule name: `R1{R2, ~}`"),
-        );
+            .with_help("write the entries after a rule name: `R1{R2, ~}`")
+        });
     }
 
     /// A branching term for rule `r` written at `span` with `entries`.
@@ -556,21 +592,16 @@ impl Ctx<'_> {
         if let Some(&r) = self.by_name.get(name) {
             return Some(r);
         }
-        let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
-        let help = did_you_mean(
-            name,
-            &names,
-            "an entry is a rule name, `~` (failed) or nothing",
-        );
-        self.diags.push(
+        self.report(codes::STL_UNKNOWN_RULE, |c| {
+            let otherwise = "an entry is a rule name, `~` (failed) or nothing".to_string();
             Diagnostic::at(
                 codes::STL_UNKNOWN_RULE,
                 span.clone(),
                 format!("unknown rule `{name}`"),
             )
             .with_label("no rule of this name")
-            .with_help(help),
-        );
+            .with_help(c.did_you_mean(name, otherwise))
+        });
         None
     }
 
@@ -1182,6 +1213,9 @@ impl<'a> Ctx<'a> {
             too_large: false,
             level: 0,
             too_deep: false,
+            repeats: Repeats::default(),
+            suggester: Suggester::default(),
+            name_index: None,
         }
     }
 }
@@ -1213,6 +1247,7 @@ impl Ctx<'_> {
             return false;
         }
         self.by_name.insert(name.to_string(), self.rules.len());
+        self.name_index = None;
         self.max_name = self.max_name.max(name.len());
         self.rules.push(RuleSrc {
             name: name.to_string(),
@@ -1262,7 +1297,11 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     let mut ok = hd.ok && resolved;
     let mut parts = Vec::new();
     match hd.seed {
-        Some(body) => ok &= ctx.seed(body, hd.layout_span.is_some(), &mut parts),
+        Some(body) => {
+            ctx.repeats.begin_item();
+            ok &= ctx.seed(body, hd.layout_span.is_some(), &mut parts);
+            ctx.repeats.end_item(ctx.diags, "in the seed");
+        }
         None => {
             ctx.diags.push(
                 Diagnostic::at(codes::STL_MISSING_SEED, src_len..src_len, "missing SEED")
