@@ -276,7 +276,10 @@ fn a_long_declared_name_does_not_slow_the_splitting_of_strings() {
     assert!(took < QUICK, "{took:?}");
     let sys = c.system.expect("no errors");
     assert_eq!(sys.axiom.len(), 200_002);
-    let text = format!("R{long} = F\nSEED\n{}R{long}\nENDSEED\n", "F".repeat(200_000));
+    let text = format!(
+        "R{long} = F\nSEED\n{}R{long}\nENDSEED\n",
+        "F".repeat(200_000)
+    );
     let (c, took) = timed_compile("long.stl", text, None);
     assert!(took < QUICK, "{took:?}");
     assert!(c.system.is_some(), "{:#?}", c.diagnostics);
