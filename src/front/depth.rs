@@ -205,6 +205,26 @@ fn end_of_level<T>(
     Err(tokens.len())
 }
 
+/// How an expression node over operands of depths `operands` is built
+/// (the rule both cpfg's and LinF's expression trees follow): an operand
+/// that is already a cut (deeper than [`MAX_NESTING`]) makes the node that
+/// cut, `Err(Some(i))`; a node that would itself pass the limit becomes a
+/// new cut, `Err(None)`; otherwise `Ok(depth)`.
+pub fn node_depth(operands: impl IntoIterator<Item = usize>) -> Result<usize, Option<usize>> {
+    let mut deepest = 0;
+    for (i, d) in operands.into_iter().enumerate() {
+        if d > MAX_NESTING {
+            return Err(Some(i));
+        }
+        deepest = deepest.max(d);
+    }
+    if deepest + 1 > MAX_NESTING {
+        Err(None)
+    } else {
+        Ok(deepest + 1)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

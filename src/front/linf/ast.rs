@@ -106,14 +106,11 @@ impl Expr {
             ExprKind::Neg(a) => vec![a],
             ExprKind::Binary(_, a, b) => vec![a, b],
         };
-        if let Some(cut) = operands.iter().find(|e| e.is_cut()) {
-            return (*cut).clone();
+        match crate::front::depth::node_depth(operands.iter().map(|e| e.depth)) {
+            Ok(depth) => Expr { kind, span, depth },
+            Err(Some(cut)) => operands[cut].clone(),
+            Err(None) => Expr::cut(at),
         }
-        let depth = 1 + operands.iter().map(|e| e.depth).max().unwrap_or(0);
-        if depth > MAX_NESTING {
-            return Expr::cut(at);
-        }
-        Expr { kind, span, depth }
     }
 
     /// A cut at `at`: where an expression went past [`MAX_NESTING`]. It
