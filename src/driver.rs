@@ -447,6 +447,7 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
                 .map(|p| [p[0], p[1], 0.0])
                 .collect(),
             colour: crate::ir::layout::colour(s),
+            index: 0,
         })
         .filter(|p| p.points.len() >= 3)
         .collect();

@@ -212,6 +212,7 @@ pub mod colours;
 pub mod d0l;
 pub mod growth;
 pub mod layout;
+pub mod look;
 pub mod program;
 
 pub use d0l::D0l;
@@ -775,6 +776,8 @@ pub struct Settings {
     pub world_widths: bool,
     /// The file's own seed, added to the run's (cpfg `seed:`).
     pub seed: Option<u64>,
+    /// Tropisms bending every step (cpfg `tropism:`; none elsewhere).
+    pub tropisms: Vec<look::Tropism>,
 }
 
 impl Default for Settings {
@@ -792,6 +795,7 @@ impl Default for Settings {
             width_step: 1.0,
             world_widths: false,
             seed: None,
+            tropisms: Vec::new(),
         }
     }
 }
@@ -998,6 +1002,10 @@ pub struct System {
     /// own frame (x along the turtle's L, y along H, z along U), with the
     /// contact point at the origin.
     pub surfaces: Vec<SurfaceMesh>,
+    /// Contours for generalized cylinders and `curveX` (cpfg `.con`).
+    pub contours: Vec<look::Contour>,
+    /// Background, light, materials and camera of its pictures.
+    pub look: look::Look,
 }
 
 /// What a front end makes of a source: the system and where its parts
@@ -1042,6 +1050,8 @@ impl System {
             colours: Vec::new(),
             structure: None,
             surfaces: Vec::new(),
+            contours: Vec::new(),
+            look: look::Look::default(),
         };
         sys.set_interpretation(SymbolId::OPEN, TurtleOp::Push);
         sys.set_interpretation(SymbolId::CLOSE, TurtleOp::Pop);

@@ -392,6 +392,7 @@ mod tests {
             b,
             width: 1.0,
             colour: Rgb(c, c, c),
+            index: 0,
         }
     }
 

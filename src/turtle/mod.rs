@@ -27,6 +27,9 @@ pub struct Segment {
     pub b: Vec3,
     pub width: f64,
     pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
 }
 
 /// A filled polygon.
@@ -34,6 +37,9 @@ pub struct Segment {
 pub struct Polygon {
     pub points: Vec<Vec3>,
     pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
 }
 
 /// The sequence of turtle positions along one branch (every move, drawn or
@@ -55,6 +61,9 @@ pub struct Disc {
     /// units.
     pub pixels: bool,
     pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
 }
 
 /// What the turtle drew.
@@ -222,6 +231,11 @@ fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
 /// each rotation moves the frame off orthonormal by about 1e-16, so millions
 /// of rotations (a LinF random walk) would drift by 1e-10 and more.
 const RENORMALISE_EVERY: u32 = 32;
+
+/// A colour index as primitives keep it.
+fn index_of(colour: usize) -> u16 {
+    colour.min(u16::MAX as usize) as u16
+}
 
 fn normalised(v: Vec3) -> Vec3 {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -635,6 +649,7 @@ impl Turtle<'_> {
                 b,
                 width: self.state.width,
                 colour,
+                index: index_of(self.state.colour),
             });
         }
     }
@@ -719,8 +734,13 @@ impl Turtle<'_> {
     fn end_polygon(&mut self) {
         if let Some((points, colour)) = self.open_polygons.pop() {
             if points.len() >= 3 {
+                let index = index_of(colour);
                 let colour = self.colour_of(colour);
-                self.sink.polygon(Polygon { points, colour });
+                self.sink.polygon(Polygon {
+                    points,
+                    colour,
+                    index,
+                });
             }
         }
     }
@@ -765,6 +785,7 @@ impl Turtle<'_> {
                 b,
                 width: st.width,
                 colour,
+                index: index_of(st.colour),
             });
             a = b;
         }
@@ -848,6 +869,7 @@ impl Turtle<'_> {
             diameter,
             pixels,
             colour,
+            index: index_of(self.state.colour),
         });
     }
 
@@ -862,7 +884,11 @@ impl Turtle<'_> {
             })
             .collect();
         let colour = self.colour();
-        self.sink.polygon(Polygon { points, colour });
+        self.sink.polygon(Polygon {
+            points,
+            colour,
+            index: index_of(st.colour),
+        });
     }
 
     /// `~k`: surface `k`'s triangles placed in the turtle's frame, scaled
@@ -887,7 +913,11 @@ impl Turtle<'_> {
                     add_scaled(q, st.u, p[2] * scale[2])
                 })
                 .collect();
-            self.sink.polygon(Polygon { points, colour });
+            self.sink.polygon(Polygon {
+                points,
+                colour,
+                index: index_of(st.colour),
+            });
         }
     }
 }
