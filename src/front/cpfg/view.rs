@@ -148,6 +148,15 @@ pub struct View {
     /// `interpretation past %:`.
     pub interpret_past_cut: bool,
     pub twist_of_cylinders: bool,
+    /// `light:` commands (material mode), in order.
+    pub lights: Vec<crate::ir::look::Light>,
+    /// `light direction:` (colour-map mode).
+    pub light_direction: [f64; 3],
+    /// `diffuse reflection:`, `surface ambient:`, `surface diffuse:`
+    /// (colour-map shading, manual §8.1.3).
+    pub diffuse_reflection: f64,
+    pub surface_ambient: f64,
+    pub surface_diffuse: f64,
     /// Commands read but not used by graftal (lights, textures, fonts, …),
     /// with the span of each line.
     pub unused: Vec<(String, Span)>,
@@ -191,6 +200,11 @@ impl Default for View {
             z_buffer: true,
             interpret_past_cut: true,
             twist_of_cylinders: false,
+            lights: Vec::new(),
+            light_direction: [1.0, 0.0, 0.0],
+            diffuse_reflection: 10.0,
+            surface_ambient: 0.15,
+            surface_diffuse: 0.75,
             unused: Vec::new(),
         }
     }
@@ -198,11 +212,6 @@ impl Default for View {
 
 /// Commands cpfg knows that graftal reads but does not use.
 const UNUSED: &[&str] = &[
-    "light",
-    "light direction",
-    "diffuse reflection",
-    "surface ambient",
-    "surface diffuse",
     "shadow map",
     "antialiasing",
     "concave polygons",
@@ -257,6 +266,11 @@ const KNOWN: &[&str] = &[
     "elasticity increment",
     "render mode",
     "z buffer",
+    "light",
+    "light direction",
+    "diffuse reflection",
+    "surface ambient",
+    "surface diffuse",
 ];
 
 /// Reads a view file. Never fails: problems are diagnostics, and the
@@ -347,6 +361,7 @@ fn apply(v: &mut View, c: &Command, d: &mut Diagnostics) {
         || set_forces(v, c, d)
         || set_camera(v, c, d)
         || set_rendering(v, c, d)
+        || set_lights(v, c, d)
         || add_file(v, c, d);
     if !known {
         note_other(v, c, d);
@@ -508,6 +523,45 @@ fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
         _ => return false,
     }
     true
+}
+
+/// Lights: `light:` in material mode, the rest in colour-map mode.
+fn set_lights(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "light" => match light(c.value) {
+            Some(l) => v.lights.push(l),
+            None => c.bad(d, "subcommands such as `V: x y z` or `O: x y z`"),
+        },
+        "light direction" => {
+            set_vec(&mut v.light_direction, c, d);
+        }
+        "diffuse reflection" => set_num(&mut v.diffuse_reflection, c, d),
+        "surface ambient" => set_num(&mut v.surface_ambient, c, d),
+        "surface diffuse" => set_num(&mut v.surface_diffuse, c, d),
+        _ => return false,
+    }
+    true
+}
+
+/// A `light:` command's subcommands (manual §8.1.3): `O:` a point light's
+/// position, `V:` a directional light's vector, `A:`, `D:`, `S:` its
+/// colours; `P:` (spotlight) and `T:` (attenuation) are accepted and not
+/// used.
+fn light(value: &str) -> Option<crate::ir::look::Light> {
+    let mut l = crate::ir::look::Light::default();
+    let rgb = |v: &[f64]| [v[0] as f32, v[1] as f32, v[2] as f32];
+    for (k, vals) in subcommands(value) {
+        match (k.to_ascii_uppercase().as_str(), vals.as_slice()) {
+            ("O", [x, y, z, ..]) => (l.vector, l.directional) = ([*x, *y, *z], false),
+            ("V", [x, y, z, ..]) => (l.vector, l.directional) = ([*x, *y, *z], true),
+            ("A", v @ [_, _, _, ..]) => l.ambient = rgb(v),
+            ("D", v @ [_, _, _, ..]) => l.diffuse = rgb(v),
+            ("S", v @ [_, _, _, ..]) => l.specular = rgb(v),
+            ("P" | "T", _) => {}
+            _ => return None,
+        }
+    }
+    Some(l)
 }
 
 /// `line style:` sets the unit of the line width with the style.
@@ -998,7 +1052,7 @@ mod tests {
 
     #[test]
     fn unknown_misspelt_and_unused() {
-        let src = "angel factor: 16\ntappered lines: off\nlight: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
+        let src = "angel factor: 16\ntappered lines: off\nfont: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
         let (v, d) = read_view(src);
         assert_eq!(codes_of(&d), ["W0804", "W0805", "E0812"]);
         assert_eq!(&src[d.0[0].span.clone().unwrap()], "angel factor");
@@ -1011,7 +1065,28 @@ mod tests {
         assert!(!v.tapered_lines);
         assert_eq!(v.scale_factor, 1.0);
         assert_eq!(v.angle, 45.0);
-        assert_eq!(v.unused, [("light".to_string(), 37..52)]);
+        assert_eq!(v.unused, [("font".to_string(), 37..51)]);
+    }
+
+    #[test]
+    fn lights_and_colour_map_shading() {
+        let src = "light: V: 0 1 0 D: 0.5 0.5 0.5\nlight: O: 1 2 3\nlight direction: 0,0,1\n\
+                   diffuse reflection: 4\nsurface ambient: 0.3\nsurface diffuse: 0.6\n";
+        let (v, d) = read_view(src);
+        assert!(d.is_empty(), "{d:?}");
+        assert_eq!(v.lights.len(), 2);
+        assert!(v.lights[0].directional);
+        assert_eq!(v.lights[0].vector, [0.0, 1.0, 0.0]);
+        assert_eq!(v.lights[0].diffuse, [0.5; 3]);
+        assert!(!v.lights[1].directional);
+        assert_eq!(v.lights[1].vector, [1.0, 2.0, 3.0]);
+        assert_eq!(v.light_direction, [0.0, 0.0, 1.0]);
+        assert_eq!(
+            (v.diffuse_reflection, v.surface_ambient, v.surface_diffuse),
+            (4.0, 0.3, 0.6)
+        );
+        let (_, d) = read_view("light: Q: 1\n");
+        assert_eq!(codes_of(&d), ["E0812"]);
     }
 
     #[test]
