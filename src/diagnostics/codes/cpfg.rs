@@ -268,4 +268,15 @@ default colours instead.
 
 Put the file in the object's folder, or save it again with vlab's palette
 (colour maps) or medit (materials) editor.";
+
+    CPFG_VIEW_NOT_DRAWN = "W0807", "view command not drawn",
+"The view file asks for something that changes cpfg's picture and that
+graftal does not draw yet: a background scene, textures, rayshade
+surfaces (`tsurface:`) or shadows. The rest of the picture is drawn; this
+part is left out.
+
+Example:
+    background scene: scene.dat
+
+To draw the scene's objects, model them in the L-system itself.";
 }

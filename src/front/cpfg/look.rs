@@ -169,45 +169,16 @@ fn lighting(v: &View, materials: &[Option<Material>]) -> Lighting {
 }
 
 /// The camera of the view file: from the viewpoint towards the view
-/// reference point, world y up (z when looking along y), the picture
-/// turned by the twist (tenths of a degree, manual §8.1.2).
+/// reference point, the picture turned by the twist (tenths of a degree,
+/// manual §8.1.2).
 fn camera(v: &View) -> Camera {
-    let eye = v.viewpoint;
-    let target = v.view_reference_point;
-    let d = normalised(sub(target, eye)).unwrap_or([0.0, 0.0, -1.0]);
-    // World y is up unless the view looks along it; then z is.
-    let world_up = if d[1].abs() > 0.999 {
-        [0.0, 0.0, -d[1].signum()]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let right = normalised(cross(d, world_up)).unwrap_or([1.0, 0.0, 0.0]);
-    let up0 = cross(right, d);
-    let (s, c) = (v.twist / 10.0).to_radians().sin_cos();
-    let up = [0, 1, 2].map(|k| up0[k] * c + right[k] * s);
-    Camera {
-        eye,
-        target,
-        up,
-        perspective: (v.projection == view::Projection::Perspective).then_some(v.viewing_angle),
-    }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn normalised(v: [f64; 3]) -> Option<[f64; 3]> {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (n.is_finite() && n > 1e-12).then(|| v.map(|x| x / n))
+    let perspective = (v.projection == view::Projection::Perspective).then_some(v.viewing_angle);
+    Camera::aimed(
+        v.viewpoint,
+        v.view_reference_point,
+        v.twist / 10.0,
+        perspective,
+    )
 }
 
 #[cfg(test)]

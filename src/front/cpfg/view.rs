@@ -210,20 +210,25 @@ impl Default for View {
     }
 }
 
-/// Commands cpfg knows that graftal reads but does not use.
+/// Commands that change cpfg's picture and that graftal does not draw:
+/// each is a warning at its line.
+const NOT_DRAWN: &[(&str, &str)] = &[
+    ("background scene", "the scene files' objects are not drawn"),
+    ("texture", "surfaces are drawn without their textures"),
+    ("tsurface", "the rayshade surfaces are not drawn"),
+    ("shadow map", "no shadows are cast"),
+];
+
+/// Commands cpfg knows that graftal reads and needs not use: interactive
+/// settings, fonts, and deprecated commands cpfg itself ignores.
 const UNUSED: &[&str] = &[
-    "shadow map",
     "antialiasing",
     "concave polygons",
-    "background scene",
-    "texture",
     "font",
-    "tsurface",
     "min zoom",
     "max zoom",
     "generate on view change",
     "scale multiplier",
-    "shade mode",
     "polygonization level",
     "ambient light",
     "background color",
@@ -265,7 +270,12 @@ const KNOWN: &[&str] = &[
     "initial elasticity",
     "elasticity increment",
     "render mode",
+    "shade mode",
     "z buffer",
+    "background scene",
+    "texture",
+    "tsurface",
+    "shadow map",
     "light",
     "light direction",
     "diffuse reflection",
@@ -499,6 +509,7 @@ fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
     match c.name.as_str() {
         "line style" => set_line_style(v, c, d),
         "render mode" => set_render_mode(v, c, d),
+        "shade mode" => set_shade_mode(v, c, d),
         "z buffer" => set_flag(&mut v.z_buffer, c, d),
         "tapered lines" => set_flag(&mut v.tapered_lines, c, d),
         "tappered lines" => {
@@ -591,6 +602,19 @@ fn set_render_mode(v: &mut View, c: &Command, d: &mut Diagnostics) {
     v.render_mode = m;
 }
 
+/// The deprecated `shade mode: i` (manual §8.1.10), read as the render
+/// mode it stands for: 1 simple fill, 2 interpolated, 3 Gouraud, 4 and 5
+/// B-spline (filled), 6 two-sided (shaded), 7 wireframe.
+fn set_shade_mode(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    v.render_mode = match num(c.value).map(|x| x as i64) {
+        Some(1 | 4 | 5) => RenderMode::Filled,
+        Some(2) => RenderMode::Interpolated,
+        Some(3 | 6) => RenderMode::Shaded,
+        Some(7) => RenderMode::Wireframe,
+        _ => return c.bad(d, "a shade mode from 1 to 7"),
+    };
+}
+
 /// The function, surface and contour files the view names.
 fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
     match c.name.as_str() {
@@ -643,6 +667,17 @@ fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
 /// reported, with the nearest known name.
 fn note_other(v: &mut View, c: &Command, d: &mut Diagnostics) {
     let name = c.name.as_str();
+    if let Some((_, what)) = NOT_DRAWN.iter().find(|(n, _)| *n == name) {
+        d.push(
+            Diagnostic::at(
+                codes::CPFG_VIEW_NOT_DRAWN,
+                c.span.clone(),
+                format!("`{name}:` is not drawn by graftal: {what}"),
+            )
+            .with_label("read, not drawn"),
+        );
+        return;
+    }
     if UNUSED.contains(&name) {
         v.unused.push((name.to_string(), c.span.clone()));
         return;
@@ -1066,6 +1101,24 @@ mod tests {
         assert_eq!(v.scale_factor, 1.0);
         assert_eq!(v.angle, 45.0);
         assert_eq!(v.unused, [("font".to_string(), 37..51)]);
+    }
+
+    #[test]
+    fn shade_modes_and_what_is_not_drawn() {
+        let (v, d) = read_view("shade mode: 3\n");
+        assert!(d.is_empty());
+        assert_eq!(v.render_mode, RenderMode::Shaded);
+        let (v, _) = read_view("render mode: shaded\nshade mode: 7\n");
+        assert_eq!(v.render_mode, RenderMode::Wireframe);
+        let (_, d) = read_view("shade mode: 9\n");
+        assert_eq!(codes_of(&d), ["E0812"]);
+        let src = "font: x\nbackground scene: scene.dat\n";
+        let (_, d) = read_view(src);
+        assert_eq!(codes_of(&d), ["W0807"]);
+        assert_eq!(
+            &src[d.0[0].span.clone().unwrap()],
+            "background scene: scene.dat"
+        );
     }
 
     #[test]
