@@ -505,7 +505,39 @@ pub fn render_bytes_with(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
     opts.scale = sys.settings.scale;
-    encode(&render::layout(g, &opts), format, &opts, progress)
+    apply_look(sys, &mut opts);
+    let lighting = sys.look.lighting.as_ref();
+    match (format, lighting) {
+        (Format::Png, Some(lighting)) => {
+            render::raster::png(g, lighting, palette(sys), &opts, progress).ok_or_else(|| {
+                LoadError(format!("cannot make a {}x{} PNG", opts.width, opts.height))
+            })
+        }
+        (Format::Svg, _) if lighting.is_some() || opts.camera.is_some() => {
+            Ok(render::svg::write_scene(g, lighting, palette(sys), &opts).into_bytes())
+        }
+        _ => encode(&render::layout(g, &opts), format, &opts, progress),
+    }
+}
+
+/// What the system's look says of the picture: its background, and its
+/// camera unless a view was asked for.
+fn apply_look(sys: &System, opts: &mut RenderOptions) {
+    opts.background = sys.look.background.unwrap_or(render::WHITE);
+    opts.camera = if opts.view_given {
+        None
+    } else {
+        sys.look.camera
+    };
+}
+
+/// The colour map: the system's colours, else the turtle's default.
+fn palette(sys: &System) -> &[crate::ir::Rgb] {
+    if sys.colours.is_empty() {
+        &crate::turtle::DEFAULT_PALETTE
+    } else {
+        &sys.colours
+    }
 }
 
 /// Refuses, before deriving, to draw a system whose word would move the
@@ -580,7 +612,14 @@ pub fn render_shared_with(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Option<Result<Vec<u8>, LoadError>> {
     let steps = opts.derive_options(sys).steps;
-    if ropts.spline || ropts.view != render::View::default() || steps > MAX_TREE_DEPTH {
+    // A lit look or a camera draws through the full geometry.
+    let look = &sys.look;
+    if ropts.spline
+        || ropts.view != render::View::default()
+        || steps > MAX_TREE_DEPTH
+        || look.lighting.is_some()
+        || look.camera.is_some()
+    {
         return None;
     }
     let mut inst = Instanced::new(sys).filter(|i| i.can_draw() && i.fits(steps))?;
@@ -589,6 +628,7 @@ pub fn render_shared_with(
         return None;
     }
     ropts.scale = sys.settings.scale;
+    apply_look(sys, &mut ropts);
     let pic = render::shared::picture(sys, &mut inst, steps, &ropts);
     Some(encode(&pic, format, &ropts, progress))
 }

@@ -354,6 +354,7 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
         height: a.size.1,
         view,
         spline: a.spline,
+        view_given: a.view.is_some(),
         ..RenderOptions::default()
     }
 }

@@ -1,13 +1,22 @@
-//! Rendering [`Geometry`] to pictures: an orthographic projection from a
-//! view, fitted into the picture with a margin, then PNG ([`png`], tiny-skia)
-//! or SVG ([`svg`]).
+//! Rendering [`Geometry`] to pictures: a projection from a view or a
+//! camera ([`camera`]), fitted into the picture with a margin, then PNG
+//! ([`png`], tiny-skia, flat colours in the painter's order, or [`raster`],
+//! a z-buffer with lights for systems whose look is lit) or SVG ([`svg`]).
 
+pub mod camera;
 pub mod png;
+pub mod raster;
+mod shade;
 pub mod shared;
 pub mod svg;
 
+use crate::ir::look::Camera;
 use crate::ir::Rgb;
 use crate::turtle::{Geometry, Segment, Vec3};
+use camera::Projector;
+
+/// The background of a picture whose look names none.
+pub const WHITE: Rgb = Rgb(255, 255, 255);
 
 /// A view direction: azimuth about the y axis, then elevation about the x
 /// axis, in radians. (0, 0) looks down −z with x to the right and y up.
@@ -39,6 +48,14 @@ pub struct RenderOptions {
     /// B-spline with the turtle positions as control points (the book's
     /// Fig. 2.10, 2.11 and kolams), instead of the segments.
     pub spline: bool,
+    /// Whether `view` was asked for (`--view`): it then overrides the
+    /// file's camera.
+    pub view_given: bool,
+    /// The file's camera ([`crate::ir::look::Look::camera`]), used instead
+    /// of `view` when given.
+    pub camera: Option<Camera>,
+    /// The background.
+    pub background: Rgb,
 }
 
 impl Default for RenderOptions {
@@ -49,6 +66,9 @@ impl Default for RenderOptions {
             view: View::default(),
             scale: 100.0,
             spline: false,
+            view_given: false,
+            camera: None,
+            background: WHITE,
         }
     }
 }
@@ -68,6 +88,7 @@ pub struct Run {
 pub struct Picture {
     pub width: u32,
     pub height: u32,
+    pub background: Rgb,
     pub runs: Vec<Run>,
     pub polygons: Vec<(Rgb, Vec<[f64; 2]>)>,
 }
@@ -84,19 +105,17 @@ fn depth(p: Vec3, view: View) -> f64 {
 /// The order in which to draw `g`'s segments: farther first, so that nearer
 /// segments cover farther ones (the painter's algorithm, by midpoint
 /// depth). A flat picture seen face on keeps the turtle's order.
-fn depth_order(g: &Geometry, view: View) -> Option<Vec<usize>> {
+fn depth_order(g: &Geometry, proj: &Projector) -> Option<Vec<usize>> {
     let depths: Vec<f64> = g
         .segments
         .iter()
         .map(|s| {
-            depth(
-                [
-                    (s.a[0] + s.b[0]) / 2.0,
-                    (s.a[1] + s.b[1]) / 2.0,
-                    (s.a[2] + s.b[2]) / 2.0,
-                ],
-                view,
-            )
+            let mid = [
+                (s.a[0] + s.b[0]) / 2.0,
+                (s.a[1] + s.b[1]) / 2.0,
+                (s.a[2] + s.b[2]) / 2.0,
+            ];
+            proj.project(mid).map_or(f64::NEG_INFINITY, |(_, z)| -z)
         })
         .collect();
     let (lo, hi) = depths
@@ -173,55 +192,68 @@ pub fn bspline(ctrl: &[[f64; 2]]) -> Vec<[f64; 2]> {
 
 /// Projects and fits `g` into a `width` × `height` picture.
 pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
-    let view = opts.view;
-    let segments = flat_segments(g, opts);
-    let polys: Vec<Vec<[f64; 2]>> = g
+    let proj = Projector::new(opts);
+    let segments = flat_segments(g, opts, &proj);
+    // Polygons with a corner behind a perspective's eye are left out.
+    let polys: Vec<(Rgb, Vec<[f64; 2]>)> = g
         .polygons
         .iter()
-        .map(|p| p.points.iter().map(|&q| project(q, view)).collect())
+        .filter_map(|p| {
+            let pts: Option<Vec<[f64; 2]>> = p
+                .points
+                .iter()
+                .map(|&q| proj.project(q).map(|r| r.0))
+                .collect();
+            pts.map(|pts| (p.colour, pts))
+        })
         .collect();
     // Discs: centre and radius in picture units; a radius in pixels is
     // scaled after fitting.
-    let discs: Vec<([f64; 2], f64)> = g
+    let discs: Vec<(Rgb, bool, [f64; 2], f64)> = g
         .discs
         .iter()
-        .map(|d| (project(d.centre, view), d.diameter / 2.0))
+        .filter_map(|d| {
+            let (c, z) = proj.project(d.centre)?;
+            let r = d.diameter / 2.0;
+            let r = if proj.perspective() && !d.pixels {
+                r / z
+            } else {
+                r
+            };
+            Some((d.colour, d.pixels, c, r))
+        })
         .collect();
-    let disc_extent: Vec<[f64; 2]> = g
-        .discs
+    let disc_extent: Vec<[f64; 2]> = discs
         .iter()
-        .zip(&discs)
-        .flat_map(|(d, (c, r))| {
-            let r = if d.pixels { 0.0 } else { *r };
+        .flat_map(|&(_, pixels, c, r)| {
+            let r = if pixels { 0.0 } else { r };
             [[c[0] - r, c[1] - r], [c[0] + r, c[1] + r]]
         })
         .collect();
-    let fit = Fit::new(
-        segments
-            .iter()
-            .flat_map(|s| [&s.a, &s.b])
-            .chain(polys.iter().flatten())
-            .chain(disc_extent.iter()),
-        opts,
-    );
-    let runs = runs(&segments, &fit, g.world_widths);
-    let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = g
-        .polygons
+    let extent: Vec<[f64; 2]> = segments
         .iter()
-        .zip(polys)
-        .map(|(p, pts)| (p.colour, pts.into_iter().map(|q| fit.to_px(q)).collect()))
+        .flat_map(|s| [s.a, s.b])
+        .chain(polys.iter().flat_map(|p| p.1.iter().copied()))
+        .chain(disc_extent)
         .collect();
-    for (d, (c, r)) in g.discs.iter().zip(discs) {
-        let r = if d.pixels {
+    let fit = proj.fit(&extent, opts);
+    let runs = runs(&segments, &fit, g.world_widths);
+    let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys
+        .into_iter()
+        .map(|(c, pts)| (c, pts.into_iter().map(|q| fit.to_px(q)).collect()))
+        .collect();
+    for (colour, pixels, c, r) in discs {
+        let r = if pixels {
             r * fit.line_unit
         } else {
             r * fit.scale
         };
-        polygons.push((d.colour, disc_outline(fit.to_px(c), r)));
+        polygons.push((colour, disc_outline(fit.to_px(c), r)));
     }
     Picture {
         width: opts.width,
         height: opts.height,
+        background: opts.background,
         runs,
         polygons,
     }
@@ -237,13 +269,20 @@ struct FlatSegment {
 
 /// What `g` draws as lines, in the picture plane and in drawing order:
 /// with `opts.spline` the B-splines through its paths, else its segments,
-/// farther first.
-fn flat_segments(g: &Geometry, opts: &RenderOptions) -> Vec<FlatSegment> {
-    let view = opts.view;
+/// farther first. Lines reaching behind a perspective's eye are left out.
+fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<FlatSegment> {
     let mut flat = Vec::new();
+    let on_plane = |p: Vec3| proj.project(p).map(|r| r.0);
     if opts.spline {
         for path in &g.paths {
-            let ctrl: Vec<[f64; 2]> = path.points.iter().map(|&p| project(p, view)).collect();
+            let Some(ctrl) = path
+                .points
+                .iter()
+                .map(|&p| on_plane(p))
+                .collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
             let curve = bspline(&ctrl);
             flat.extend(curve.windows(2).map(|w| FlatSegment {
                 a: w[0],
@@ -253,15 +292,21 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions) -> Vec<FlatSegment> {
             }));
         }
     } else {
-        let project_segment = |s: &Segment| FlatSegment {
-            a: project(s.a, view),
-            b: project(s.b, view),
-            colour: s.colour,
-            width: s.width,
+        let project_segment = |s: &Segment| {
+            Some(FlatSegment {
+                a: on_plane(s.a)?,
+                b: on_plane(s.b)?,
+                colour: s.colour,
+                width: s.width,
+            })
         };
-        match depth_order(g, view) {
-            Some(order) => flat.extend(order.into_iter().map(|i| project_segment(&g.segments[i]))),
-            None => flat.extend(g.segments.iter().map(project_segment)),
+        match depth_order(g, proj) {
+            Some(order) => flat.extend(
+                order
+                    .into_iter()
+                    .filter_map(|i| project_segment(&g.segments[i])),
+            ),
+            None => flat.extend(g.segments.iter().filter_map(project_segment)),
         }
     }
     flat

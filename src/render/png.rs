@@ -1,4 +1,5 @@
-//! PNG output through tiny-skia: white background, anti-aliased strokes with
+//! PNG output through tiny-skia: the picture's background (white unless
+//! the look names one), anti-aliased strokes with
 //! round caps and joins, filled polygons.
 
 use super::Picture;
@@ -35,7 +36,8 @@ pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pi
         .sum();
     let mut drawn = 0u64;
     let mut pixmap = Pixmap::new(pic.width, pic.height)?;
-    pixmap.fill(Color::WHITE);
+    let bg = pic.background;
+    pixmap.fill(Color::from_rgba8(bg.0, bg.1, bg.2, 255));
     for (colour, pts) in &pic.polygons {
         let mut pb = PathBuilder::new();
         let mut it = pts.iter();
@@ -128,6 +130,7 @@ mod tests {
             let pic = Picture {
                 width: 32,
                 height: 32,
+                background: crate::render::WHITE,
                 runs: vec![Run {
                     colour: Rgb(0, 0, 0),
                     width,

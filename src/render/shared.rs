@@ -33,6 +33,7 @@ pub fn picture(
     Picture {
         width: opts.width,
         height: opts.height,
+        background: opts.background,
         runs: vec![Run {
             colour: palette[settings.colour.min(palette.len() - 1)],
             width: fit.line_width(settings.width, settings.world_widths),

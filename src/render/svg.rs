@@ -2,8 +2,12 @@
 //! width, one per filled polygon; coordinates in pixels of the fitted
 //! picture, printed with at most 3 decimals so output is byte-stable.
 
-use super::Picture;
+use super::camera::{cross, dot, sub, unit, Projector};
+use super::shade::{Colour, Kind, Shader};
+use super::{Picture, RenderOptions};
+use crate::ir::look::{Lighting, LineStyle, Shading};
 use crate::ir::Rgb;
+use crate::turtle::{Disc, Geometry, Polygon, Segment, Vec3};
 use std::fmt::Write;
 
 fn num(x: f64) -> String {
@@ -18,6 +22,15 @@ fn num(x: f64) -> String {
 
 fn hex(c: Rgb) -> String {
     format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
+}
+
+/// The background's fill: `white` as before for white, else its hex.
+fn background(c: Rgb) -> String {
+    if c == super::WHITE {
+        "white".to_string()
+    } else {
+        hex(c)
+    }
 }
 
 /// Appends `M x y L x y …` for the points to a path's `d`.
@@ -36,7 +49,11 @@ pub fn write(pic: &Picture) -> String {
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
-    let _ = writeln!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let _ = writeln!(
+        out,
+        r#"<rect width="{w}" height="{h}" fill="{}"/>"#,
+        background(pic.background)
+    );
     for (colour, pts) in &pic.polygons {
         let mut d = String::new();
         polyline(&mut d, pts);
@@ -63,9 +80,217 @@ pub fn write(pic: &Picture) -> String {
     out
 }
 
+fn rgb(c: Colour) -> Rgb {
+    let q = |x: f32| (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    Rgb(q(c[0]), q(c[1]), q(c[2]))
+}
+
+/// One thing drawn by [`write_scene`], with its distance from the viewer.
+struct Item {
+    depth: f64,
+    svg: String,
+}
+
+/// What [`write_scene`] draws with.
+struct Scene<'a> {
+    proj: Projector,
+    fit: super::Fit,
+    shader: Shader<'a>,
+    lighting: Option<&'a Lighting>,
+    world_lines: bool,
+}
+
+impl Scene<'_> {
+    /// A primitive's one colour: lit at `p` with normal `n` when the look
+    /// is lit and shaded, else flat.
+    fn colour(&self, kind: Kind, c: Rgb, index: u16, p: Vec3, n: Vec3) -> Rgb {
+        match self.lighting {
+            None => c,
+            Some(l) if matches!(l.shading, Shading::Flat | Shading::Smooth) => {
+                let v = self.proj.towards_viewer(p);
+                rgb(self.shader.lit(kind, index, p, n, v))
+            }
+            Some(_) => rgb(self.shader.unlit(c, index)),
+        }
+    }
+
+    fn polygon(&self, p: &Polygon) -> Option<Item> {
+        let pts: Vec<([f64; 2], f64)> = p
+            .points
+            .iter()
+            .map(|&q| self.proj.project(q))
+            .collect::<Option<_>>()?;
+        let n = unit(super::raster::newell(&p.points))?;
+        let mid = p
+            .points
+            .iter()
+            .fold([0.0; 3], |s, q| [s[0] + q[0], s[1] + q[1], s[2] + q[2]]);
+        let mid = mid.map(|c| c / p.points.len() as f64);
+        let facing = dot(n, self.proj.towards_viewer(mid)) >= 0.0;
+        let n = if facing { n } else { n.map(|c| -c) };
+        let mut d = String::new();
+        let px: Vec<[f64; 2]> = pts.iter().map(|(xy, _)| self.fit.to_px(*xy)).collect();
+        polyline(&mut d, &px);
+        d.push('Z');
+        Some(Item {
+            depth: pts.iter().map(|r| r.1).sum::<f64>() / pts.len() as f64,
+            svg: format!(
+                r#"<path d="{d}" fill="{}" fill-rule="evenodd"/>"#,
+                hex(self.colour(Kind::Surface, p.colour, p.index, mid, n))
+            ),
+        })
+    }
+
+    fn segment(&self, s: &Segment, world_widths: bool) -> Option<Item> {
+        let ((a, za), (b, zb)) = (self.proj.project(s.a)?, self.proj.project(s.b)?);
+        let mid = [0, 1, 2].map(|k| (s.a[k] + s.b[k]) / 2.0);
+        let v = self.proj.towards_viewer(mid);
+        // Lit as the side of a cylinder facing the viewer.
+        let n = unit(sub(s.b, s.a))
+            .and_then(|axis| unit(cross(axis, v)).map(|side| cross(side, axis)))
+            .unwrap_or(v);
+        let width = if self.world_lines {
+            s.width.abs() * self.proj.pixels_per_unit(&self.fit, (za + zb) / 2.0)
+        } else {
+            self.fit.line_width(s.width, world_widths)
+        };
+        let (a, b) = (self.fit.to_px(a), self.fit.to_px(b));
+        Some(Item {
+            depth: (za + zb) / 2.0,
+            svg: format!(
+                r#"<path d="M{} {}L{} {}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round"/>"#,
+                num(a[0]),
+                num(a[1]),
+                num(b[0]),
+                num(b[1]),
+                hex(self.colour(Kind::Line, s.colour, s.index, mid, n)),
+                num(width)
+            ),
+        })
+    }
+
+    fn disc(&self, d: &Disc) -> Option<Item> {
+        let (c, z) = self.proj.project(d.centre)?;
+        let r = d.diameter.abs() / 2.0;
+        let r = if d.pixels {
+            r * self.fit.line_unit
+        } else {
+            r * self.proj.pixels_per_unit(&self.fit, z)
+        };
+        let v = self.proj.towards_viewer(d.centre);
+        let c = self.fit.to_px(c);
+        Some(Item {
+            depth: z,
+            svg: format!(
+                r#"<circle cx="{}" cy="{}" r="{}" fill="{}"/>"#,
+                num(c[0]),
+                num(c[1]),
+                num(r),
+                hex(self.colour(Kind::Line, d.colour, d.index, d.centre, v))
+            ),
+        })
+    }
+}
+
+/// The SVG of a geometry seen through a camera or lit (a cpfg object):
+/// every polygon, line and disc on its own, farther first (the painter's
+/// order by each one's mean depth), in the colour the look gives it (one
+/// per primitive: lit at its middle unless the shading is flat colours).
+pub fn write_scene(
+    g: &Geometry,
+    lighting: Option<&Lighting>,
+    palette: &[Rgb],
+    opts: &RenderOptions,
+) -> String {
+    let proj = Projector::new(opts);
+    let default_lighting = Lighting::default();
+    let look = lighting.unwrap_or(&default_lighting);
+    let centre = g.bbox().map_or([0.0; 3], |b| {
+        [
+            (b[0] + b[3]) / 2.0,
+            (b[1] + b[4]) / 2.0,
+            (b[2] + b[5]) / 2.0,
+        ]
+    });
+    let scene = Scene {
+        proj,
+        fit: proj.fit(&super::raster::extent(g, &proj, look), opts),
+        shader: Shader::new(look, palette, proj.towards_viewer(centre)),
+        lighting,
+        world_lines: lighting.is_some_and(|l| l.line_style != LineStyle::Pixel),
+    };
+    let mut items: Vec<Item> = g.polygons.iter().filter_map(|p| scene.polygon(p)).collect();
+    items.extend(
+        g.segments
+            .iter()
+            .filter_map(|s| scene.segment(s, g.world_widths)),
+    );
+    items.extend(g.discs.iter().filter_map(|d| scene.disc(d)));
+    // Farther first; a stable sort keeps the turtle's order among equals.
+    items.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+    let (w, h) = (opts.width, opts.height);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
+    );
+    let _ = writeln!(
+        out,
+        r#"<rect width="{w}" height="{h}" fill="{}"/>"#,
+        background(opts.background)
+    );
+    for item in items {
+        out.push_str(&item.svg);
+        out.push('\n');
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scene_is_drawn_farther_first_on_its_background() {
+        use crate::ir::look::Camera;
+        let square = |z: f64, grey: u8| Polygon {
+            points: vec![[0.0, 0.0, z], [1.0, 0.0, z], [1.0, 1.0, z], [0.0, 1.0, z]],
+            colour: Rgb(grey, grey, grey),
+            index: 0,
+        };
+        let g = Geometry {
+            polygons: vec![square(1.0, 1), square(-1.0, 2)],
+            segments: vec![Segment {
+                a: [0.0, 0.0, 0.0],
+                b: [1.0, 1.0, 0.0],
+                width: 1.0,
+                colour: Rgb(3, 3, 3),
+                index: 0,
+            }],
+            ..Geometry::default()
+        };
+        let order = |eye_z: f64| {
+            let opts = RenderOptions {
+                camera: Some(Camera {
+                    eye: [0.5, 0.5, eye_z],
+                    target: [0.5, 0.5, 0.0],
+                    up: [0.0, 1.0, 0.0],
+                    perspective: None,
+                }),
+                background: Rgb(9, 8, 7),
+                ..RenderOptions::default()
+            };
+            let svg = write_scene(&g, None, &[Rgb(0, 0, 0)], &opts);
+            assert!(svg.contains(r##"fill="#090807""##));
+            ["#010101", "#020202", "#030303"].map(|c| svg.find(c).unwrap())
+        };
+        // From +z the square at z = 1 is nearest: drawn last.
+        let [near, far, line] = order(10.0);
+        assert!(far < line && line < near);
+        let [near, far, line] = order(-10.0);
+        assert!(near < line && line < far);
+    }
 
     #[test]
     fn numbers_are_short_and_stable() {
