@@ -136,27 +136,44 @@ pub struct Camera {
     pub perspective: Option<f64>,
 }
 
-/// A tropism (cpfg `tropism:`, manual §8.1.8): every step bends the heading
-/// towards (or, with a negative elasticity, away from) `vector`, by the
-/// turtle's elasticity times `|H × T|` (the book's §2.4: α = e |H × T|).
+/// A tropism (cpfg `tropism:`, `torque:`, manual §8.1.8; the book's §2.4):
+/// a pull on the turtle's frame at every step, of a strength the turtle's
+/// elasticity for it gives (its state, saved and restored by branches).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Tropism {
-    /// `T:` the direction bent towards (normalised when used).
+    /// The direction pulled towards (normalised when used).
     pub vector: [f64; 3],
-    /// `A:` the angle to the vector, in degrees, the heading tends to
-    /// (0: along it).
+    /// The angle to the vector, in degrees, the heading tends to (0:
+    /// towards it, orthotropism; 90: across it, plagiotropism). Only
+    /// [`TropismKind::Bend`] uses it.
     pub angle: f64,
-    /// `I:` intensity: multiplies the elasticity.
+    /// How strongly the vector pulls: the pull is the unit vector times
+    /// this (may be negative: a pull away).
     pub intensity: f64,
-    /// `E:` the initial elasticity.
+    /// The initial elasticity.
     pub elasticity: f64,
-    /// `S:` what `@Ts`-style modules (cpfg `@Ts(n)`/`@Te`) step the
-    /// elasticity by.
+    /// What an elasticity change without a value adds or takes away.
     pub step: f64,
-    /// A torque (`torque:`): twists the frame about H instead of bending.
-    pub torque: bool,
+    pub kind: TropismKind,
 }
 
+/// How a [`Tropism`] moves the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum TropismKind {
+    /// Before each step, the tropisms of this kind together turn H towards
+    /// their summed pull `D` (each term its elasticity times its pull,
+    /// tilted by its angle) about `H × D`, by `|H × D|` radians, at most
+    /// one; U and L then follow H without twisting (cpfg's movements).
+    Bend,
+    /// Before each step, a twist about H bringing U towards the pull's
+    /// part across H, by at most one radian; H is unchanged (cpfg
+    /// `torque:`).
+    Torque,
+    /// After each step, H turns towards the vector in the HU plane by the
+    /// angle whose sine is `e (T·U)`, then in the HL plane by `e (T·L)`
+    /// (cpfg's older `tropism direction:` with `initial elasticity:`).
+    BendAfterStep,
+}
 /// A contour (cpfg `.con`, `contour:`): a closed (or open) planar curve,
 /// the cross-section of generalized cylinders and the curve `curveX`,
 /// `curveY` and `curveGAL` read.

@@ -10,8 +10,8 @@ use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{
-    Alternative, Angle, Axis, ContextFilter, Formals, Phase, Production, QueryKind, RulePolicy,
-    Span, SpanTable, SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Axis, ContextFilter, ElasticityChange, Formals, Phase, Production,
+    QueryKind, RulePolicy, Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -72,6 +72,10 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         axis,
         angle: Angle::Delta(sign),
     };
+    let elasticity = |change| TurtleOp::Elasticity {
+        tropism: None,
+        change,
+    };
     Some(match name {
         "F" | "G" => TurtleOp::Forward { draw: true },
         "f" | "g" => TurtleOp::Forward { draw: false },
@@ -102,6 +106,13 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         "@Gc" => TurtleOp::CylinderPoint { end: false },
         "@Ge" => TurtleOp::CylinderPoint { end: true },
         "@Gt" => TurtleOp::CylinderTangents,
+        "@#" => TurtleOp::SetContour,
+        // cpfg reads `@Ti`; the manual writes `@T`.
+        "@Ts" => elasticity(ElasticityChange::Set),
+        "@Ti" | "@T" => elasticity(ElasticityChange::Increase),
+        "@Td" => elasticity(ElasticityChange::Decrease),
+        "@Tp" => TurtleOp::Untwist,
+        "@Tf" => TurtleOp::KeepTwist,
         "?P" => TurtleOp::Query(QueryKind::Position),
         "?H" => TurtleOp::Query(QueryKind::Heading),
         "?L" => TurtleOp::Query(QueryKind::Left),
@@ -111,9 +122,7 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
 }
 
 /// Turtle commands graftal reads but does not draw (W0823).
-const NOT_DRAWN: &[&str] = &[
-    "@L", "@Tx", "@Ts", "@T", "@Td", "@Tp", "@Tf", "@PS", "@PC", "@PD", "@bo", "@bc",
-];
+const NOT_DRAWN: &[&str] = &["@L", "@Tx", "@PS", "@PC", "@PD", "@bo", "@bc"];
 
 /// Names bound in a production or block, resolved as they are met.
 struct Scope {

@@ -17,6 +17,7 @@ pub mod lower;
 pub mod parser;
 pub mod preprocess;
 pub mod surface;
+mod tropisms;
 pub mod view;
 
 pub use crate::ir::Lowered;
@@ -132,7 +133,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
     let mut lowered = beside.read_mapped(&file.text, &functions.defines, diags);
-    warn_tropisms(&view, diags);
+    tropisms::add_tropisms(&mut lowered, &view, diags);
     apply_view(&mut lowered.system, &view);
     lowered.system.program.functions = functions.functions;
     beside.add_surfaces(&mut lowered.system, &view, diags);
@@ -351,22 +352,6 @@ fn map_spans(spans: &mut crate::ir::SpanTable, map: impl Fn(&Span) -> Span) {
                 *s = map(s);
             }
         }
-    }
-}
-
-/// Tropisms bend every segment in cpfg; graftal does not apply them yet,
-/// so say so rather than draw a different plant silently.
-fn warn_tropisms(view: &view::View, diags: &mut Diagnostics) {
-    let bends = !view.tropisms.is_empty()
-        || (view.tropism_direction.is_some() && view.initial_elasticity != 0.0);
-    if bends {
-        diags.push(
-            crate::diagnostics::Diagnostic::global(
-                crate::diagnostics::codes::CPFG_NOT_DRAWN,
-                "the view file sets tropisms, which graftal does not apply: branches are drawn unbent",
-            )
-            .with_help("cpfg bends each segment towards the tropism vector by its elasticity"),
-        );
     }
 }
 
