@@ -174,15 +174,48 @@ pub enum TropismKind {
     /// (cpfg's older `tropism direction:` with `initial elasticity:`).
     BendAfterStep,
 }
-/// A contour (cpfg `.con`, `contour:`): a closed (or open) planar curve,
-/// the cross-section of generalized cylinders and the curve `curveX`,
-/// `curveY` and `curveGAL` read.
+/// A contour (cpfg `.con`): a planar curve, the cross-section of
+/// generalized cylinders ([`ContourRole::CrossSection`]) or a curve
+/// expressions read ([`ContourRole::Curve`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Contour {
-    /// The id `@#(id)` selects.
+    /// The id `@#(id)` selects, or `curveX(id, t)` reads (one numbering per
+    /// role).
     pub id: u32,
-    /// The curve, sampled densely, as (x, y, z) in the contour's plane
-    /// (z is 0 for planar contours).
+    pub role: ContourRole,
+    /// The curve sampled at [`CONTOUR_SAMPLES`] equal steps of arc length:
+    /// `CONTOUR_SAMPLES + 1` points (x, y, z) in the contour's plane (z is
+    /// 0 for planar contours); a closed curve's last point is its first.
     pub points: Vec<[f64; 3]>,
     pub closed: bool,
+    /// The curve's length (`curveGAL`).
+    pub length: f64,
+}
+
+/// What a [`Contour`] is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum ContourRole {
+    /// The cross-section of generalized cylinders: a point (x, y) of it
+    /// lies at `x U − y L` from the axis, times the cylinder's radius.
+    CrossSection,
+    /// A curve `curveX`, `curveY`, `curveZ` and `curveGAL` read.
+    Curve,
+}
+
+/// How many steps of arc length a [`Contour`]'s points are apart.
+pub const CONTOUR_SAMPLES: usize = 64;
+
+impl Contour {
+    /// The point at `t` of the curve's length, `t` clamped to 0..=1.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let last = self.points.len().saturating_sub(1);
+        if last == 0 {
+            return self.points.first().copied().unwrap_or([0.0; 3]);
+        }
+        let x = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) } * last as f64;
+        let k = (x.floor() as usize).min(last - 1);
+        let f = x - k as f64;
+        let (a, b) = (self.points[k], self.points[k + 1]);
+        std::array::from_fn(|i| a[i] + (b[i] - a[i]) * f)
+    }
 }
