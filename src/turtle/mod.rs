@@ -12,6 +12,7 @@
 //! follows the book's definition (§2.3: `R_U(180°)`), which the listing
 //! meets for every even angle factor.
 
+mod gencyl;
 pub mod instanced;
 mod tropism;
 
@@ -167,6 +168,11 @@ struct State {
 struct Cylinder {
     point: Vec3,
     heading: Vec3,
+    /// The frame's up, the width and the cross-section there (what a mesh
+    /// sweeps from).
+    up: Vec3,
+    width: f64,
+    contour: u16,
     tangents: (f64, f64),
 }
 
@@ -181,6 +187,9 @@ impl Cylinder {
         Cylinder {
             point: st.pos,
             heading: st.h,
+            up: st.u,
+            width: st.width,
+            contour: st.contour,
             tangents: DEFAULT_TANGENTS,
         }
     }
@@ -834,6 +843,60 @@ impl Turtle<'_> {
         let Some(c) = self.state.cylinder else {
             return;
         };
+        if c.contour != 0 || self.state.contour != 0 {
+            self.cylinder_mesh(&c, pieces.max(4));
+        } else {
+            self.cylinder_segments(&c, pieces.max(4));
+        }
+        self.state.cylinder = if end {
+            None
+        } else {
+            Some(Cylinder::at(&self.state))
+        };
+    }
+
+    /// A piece of generalized cylinder with a cross-section: the contour
+    /// swept from `c` to the turtle as quadrilaterals.
+    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
+        let st = &self.state;
+        let from = gencyl::End {
+            pos: c.point,
+            h: c.heading,
+            u: c.up,
+            radius: c.width / 2.0,
+        };
+        let to = gencyl::End {
+            pos: st.pos,
+            h: st.h,
+            u: st.u,
+            radius: st.width / 2.0,
+        };
+        let section = |k: u16| match k.checked_sub(1) {
+            Some(i) => self.sys.contours[usize::from(i)].points.clone(),
+            None => gencyl::circle(),
+        };
+        let quads = gencyl::sweep(
+            &from,
+            &to,
+            c.tangents,
+            pieces,
+            &section(c.contour),
+            &section(st.contour),
+        );
+        let index = index_of(st.colour);
+        let colour = self.colour();
+        for q in quads {
+            self.sink.polygon(Polygon {
+                points: q.to_vec(),
+                colour,
+                index,
+            });
+        }
+    }
+
+    /// A piece of generalized cylinder without a cross-section: its axis
+    /// as a chain of segments as wide as the turtle's line.
+    fn cylinder_segments(&mut self, c: &Cylinder, pieces: usize) {
         let st = &self.state;
         let d = {
             let v = [
@@ -847,7 +910,7 @@ impl Turtle<'_> {
         let t1 = st.h.map(|x| x * d * c.tangents.1);
         let colour = self.colour();
         let mut a = c.point;
-        for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
+        for b in hermite(c.point, t0, st.pos, t1, pieces) {
             self.sink.segment(Segment {
                 a,
                 b,
@@ -857,11 +920,6 @@ impl Turtle<'_> {
             });
             a = b;
         }
-        self.state.cylinder = if end {
-            None
-        } else {
-            Some(Cylinder::at(&self.state))
-        };
     }
 }
 
@@ -876,7 +934,11 @@ impl Turtle<'_> {
             .sys
             .contours
             .iter()
-            .position(|c| f64::from(c.id) == id && id >= 1.0)
+            .position(|c| {
+                c.role == crate::ir::look::ContourRole::CrossSection
+                    && f64::from(c.id) == id
+                    && id >= 1.0
+            })
             .map_or(0, |k| (k + 1).min(u16::MAX as usize) as u16);
     }
 
