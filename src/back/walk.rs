@@ -116,7 +116,11 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::CylinderStart
         | TurtleOp::CylinderPoint { .. }
         | TurtleOp::CylinderTangents
-        | TurtleOp::Query(_) => Does::Cpfg,
+        | TurtleOp::Query(_)
+        | TurtleOp::Elasticity { .. }
+        | TurtleOp::Untwist
+        | TurtleOp::KeepTwist
+        | TurtleOp::SetContour => Does::Cpfg,
     }
 }
 

@@ -11,6 +11,7 @@
 
 use super::DeriveOptions;
 use crate::diagnostics::{codes, Diagnostic};
+use crate::ir::look::{Contour, ContourRole};
 use crate::ir::program::{truth, BinOp, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{Alternative, Formals, Production, RulePolicy, SymbolId, System, Word};
 use crate::random::{Rng, Stream};
@@ -25,6 +26,8 @@ enum Halt {
 /// Variables, arrays, the random stream and the work budget.
 struct Machine<'p> {
     par: &'p Program,
+    /// The curves `curveX` and `curveGAL` read.
+    contours: &'p [Contour],
     globals: Vec<f64>,
     arrays: Vec<Vec<f64>>,
     rng: Rng,
@@ -45,6 +48,7 @@ impl<'p> Machine<'p> {
         let par = &sys.program;
         Machine {
             par,
+            contours: &sys.contours,
             globals: vec![0.0; par.globals.len()],
             arrays: par
                 .arrays
@@ -169,6 +173,9 @@ impl<'p> Machine<'p> {
                     None => 0.0,
                 }
             }
+            Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal => {
+                self.curve(f, x, y)
+            }
             Builtin::Stop => {
                 self.stop = true;
                 0.0
@@ -180,12 +187,30 @@ impl<'p> Machine<'p> {
                 0.0
             }
             Builtin::GetDerivationLength => self.steps as f64,
-            // The pure functions returned above; curves, I/O and the view
+            // The pure functions returned above; I/O and the view
             // volume are 0 (graftal performs no I/O for a model).
             _ => {
                 let _ = n;
                 0.0
             }
+        }
+    }
+
+    /// `curveX(id, t)` and the like: 0 for a curve the system does not
+    /// have (the front end reports the call).
+    fn curve(&self, f: Builtin, id: f64, t: f64) -> f64 {
+        let Some(c) = self
+            .contours
+            .iter()
+            .find(|c| c.role == ContourRole::Curve && f64::from(c.id) == id)
+        else {
+            return 0.0;
+        };
+        match f {
+            Builtin::CurveX => c.at(t)[0],
+            Builtin::CurveY => c.at(t)[1],
+            Builtin::CurveZ => c.at(t)[2],
+            _ => c.length,
         }
     }
 

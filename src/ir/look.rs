@@ -183,36 +183,86 @@ fn normalised(v: [f64; 3]) -> Option<[f64; 3]> {
     (n.is_finite() && n > 1e-12).then(|| v.map(|x| x / n))
 }
 
-/// A tropism (cpfg `tropism:`, manual §8.1.8): every step bends the heading
-/// towards (or, with a negative elasticity, away from) `vector`, by the
-/// turtle's elasticity times `|H × T|` (the book's §2.4: α = e |H × T|).
+/// A tropism (cpfg `tropism:`, `torque:`, manual §8.1.8; the book's §2.4):
+/// a pull on the turtle's frame at every step, of a strength the turtle's
+/// elasticity for it gives (its state, saved and restored by branches).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Tropism {
-    /// `T:` the direction bent towards (normalised when used).
+    /// The direction pulled towards (normalised when used).
     pub vector: [f64; 3],
-    /// `A:` the angle to the vector, in degrees, the heading tends to
-    /// (0: along it).
+    /// The angle to the vector, in degrees, the heading tends to (0:
+    /// towards it, orthotropism; 90: across it, plagiotropism). Only
+    /// [`TropismKind::Bend`] uses it.
     pub angle: f64,
-    /// `I:` intensity: multiplies the elasticity.
+    /// How strongly the vector pulls: the pull is the unit vector times
+    /// this (may be negative: a pull away).
     pub intensity: f64,
-    /// `E:` the initial elasticity.
+    /// The initial elasticity.
     pub elasticity: f64,
-    /// `S:` what `@Ts`-style modules (cpfg `@Ts(n)`/`@Te`) step the
-    /// elasticity by.
+    /// What an elasticity change without a value adds or takes away.
     pub step: f64,
-    /// A torque (`torque:`): twists the frame about H instead of bending.
-    pub torque: bool,
+    pub kind: TropismKind,
 }
 
-/// A contour (cpfg `.con`, `contour:`): a closed (or open) planar curve,
-/// the cross-section of generalized cylinders and the curve `curveX`,
-/// `curveY` and `curveGAL` read.
+/// How a [`Tropism`] moves the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum TropismKind {
+    /// Before each step, the tropisms of this kind together turn H towards
+    /// their summed pull `D` (each term its elasticity times its pull,
+    /// tilted by its angle) about `H × D`, by `|H × D|` radians, at most
+    /// one; U and L then follow H without twisting (cpfg's movements).
+    Bend,
+    /// Before each step, a twist about H bringing U towards the pull's
+    /// part across H, by at most one radian; H is unchanged (cpfg
+    /// `torque:`).
+    Torque,
+    /// After each step, H turns towards the vector in the HU plane by the
+    /// angle whose sine is `e (T·U)`, then in the HL plane by `e (T·L)`
+    /// (cpfg's older `tropism direction:` with `initial elasticity:`).
+    BendAfterStep,
+}
+/// A contour (cpfg `.con`): a planar curve, the cross-section of
+/// generalized cylinders ([`ContourRole::CrossSection`]) or a curve
+/// expressions read ([`ContourRole::Curve`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Contour {
-    /// The id `@#(id)` selects.
+    /// The id `@#(id)` selects, or `curveX(id, t)` reads (one numbering per
+    /// role).
     pub id: u32,
-    /// The curve, sampled densely, as (x, y, z) in the contour's plane
-    /// (z is 0 for planar contours).
+    pub role: ContourRole,
+    /// The curve sampled at [`CONTOUR_SAMPLES`] equal steps of arc length:
+    /// `CONTOUR_SAMPLES + 1` points (x, y, z) in the contour's plane (z is
+    /// 0 for planar contours); a closed curve's last point is its first.
     pub points: Vec<[f64; 3]>,
     pub closed: bool,
+    /// The curve's length (`curveGAL`).
+    pub length: f64,
+}
+
+/// What a [`Contour`] is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum ContourRole {
+    /// The cross-section of generalized cylinders: a point (x, y) of it
+    /// lies at `x U − y L` from the axis, times the cylinder's radius.
+    CrossSection,
+    /// A curve `curveX`, `curveY`, `curveZ` and `curveGAL` read.
+    Curve,
+}
+
+/// How many steps of arc length a [`Contour`]'s points are apart.
+pub const CONTOUR_SAMPLES: usize = 64;
+
+impl Contour {
+    /// The point at `t` of the curve's length, `t` clamped to 0..=1.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let last = self.points.len().saturating_sub(1);
+        if last == 0 {
+            return self.points.first().copied().unwrap_or([0.0; 3]);
+        }
+        let x = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) } * last as f64;
+        let k = (x.floor() as usize).min(last - 1);
+        let f = x - k as f64;
+        let (a, b) = (self.points[k], self.points[k + 1]);
+        std::array::from_fn(|i| a[i] + (b[i] - a[i]) * f)
+    }
 }

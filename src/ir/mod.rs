@@ -595,6 +595,38 @@ pub enum TurtleOp {
     /// colour going down (Fractint never reaches the background colour 0
     /// this way).
     ShiftColour { by: u32, up: bool },
+    /// cpfg `@Ts`, `@Ti`, `@Td`, `_`: changes the turtle's elasticity for
+    /// one of [`Settings::tropisms`]: `tropism` (0-based), or, when `None`,
+    /// the one the module's first parameter names (1-based; then the value
+    /// is the second parameter). Without an id nothing changes.
+    Elasticity {
+        tropism: Option<u16>,
+        change: ElasticityChange,
+    },
+    /// cpfg `@Tp`: U and L follow the turn of H since the last drawn step
+    /// without twisting about H.
+    Untwist,
+    /// cpfg `@Tf`: the frame as it is now is the one later untwisting
+    /// starts from (a roll made since the last step is kept).
+    KeepTwist,
+    /// cpfg `@#(id)`: the cross-section of the generalized cylinders that
+    /// follow is contour `id` of [`System::contours`]; 0 or no parameter:
+    /// the default circle.
+    SetContour,
+}
+
+/// How [`TurtleOp::Elasticity`] changes an elasticity by its value `v`,
+/// or, when the module gives none, by the tropism's step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum ElasticityChange {
+    /// To `v` (to 0 without one).
+    Set,
+    /// Up by `v` (by the step).
+    Increase,
+    /// Down by `v` (by the step).
+    Decrease,
+    /// To `v` with one, up by the step without (cpfg's `_`).
+    SetOrIncrease,
 }
 
 /// What a cpfg query module reads.

@@ -70,9 +70,12 @@ pub enum Builtin {
     Biran,
     /// `func(id, x)`: a user function from the view file.
     Func,
+    /// `curveX(id, t)`, `curveY`, `curveZ`: a coordinate of the point at
+    /// `t` of the length of curve `id` ([`super::look::ContourRole::Curve`]).
     CurveX,
     CurveY,
     CurveZ,
+    /// `curveGAL(id)`: the length of curve `id`.
     CurveGal,
     /// `printf`, `fprintf`, `fopen`, `fclose`, `fflush`, `fscanf`: graftal
     /// performs no I/O for a model; these evaluate to 0.
@@ -197,7 +200,15 @@ impl Builtin {
     pub fn varies(self) -> bool {
         matches!(
             self,
-            Builtin::Ran | Builtin::Nran | Builtin::Bran | Builtin::Biran | Builtin::Func
+            Builtin::Ran
+                | Builtin::Nran
+                | Builtin::Bran
+                | Builtin::Biran
+                | Builtin::Func
+                | Builtin::CurveX
+                | Builtin::CurveY
+                | Builtin::CurveZ
+                | Builtin::CurveGal
         )
     }
 }

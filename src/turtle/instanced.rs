@@ -348,7 +348,9 @@ impl<'a> Instanced<'a> {
     /// `None` when `sys` is not context-free and deterministic, or draws
     /// with something instancing does not cover (see the module notes).
     pub fn new(sys: &'a System) -> Option<Self> {
-        if sys.structure.is_some() {
+        // Tropisms bend each step by the frame it is taken in: no subtree
+        // draws the same wherever it is.
+        if sys.structure.is_some() || !sys.settings.tropisms.is_empty() {
             return None;
         }
         let tree = D0l::of(sys)?;

@@ -12,9 +12,13 @@
 //! follows the book's definition (§2.3: `R_U(180°)`), which the listing
 //! meets for every even angle factor.
 
+mod gencyl;
 pub mod instanced;
+mod tropism;
 
-use crate::ir::{Angle, Axis, QueryKind, Rgb, RotationId, SymbolId, System, TurtleOp, Word};
+use crate::ir::{
+    Angle, Axis, ElasticityChange, QueryKind, Rgb, RotationId, SymbolId, System, TurtleOp, Word,
+};
 use crate::random::{Rng, Stream};
 use serde::Serialize;
 
@@ -155,12 +159,20 @@ struct State {
     /// Fractint's real heading ([`TurtleOp::RotateReal`]): radians
     /// counter-clockwise from the initial H towards the initial L.
     real: f64,
+    /// The cross-section of generalized cylinders: an index into
+    /// [`System::contours`] plus one, 0 for the default circle.
+    contour: u16,
 }
 
 #[derive(Clone, Copy, Debug)]
 struct Cylinder {
     point: Vec3,
     heading: Vec3,
+    /// The frame's up, the width and the cross-section there (what a mesh
+    /// sweeps from).
+    up: Vec3,
+    width: f64,
+    contour: u16,
     tangents: (f64, f64),
 }
 
@@ -175,6 +187,9 @@ impl Cylinder {
         Cylinder {
             point: st.pos,
             heading: st.h,
+            up: st.u,
+            width: st.width,
+            contour: st.contour,
             tangents: DEFAULT_TANGENTS,
         }
     }
@@ -469,6 +484,9 @@ struct Turtle<'a> {
     path_stack: Vec<usize>,
     /// Rotations since the frame was last re-orthonormalised.
     rotations: u32,
+    /// The system's tropisms and what bends with the turtle; `None` when
+    /// it has none.
+    tropisms: Option<tropism::Tropisms<'a>>,
     sink: &'a mut dyn Sink,
     query: &'a mut dyn FnMut(usize, QueryKind, Vec3),
 }
@@ -498,6 +516,7 @@ impl<'a> Turtle<'a> {
             swapped: false,
             cylinder: None,
             real: 0.0,
+            contour: 0,
         };
         let mut turtle = Turtle {
             sys,
@@ -512,6 +531,7 @@ impl<'a> Turtle<'a> {
             path: usize::MAX,
             path_stack: Vec::new(),
             rotations: 0,
+            tropisms: tropism::Tropisms::new(&sys.settings.tropisms, &state),
             sink,
             query,
         };
@@ -532,6 +552,7 @@ impl<'a> Turtle<'a> {
             self.rotations = 0;
         }
         match op {
+            TurtleOp::Forward { draw } if self.tropisms.is_some() => self.forward_bent(draw, args),
             TurtleOp::Forward { draw } => self.forward(self.state.h, draw, args),
             TurtleOp::ForwardReal { draw } => {
                 // Along the real heading in the plane of the initial
@@ -598,6 +619,18 @@ impl<'a> Turtle<'a> {
                 let v = self.state.vector(kind);
                 (self.query)(i, kind, v);
             }
+            TurtleOp::Elasticity { tropism, change } => self.elasticity(tropism, change, args),
+            TurtleOp::Untwist => {
+                if let Some(t) = self.tropisms.as_mut() {
+                    t.untwist(&mut self.state);
+                }
+            }
+            TurtleOp::KeepTwist => {
+                if let Some(t) = self.tropisms.as_mut() {
+                    t.keep_twist(&self.state);
+                }
+            }
+            TurtleOp::SetContour => self.set_contour(args),
         }
     }
 
@@ -651,6 +684,44 @@ impl Turtle<'_> {
                 colour,
                 index: index_of(self.state.colour),
             });
+        }
+    }
+
+    /// A step bent by the tropisms: the pulls act on the frame before the
+    /// step, the older tropisms after it, and a drawn step is where the
+    /// next untwisting starts from (cpfg's order).
+    fn forward_bent(&mut self, draw: bool, args: Args) {
+        if let Some(t) = self.tropisms.as_mut() {
+            t.before_step(&mut self.state);
+        }
+        self.forward(self.state.h, draw, args);
+        if let Some(t) = self.tropisms.as_mut() {
+            t.after_step(&mut self.state);
+            if draw {
+                t.drawn_step(&self.state);
+            }
+        }
+        self.rotations += 1;
+    }
+
+    /// `@Ts`, `@Ti`, `@Td`, `_`: an elasticity change; the tropism is the
+    /// op's, or the one the first parameter names (1-based), and the value
+    /// the parameter after it.
+    fn elasticity(&mut self, tropism: Option<u16>, change: ElasticityChange, args: Args) {
+        let Some(t) = self.tropisms.as_mut() else {
+            return;
+        };
+        let (k, value) = match tropism {
+            Some(k) => (Some(k as usize), args.get(0)),
+            None => (
+                args.get(0)
+                    .filter(|id| *id >= 1.0 && *id <= tropism::MAX_TROPISMS as f64)
+                    .map(|id| id as usize - 1),
+                args.get(1),
+            ),
+        };
+        if let Some(k) = k {
+            t.change(k, change, value);
         }
     }
 
@@ -712,6 +783,9 @@ impl Turtle<'_> {
 impl Turtle<'_> {
     fn push(&mut self) {
         self.stack.push(self.state);
+        if let Some(t) = self.tropisms.as_mut() {
+            t.push();
+        }
         self.geometry.max_depth = self.geometry.max_depth.max(self.stack.len());
         if self.record_paths {
             self.path_stack.push(self.path);
@@ -722,6 +796,9 @@ impl Turtle<'_> {
     fn pop(&mut self) {
         if let Some(s) = self.stack.pop() {
             self.state = s;
+            if let Some(t) = self.tropisms.as_mut() {
+                t.pop();
+            }
             if let Some(p) = self.path_stack.pop() {
                 self.path = p;
             }
@@ -766,6 +843,60 @@ impl Turtle<'_> {
         let Some(c) = self.state.cylinder else {
             return;
         };
+        if c.contour != 0 || self.state.contour != 0 {
+            self.cylinder_mesh(&c, pieces.max(4));
+        } else {
+            self.cylinder_segments(&c, pieces.max(4));
+        }
+        self.state.cylinder = if end {
+            None
+        } else {
+            Some(Cylinder::at(&self.state))
+        };
+    }
+
+    /// A piece of generalized cylinder with a cross-section: the contour
+    /// swept from `c` to the turtle as quadrilaterals.
+    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
+        let st = &self.state;
+        let from = gencyl::End {
+            pos: c.point,
+            h: c.heading,
+            u: c.up,
+            radius: c.width / 2.0,
+        };
+        let to = gencyl::End {
+            pos: st.pos,
+            h: st.h,
+            u: st.u,
+            radius: st.width / 2.0,
+        };
+        let section = |k: u16| match k.checked_sub(1) {
+            Some(i) => self.sys.contours[usize::from(i)].points.clone(),
+            None => gencyl::circle(),
+        };
+        let quads = gencyl::sweep(
+            &from,
+            &to,
+            c.tangents,
+            pieces,
+            &section(c.contour),
+            &section(st.contour),
+        );
+        let index = index_of(st.colour);
+        let colour = self.colour();
+        for q in quads {
+            self.sink.polygon(Polygon {
+                points: q.to_vec(),
+                colour,
+                index,
+            });
+        }
+    }
+
+    /// A piece of generalized cylinder without a cross-section: its axis
+    /// as a chain of segments as wide as the turtle's line.
+    fn cylinder_segments(&mut self, c: &Cylinder, pieces: usize) {
         let st = &self.state;
         let d = {
             let v = [
@@ -779,7 +910,7 @@ impl Turtle<'_> {
         let t1 = st.h.map(|x| x * d * c.tangents.1);
         let colour = self.colour();
         let mut a = c.point;
-        for b in hermite(c.point, t0, st.pos, t1, pieces.max(4)) {
+        for b in hermite(c.point, t0, st.pos, t1, pieces) {
             self.sink.segment(Segment {
                 a,
                 b,
@@ -789,16 +920,28 @@ impl Turtle<'_> {
             });
             a = b;
         }
-        self.state.cylinder = if end {
-            None
-        } else {
-            Some(Cylinder::at(&self.state))
-        };
     }
 }
 
 /// Colours, widths and lengths.
 impl Turtle<'_> {
+    /// cpfg `@#(id)`: the contour of that id becomes the cross-section of
+    /// generalized cylinders; 0, no parameter or an id no contour has: the
+    /// circle.
+    fn set_contour(&mut self, args: Args) {
+        let id = args.get(0).unwrap_or(0.0);
+        self.state.contour = self
+            .sys
+            .contours
+            .iter()
+            .position(|c| {
+                c.role == crate::ir::look::ContourRole::CrossSection
+                    && f64::from(c.id) == id
+                    && id >= 1.0
+            })
+            .map_or(0, |k| (k + 1).min(u16::MAX as usize) as u16);
+    }
+
     /// Fractint's `<n` / `>n`: the colour `by` places up or down the
     /// palette, wrapping around and skipping colour 0.
     fn shift_colour(&mut self, by: u32, up: bool) {

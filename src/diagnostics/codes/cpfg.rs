@@ -187,6 +187,24 @@ Example of a patch:
     -0.60 1.21 0.10  0.47 2.02 -0.61  -0.36 2.03 -0.61  0.75 1.23 0.16
     ... (three more rows)";
 
+    CPFG_CONTOUR_FILE = "E0816", "malformed contour file",
+"A contour file (`.con`, written by vlab's cuspy or the curve gallery) does
+not have the expected layout. cpfg reads three:
+
+    cver 1 3
+    name: leaf.con
+    points: 4 8
+    type: or
+    samples: 8
+    -1.0 -2.0 0.0 3
+    ...
+
+(`points: n total`, then n lines `x y z multiplicity`; `type:` is `or`,
+`cr`, `oe` or `ce`, open or closed), the gallery's `version: 1.4` with
+`key: value` lines and `type: bspline`, and the oldest `n dim closed|open`
+followed by the points. An open curve needs at least 4 control points, a
+closed one 3, multiplicities counted.";
+
     CPFG_OUTSIDE_FOLDER = "E0815", "side file outside the object's folder",
 "A cpfg object is a folder: the `.l` file and the files it names (the view
 file's `function:`, `function set:`, `surface:` and `contours:` files, and

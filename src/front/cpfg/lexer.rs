@@ -315,9 +315,9 @@ mode_tokens!(ExprTok {
 
 /// Two-letter turtle commands after `@` (cpfg reads `@Gs` as `@`, `G`, `s`
 /// and looks ahead when drawing; graftal joins them into one symbol).
-const AT_PAIRS: [&str; 18] = [
-    "Gs", "Gc", "Ge", "Gt", "Gr", "Di", "Dd", "Tx", "Ts", "Td", "Tp", "Tf", "PS", "PC", "PD", "bo",
-    "bc", "mc",
+const AT_PAIRS: [&str; 19] = [
+    "Gs", "Gc", "Ge", "Gt", "Gr", "Di", "Dd", "Tx", "Ts", "Ti", "Td", "Tp", "Tf", "PS", "PC", "PD",
+    "bo", "bc", "mc",
 ];
 
 /// The symbol that starts at `start` in symbol mode: one character, or a

@@ -10,8 +10,8 @@ use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{
-    Alternative, Angle, Axis, ContextFilter, Formals, Phase, Production, QueryKind, RulePolicy,
-    Span, SpanTable, SymbolId, System, TurtleOp, Word,
+    Alternative, Angle, Axis, ContextFilter, ElasticityChange, Formals, Phase, Production,
+    QueryKind, RulePolicy, Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -72,6 +72,10 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         axis,
         angle: Angle::Delta(sign),
     };
+    let elasticity = |change| TurtleOp::Elasticity {
+        tropism: None,
+        change,
+    };
     Some(match name {
         "F" | "G" => TurtleOp::Forward { draw: true },
         "f" | "g" => TurtleOp::Forward { draw: false },
@@ -102,6 +106,13 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         "@Gc" => TurtleOp::CylinderPoint { end: false },
         "@Ge" => TurtleOp::CylinderPoint { end: true },
         "@Gt" => TurtleOp::CylinderTangents,
+        "@#" => TurtleOp::SetContour,
+        // cpfg reads `@Ti`; the manual writes `@T`.
+        "@Ts" => elasticity(ElasticityChange::Set),
+        "@Ti" | "@T" => elasticity(ElasticityChange::Increase),
+        "@Td" => elasticity(ElasticityChange::Decrease),
+        "@Tp" => TurtleOp::Untwist,
+        "@Tf" => TurtleOp::KeepTwist,
         "?P" => TurtleOp::Query(QueryKind::Position),
         "?H" => TurtleOp::Query(QueryKind::Heading),
         "?L" => TurtleOp::Query(QueryKind::Left),
@@ -111,9 +122,7 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
 }
 
 /// Turtle commands graftal reads but does not draw (W0823).
-const NOT_DRAWN: &[&str] = &[
-    "@L", "@Tx", "@Ts", "@T", "@Td", "@Tp", "@Tf", "@PS", "@PC", "@PD", "@bo", "@bc",
-];
+const NOT_DRAWN: &[&str] = &["@L", "@Tx", "@PS", "@PC", "@PD", "@bo", "@bc"];
 
 /// Names bound in a production or block, resolved as they are met.
 struct Scope {
@@ -142,6 +151,8 @@ struct Lowerer<'d> {
     suggester: Suggester,
     /// The length of the longest global variable's name.
     longest_global: usize,
+    /// The ids of the curves the view file loads (`curveX` reads them).
+    curves: Vec<u32>,
 }
 
 impl Lowerer<'_> {
@@ -351,6 +362,12 @@ impl Lowerer<'_> {
         }
         self.warn_not_run(name, name_span, builtin);
         let args: Vec<Expr> = args.iter().map(|a| self.expr(scope, a)).collect();
+        if matches!(
+            builtin,
+            Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
+        ) {
+            self.check_curve(name, name_span, args.first());
+        }
         // `atan(y, x)` with two arguments is atan2.
         let builtin = if builtin == Builtin::Atan && arities.len() > 1 && args.len() == 2 {
             Builtin::Atan2
@@ -360,23 +377,37 @@ impl Lowerer<'_> {
         Expr::Call(builtin, args)
     }
 
-    /// Warns about a function graftal reads but does not run: the contour
-    /// functions, and (once) the input and output functions.
+    /// A curve function whose curve the view file does not load: an
+    /// error at its name (the id is checked when it is a constant).
+    fn check_curve(&mut self, name: &str, name_span: &Span, id: Option<&Expr>) {
+        let id = id.and_then(Expr::constant);
+        let problem = match id {
+            _ if self.curves.is_empty() => "the view file loads no curve".to_string(),
+            Some(id) if !self.curves.iter().any(|&c| f64::from(c) == id) => {
+                format!("the view file loads no curve {id}")
+            }
+            _ => return,
+        };
+        let count = self.curves.len();
+        self.report(codes::CPFG_UNSUPPORTED, || {
+            Diagnostic::at(
+                codes::CPFG_UNSUPPORTED,
+                name_span.clone(),
+                format!("`{name}` reads a curve, and {problem}"),
+            )
+            .with_label("a curve function")
+            .with_help(if count == 0 {
+                "name the curve's file on a `curve:` line of the view file (`curve: profile.con`)"
+                    .to_string()
+            } else {
+                format!("the view file's `curve:` lines load curves 1 to {count}")
+            })
+        });
+    }
+
+    /// Warns (once) about the input and output functions, which graftal
+    /// reads but does not run.
     fn warn_not_run(&mut self, name: &str, name_span: &Span, builtin: Builtin) {
-        if matches!(
-            builtin,
-            Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal
-        ) {
-            self.report(codes::CPFG_UNSUPPORTED, || {
-                Diagnostic::at(
-                    codes::CPFG_UNSUPPORTED,
-                    name_span.clone(),
-                    format!("`{name}` needs contour files, which graftal does not read yet"),
-                )
-                .with_label("a contour function")
-                .with_help("replace the contour by a user function (`func`) or a formula")
-            });
-        }
         if builtin == Builtin::Io && !self.warned_io {
             self.warned_io = true;
             self.diags.push(
@@ -716,6 +747,7 @@ impl<'d> Lowerer<'d> {
             repeats: Repeats::default(),
             suggester: Suggester::default(),
             longest_global: 0,
+            curves: Vec::new(),
         }
     }
 }
@@ -978,7 +1010,14 @@ impl Lowerer<'_> {
 
 /// Lowers `file` to a parametric [`System`].
 pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
+    lower_with_curves(file, &[], diags)
+}
+
+/// [`lower`], with the ids of the curves the view file loads (what
+/// `curveX(id, t)` may read).
+pub fn lower_with_curves(file: &ast::File, curves: &[u32], diags: &mut Diagnostics) -> Lowered {
     let mut l = Lowerer::new(diags);
+    l.curves = curves.to_vec();
     let items = l.first_lsystem(file);
     let mut rd = Reading {
         stage: Stage::Before,

@@ -11,6 +11,7 @@
 //! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
 pub mod ast;
+pub mod contour;
 pub mod func;
 pub mod lexer;
 pub mod look;
@@ -18,6 +19,7 @@ pub mod lower;
 pub mod parser;
 pub mod preprocess;
 pub mod surface;
+mod tropisms;
 pub mod view;
 
 pub use crate::ir::Lowered;
@@ -132,11 +134,18 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     };
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
-    let mut lowered = beside.read_mapped(&file.text, &functions.defines, diags);
-    warn_tropisms(&view, diags);
+    let contours = beside.contours(&view, diags);
+    let curves: Vec<u32> = contours
+        .iter()
+        .filter(|c| c.role == crate::ir::look::ContourRole::Curve)
+        .map(|c| c.id)
+        .collect();
+    let mut lowered = beside.read_mapped(&file.text, &functions.defines, &curves, diags);
+    tropisms::add_tropisms(&mut lowered, &view, diags);
     apply_view(&mut lowered.system, &view);
     beside.add_look(&mut lowered.system, path, &view, diags);
     lowered.system.program.functions = functions.functions;
+    lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
     report_undefined_surfaces(&lowered, diags);
     lowered
@@ -230,12 +239,14 @@ impl Beside<'_> {
         &self,
         text: &str,
         defines: &[(String, String)],
+        curves: &[u32],
         diags: &mut Diagnostics,
     ) -> Lowered {
         let pre = preprocess::preprocess_with_defines(text, defines, &mut |name| self.read(name));
         diags.extend(pre.diagnostics);
         let mut own = Diagnostics::default();
-        let mut lowered = read(&pre.text, &mut own);
+        let ast = parser::parse(&pre.text, &mut own);
+        let mut lowered = lower::lower_with_curves(&ast, curves, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
         for mut d in own.0 {
             // Where expansion stopped too deep the text is left as written:
@@ -251,6 +262,38 @@ impl Beside<'_> {
         }
         map_spans(&mut lowered.spans, map);
         lowered
+    }
+
+    /// The view file's contours (`contour:`, cross-sections) and curves
+    /// (`curve:`), sampled; a file that is missing or wrong is reported and
+    /// left out.
+    fn contours(
+        &self,
+        view: &view::View,
+        diags: &mut Diagnostics,
+    ) -> Vec<crate::ir::look::Contour> {
+        use crate::ir::look::{Contour, ContourRole, CONTOUR_SAMPLES};
+        let refs = (view.contours.iter().map(|r| (r, ContourRole::CrossSection)))
+            .chain(view.curves.iter().map(|r| (r, ContourRole::Curve)));
+        let mut out = Vec::new();
+        for (r, role) in refs {
+            let Some(file) = self.read_with(&r.file, "contour", contour::read_contour, diags)
+            else {
+                continue;
+            };
+            let (mut points, length) = file.sample(CONTOUR_SAMPLES);
+            if role == ContourRole::CrossSection && file.closed {
+                start_on_x_axis(&mut points);
+            }
+            out.push(Contour {
+                id: r.id,
+                role,
+                points,
+                closed: file.closed,
+                length,
+            });
+        }
+        out
     }
 
     /// The bytes of the file `name` of the folder (at most a `.l`'s size
@@ -424,6 +467,22 @@ impl UserFunctions {
     }
 }
 
+/// cpfg turns a closed cross-section about its origin so that it starts
+/// on the +x axis (the up side of the cylinder).
+fn start_on_x_axis(points: &mut [[f64; 3]]) {
+    let Some(&[x0, y0, _]) = points.first() else {
+        return;
+    };
+    let n = (x0 * x0 + y0 * y0).sqrt();
+    if n < 1e-9 {
+        return;
+    }
+    let (c, s) = (x0 / n, y0 / n);
+    for p in points.iter_mut() {
+        *p = [p[0] * c + p[1] * s, p[1] * c - p[0] * s, p[2]];
+    }
+}
+
 /// Sends every span of the IR through `map`.
 fn map_spans(spans: &mut crate::ir::SpanTable, map: impl Fn(&Span) -> Span) {
     for s in spans.productions.iter_mut().chain(spans.axiom.iter_mut()) {
@@ -438,22 +497,6 @@ fn map_spans(spans: &mut crate::ir::SpanTable, map: impl Fn(&Span) -> Span) {
                 *s = map(s);
             }
         }
-    }
-}
-
-/// Tropisms bend every segment in cpfg; graftal does not apply them yet,
-/// so say so rather than draw a different plant silently.
-fn warn_tropisms(view: &view::View, diags: &mut Diagnostics) {
-    let bends = !view.tropisms.is_empty()
-        || (view.tropism_direction.is_some() && view.initial_elasticity != 0.0);
-    if bends {
-        diags.push(
-            crate::diagnostics::Diagnostic::global(
-                crate::diagnostics::codes::CPFG_NOT_DRAWN,
-                "the view file sets tropisms, which graftal does not apply: branches are drawn unbent",
-            )
-            .with_help("cpfg bends each segment towards the tropism vector by its elasticity"),
-        );
     }
 }
 

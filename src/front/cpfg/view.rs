@@ -62,26 +62,31 @@ pub struct SurfaceRef {
     pub texture: Option<String>,
 }
 
-/// A `contour:` (`contour: id file.con`) or `curve:` (`curve: file`, id = order).
+/// A `contour:` (`contour: id file.con`, a cross-section of generalized
+/// cylinders) or a `curve:` (`curve: file`, read by `curveX(id, t)`: its id
+/// is its place among the `curve:` lines, from 1).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContourRef {
     pub id: u32,
     pub file: String,
 }
 
-/// A `tropism:` or `torque:` command (manual §8.1.8).
+/// A `tropism:` or `torque:` command (manual §8.1.8). Both share one list
+/// and one numbering (cpfg's movements), in the order of the file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tropism {
     /// `T:` the tropism vector.
     pub vector: [f64; 3],
     /// `A:` the angle (degrees) to the vector segments try to reach.
     pub angle: f64,
-    /// `I:` intensity.
-    pub intensity: f64,
+    /// `I:` intensity, when given.
+    pub intensity: Option<f64>,
     /// `E:` initial elasticity.
     pub elasticity: f64,
     /// `S:` elasticity step.
     pub step: f64,
+    /// A `torque:` (twists about H) rather than a `tropism:`.
+    pub torque: bool,
 }
 
 impl Default for Tropism {
@@ -89,9 +94,10 @@ impl Default for Tropism {
         Tropism {
             vector: [0.0, 1.0, 0.0],
             angle: 0.0,
-            intensity: 1.0,
+            intensity: None,
             elasticity: 0.0,
             step: 0.0,
+            torque: false,
         }
     }
 }
@@ -129,8 +135,8 @@ pub struct View {
     pub bounding_box: Option<[[f64; 2]; 3]>,
     /// `tropism direction:` (deprecated form of a tropism's `T:`).
     pub tropism_direction: Option<[f64; 3]>,
+    /// `tropism:` and `torque:` commands, in order (ids from 1).
     pub tropisms: Vec<Tropism>,
-    pub torques: Vec<Tropism>,
     /// `function:` files in order: `func(k, x)` is `functions[k-1]`.
     pub functions: Vec<String>,
     /// The precomputed sample count of each `function:` (`None`: exact).
@@ -140,6 +146,8 @@ pub struct View {
     /// `line:` commands (lines drawn with a surface).
     pub lines: Vec<SurfaceRef>,
     pub contours: Vec<ContourRef>,
+    /// `curve:` files, ids in order from 1.
+    pub curves: Vec<ContourRef>,
     pub contour_sides: u32,
     pub tapered_lines: bool,
     pub line_style: LineStyle,
@@ -186,13 +194,13 @@ impl Default for View {
             bounding_box: None,
             tropism_direction: None,
             tropisms: Vec::new(),
-            torques: Vec::new(),
             functions: Vec::new(),
             function_samples: Vec::new(),
             function_sets: Vec::new(),
             surfaces: Vec::new(),
             lines: Vec::new(),
             contours: Vec::new(),
+            curves: Vec::new(),
             contour_sides: 3,
             tapered_lines: true,
             line_style: LineStyle::Pixel,
@@ -451,9 +459,11 @@ fn set_forces(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
             }
         }
         "tropism" | "torque" => match tropism(c.value) {
-            Some(t) if c.name == "tropism" => v.tropisms.push(t),
-            Some(t) => v.torques.push(t),
-            None => c.bad(d, "subcommands with `T: x y z`"),
+            Some(t) => v.tropisms.push(Tropism {
+                torque: c.name == "torque",
+                ..t
+            }),
+            None => c.bad(d, "subcommands with a non-zero `T: x y z`"),
         },
         _ => return false,
     }
@@ -650,8 +660,8 @@ fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
         }
         "curve" => match c.value.split_whitespace().next() {
             Some(f) => {
-                let id = v.contours.len() as u32 + 1;
-                v.contours.push(ContourRef {
+                let id = v.curves.len() as u32 + 1;
+                v.curves.push(ContourRef {
                     id,
                     file: f.to_string(),
                 })
@@ -797,13 +807,15 @@ fn tropism(value: &str) -> Option<Tropism> {
                 has_t = true;
             }
             ("A", [a, ..]) => t.angle = *a,
-            ("I", [i, ..]) => t.intensity = *i,
+            ("I", [i, ..]) => t.intensity = Some(*i),
             ("E", [e, ..]) => t.elasticity = *e,
             ("S", [s, ..]) => t.step = *s,
             _ => return None,
         }
     }
-    has_t.then_some(t)
+    // cpfg ignores a tropism without direction or intensity.
+    let pulls = t.vector != [0.0; 3] && t.intensity != Some(0.0);
+    (has_t && pulls).then_some(t)
 }
 
 fn surface_ref(value: &str) -> Option<SurfaceRef> {
@@ -1061,23 +1073,27 @@ mod tests {
         assert_eq!((v.surfaces[1].scale, v.surfaces[1].s_divisions), (2.75, 0));
         assert_eq!((v.lines[0].id, v.lines[0].scale), ('L', 0.01));
         assert_eq!(
-            v.contours,
-            [
-                ContourRef {
+            (&v.contours[..], &v.curves[..]),
+            (
+                &[ContourRef {
                     id: 1,
                     file: "leaf.con".into()
-                },
-                ContourRef {
-                    id: 2,
+                }][..],
+                &[ContourRef {
+                    id: 1,
                     file: "profile.con".into()
-                }
-            ]
+                }][..]
+            )
         );
         assert_eq!(
             (v.tropisms[0].vector, v.tropisms[0].angle),
             ([0.0, 1.0, 0.0], 90.0)
         );
-        assert_eq!(v.torques[0].elasticity, 0.2);
+        assert_eq!(
+            (v.tropisms[1].elasticity, v.tropisms[1].torque),
+            (0.2, true)
+        );
+        assert!(!v.tropisms[0].torque);
         assert_eq!(v.tropism_direction, Some([0.2, 1.0, 0.0]));
         assert_eq!(
             (v.initial_elasticity, v.elasticity_increment),
