@@ -127,7 +127,7 @@ fn side_file(
 pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     let path = Path::new(&file.name);
     let beside = Beside {
-        dir: path.parent().filter(|d| d.is_dir()),
+        dir: folder_of(path),
     };
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
@@ -138,6 +138,18 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     beside.add_surfaces(&mut lowered.system, &view, diags);
     report_undefined_surfaces(&lowered, diags);
     lowered
+}
+
+/// The folder of the `.l` file at `path`: its parent, or the current
+/// folder for a bare name (`plant.l` given from its own folder has the
+/// empty parent, which is no folder) when the file is there on disk; none
+/// for a text with no file behind it.
+fn folder_of(path: &Path) -> Option<&Path> {
+    match path.parent() {
+        Some(d) if d.as_os_str().is_empty() => path.is_file().then_some(Path::new(".")),
+        Some(d) => Some(d).filter(|d| d.is_dir()),
+        None => None,
+    }
 }
 
 /// The folder of the `.l` file, where cpfg finds the files it reads beside

@@ -1,0 +1,70 @@
+//! cpfg objects run as a new user runs them: the binary in the object's
+//! folder, the `.l` named as it is there. Each test reads only
+//! `tests/corpus/cpfg/...` (or a copy of it in a temporary folder).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn object(name: &str) -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/corpus/cpfg")).join(name)
+}
+
+/// Runs the binary with `args` from the folder `dir`.
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_graftal"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the graftal binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A fresh temporary folder for one test.
+fn temp_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("graftal-cpfg-objects-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `plant.l` named bare from Lilac's folder finds its view file and the
+/// surfaces it names: no E0830 (surface not defined).
+#[test]
+fn a_bare_file_name_finds_the_view_file_beside_it() {
+    let dir = object("11-CPFG-Lilac");
+    let o = run_in(&dir, &["check", "plant.l", "--format", "json"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(!err.contains("E0830"), "{err}");
+}
+
+/// WeepingBirch's `fractal.l` named bare draws with its view file (its
+/// widths and colours): the same picture as the full path gives, and not
+/// the picture of the `.l` alone.
+#[test]
+fn a_bare_file_name_draws_with_the_view_file() {
+    let dir = object("11-CPFG-WeepingBirch");
+    let out = temp_dir("birch");
+    let svg = |from: &Path, file: &str, name: &str| {
+        let target = out.join(name);
+        let o = run_in(from, &["render", file, "-o", target.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        std::fs::read_to_string(target).unwrap()
+    };
+    let bare = svg(&dir, "fractal.l", "bare.svg");
+    let full = svg(
+        Path::new("/"),
+        dir.join("fractal.l").to_str().unwrap(),
+        "full.svg",
+    );
+    let alone_dir = out.join("alone");
+    std::fs::create_dir_all(&alone_dir).unwrap();
+    std::fs::copy(dir.join("fractal.l"), alone_dir.join("fractal.l")).unwrap();
+    let alone = svg(&alone_dir, "fractal.l", "alone.svg");
+    assert!(bare == full, "the bare name draws another picture");
+    assert!(bare != alone, "the view file changes nothing");
+    let _ = std::fs::remove_dir_all(&out);
+}
