@@ -68,3 +68,64 @@ fn a_bare_file_name_draws_with_the_view_file() {
     assert!(bare != alone, "the view file changes nothing");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// The system read from `path` (a corpus file or a temporary one), with
+/// its diagnostics.
+fn compile(path: &Path) -> graftal::driver::Compiled {
+    let file = graftal::source::SourceFile::read(path).unwrap();
+    graftal::driver::compile(file)
+}
+
+/// Derives and interprets the system of `path`.
+fn geometry(path: &Path) -> graftal::turtle::Geometry {
+    let c = compile(path);
+    let sys = c.system.as_ref().expect("the file reads");
+    let opts = graftal::driver::RunOptions::default();
+    graftal::driver::geometry(sys, &opts).unwrap().1
+}
+
+/// A cpfg text written to a temporary folder as `name`.
+fn write_l(tag: &str, name: &str, text: &str) -> PathBuf {
+    let dir = temp_dir(tag);
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// A global set in `Start:` is read by the homomorphism and by the
+/// decomposition as by the productions: `F(R)` is 5 long in each.
+#[test]
+fn start_globals_are_read_in_every_phase() {
+    let phases = [
+        ("homomorphism", "Axiom: B\nhomomorphism\nB --> F(R)\n"),
+        (
+            "decomposition",
+            "Axiom: B\nB --> A\ndecomposition\nA --> F(R)\n",
+        ),
+        ("productions", "Axiom: B\nB --> F(R)\n"),
+    ];
+    for (phase, body) in phases {
+        let text =
+            format!("Lsystem: 1\nderivation length: 1\nStart: {{R = 5;}}\n{body}endlsystem\n");
+        let p = write_l(phase, "g.l", &text);
+        let g = geometry(&p);
+        assert_eq!(g.segments.len(), 1, "{phase}");
+        let s = &g.segments[0];
+        let len: f64 = (0..3)
+            .map(|k| (s.b[k] - s.a[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!((len - 5.0).abs() < 1e-9, "{phase}: {len}");
+    }
+}
+
+/// Three-spheres sets the radius `R` in `Start:` and draws `@O(R)` in its
+/// homomorphism (`R = 0.9`): three spheres of that size, not three points.
+#[test]
+fn three_spheres_have_their_start_radius() {
+    let g = geometry(&object("07-Open-10-light-three-spheres").join("balls.l"));
+    assert_eq!(g.discs.len(), 3);
+    for d in &g.discs {
+        assert!(d.diameter > 0.5, "{}", d.diameter);
+    }
+}
