@@ -906,10 +906,14 @@ pub fn derive(
             }
             e.m.charge(super::STEP_COST)?;
             e.m.run(&program.start_each, &mut [])?;
-            let mut next = e.step(&main, &word, choice)?;
+            // cpfg cuts as it reads the word to rewrite it: what follows a
+            // `%` stays in the word that step made, and is drawn
+            // (`interpretation past %: on`, the default), until the next
+            // step removes it.
             if let Some(c) = cut_symbol {
-                cut(&mut next, c);
+                cut(&mut word, c);
             }
+            let mut next = e.step(&main, &word, choice)?;
             if !sys.decomposition.productions.is_empty() {
                 next = e.recursive(
                     &decomposition,
