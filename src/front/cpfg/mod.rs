@@ -11,6 +11,7 @@
 //! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
 pub mod ast;
+pub mod calls;
 pub mod func;
 pub mod lexer;
 pub mod lower;
@@ -131,12 +132,12 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     };
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
-    let mut lowered = beside.read_mapped(&file.text, &functions.defines, diags);
+    let mut lowered = beside.read_mapped(&file.text, &functions, diags);
     warn_tropisms(&view, diags);
     apply_view(&mut lowered.system, &view);
     lowered.system.program.functions = functions.functions;
     beside.add_surfaces(&mut lowered.system, &view, diags);
-    report_undefined_surfaces(&lowered, diags);
+    report_undefined_surfaces(&lowered, &view, diags);
     lowered
 }
 
@@ -234,13 +235,17 @@ impl Beside<'_> {
     fn read_mapped(
         &self,
         text: &str,
-        defines: &[(String, String)],
+        functions: &UserFunctions,
         diags: &mut Diagnostics,
     ) -> Lowered {
+        let defines = &functions.defines;
         let pre = preprocess::preprocess_with_defines(text, defines, &mut |name| self.read(name));
         diags.extend(pre.diagnostics);
         let mut own = Diagnostics::default();
-        let mut lowered = read(&pre.text, &mut own);
+        let ast = parser::parse(&pre.text, &mut own);
+        let mut lowered = lower::lower(&ast, &mut own);
+        let (arrays, given) = (&lowered.system.program.arrays, functions.functions.len());
+        calls::check(&ast, arrays, given, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
         for mut d in own.0 {
             // Where expansion stopped too deep the text is left as written:
@@ -435,17 +440,23 @@ fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[
         .collect()
 }
 
-/// A `~` module whose surface the view file does not define.
-fn report_undefined_surfaces(lowered: &Lowered, diags: &mut Diagnostics) {
+/// A `~` module whose surface the view file does not define: the rest of
+/// the plant is drawn without it (some vlab objects, insect-realistic and
+/// two-trees, name surfaces their folder lacks). A surface the view file
+/// names but whose file is missing was reported with the file.
+fn report_undefined_surfaces(lowered: &Lowered, view: &view::View, diags: &mut Diagnostics) {
     let sys = &lowered.system;
     for (id, info) in sys.symbols.iter() {
-        if info.name.starts_with('~') && info.name.len() > 1 && sys.op(id).is_none() {
+        let Some(name) = info.name.strip_prefix('~').filter(|n| !n.is_empty()) else {
+            continue;
+        };
+        if sys.op(id).is_none() && !view.surfaces.iter().any(|r| r.id.to_string() == name) {
             let span = lowered.spans.symbols.get(&id).cloned().unwrap_or(0..0);
             diags.push(
                 crate::diagnostics::Diagnostic::at(
-                    crate::diagnostics::codes::CPFG_UNSUPPORTED,
+                    crate::diagnostics::codes::CPFG_NOT_DRAWN,
                     span,
-                    format!("surface `{}` is not defined", &info.name[1..]),
+                    format!("surface `{name}` is not defined: `~{name}` draws nothing"),
                 )
                 .with_label("no `surface:` line of the view file names it")
                 .with_help(format!(
