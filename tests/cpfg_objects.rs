@@ -31,14 +31,14 @@ fn temp_dir(tag: &str) -> PathBuf {
 }
 
 /// `plant.l` named bare from Lilac's folder finds its view file and the
-/// surfaces it names: no E0830 (surface not defined).
+/// surfaces it names: none is reported undefined.
 #[test]
 fn a_bare_file_name_finds_the_view_file_beside_it() {
     let dir = object("11-CPFG-Lilac");
     let o = run_in(&dir, &["check", "plant.l", "--format", "json"]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(0), "{err}");
-    assert!(!err.contains("E0830"), "{err}");
+    assert!(!err.contains("is not defined"), "{err}");
 }
 
 /// WeepingBirch's `fractal.l` named bare draws with its view file (its
@@ -128,4 +128,36 @@ fn three_spheres_have_their_start_radius() {
     for d in &g.discs {
         assert!(d.diameter > 0.5, "{}", d.diameter);
     }
+}
+
+/// Insect-realistic draws `~b`, a surface its view file does not name:
+/// the rest is drawn, and one warning (not an error) names the surface.
+#[test]
+fn an_undefined_surface_is_one_warning_and_the_rest_is_drawn() {
+    let dir = object("04-Signaling-22-insect-realistic");
+    let out = temp_dir("insect");
+    let target = out.join("insect.svg");
+    let o = run_in(
+        &dir,
+        &["render", "fractal.l", "-o", target.to_str().unwrap()],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert_eq!(err.matches("is not defined").count(), 1, "{err}");
+    assert!(err.contains("surface `b`"), "{err}");
+    assert!(!err.contains("Error"), "{err}");
+    assert!(!err.contains("W0003"), "{err}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The snowflake exercise leaves `?` for the student to fill in: one
+/// error says so, not a pile of follow-on errors and not an empty picture.
+#[test]
+fn an_exercise_with_blanks_says_so_once() {
+    let dir = object("01-Introduction-02-snowflake-exercise");
+    let o = run_in(&dir, &["check", "fractal.l", "--format", "json"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("exercise"), "{err}");
 }
