@@ -470,16 +470,32 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
     g.polygons.splice(0..0, shapes);
 }
 
-/// The warning for a picture with nothing in it.
-pub fn nothing_drawn(word: &Word) -> Diagnostic {
-    Diagnostic::global(
+/// The warning for a picture with nothing in it. When the file's own
+/// `diagnostics` say the model waits on an environment that never answers
+/// (W0821), the warning says that this is why.
+pub fn nothing_drawn(word: &Word, diagnostics: &Diagnostics) -> Diagnostic {
+    let d = Diagnostic::global(
         codes::NOTHING_DRAWN,
         "nothing is drawn: the picture is empty",
     )
     .with_note(format!(
         "the derived word has {} symbols and none of them draws",
         word.len()
-    ))
+    ));
+    match diagnostics
+        .iter()
+        .find(|d| d.code == codes::CPFG_NO_ENVIRONMENT)
+    {
+        Some(env) => {
+            let mut d = d.with_note(
+                "the model draws only what its environment answers to `?E`, \
+                 and graftal runs no environment program (W0821)",
+            );
+            d.notes.extend(env.notes.iter().cloned());
+            d
+        }
+        None => d,
+    }
 }
 
 /// Output formats of [`render`].

@@ -161,3 +161,28 @@ fn an_exercise_with_blanks_says_so_once() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("exercise"), "{err}");
 }
+
+/// Sierpinski grows only where its environment program answers `?E`:
+/// graftal draws nothing, and the warnings say why and name the program
+/// of its `.e` file.
+#[test]
+fn an_empty_picture_waiting_on_the_environment_names_its_program() {
+    let dir = object("20-EnviroPgms-CPFG-Sierpinski");
+    let out = temp_dir("sierpinski");
+    let target = out.join("s.svg");
+    let o = run_in(
+        &dir,
+        &["render", "fractal.l", "-o", target.to_str().unwrap()],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("W0821"), "{err}");
+    assert!(err.contains("W0003"), "{err}");
+    let empty = &err[err.find("W0003").unwrap()..];
+    assert!(empty.contains("environment"), "{err}");
+    assert!(
+        empty.contains("`honda81 density.spec` (named in fractal.e)"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -328,7 +328,12 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             driver::add_layout(sys, &mut g);
         }
         if g.is_empty() {
-            report(io, c, &[driver::nothing_drawn(&word)], a.args.format);
+            report(
+                io,
+                c,
+                &[driver::nothing_drawn(&word, &c.diagnostics)],
+                a.args.format,
+            );
         }
         let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
         if let Some(bar) = &bar {

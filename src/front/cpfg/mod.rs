@@ -12,6 +12,7 @@
 
 pub mod ast;
 pub mod calls;
+pub mod environment;
 pub mod func;
 pub mod lexer;
 pub mod lower;
@@ -138,6 +139,9 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     lowered.system.program.functions = functions.functions;
     beside.add_surfaces(&mut lowered.system, &view, diags);
     report_undefined_surfaces(&lowered, &view, diags);
+    if let Some(dir) = beside.dir {
+        environment::name_program(dir, path, diags);
+    }
     lowered
 }
 
