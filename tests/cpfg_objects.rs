@@ -186,3 +186,17 @@ fn an_empty_picture_waiting_on_the_environment_names_its_program() {
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Sedge calls sub-L-systems (`?(n, s)`, `$`) that its later L-systems
+/// define: one error names the missing feature, not one per call and a
+/// second one for the later L-systems.
+#[test]
+fn sub_lsystems_are_one_error_per_file() {
+    let dir = object("11-CPFG-Sedge");
+    let o = run_in(&dir, &["check", "sedge.l", "--format", "json"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.matches("\"code\":\"E0830\"").count(), 1, "{err}");
+    assert!(err.contains("sub-L-systems are not supported"), "{err}");
+    assert!(!err.contains("W0825"), "{err}");
+}
