@@ -21,6 +21,12 @@ use std::time::{Duration, Instant};
 
 const M: usize = MAX_NESTING;
 
+/// How long a deep or huge input may take to be refused: a linear pass
+/// takes a fraction of this in a debug build; a hang or a quadratic walk
+/// over 100 000 rules takes minutes. Generous because the tests of this
+/// file run side by side on a shared 2-core machine.
+const QUICK: Duration = Duration::from_secs(3);
+
 fn read(name: &str, text: &str) -> Compiled {
     compile(SourceFile::new(name, text))
 }
@@ -89,7 +95,7 @@ fn refused_quickly(name: &str, text: &str, command: &str) {
         "{name}: {}",
         &out.stderr[..out.stderr.len().min(500)]
     );
-    assert!(took < Duration::from_secs(1), "{name}: {took:?}");
+    assert!(took < QUICK, "{name}: {took:?}");
     let e0013 = out.stderr.matches("\"code\":\"E0013\"").count();
     assert_eq!(
         e0013,
@@ -254,7 +260,7 @@ fn linf_deep_inputs_end_with_exit_1_within_a_second() {
         let brackets = linf_angle(&"[".repeat(n));
         let (out, took) = run("b.linf", &brackets, &["check"]);
         assert_eq!(out.status, 1);
-        assert!(took < Duration::from_secs(1), "{took:?}");
+        assert!(took < QUICK, "{took:?}");
         refused_quickly("s.linf", &linf_angle(&vec!["1"; n].join("+")), "derive");
     }
 }
@@ -308,7 +314,7 @@ fn stl_rules_used_through_rules_nest_to_the_limit() {
     );
     let (out, took) = run("chain.stl", &rule_chain(100_000), &["check"]);
     assert_eq!(out.status, 1);
-    assert!(took < Duration::from_secs(1), "{took:?}");
+    assert!(took < QUICK, "{took:?}");
 }
 
 #[test]
@@ -331,7 +337,7 @@ fn stl_growth_stops_at_the_limit() {
     assert!(clean(&c), "{:?}", codes_of(&c));
     let (out, took) = run("grow.stl", text, &["stats"]);
     assert_eq!(out.status, 0, "{}", out.stderr);
-    assert!(took < Duration::from_secs(2), "{took:?}");
+    assert!(took < QUICK, "{took:?}");
     // Written out, the rule is 100,000 brackets deep: more than STL reads.
     let (out, _) = run("grow.stl", text, &["translate", "--to", "stl"]);
     assert_eq!(out.status, 1);
@@ -418,7 +424,7 @@ fn stl_translation_of_f_to_f_at_100000_steps_is_one_counted_rule() {
         &["translate", "--to", "stl", "-n", "100000"],
     );
     assert_eq!(out.status, 0, "{}", out.stderr);
-    assert!(took < Duration::from_secs(1), "{took:?}");
+    assert!(took < QUICK, "{took:?}");
     assert!(
         out.stdout.contains("Plant = [I 100000 F]"),
         "{}",
@@ -440,7 +446,7 @@ fn stl_translation_of_f_to_f_at_100000_steps_is_one_counted_rule() {
             &["translate", "--to", "stl", "-n", n],
         );
         assert_eq!(out.status, 1);
-        assert!(took < Duration::from_secs(1), "{took:?}");
+        assert!(took < QUICK, "{took:?}");
         assert!(out.stderr.contains("E0613"), "{}", out.stderr);
     }
 }
@@ -481,7 +487,7 @@ fn stl_translation_without_a_count_nests_a_rule_per_step_to_the_limit() {
             &["translate", "--to", "stl", "-n", &n.to_string()],
         );
         assert_eq!(out.status, 1);
-        assert!(took < Duration::from_secs(1), "{took:?}");
+        assert!(took < QUICK, "{took:?}");
         assert_eq!(out.stderr.matches("E0013").count(), 1, "{}", out.stderr);
     }
 }

@@ -136,6 +136,53 @@ pub struct Camera {
     pub perspective: Option<f64>,
 }
 
+impl Camera {
+    /// A camera at `eye` looking at `target`, world y up (z when looking
+    /// along y), the picture turned by `twist_degrees` about the line of
+    /// sight.
+    pub fn aimed(
+        eye: [f64; 3],
+        target: [f64; 3],
+        twist_degrees: f64,
+        perspective: Option<f64>,
+    ) -> Camera {
+        let d = normalised(sub(target, eye)).unwrap_or([0.0, 0.0, -1.0]);
+        // World y is up unless the view looks along it; then z is.
+        let world_up = if d[1].abs() > 0.999 {
+            [0.0, 0.0, -d[1].signum()]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        let right = normalised(cross(d, world_up)).unwrap_or([1.0, 0.0, 0.0]);
+        let up0 = cross(right, d);
+        let (s, c) = twist_degrees.to_radians().sin_cos();
+        let up = [0, 1, 2].map(|k| up0[k] * c + right[k] * s);
+        Camera {
+            eye,
+            target,
+            up,
+            perspective,
+        }
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalised(v: [f64; 3]) -> Option<[f64; 3]> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (n.is_finite() && n > 1e-12).then(|| v.map(|x| x / n))
+}
+
 /// A tropism (cpfg `tropism:`, manual §8.1.8): every step bends the heading
 /// towards (or, with a negative elasticity, away from) `vector`, by the
 /// turtle's elasticity times `|H × T|` (the book's §2.4: α = e |H × T|).

@@ -257,4 +257,26 @@ Example:
 
 Write:
     tapered lines: on";
+
+    CPFG_COLOUR_FILE = "W0806", "colour map or material file not used",
+"The object's `specifications` runs cpfg with a colour map (`-m file.map`:
+256 RGB byte triples, 768 bytes) or a material file (`-M file.mat`: records
+of 15 bytes: index, transparency, ambient, diffuse, emission and specular
+RGB, shininess). This file is missing from the object's folder or does not
+have that shape, so it is not used: the picture is drawn with cpfg's
+default colours instead.
+
+Put the file in the object's folder, or save it again with vlab's palette
+(colour maps) or medit (materials) editor.";
+
+    CPFG_VIEW_NOT_DRAWN = "W0807", "view command not drawn",
+"The view file asks for something that changes cpfg's picture and that
+graftal does not draw yet: a background scene, textures, rayshade
+surfaces (`tsurface:`) or shadows. The rest of the picture is drawn; this
+part is left out.
+
+Example:
+    background scene: scene.dat
+
+To draw the scene's objects, model them in the L-system itself.";
 }

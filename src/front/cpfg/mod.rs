@@ -15,6 +15,7 @@ pub mod calls;
 pub mod environment;
 pub mod func;
 pub mod lexer;
+pub mod look;
 pub mod lower;
 pub mod parser;
 pub mod preprocess;
@@ -136,6 +137,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     let mut lowered = beside.read_mapped(&file.text, &functions, diags);
     warn_tropisms(&view, diags);
     apply_view(&mut lowered.system, &view);
+    beside.add_look(&mut lowered.system, path, &view, diags);
     lowered.system.program.functions = functions.functions;
     beside.add_surfaces(&mut lowered.system, &view, diags);
     report_undefined_surfaces(&lowered, &view, diags);
@@ -180,12 +182,7 @@ impl Beside<'_> {
         diags: &mut Diagnostics,
     ) -> Option<T> {
         let Some(text) = self.read(name) else {
-            let outside = self.dir.is_some_and(|d| inside(d, name).is_none());
-            diags.push(if outside {
-                outside_folder(name, what)
-            } else {
-                missing_file(name, what)
-            });
+            diags.push(self.unreadable(name, what, "the view file"));
             return None;
         };
         match read(&text) {
@@ -194,6 +191,16 @@ impl Beside<'_> {
                 push_side_file(diags, &d, name, &text);
                 None
             }
+        }
+    }
+
+    /// Why the `what` file `name`, named in `named_in`, was not read:
+    /// outside the folder, or missing.
+    fn unreadable(&self, name: &str, what: &str, named_in: &str) -> crate::diagnostics::Diagnostic {
+        if self.dir.is_some_and(|d| inside(d, name).is_none()) {
+            outside_folder(name, what, named_in)
+        } else {
+            missing_file(name, what, named_in)
         }
     }
 
@@ -267,6 +274,86 @@ impl Beside<'_> {
         lowered
     }
 
+    /// The bytes of the file `name` of the folder (at most a `.l`'s size
+    /// cap), if it lies inside the folder.
+    fn read_bytes(&self, name: &str) -> Option<Vec<u8>> {
+        use std::io::Read;
+        let file = std::fs::File::open(inside(self.dir?, name)?).ok()?;
+        let mut bytes = Vec::new();
+        let cap = crate::source::MAX_SOURCE_BYTES as u64;
+        file.take(cap + 1).read_to_end(&mut bytes).ok()?;
+        (bytes.len() as u64 <= cap).then_some(bytes)
+    }
+
+    /// The colours and look of the picture: the colour maps or materials
+    /// the object's `specifications` names for the `.l` at `path` (cpfg's
+    /// default colour map when it names none), and the view's camera and
+    /// lights.
+    fn add_look(&self, sys: &mut System, path: &Path, view: &view::View, diags: &mut Diagnostics) {
+        let l_name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        let files = self
+            .read("specifications")
+            .map(|spec| look::colour_files(&spec, l_name.as_deref().unwrap_or("")))
+            .unwrap_or_default();
+        let mut palette = view::default_colormap().to_vec();
+        for (block, name) in &files.maps {
+            if let Some(map) = self.read_binary(name, "colour map", look::read_map, diags) {
+                let at = block * map.len();
+                if palette.len() < at + map.len() {
+                    palette.resize(at + map.len(), crate::ir::Rgb(0, 0, 0));
+                }
+                palette[at..at + map.len()].copy_from_slice(&map);
+            }
+        }
+        let materials = files
+            .materials
+            .as_deref()
+            .and_then(|name| self.read_binary(name, "material", look::read_materials, diags))
+            .unwrap_or_default();
+        for (slot, m) in palette.iter_mut().zip(&materials) {
+            *slot = look::flat_colour(m.as_ref().unwrap_or(&look::DEFAULT_MATERIAL));
+        }
+        sys.look = look::look(view, &palette, &materials);
+        sys.colours = palette;
+    }
+
+    /// A binary side file named on the object's `cpfg` command line, read
+    /// by `read`; a missing or malformed one is reported.
+    fn read_binary<T>(
+        &self,
+        name: &str,
+        what: &str,
+        read: impl FnOnce(&[u8]) -> Result<T, String>,
+        diags: &mut Diagnostics,
+    ) -> Option<T> {
+        let Some(bytes) = self.read_bytes(name) else {
+            let d = self.unreadable(name, what, "`specifications`");
+            diags.push(
+                if d.code == crate::diagnostics::codes::CPFG_OUTSIDE_FOLDER {
+                    d
+                } else {
+                    crate::diagnostics::Diagnostic::global(
+                        crate::diagnostics::codes::CPFG_COLOUR_FILE,
+                        format!("{}; cpfg's default colours are used", d.message),
+                    )
+                    .with_help("put the file in the object's folder")
+                },
+            );
+            return None;
+        };
+        read(&bytes)
+            .map_err(|e| {
+                diags.push(
+                    crate::diagnostics::Diagnostic::global(
+                        crate::diagnostics::codes::CPFG_COLOUR_FILE,
+                        format!("{name}: {e}; cpfg's default colours are used"),
+                    )
+                    .with_help("save the file again with vlab's palette or medit editor"),
+                );
+            })
+            .ok()
+    }
+
     /// Surfaces: `~id` draws surface `id` of the view file.
     fn add_surfaces(&self, sys: &mut System, view: &view::View, diags: &mut Diagnostics) {
         for r in &view.surfaces {
@@ -306,10 +393,10 @@ fn inside(dir: &Path, name: &str) -> Option<std::path::PathBuf> {
     }
 }
 
-fn outside_folder(name: &str, what: &str) -> crate::diagnostics::Diagnostic {
+fn outside_folder(name: &str, what: &str, named_in: &str) -> crate::diagnostics::Diagnostic {
     crate::diagnostics::Diagnostic::global(
         crate::diagnostics::codes::CPFG_OUTSIDE_FOLDER,
-        format!("the {what} file `{name}` named in the view file is outside the object's folder"),
+        format!("the {what} file `{name}` named in {named_in} is outside the object's folder"),
     )
     .with_help("copy the file into the object's folder and name it there")
 }
@@ -411,18 +498,6 @@ fn apply_view(sys: &mut System, view: &view::View) {
     if len > 0.0 && (d[0].abs() > 1e-12 || d[1].abs() > 1e-12) {
         st.view = Some((d[0].atan2(d[2]), (d[1] / len).asin()));
     }
-    // cpfg draws on black, graftal on white: the colour map's white
-    // (index 1, the usual foreground) is drawn black.
-    sys.colours = view::default_colormap()
-        .iter()
-        .map(|&c| {
-            if c == crate::ir::Rgb(255, 255, 255) {
-                crate::ir::Rgb(0, 0, 0)
-            } else {
-                c
-            }
-        })
-        .collect();
 }
 
 /// The triangles of a surface placed as `r` says, in turtle coordinates,
@@ -432,13 +507,21 @@ fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[
     while div > 1 && surface.patches.len() * 2 * (div * div) as usize > MAX_SURFACE_TRIANGLES {
         div -= 1;
     }
+    // cpfg normalises a surface by its `SIZE:`, so that the view file's
+    // scale (and a `~` module's parameter) is the drawn size in turtle
+    // units, whatever units the surface editor used.
+    let scale = if surface.size > 0.0 {
+        r.scale / surface.size
+    } else {
+        r.scale
+    };
     surface
         .triangles(div)
         .into_iter()
         .map(|t| {
             t.map(|p| {
                 let [h, l, u] = surface.to_turtle(p);
-                [l * r.scale, h * r.scale, u * r.scale]
+                [l * scale, h * scale, u * scale]
             })
         })
         .collect()
@@ -472,10 +555,10 @@ fn report_undefined_surfaces(lowered: &Lowered, view: &view::View, diags: &mut D
     }
 }
 
-fn missing_file(name: &str, what: &str) -> crate::diagnostics::Diagnostic {
+fn missing_file(name: &str, what: &str, named_in: &str) -> crate::diagnostics::Diagnostic {
     crate::diagnostics::Diagnostic::global(
         crate::diagnostics::codes::CPFG_MISSING_INCLUDE,
-        format!("the {what} file `{name}` named in the view file cannot be read"),
+        format!("the {what} file `{name}` named in {named_in} cannot be read"),
     )
     .with_help("put the file beside the `.l` file")
 }

@@ -148,6 +148,15 @@ pub struct View {
     /// `interpretation past %:`.
     pub interpret_past_cut: bool,
     pub twist_of_cylinders: bool,
+    /// `light:` commands (material mode), in order.
+    pub lights: Vec<crate::ir::look::Light>,
+    /// `light direction:` (colour-map mode).
+    pub light_direction: [f64; 3],
+    /// `diffuse reflection:`, `surface ambient:`, `surface diffuse:`
+    /// (colour-map shading, manual §8.1.3).
+    pub diffuse_reflection: f64,
+    pub surface_ambient: f64,
+    pub surface_diffuse: f64,
     /// Commands read but not used by graftal (lights, textures, fonts, …),
     /// with the span of each line.
     pub unused: Vec<(String, Span)>,
@@ -191,30 +200,35 @@ impl Default for View {
             z_buffer: true,
             interpret_past_cut: true,
             twist_of_cylinders: false,
+            lights: Vec::new(),
+            light_direction: [1.0, 0.0, 0.0],
+            diffuse_reflection: 10.0,
+            surface_ambient: 0.15,
+            surface_diffuse: 0.75,
             unused: Vec::new(),
         }
     }
 }
 
-/// Commands cpfg knows that graftal reads but does not use.
+/// Commands that change cpfg's picture and that graftal does not draw:
+/// each is a warning at its line.
+const NOT_DRAWN: &[(&str, &str)] = &[
+    ("background scene", "the scene files' objects are not drawn"),
+    ("texture", "surfaces are drawn without their textures"),
+    ("tsurface", "the rayshade surfaces are not drawn"),
+    ("shadow map", "no shadows are cast"),
+];
+
+/// Commands cpfg knows that graftal reads and needs not use: interactive
+/// settings, fonts, and deprecated commands cpfg itself ignores.
 const UNUSED: &[&str] = &[
-    "light",
-    "light direction",
-    "diffuse reflection",
-    "surface ambient",
-    "surface diffuse",
-    "shadow map",
     "antialiasing",
     "concave polygons",
-    "background scene",
-    "texture",
     "font",
-    "tsurface",
     "min zoom",
     "max zoom",
     "generate on view change",
     "scale multiplier",
-    "shade mode",
     "polygonization level",
     "ambient light",
     "background color",
@@ -256,7 +270,17 @@ const KNOWN: &[&str] = &[
     "initial elasticity",
     "elasticity increment",
     "render mode",
+    "shade mode",
     "z buffer",
+    "background scene",
+    "texture",
+    "tsurface",
+    "shadow map",
+    "light",
+    "light direction",
+    "diffuse reflection",
+    "surface ambient",
+    "surface diffuse",
 ];
 
 /// Reads a view file. Never fails: problems are diagnostics, and the
@@ -363,6 +387,7 @@ fn apply(v: &mut View, c: &Command, d: &mut Diagnostics) {
         || set_forces(v, c, d)
         || set_camera(v, c, d)
         || set_rendering(v, c, d)
+        || set_lights(v, c, d)
         || add_file(v, c, d);
     if !known {
         note_other(v, c, d);
@@ -500,6 +525,7 @@ fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
     match c.name.as_str() {
         "line style" => set_line_style(v, c, d),
         "render mode" => set_render_mode(v, c, d),
+        "shade mode" => set_shade_mode(v, c, d),
         "z buffer" => set_flag(&mut v.z_buffer, c, d),
         "tapered lines" => set_flag(&mut v.tapered_lines, c, d),
         "tappered lines" => {
@@ -524,6 +550,45 @@ fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
         _ => return false,
     }
     true
+}
+
+/// Lights: `light:` in material mode, the rest in colour-map mode.
+fn set_lights(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
+    match c.name.as_str() {
+        "light" => match light(c.value) {
+            Some(l) => v.lights.push(l),
+            None => c.bad(d, "subcommands such as `V: x y z` or `O: x y z`"),
+        },
+        "light direction" => {
+            set_vec(&mut v.light_direction, c, d);
+        }
+        "diffuse reflection" => set_num(&mut v.diffuse_reflection, c, d),
+        "surface ambient" => set_num(&mut v.surface_ambient, c, d),
+        "surface diffuse" => set_num(&mut v.surface_diffuse, c, d),
+        _ => return false,
+    }
+    true
+}
+
+/// A `light:` command's subcommands (manual §8.1.3): `O:` a point light's
+/// position, `V:` a directional light's vector, `A:`, `D:`, `S:` its
+/// colours; `P:` (spotlight) and `T:` (attenuation) are accepted and not
+/// used.
+fn light(value: &str) -> Option<crate::ir::look::Light> {
+    let mut l = crate::ir::look::Light::default();
+    let rgb = |v: &[f64]| [v[0] as f32, v[1] as f32, v[2] as f32];
+    for (k, vals) in subcommands(value) {
+        match (k.to_ascii_uppercase().as_str(), vals.as_slice()) {
+            ("O", [x, y, z, ..]) => (l.vector, l.directional) = ([*x, *y, *z], false),
+            ("V", [x, y, z, ..]) => (l.vector, l.directional) = ([*x, *y, *z], true),
+            ("A", v @ [_, _, _, ..]) => l.ambient = rgb(v),
+            ("D", v @ [_, _, _, ..]) => l.diffuse = rgb(v),
+            ("S", v @ [_, _, _, ..]) => l.specular = rgb(v),
+            ("P" | "T", _) => {}
+            _ => return None,
+        }
+    }
+    Some(l)
 }
 
 /// `line style:` sets the unit of the line width with the style.
@@ -551,6 +616,19 @@ fn set_render_mode(v: &mut View, c: &Command, d: &mut Diagnostics) {
         _ => return c.bad(d, "a render mode (filled, wireframe, shaded, …)"),
     };
     v.render_mode = m;
+}
+
+/// The deprecated `shade mode: i` (manual §8.1.10), read as the render
+/// mode it stands for: 1 simple fill, 2 interpolated, 3 Gouraud, 4 and 5
+/// B-spline (filled), 6 two-sided (shaded), 7 wireframe.
+fn set_shade_mode(v: &mut View, c: &Command, d: &mut Diagnostics) {
+    v.render_mode = match num(c.value).map(|x| x as i64) {
+        Some(1 | 4 | 5) => RenderMode::Filled,
+        Some(2) => RenderMode::Interpolated,
+        Some(3 | 6) => RenderMode::Shaded,
+        Some(7) => RenderMode::Wireframe,
+        _ => return c.bad(d, "a shade mode from 1 to 7"),
+    };
 }
 
 /// The function, surface and contour files the view names.
@@ -605,6 +683,17 @@ fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
 /// reported, with the nearest known name.
 fn note_other(v: &mut View, c: &Command, d: &mut Diagnostics) {
     let name = c.name.as_str();
+    if let Some((_, what)) = NOT_DRAWN.iter().find(|(n, _)| *n == name) {
+        d.push(
+            Diagnostic::at(
+                codes::CPFG_VIEW_NOT_DRAWN,
+                c.span.clone(),
+                format!("`{name}:` is not drawn by graftal: {what}"),
+            )
+            .with_label("read, not drawn"),
+        );
+        return;
+    }
     if UNUSED.contains(&name) {
         v.unused.push((name.to_string(), c.span.clone()));
         return;
@@ -1014,7 +1103,7 @@ mod tests {
 
     #[test]
     fn unknown_misspelt_and_unused() {
-        let src = "angel factor: 16\ntappered lines: off\nlight: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
+        let src = "angel factor: 16\ntappered lines: off\nfont: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
         let (v, d) = read_view(src);
         assert_eq!(codes_of(&d), ["W0804", "W0805", "E0812"]);
         assert_eq!(&src[d.0[0].span.clone().unwrap()], "angel factor");
@@ -1027,7 +1116,46 @@ mod tests {
         assert!(!v.tapered_lines);
         assert_eq!(v.scale_factor, 1.0);
         assert_eq!(v.angle, 45.0);
-        assert_eq!(v.unused, [("light".to_string(), 37..52)]);
+        assert_eq!(v.unused, [("font".to_string(), 37..51)]);
+    }
+
+    #[test]
+    fn shade_modes_and_what_is_not_drawn() {
+        let (v, d) = read_view("shade mode: 3\n");
+        assert!(d.is_empty());
+        assert_eq!(v.render_mode, RenderMode::Shaded);
+        let (v, _) = read_view("render mode: shaded\nshade mode: 7\n");
+        assert_eq!(v.render_mode, RenderMode::Wireframe);
+        let (_, d) = read_view("shade mode: 9\n");
+        assert_eq!(codes_of(&d), ["E0812"]);
+        let src = "font: x\nbackground scene: scene.dat\n";
+        let (_, d) = read_view(src);
+        assert_eq!(codes_of(&d), ["W0807"]);
+        assert_eq!(
+            &src[d.0[0].span.clone().unwrap()],
+            "background scene: scene.dat"
+        );
+    }
+
+    #[test]
+    fn lights_and_colour_map_shading() {
+        let src = "light: V: 0 1 0 D: 0.5 0.5 0.5\nlight: O: 1 2 3\nlight direction: 0,0,1\n\
+                   diffuse reflection: 4\nsurface ambient: 0.3\nsurface diffuse: 0.6\n";
+        let (v, d) = read_view(src);
+        assert!(d.is_empty(), "{d:?}");
+        assert_eq!(v.lights.len(), 2);
+        assert!(v.lights[0].directional);
+        assert_eq!(v.lights[0].vector, [0.0, 1.0, 0.0]);
+        assert_eq!(v.lights[0].diffuse, [0.5; 3]);
+        assert!(!v.lights[1].directional);
+        assert_eq!(v.lights[1].vector, [1.0, 2.0, 3.0]);
+        assert_eq!(v.light_direction, [0.0, 0.0, 1.0]);
+        assert_eq!(
+            (v.diffuse_reflection, v.surface_ambient, v.surface_diffuse),
+            (4.0, 0.3, 0.6)
+        );
+        let (_, d) = read_view("light: Q: 1\n");
+        assert_eq!(codes_of(&d), ["E0812"]);
     }
 
     /// The vlab exercises leave `?` for the student: one error says so.
