@@ -4,6 +4,7 @@
 
 use crate::back;
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+pub use crate::eval::parametric::Globals;
 use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::front::{self, Front, Library};
@@ -326,15 +327,27 @@ pub fn derive_with_progress(
     opts: &RunOptions,
     progress: impl FnMut(u64, usize),
 ) -> Result<Word, Diagnostic> {
+    derive_values(sys, opts, progress).map(|(w, _)| w)
+}
+
+/// Derives the word, reporting progress after each step, with the values
+/// its program's globals and arrays were left with (what the homomorphism
+/// reads when the word is drawn: [`interpret`]).
+pub fn derive_values(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<(Word, Globals), Diagnostic> {
     let dopts = opts.derive_options(sys);
     // The module test alone ([`eval::plan`] would build the Deriver, and
     // its table, a second time): the plain methods are the Deriver's.
     if sys.rewrites_modules() {
-        return eval::parametric::derive(sys, &dopts, progress, &mut |w| {
-            answer_queries(sys, w, opts)
+        return eval::parametric::derive(sys, &dopts, progress, &mut |w, values| {
+            answer_queries(sys, w, values, opts)
         });
     }
-    Deriver::new(sys).derive(&dopts, progress)
+    let word = Deriver::new(sys).derive(&dopts, progress)?;
+    Ok((word, Globals::initial(&sys.program)))
 }
 
 /// Derives the word.
@@ -350,16 +363,19 @@ pub const MAX_MOVES: usize = 30_000_000;
 /// Interprets `word`, refusing words whose geometry would not fit in memory
 /// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too. A
 /// system whose rewriting needs modules draws its word through its
-/// homomorphism.
+/// homomorphism, which reads the program's globals and arrays as `values`
+/// holds them ([`derive_values`]).
 pub fn interpret(
     sys: &System,
     word: &Word,
+    values: &Globals,
     opts: &RunOptions,
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
     let options = turtle::TurtleOptions { paths };
     if sys.rewrites_modules() {
-        let (drawn, _) = eval::parametric::homomorphism(sys, word, &opts.derive_options(sys))?;
+        let dopts = opts.derive_options(sys);
+        let (drawn, _) = eval::parametric::homomorphism(sys, word, values, &dopts)?;
         let moves = drawn
             .0
             .iter()
@@ -401,9 +417,9 @@ pub fn interpret(
 
 /// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
 /// finds there, drawing the word through the homomorphism.
-fn answer_queries(sys: &System, word: &mut Word, opts: &RunOptions) {
+fn answer_queries(sys: &System, word: &mut Word, values: &Globals, opts: &RunOptions) {
     let dopts = opts.derive_options(sys);
-    let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, &dopts) else {
+    let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, values, &dopts) else {
         return;
     };
     let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
@@ -427,8 +443,8 @@ fn answer_queries(sys: &System, word: &mut Word, opts: &RunOptions) {
 
 /// Derives and interprets: the geometry of the system.
 pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
-    let word = derive(sys, opts)?;
-    let g = interpret(sys, &word, opts, false)?;
+    let (word, values) = derive_values(sys, opts, |_, _| {})?;
+    let g = interpret(sys, &word, &values, opts, false)?;
     Ok((word, g))
 }
 
@@ -454,16 +470,32 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
     g.polygons.splice(0..0, shapes);
 }
 
-/// The warning for a picture with nothing in it.
-pub fn nothing_drawn(word: &Word) -> Diagnostic {
-    Diagnostic::global(
+/// The warning for a picture with nothing in it. When the file's own
+/// `diagnostics` say the model waits on an environment that never answers
+/// (W0821), the warning says that this is why.
+pub fn nothing_drawn(word: &Word, diagnostics: &Diagnostics) -> Diagnostic {
+    let d = Diagnostic::global(
         codes::NOTHING_DRAWN,
         "nothing is drawn: the picture is empty",
     )
     .with_note(format!(
         "the derived word has {} symbols and none of them draws",
         word.len()
-    ))
+    ));
+    match diagnostics
+        .iter()
+        .find(|d| d.code == codes::CPFG_NO_ENVIRONMENT)
+    {
+        Some(env) => {
+            let mut d = d.with_note(
+                "the model draws only what its environment answers to `?E`, \
+                 and graftal runs no environment program (W0821)",
+            );
+            d.notes.extend(env.notes.iter().cloned());
+            d
+        }
+        None => d,
+    }
 }
 
 /// Output formats of [`render`].
@@ -787,11 +819,11 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
         return Ok(measured(c, max_depth, "streamed"));
     }
-    let w = derive(sys, opts)?;
+    let (w, values) = derive_values(sys, opts, |_, _| {})?;
     let t1 = Instant::now();
     let (symbols, c, max_depth) = if sys.rewrites_modules() {
         // Drawn through the homomorphism, which may need the whole word.
-        let g = interpret(sys, &w, opts, false)?;
+        let g = interpret(sys, &w, &values, opts, false)?;
         let c = Counter {
             segments: g.segments.len() as u128,
             polygons: g.polygons.len() as u128,

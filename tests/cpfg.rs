@@ -78,8 +78,8 @@ endlsystem
         steps: Some(2),
         ..RunOptions::default()
     };
-    let w = driver::derive_with_progress(&sys, &opts, |_, _| {}).unwrap();
-    let g = driver::interpret(&sys, &w, &opts, false).unwrap();
+    let (w, values) = driver::derive_values(&sys, &opts, |_, _| {}).unwrap();
+    let g = driver::interpret(&sys, &w, &values, &opts, false).unwrap();
     assert_eq!(g.segments.len(), 1);
     let s = &g.segments[0];
     let len = (0..3)
@@ -87,6 +87,16 @@ endlsystem
         .sum::<f64>()
         .sqrt();
     assert!((len - 11.0).abs() < 1e-9, "{len}");
+}
+
+/// cpfg cuts as it reads the word to rewrite: the `%` a step makes, and
+/// what follows it in its branch, stay in that step's word (and are drawn,
+/// `interpretation past %` being on by default) until the next step.
+#[test]
+fn a_cut_made_in_a_step_is_removed_by_the_next() {
+    let src = "lsystem: 1\nderivation length: 2\naxiom: [XY]Z\nX --> %\nendlsystem\n";
+    assert_eq!(derive_text(src, 1), "[%Y]Z");
+    assert_eq!(derive_text(src, 2), "[]Z");
 }
 
 #[test]
@@ -105,8 +115,8 @@ fn plus_turns_left_and_parameters_set_angles_and_lengths() {
     let c = compile_text(src);
     let sys = c.system.unwrap();
     let opts = RunOptions::default();
-    let w = driver::derive_with_progress(&sys, &opts, |_, _| {}).unwrap();
-    let g = driver::interpret(&sys, &w, &opts, false).unwrap();
+    let (w, values) = driver::derive_values(&sys, &opts, |_, _| {}).unwrap();
+    let g = driver::interpret(&sys, &w, &values, &opts, false).unwrap();
     let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9);
     assert!(close(g.segments[0].b, [0.0, 2.0, 0.0]));
     // +(90) turns left: towards −x.
@@ -209,11 +219,11 @@ fn run_object(dir: &Path) -> Outcome {
         max_symbols: 2_000_000,
         ..RunOptions::default()
     };
-    let w = match driver::derive_with_progress(&sys, &opts, |_, _| {}) {
-        Ok(w) => w,
+    let (w, values) = match driver::derive_values(&sys, &opts, |_, _| {}) {
+        Ok(x) => x,
         Err(d) => return Outcome::Refused(vec![format!("{} {}", d.code, d.message)]),
     };
-    let g = match driver::interpret(&sys, &w, &opts, false) {
+    let g = match driver::interpret(&sys, &w, &values, &opts, false) {
         Ok(g) => g,
         Err(d) => return Outcome::Refused(vec![format!("{} {}", d.code, d.message)]),
     };
@@ -314,8 +324,8 @@ fn damaged_files_never_panic() {
                     max_symbols: 200_000,
                     ..RunOptions::default()
                 };
-                if let Ok(w) = driver::derive_with_progress(&sys, &opts, |_, _| {}) {
-                    let _ = driver::interpret(&sys, &w, &opts, false);
+                if let Ok((w, values)) = driver::derive_values(&sys, &opts, |_, _| {}) {
+                    let _ = driver::interpret(&sys, &w, &values, &opts, false);
                 }
             }
             Ok(())

@@ -322,13 +322,18 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             return Ok(write_picture(io, &a.output, bytes));
         }
         driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
-        let word = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-        let mut g = driver::interpret(sys, &word, opts, a.spline).map_err(|d| vec![d])?;
+        let (word, values) = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+        let mut g = driver::interpret(sys, &word, &values, opts, a.spline).map_err(|d| vec![d])?;
         if !a.no_layout {
             driver::add_layout(sys, &mut g);
         }
         if g.is_empty() {
-            report(io, c, &[driver::nothing_drawn(&word)], a.args.format);
+            report(
+                io,
+                c,
+                &[driver::nothing_drawn(&word, &c.diagnostics)],
+                a.args.format,
+            );
         }
         let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
         if let Some(bar) = &bar {
@@ -611,11 +616,11 @@ fn derive_reporting(
     io: &Io<'_>,
     sys: &crate::ir::System,
     opts: &RunOptions,
-) -> Result<crate::ir::Word, Diagnostic> {
+) -> Result<(crate::ir::Word, driver::Globals), Diagnostic> {
     let Some(bar) = step_bar(io, sys, opts) else {
-        return driver::derive_with_progress(sys, opts, |_, _| {});
+        return driver::derive_values(sys, opts, |_, _| {});
     };
-    let r = driver::derive_with_progress(sys, opts, |step, len| {
+    let r = driver::derive_values(sys, opts, |step, len| {
         bar.set_position(step);
         bar.set_message(format!("{len} symbols"));
     });

@@ -23,6 +23,34 @@ enum Halt {
     Work,
 }
 
+/// The values of a program's globals and arrays. The derivation leaves
+/// them for the homomorphism: in cpfg a global set in `Start:` (or in any
+/// block or production) is seen wherever it is read, drawing included.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Globals {
+    globals: Vec<f64>,
+    arrays: Vec<Vec<f64>>,
+}
+
+impl Globals {
+    /// The values before anything ran: globals 0, arrays as declared.
+    pub fn initial(par: &Program) -> Self {
+        Globals {
+            globals: vec![0.0; par.globals.len()],
+            arrays: par
+                .arrays
+                .iter()
+                .map(|a| {
+                    let n: usize = a.dims.iter().product();
+                    let mut v = a.init.clone();
+                    v.resize(n, 0.0);
+                    v
+                })
+                .collect(),
+        }
+    }
+}
+
 /// Variables, arrays, the random stream and the work budget.
 struct Machine<'p> {
     par: &'p Program,
@@ -46,20 +74,12 @@ impl<'p> Machine<'p> {
     /// run's seed plus the file's own.
     fn new(sys: &'p System, seed: u64, max_work: u64) -> Self {
         let par = &sys.program;
+        let Globals { globals, arrays } = Globals::initial(par);
         Machine {
             par,
             contours: &sys.contours,
-            globals: vec![0.0; par.globals.len()],
-            arrays: par
-                .arrays
-                .iter()
-                .map(|a| {
-                    let n: usize = a.dims.iter().product();
-                    let mut v = a.init.clone();
-                    v.resize(n, 0.0);
-                    v
-                })
-                .collect(),
+            globals,
+            arrays,
             rng: Rng::new(
                 seed.wrapping_add(sys.settings.seed.unwrap_or(0)),
                 Stream::Derivation,
@@ -69,6 +89,25 @@ impl<'p> Machine<'p> {
             max_work,
             stop: false,
             steps: 0,
+        }
+    }
+
+    /// The values of the globals and arrays now.
+    fn values(&self) -> Globals {
+        Globals {
+            globals: self.globals.clone(),
+            arrays: self.arrays.clone(),
+        }
+    }
+
+    /// Sets the globals and arrays to `g` (when `g` is of this program).
+    fn set_values(&mut self, g: &Globals) {
+        let fits = |a: &[Vec<f64>], b: &[Vec<f64>]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.len() == y.len())
+        };
+        if g.globals.len() == self.globals.len() && fits(&g.arrays, &self.arrays) {
+            self.globals.clone_from(&g.globals);
+            self.arrays.clone_from(&g.arrays);
         }
     }
 
@@ -854,13 +893,15 @@ fn axiom(sys: &System, m: &mut Machine<'_>) -> Result<Word, Halt> {
 
 /// Derives a system by module rewriting: `opts.steps` steps from the
 /// axiom, with `progress` called after each step. `query` is called before
-/// each step when the system has query modules, to fill their parameters.
+/// each step when the system has query modules, to fill their parameters
+/// (with the program's values then, which the homomorphism reads). The
+/// word comes with the values the program left, for [`homomorphism`].
 pub fn derive(
     sys: &System,
     opts: &DeriveOptions,
     mut progress: impl FnMut(u64, usize),
-    query: &mut dyn FnMut(&mut Word),
-) -> Result<Word, Diagnostic> {
+    query: &mut dyn FnMut(&mut Word, &Globals),
+) -> Result<(Word, Globals), Diagnostic> {
     super::refuse_early(sys, opts)?;
     let n = sys.symbols.len();
     let main = Group::new(&sys.productions, n);
@@ -880,20 +921,24 @@ pub fn derive(
         .any(|(id, _)| matches!(sys.op(id), Some(crate::ir::TurtleOp::Query(_))));
     let program = &sys.program;
     let (mut len, mut done) = (0, 0);
-    let result: Result<Word, Halt> = (|| {
+    let result: Result<(Word, Globals), Halt> = (|| {
         e.m.run(&program.start, &mut [])?;
         let mut word = axiom(sys, &mut e.m)?;
         let mut step = 0;
         while step < e.m.steps {
             if has_query {
-                query(&mut word);
+                query(&mut word, &e.m.values());
             }
             e.m.charge(super::STEP_COST)?;
             e.m.run(&program.start_each, &mut [])?;
-            let mut next = e.step(&main, &word, choice)?;
+            // cpfg cuts as it reads the word to rewrite it: what follows a
+            // `%` stays in the word that step made, and is drawn
+            // (`interpretation past %: on`, the default), until the next
+            // step removes it.
             if let Some(c) = cut_symbol {
-                cut(&mut next, c);
+                cut(&mut word, c);
             }
+            let mut next = e.step(&main, &word, choice)?;
             if !sys.decomposition.productions.is_empty() {
                 next = e.recursive(
                     &decomposition,
@@ -915,9 +960,9 @@ pub fn derive(
         }
         e.m.run(&program.end, &mut [])?;
         if has_query {
-            query(&mut word);
+            query(&mut word, &e.m.values());
         }
-        Ok(word)
+        Ok((word, e.m.values()))
     })();
     result.map_err(|h| {
         let mut d = halt_error(h, opts, len);
@@ -930,10 +975,12 @@ pub fn derive(
 
 /// The word the turtle draws: `word` rewritten by the homomorphism, and
 /// for each module of the result the index of the module of `word` it
-/// came from.
+/// came from. The homomorphism reads the globals and arrays as `values`
+/// holds them (what [`derive`] left).
 pub fn homomorphism(
     sys: &System,
     word: &Word,
+    values: &Globals,
     opts: &DeriveOptions,
 ) -> Result<(Word, Vec<u32>), Diagnostic> {
     let phase = &sys.homomorphism;
@@ -943,6 +990,7 @@ pub fn homomorphism(
     let group = Group::new(&phase.productions, sys.symbols.len());
     let seed = phase.seed.unwrap_or(0).wrapping_add(opts.seed);
     let mut m = Machine::new(sys, seed, opts.max_work);
+    m.set_values(values);
     m.rng = Rng::new(seed, Stream::Homomorphism);
     let mut e = Engine {
         m,

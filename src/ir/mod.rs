@@ -66,9 +66,10 @@
 //! The predecessor's modules are consumed, the after-statements run and the
 //! successor's parameter expressions are evaluated. When none applies, the
 //! module is copied. Branch delimiters are never rewritten unless a
-//! production names them. After the step, a cut removes the rest of its
-//! branch and the decomposition phase rewrites each new module again,
-//! recursively, up to its depth. The homomorphism rewrites the word for
+//! production names them. Before the step, a cut removes the rest of its
+//! branch (so what follows a cut made in one step is still drawn after
+//! it); after the step the decomposition phase rewrites each new module
+//! again, recursively, up to its depth. The homomorphism rewrites the word for
 //! drawing only.
 //!
 //! Context matching in bracketed words (the listing's `lcondiff` and

@@ -91,4 +91,18 @@ Add `seed: n` after `lsystem:` to make it stochastic.";
 "The file holds more than one `lsystem:`. The first is the model; the
 others are sub-L-systems, which only `?(n,s)` modules call. graftal reads
 the first and reports sub-L-system calls as unsupported.";
+
+    CPFG_NO_USER_FUNCTION = "W0828", "user function not given",
+"`func(id, x)` reads user function `id` (counted from 1) among the
+`function:` files the view file names. Here the view file names no
+function file, or fewer than `id`: cpfg has no curve to read, and graftal
+evaluates the call to 0, which usually draws a different plant. Name the
+function's file in the view file (`function: name.func`), beside the `.l`.";
+
+    CPFG_SUBSCRIPT_RANGE = "W0829", "array subscript out of range",
+"An array element is read or written with a subscript outside the array:
+below 0, or at its size or past it (an array of size 3 has elements 0, 1
+and 2). graftal reads such an element as 0 and writes nothing; cpfg reads
+or overwrites memory that is not the array's. Subscripts computed at run
+time are not checked when the file is read.";
 }

@@ -143,6 +143,11 @@ struct Lowerer<'d> {
     warned_not_drawn: std::collections::HashSet<String>,
     warned_io: bool,
     warned_env: bool,
+    /// Whether a sub-L-system call was reported: one error says the file
+    /// needs them, not one per call.
+    warned_sub: bool,
+    /// The first `lsystem:` after the first L-system's end.
+    later_lsystem: Option<Span>,
     /// What the item being lowered reported: a mistake repeated through a
     /// line (`F(foo(1))` a million times) is reported a few times, then
     /// counted.
@@ -176,19 +181,22 @@ impl Lowerer<'_> {
 
     fn check_module(&mut self, m: &ast::Module) {
         if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
-            self.report(codes::CPFG_UNSUPPORTED, || {
-                Diagnostic::at(
-                    codes::CPFG_UNSUPPORTED,
-                    m.span.clone(),
-                    "sub-L-systems are not supported",
-                )
-                .with_label(if m.name == "$" {
-                    "`$` returns from a sub-L-system"
-                } else {
-                    "`?(n, s)` calls sub-L-system n"
-                })
-                .with_help("write the sub-L-system's productions into this L-system")
-            });
+            if !std::mem::replace(&mut self.warned_sub, true) {
+                self.diags.push(
+                    Diagnostic::at(
+                        codes::CPFG_UNSUPPORTED,
+                        m.span.clone(),
+                        "sub-L-systems are not supported",
+                    )
+                    .with_label(if m.name == "$" {
+                        "`$` returns from a sub-L-system"
+                    } else {
+                        "`?(n, s)` calls sub-L-system n"
+                    })
+                    .with_note("reported here once for every `?(n, s)` and `$` of the file")
+                    .with_help("write the sub-L-system's productions into this L-system"),
+                );
+            }
         } else if m.name == "?E" && !self.warned_env {
             self.warned_env = true;
             self.diags.push(
@@ -744,6 +752,8 @@ impl<'d> Lowerer<'d> {
             warned_not_drawn: Default::default(),
             warned_io: false,
             warned_env: false,
+            warned_sub: false,
+            later_lsystem: None,
             repeats: Repeats::default(),
             suggester: Suggester::default(),
             longest_global: 0,
@@ -764,16 +774,25 @@ impl Lowerer<'_> {
             .iter()
             .find(|i| matches!(i, Item::Lsystem { .. }))
         {
-            self.diags.push(
+            self.later_lsystem = Some(span.clone());
+        }
+        &file.items[..first_end]
+    }
+
+    /// A later L-system is reported unless the sub-L-system calls were:
+    /// that error already says the file needs what graftal lacks.
+    fn report_later_lsystem(&mut self) {
+        match self.later_lsystem.take() {
+            Some(span) if !self.warned_sub => self.diags.push(
                 Diagnostic::at(
                     codes::CPFG_LATER_LSYSTEM,
-                    span.clone(),
+                    span,
                     "only the first L-system of a file is read",
                 )
                 .with_label("a sub-L-system"),
-            );
+            ),
+            _ => {}
         }
-        &file.items[..first_end]
     }
 
     /// Declares the arrays and the globals (every name assigned in a
@@ -1033,6 +1052,7 @@ pub fn lower_with_curves(file: &ast::File, curves: &[u32], diags: &mut Diagnosti
         }
     }
     l.check_complete(&rd);
+    l.report_later_lsystem();
     rd.par.into_system(&mut l.sys);
     Lowered {
         system: l.sys,

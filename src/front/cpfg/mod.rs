@@ -11,7 +11,9 @@
 //! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
 pub mod ast;
+pub mod calls;
 pub mod contour;
+pub mod environment;
 pub mod func;
 pub mod lexer;
 pub mod look;
@@ -130,7 +132,7 @@ fn side_file(
 pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     let path = Path::new(&file.name);
     let beside = Beside {
-        dir: path.parent().filter(|d| d.is_dir()),
+        dir: folder_of(path),
     };
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
@@ -140,15 +142,30 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
         .filter(|c| c.role == crate::ir::look::ContourRole::Curve)
         .map(|c| c.id)
         .collect();
-    let mut lowered = beside.read_mapped(&file.text, &functions.defines, &curves, diags);
+    let mut lowered = beside.read_mapped(&file.text, &functions, &curves, diags);
     tropisms::add_tropisms(&mut lowered, &view, diags);
     apply_view(&mut lowered.system, &view);
     beside.add_look(&mut lowered.system, path, &view, diags);
     lowered.system.program.functions = functions.functions;
     lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
-    report_undefined_surfaces(&lowered, diags);
+    report_undefined_surfaces(&lowered, &view, diags);
+    if let Some(dir) = beside.dir {
+        environment::name_program(dir, path, diags);
+    }
     lowered
+}
+
+/// The folder of the `.l` file at `path`: its parent, or the current
+/// folder for a bare name (`plant.l` given from its own folder has the
+/// empty parent, which is no folder) when the file is there on disk; none
+/// for a text with no file behind it.
+fn folder_of(path: &Path) -> Option<&Path> {
+    match path.parent() {
+        Some(d) if d.as_os_str().is_empty() => path.is_file().then_some(Path::new(".")),
+        Some(d) => Some(d).filter(|d| d.is_dir()),
+        None => None,
+    }
 }
 
 /// The folder of the `.l` file, where cpfg finds the files it reads beside
@@ -238,15 +255,18 @@ impl Beside<'_> {
     fn read_mapped(
         &self,
         text: &str,
-        defines: &[(String, String)],
+        functions: &UserFunctions,
         curves: &[u32],
         diags: &mut Diagnostics,
     ) -> Lowered {
+        let defines = &functions.defines;
         let pre = preprocess::preprocess_with_defines(text, defines, &mut |name| self.read(name));
         diags.extend(pre.diagnostics);
         let mut own = Diagnostics::default();
         let ast = parser::parse(&pre.text, &mut own);
         let mut lowered = lower::lower_with_curves(&ast, curves, &mut own);
+        let (arrays, given) = (&lowered.system.program.arrays, functions.functions.len());
+        calls::check(&ast, arrays, given, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
         for mut d in own.0 {
             // Where expansion stopped too deep the text is left as written:
@@ -549,17 +569,23 @@ fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[
         .collect()
 }
 
-/// A `~` module whose surface the view file does not define.
-fn report_undefined_surfaces(lowered: &Lowered, diags: &mut Diagnostics) {
+/// A `~` module whose surface the view file does not define: the rest of
+/// the plant is drawn without it (some vlab objects, insect-realistic and
+/// two-trees, name surfaces their folder lacks). A surface the view file
+/// names but whose file is missing was reported with the file.
+fn report_undefined_surfaces(lowered: &Lowered, view: &view::View, diags: &mut Diagnostics) {
     let sys = &lowered.system;
     for (id, info) in sys.symbols.iter() {
-        if info.name.starts_with('~') && info.name.len() > 1 && sys.op(id).is_none() {
+        let Some(name) = info.name.strip_prefix('~').filter(|n| !n.is_empty()) else {
+            continue;
+        };
+        if sys.op(id).is_none() && !view.surfaces.iter().any(|r| r.id.to_string() == name) {
             let span = lowered.spans.symbols.get(&id).cloned().unwrap_or(0..0);
             diags.push(
                 crate::diagnostics::Diagnostic::at(
-                    crate::diagnostics::codes::CPFG_UNSUPPORTED,
+                    crate::diagnostics::codes::CPFG_NOT_DRAWN,
                     span,
-                    format!("surface `{}` is not defined", &info.name[1..]),
+                    format!("surface `{name}` is not defined: `~{name}` draws nothing"),
                 )
                 .with_label("no `surface:` line of the view file names it")
                 .with_help(format!(

@@ -322,6 +322,22 @@ struct Command<'a> {
 impl Command<'_> {
     /// Reports a value that is not the `what` the command expects.
     fn bad(&self, d: &mut Diagnostics, what: &str) {
+        // The vlab exercises (snowflake-exercise) leave `?` where the
+        // student writes a value: say so, not only that `?` is no number.
+        if self.value.trim() == "?" {
+            return d.push(
+                Diagnostic::at(
+                    codes::CPFG_VIEW_VALUE,
+                    self.value_span.clone(),
+                    format!(
+                        "`{}:` is left as `?`: the object is an exercise with blanks to fill in",
+                        self.name
+                    ),
+                )
+                .with_label(format!("write {what} here"))
+                .with_help("fill in every field marked `?`, in the view file and the `.l` file"),
+            );
+        }
         d.push(
             Diagnostic::at(
                 codes::CPFG_VIEW_VALUE,
@@ -1156,6 +1172,16 @@ mod tests {
         );
         let (_, d) = read_view("light: Q: 1\n");
         assert_eq!(codes_of(&d), ["E0812"]);
+    }
+
+    /// The vlab exercises leave `?` for the student: one error says so.
+    #[test]
+    fn a_value_left_as_a_question_mark_is_an_exercise_blank() {
+        let src = "angle increment: ?\ninitial line width: 1 pixels\n";
+        let (_, d) = read_view(src);
+        assert_eq!(codes_of(&d), ["E0812"]);
+        assert_eq!(&src[d.0[0].span.clone().unwrap()], "?");
+        assert!(d.0[0].message.contains("exercise"), "{}", d.0[0].message);
     }
 
     #[test]
