@@ -100,6 +100,29 @@ fn a_cut_made_in_a_step_is_removed_by_the_next() {
 }
 
 #[test]
+fn equals_in_a_right_context_skips_the_rest_of_the_branch() {
+    // cpfg's `=` (generate.c, RconDiff): skip to the `]` closing the
+    // branch; `]` after it closes the branch; `=` binds nothing.
+    let src = "Lsystem: 1\nderivation length: 1\nAxiom: F[+DX]G[Y][-DZ]H\n\
+               F > [+D=] --> V\nG > [=][-D=] --> W\nendlsystem\n";
+    assert_eq!(derive_text(src, 1), "V[+DX]W[Y][-DZ]H");
+    let src = "Lsystem: 1\nignore: +\nderivation length: 1\nAxiom: A[+B(1)C]D(2)\n\
+               A > [B(y)=]D(z) : y==1 && z==2 --> E(y,z)\nendlsystem\n";
+    assert_eq!(derive_text(src, 1), "E(1,2)[+B(1)C]D(2)");
+    // Anything but `]` after `=` never matches, and says so at the `=`.
+    let src = "Lsystem: 1\nderivation length: 1\nAxiom: A[BC]\nA > [B=C] --> X\nendlsystem\n";
+    let c = compile_text(src);
+    let warned: Vec<_> = c
+        .diagnostics
+        .iter()
+        .map(|d| (d.code.0, d.span.clone()))
+        .collect();
+    let at = src.find("=C]").unwrap();
+    assert_eq!(warned, [("W0826", Some(at..at + 1))]);
+    assert_eq!(derive_text(src, 1), "A[BC]");
+}
+
+#[test]
 fn stochastic_choice_follows_the_weights_and_the_seed() {
     let src = "lsystem: 1\nseed: 1\nderivation length: 1\naxiom: AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA\nA --> B : 1\nA --> C : 3\nendlsystem\n";
     let t = derive_text(src, 1);

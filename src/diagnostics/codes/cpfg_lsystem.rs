@@ -105,4 +105,12 @@ below 0, or at its size or past it (an array of size 3 has elements 0, 1
 and 2). graftal reads such an element as 0 and writes nothing; cpfg reads
 or overwrites memory that is not the array's. Subscripts computed at run
 time are not checked when the file is read.";
+
+    CPFG_REST_OF_BRANCH = "W0826", "`=` in a right context must be followed by `]`",
+"In a right context cpfg's `=` skips the rest of the current branch, up to
+the `]` that closes it: `F > [+D=]` matches `F[+DX…]`, whatever follows
+`D` in the branch. The module after `=` is matched at that `]`, so
+anything but `]` never matches, and cpfg reads past the pattern when `=`
+ends it. graftal matches `=]` as cpfg does and reads this context as
+never matching. Write `=]` to skip the rest of a branch.";
 }

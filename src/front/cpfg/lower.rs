@@ -125,6 +125,9 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
 const NOT_DRAWN: &[&str] = &["@L", "@Tx", "@PS", "@PC", "@PD", "@bo", "@bc"];
 
 /// Names bound in a production or block, resolved as they are met.
+/// A pattern's symbols and, for each module, the local slots it binds.
+type Patterns = (Vec<SymbolId>, Vec<Vec<u16>>);
+
 struct Scope {
     locals: Vec<String>,
     /// Whether names not yet known become locals (in productions) or
@@ -501,11 +504,7 @@ impl Lowerer<'_> {
     }
 
     /// The symbols of a pattern and the local slots each module binds.
-    fn patterns(
-        &mut self,
-        scope: &mut Scope,
-        mods: &[ast::Module],
-    ) -> (Vec<SymbolId>, Vec<Vec<u16>>) {
+    fn patterns(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Patterns {
         let mut out = (Vec::new(), Vec::new());
         for m in mods {
             self.check_module(m);
@@ -538,6 +537,34 @@ impl Lowerer<'_> {
         out
     }
 
+    /// A right context. cpfg's `=` skips the rest of the current branch up
+    /// to its closing `]` (cpfg's `RconDiff`); the IR's `]` in a right
+    /// context already means "the rest of the branch, then its end", so
+    /// `=]` lowers to `]`. An `=` before anything else can never match
+    /// in cpfg (W0826); it stays a module `=`, which no word holds.
+    fn right_context(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> Patterns {
+        let is_rest = |m: &ast::Module| m.name == "=" && m.args.is_empty();
+        let mut kept: Vec<ast::Module> = Vec::with_capacity(mods.len());
+        for (k, m) in mods.iter().enumerate() {
+            if is_rest(m) && mods.get(k + 1).is_some_and(|n| n.name == "]") {
+                continue;
+            }
+            if is_rest(m) {
+                self.report(codes::CPFG_REST_OF_BRANCH, || {
+                    Diagnostic::at(
+                        codes::CPFG_REST_OF_BRANCH,
+                        m.span.clone(),
+                        "`=` skips the rest of the branch, but no `]` follows it",
+                    )
+                    .with_label("this context never matches")
+                    .with_help("write `=]` to match the rest of a branch")
+                });
+            }
+            kept.push(m.clone());
+        }
+        self.patterns(scope, &kept)
+    }
+
     /// A successor (or the axiom): its symbols and each module's
     /// parameter expressions.
     fn calls(&mut self, scope: &mut Scope, mods: &[ast::Module]) -> (Word, Vec<Vec<Expr>>) {
@@ -561,7 +588,7 @@ impl Lowerer<'_> {
         };
         let left = self.patterns(&mut scope, &p.left);
         let predecessor = self.patterns(&mut scope, &p.predecessor);
-        let right = self.patterns(&mut scope, &p.right);
+        let right = self.right_context(&mut scope, &p.right);
         let before = self.stmts(&mut scope, &p.before);
         let condition = p.condition.as_ref().map(|c| self.expr(&mut scope, c));
         let after = self.stmts(&mut scope, &p.after);
