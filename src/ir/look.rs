@@ -147,13 +147,13 @@ impl Camera {
         perspective: Option<f64>,
     ) -> Camera {
         let d = normalised(sub(target, eye)).unwrap_or([0.0, 0.0, -1.0]);
-        // World y is up unless the view looks along it; then z is.
-        let world_up = if d[1].abs() > 0.999 {
-            [0.0, 0.0, -d[1].signum()]
-        } else {
-            [0.0, 1.0, 0.0]
-        };
-        let right = normalised(cross(d, world_up)).unwrap_or([1.0, 0.0, 0.0]);
+        // Up is world y as seen across the line of sight, however steeply
+        // the view looks along y (cpfg's ReadViewData): a view from just
+        // below has up nearly along x. Only a view exactly along y, where
+        // y has no such part, takes z.
+        let right = normalised(cross(d, [0.0, 1.0, 0.0]))
+            .or_else(|| normalised(cross(d, [0.0, 0.0, -d[1].signum()])))
+            .unwrap_or([1.0, 0.0, 0.0]);
         let up0 = cross(right, d);
         let (s, c) = twist_degrees.to_radians().sin_cos();
         let up = [0, 1, 2].map(|k| up0[k] * c + right[k] * s);
@@ -264,5 +264,27 @@ impl Contour {
         let f = x - k as f64;
         let (a, b) = (self.points[k], self.points[k + 1]);
         std::array::from_fn(|i| a[i] + (b[i] - a[i]) * f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-3)
+    }
+
+    #[test]
+    fn up_is_world_y_seen_across_the_line_of_sight() {
+        let front = Camera::aimed([0.0, 0.0, 1.0], [0.0; 3], 0.0, None);
+        assert!(close(front.up, [0.0, 1.0, 0.0]));
+        // Nearly from below (07-Open-09-two-tiers): up is nearly +x.
+        let below = Camera::aimed([1.1, -60.0, 0.0], [0.0; 3], 0.0, None);
+        assert!(close(below.up, [0.9998, 0.0183, 0.0]), "{:?}", below.up);
+        // Exactly along y: some up across the view, never NaN.
+        let along = Camera::aimed([0.0, -5.0, 0.0], [0.0; 3], 0.0, None);
+        let dot = along.up[1];
+        assert!(along.up.iter().all(|v| v.is_finite()) && dot.abs() < 1e-9);
     }
 }
