@@ -123,6 +123,23 @@ fn equals_in_a_right_context_skips_the_rest_of_the_branch() {
 }
 
 #[test]
+fn consider_lets_a_right_context_read_out_of_its_branch() {
+    // cpfg's `consider:` skips the unlisted brackets on the right
+    // (generate.c, RconDiff): B in its branch sees the C after it.
+    let with = |filter: &str| {
+        format!(
+            "Lsystem: 1\n{filter}\nderivation length: 1\nAxiom: A[+B][-B]C(1)\n\
+             B > C(x) --> D(x)\nendlsystem\n"
+        )
+    };
+    assert_eq!(derive_text(&with("consider: C"), 1), "A[+D(1)][-D(1)]C(1)");
+    // `ignore:` leaves the brackets alone: `]` ends B's context.
+    assert_eq!(derive_text(&with("ignore: +-"), 1), "A[+B][-B]C(1)");
+    // Listed brackets keep their meaning under `consider:` too.
+    assert_eq!(derive_text(&with("consider: C[]"), 1), "A[+B][-B]C(1)");
+}
+
+#[test]
 fn stochastic_choice_follows_the_weights_and_the_seed() {
     let src = "lsystem: 1\nseed: 1\nderivation length: 1\naxiom: AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA\nA --> B : 1\nA --> C : 3\nendlsystem\n";
     let t = derive_text(src, 1);

@@ -351,12 +351,22 @@ struct Pattern<'p> {
 /// Which productions to try for a symbol, and how context is matched.
 struct Matcher {
     ignored: Vec<bool>,
+    /// What a right context reads past: `ignored`, and the brackets when
+    /// the filter skips them ([`crate::ir::ContextFilter`]).
+    ignored_on_the_right: Vec<bool>,
     ring: bool,
 }
 
 impl Matcher {
     fn is_ignored(&self, s: SymbolId) -> bool {
         self.ignored.get(s.index()).copied().unwrap_or(false)
+    }
+
+    fn is_ignored_on_the_right(&self, s: SymbolId) -> bool {
+        self.ignored_on_the_right
+            .get(s.index())
+            .copied()
+            .unwrap_or(false)
     }
 
     /// Binds the formal parameters `params` of a pattern module `symbol`
@@ -494,6 +504,10 @@ impl Matcher {
                 if s == pat.symbol {
                     break;
                 }
+                if self.is_ignored_on_the_right(s) {
+                    j += 1;
+                    continue;
+                }
                 if s == SymbolId::OPEN {
                     let mut depth = 1;
                     j += 1;
@@ -510,13 +524,7 @@ impl Matcher {
                     }
                     continue;
                 }
-                if s == SymbolId::CLOSE {
-                    return false;
-                }
-                if self.is_ignored(s) {
-                    j += 1;
-                    continue;
-                }
+                // `]` ends the branch; anything else seen is not the context.
                 return false;
             }
             if !Self::bind(word, j, pat.symbol, pat.params, locals) {
@@ -868,11 +876,14 @@ fn halt_error(h: Halt, opts: &DeriveOptions, len: usize) -> Diagnostic {
 }
 
 fn matcher(sys: &System) -> Matcher {
-    let ignored = (0..sys.symbols.len())
-        .map(|i| sys.is_ignored(SymbolId(i as u32)))
-        .collect();
+    let table = |skips: &dyn Fn(SymbolId) -> bool| {
+        (0..sys.symbols.len())
+            .map(|i| skips(SymbolId(i as u32)))
+            .collect()
+    };
     Matcher {
-        ignored,
+        ignored: table(&|s| sys.is_ignored(s)),
+        ignored_on_the_right: table(&|s| sys.is_ignored_on_the_right(s)),
         ring: sys.ring,
     }
 }

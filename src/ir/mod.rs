@@ -769,7 +769,12 @@ pub struct Phase {
     pub seed: Option<u64>,
 }
 
-/// Which symbols context matching sees.
+/// Which symbols context matching sees. The brackets keep their meaning
+/// in a left context always, and in a right context unless the filter
+/// skips them: cpfg's `consider:` skips every symbol it does not list,
+/// brackets included, so a right context read past `]` leaves the branch
+/// and reads on along the word (cpfg's `RconDiff` tests the ignore table
+/// before any bracket; `LconDiff` handles the brackets first).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum ContextFilter {
     /// Skip these symbols (pfg `ignore:`, cpfg `#ignore`).
@@ -1141,7 +1146,18 @@ impl System {
             || self.policy == RulePolicy::Weighted
     }
 
-    /// Whether context matching skips `id`.
+    /// Whether a right context reads past `id` ([`ContextFilter`]):
+    /// as [`System::is_ignored`], and the brackets too when a
+    /// `Consider` filter does not list them.
+    pub fn is_ignored_on_the_right(&self, id: SymbolId) -> bool {
+        match &self.context {
+            ContextFilter::Ignore(set) => set.contains(&id),
+            ContextFilter::Consider(set) => !set.contains(&id),
+        }
+    }
+
+    /// Whether context matching skips `id` (brackets aside: they open and
+    /// close branches, never skipped).
     pub fn is_ignored(&self, id: SymbolId) -> bool {
         match &self.context {
             ContextFilter::Ignore(set) => set.contains(&id),
