@@ -285,7 +285,7 @@ fn run_object(dir: &Path) -> Outcome {
 }
 
 #[test]
-fn at_least_ninety_percent_of_the_corpus_objects_render() {
+fn all_but_three_corpus_objects_render() {
     let dirs = corpus();
     assert_eq!(dirs.len(), 95);
     let mut drawn = 0;
@@ -308,11 +308,9 @@ fn at_least_ninety_percent_of_the_corpus_objects_render() {
         }
     }
     eprintln!("{drawn}/95 drawn; refused:\n{}", refused.join("\n"));
-    assert!(
-        drawn * 10 >= 95 * 9,
-        "{drawn}/95 drawn:\n{}",
-        refused.join("\n")
-    );
+    // The three: an exercise left with `?` blanks, Sedge's sub-L-systems,
+    // and Sierpinski, whose growth only its environment program decides.
+    assert!(drawn >= 92, "{drawn}/95 drawn:\n{}", refused.join("\n"));
 }
 
 /// Damaged cpfg files (bytes cut, doubled or replaced at random, from
