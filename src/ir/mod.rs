@@ -573,6 +573,13 @@ pub enum TurtleOp {
     CylinderPoint { end: bool },
     /// cpfg `@Gt(a,b)`: the tangent factors of the next Hermite segment.
     CylinderTangents,
+    /// cpfg `@Gr(a1,l1[,a2,l2])`: the radius tangents of the control points
+    /// that follow, for the piece of cylinder arriving at a point (angle
+    /// `a1` in degrees from the axis parameter, length `l1`) and the one
+    /// leaving it (`a2`, `l2`; without them as arriving); `@Gr(s)`: whether
+    /// their radius parts are scaled by the distance between control
+    /// points (non-zero `s`).
+    RadiusTangents,
     /// cpfg `?P`, `?H`, `?L`, `?U`: the turtle writes its position or frame
     /// vector into the module's parameters (see [`crate::eval::parametric`]).
     Query(QueryKind),

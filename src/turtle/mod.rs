@@ -162,6 +162,12 @@ struct State {
     /// The cross-section of generalized cylinders: an index into
     /// [`System::contours`] plus one, 0 for the default circle.
     contour: u16,
+    /// The radius tangents a control point set here gets (cpfg `@Gr`):
+    /// for the piece of cylinder arriving at it, and the one leaving it.
+    radius_tangents: [[f64; 2]; 2],
+    /// Whether the radius parts of the tangents are scaled by the distance
+    /// between control points (cpfg `@Gr(s)`).
+    scale_radius_tangents: bool,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -174,6 +180,8 @@ struct Cylinder {
     width: f64,
     contour: u16,
     tangents: (f64, f64),
+    /// The radius tangents there (the leaving one starts the next piece).
+    radius_tangents: [[f64; 2]; 2],
 }
 
 /// cpfg's default tangent coefficients: the tangents at a Hermite
@@ -191,6 +199,7 @@ impl Cylinder {
             width: st.width,
             contour: st.contour,
             tangents: DEFAULT_TANGENTS,
+            radius_tangents: st.radius_tangents,
         }
     }
 }
@@ -449,6 +458,11 @@ impl Args<'_> {
         self.0.get(k).copied().filter(|v| v.is_finite())
     }
 
+    /// How many parameters the module has.
+    fn len(self) -> usize {
+        self.0.len()
+    }
+
     /// Parameters `k`, `k + 1` and `k + 2` as a vector, absent ones 0.
     fn vector(self, k: usize) -> Vec3 {
         [self.get(k), self.get(k + 1), self.get(k + 2)].map(|x| x.unwrap_or(0.0))
@@ -517,6 +531,8 @@ impl<'a> Turtle<'a> {
             cylinder: None,
             real: 0.0,
             contour: 0,
+            radius_tangents: [[0.0; 2]; 2],
+            scale_radius_tangents: false,
         };
         let mut turtle = Turtle {
             sys,
@@ -600,6 +616,7 @@ impl<'a> Turtle<'a> {
                     );
                 }
             }
+            TurtleOp::RadiusTangents => self.radius_tangents(args),
             TurtleOp::SetColour(n) => self.state.colour = n as usize % self.palette.len(),
             TurtleOp::ShiftColour { by, up } => self.shift_colour(by, up),
             TurtleOp::NextColour => self.next_colour(),
@@ -855,10 +872,48 @@ impl Turtle<'_> {
         };
     }
 
+    /// cpfg `@Gr`: one parameter says whether radius tangents scale with
+    /// the distance between control points; two or four set the arriving
+    /// and leaving tangents from an angle (degrees) and a length each.
+    fn radius_tangents(&mut self, args: Args) {
+        let tangent = |k: usize| {
+            let (a, l) = (args.get(k).unwrap_or(0.0).to_radians(), args.get(k + 1));
+            let l = l.unwrap_or(0.0);
+            [a.cos() * l, a.sin() * l]
+        };
+        match args.len() {
+            0 => {}
+            1 => self.state.scale_radius_tangents = args.get(0).is_some_and(|s| s != 0.0),
+            n => {
+                let arriving = tangent(0);
+                let leaving = if n >= 4 { tangent(2) } else { arriving };
+                self.state.radius_tangents = [arriving, leaving];
+            }
+        }
+    }
+
+    /// The radius tangents of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c`, the one arriving here, their radius parts
+    /// scaled by the distance `d` when the turtle says so.
+    fn piece_radius_tangents(&self, c: &Cylinder, d: f64) -> gencyl::RadiusTangents {
+        let scale = if self.state.scale_radius_tangents {
+            d
+        } else {
+            1.0
+        };
+        let scaled = |[t, r]: [f64; 2]| [t, r * scale];
+        gencyl::RadiusTangents {
+            start: scaled(c.radius_tangents[1]),
+            end: scaled(self.state.radius_tangents[0]),
+        }
+    }
+
     /// A piece of generalized cylinder with a cross-section: the contour
     /// swept from `c` to the turtle as quadrilaterals.
     fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
         let st = &self.state;
+        let chord: Vec3 = std::array::from_fn(|i| st.pos[i] - c.point[i]);
+        let radius_tangents = self.piece_radius_tangents(c, dot(chord, chord).sqrt());
         let from = gencyl::End {
             pos: c.point,
             h: c.heading,
@@ -879,6 +934,7 @@ impl Turtle<'_> {
             &from,
             &to,
             c.tangents,
+            radius_tangents,
             pieces,
             &section(c.contour),
             &section(st.contour),

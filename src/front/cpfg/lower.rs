@@ -106,6 +106,7 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         "@Gc" => TurtleOp::CylinderPoint { end: false },
         "@Ge" => TurtleOp::CylinderPoint { end: true },
         "@Gt" => TurtleOp::CylinderTangents,
+        "@Gr" => TurtleOp::RadiusTangents,
         "@#" => TurtleOp::SetContour,
         // cpfg reads `@Ti`; the manual writes `@T`.
         "@Ts" => elasticity(ElasticityChange::Set),
@@ -209,6 +210,17 @@ impl Lowerer<'_> {
                     "`?E` modules get no answer: graftal runs no environment process",
                 )
                 .with_label("keeps the parameters the L-system gives it"),
+            );
+        } else if m.name == "@G" && self.warned_not_drawn.insert(m.name.clone()) {
+            // cpfg: "Unknown subfunction following @G", then it reads on.
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_DRAWN,
+                    m.span.clone(),
+                    "`@G` is not followed by a generalized-cylinder command",
+                )
+                .with_label("no effect on the picture")
+                .with_help("cpfg knows `@Gs`, `@Gc`, `@Ge`, `@Gt` and `@Gr`"),
             );
         } else if NOT_DRAWN.contains(&m.name.as_str())
             && self.warned_not_drawn.insert(m.name.clone())
