@@ -559,12 +559,14 @@ pub enum TurtleOp {
     Circle,
     /// cpfg `@M(x,y,z)`: move the turtle to a point without drawing.
     MoveTo,
-    /// cpfg `@R(hx,hy,hz[,ux,uy,uz])`: set the heading (and up vector).
+    /// cpfg `@R(hx,hy,hz[,ux,uy,uz])`: set the heading (and cpfg's up
+    /// vector, the turtle's −U: cpfg's frame is left-handed).
     SetHeading,
     /// cpfg `@v`: roll about H so that U is as close to +y as it can be.
     RollToVertical,
     /// cpfg `~id`: draw surface `id` (an index into the system's surfaces)
-    /// at the turtle, scaled by the module's parameters.
+    /// at the turtle, scaled by the module's parameters; its z goes along
+    /// cpfg's up, the turtle's −U.
     Surface(u16),
     /// cpfg `@Gs`: start a generalized cylinder at the turtle's position.
     CylinderStart,
@@ -581,7 +583,8 @@ pub enum TurtleOp {
     /// points (non-zero `s`).
     RadiusTangents,
     /// cpfg `?P`, `?H`, `?L`, `?U`: the turtle writes its position or frame
-    /// vector into the module's parameters (see [`crate::eval::parametric`]).
+    /// vector into the module's parameters (see [`crate::eval::parametric`]);
+    /// `?U` gets cpfg's up, the turtle's −U.
     Query(QueryKind),
     /// Fractint `|`: rotate about U by `angle` like [`TurtleOp::Rotate`],
     /// but *not* negated when turns are swapped (Fractint's `!` leaves `|`
@@ -1039,8 +1042,8 @@ pub struct System {
     pub colours: Vec<Rgb>,
     pub structure: Option<Structure>,
     /// Surfaces drawn by [`TurtleOp::Surface`]: triangles in the surface's
-    /// own frame (x along the turtle's L, y along H, z along U), with the
-    /// contact point at the origin.
+    /// own frame (x along the turtle's L, y along H, z along cpfg's up,
+    /// −U), with the contact point at the origin.
     pub surfaces: Vec<SurfaceMesh>,
     /// Contours for generalized cylinders and `curveX` (cpfg `.con`).
     pub contours: Vec<look::Contour>,

@@ -12,8 +12,9 @@
 //! point's width) to (1, half the second's) whose tangents are cpfg's
 //! radius tangents (`@Gr`, [`RadiusTangents`]); without them it is the
 //! straight line, rings evenly spaced and the radius linear. A contour point
-//! (x, y, z) lies at `r (x U − y L) + r z H / d`, `r` the radius and `d` the
-//! distance between the control points.
+//! (x, y, z) lies at `r (−x U − y L) + r z H / d`, `r` the radius and `d`
+//! the distance between the control points: cpfg's `x U − y L` with cpfg's
+//! up, the turtle's −U.
 
 use super::{add_scaled, cross, dot, normalised, Vec3};
 use crate::ir::look::CONTOUR_SAMPLES;
@@ -137,7 +138,7 @@ pub(super) fn sweep(
             .map(|i| {
                 let p: Vec3 =
                     std::array::from_fn(|c| r * (from[i][c] + (to[i][c] - from[i][c]) * t));
-                std::array::from_fn(|c| pos[c] + p[0] * u[c] - p[1] * l[c] + p[2] * h[c] / d)
+                std::array::from_fn(|c| pos[c] - p[0] * u[c] - p[1] * l[c] + p[2] * h[c] / d)
             })
             .collect()
     };
@@ -201,7 +202,7 @@ mod tests {
     #[test]
     fn a_straight_sweep_places_the_contour_in_the_frame() {
         // An open "contour" from (−1, 0) to (1, 0): a flat ribbon along U
-        // (x goes along U), as wide as the radius says.
+        // (x goes along cpfg's up, −U), as wide as the radius says.
         let flat = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
         let quads = sweep(
             &end([0.0; 3], 0.5),
@@ -214,9 +215,9 @@ mod tests {
         );
         assert_eq!(quads.len(), 4);
         let first = quads[0];
-        assert!((first[0][2] + 0.5).abs() < 1e-9 && (first[1][2] - 0.5).abs() < 1e-9);
+        assert!((first[0][2] - 0.5).abs() < 1e-9 && (first[1][2] + 0.5).abs() < 1e-9);
         let last = quads[3];
-        assert!((last[2][2] - 0.25).abs() < 1e-9 && (last[2][1] - 2.0).abs() < 1e-9);
+        assert!((last[2][2] + 0.25).abs() < 1e-9 && (last[2][1] - 2.0).abs() < 1e-9);
         // y of the contour goes along −L = +x.
         let side = [[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]];
         let q = sweep(
@@ -252,9 +253,10 @@ mod tests {
         );
         let mid = q[0][3];
         let eighth = std::f64::consts::FRAC_PI_4;
-        assert!((mid[2] - eighth.cos()).abs() < 1e-9, "{mid:?}");
-        assert!((mid[0] + eighth.sin()).abs() < 1e-9, "{mid:?}");
-        assert!((q[1][3][0] + 1.0).abs() < 1e-9, "{:?}", q[1][3]);
+        // The contour's x lies along −U.
+        assert!((mid[2] + eighth.cos()).abs() < 1e-9, "{mid:?}");
+        assert!((mid[0] - eighth.sin()).abs() < 1e-9, "{mid:?}");
+        assert!((q[1][3][0] - 1.0).abs() < 1e-9, "{:?}", q[1][3]);
     }
 
     #[test]
@@ -278,7 +280,7 @@ mod tests {
         // Radius 0 at both ends: without tangents every ring is a point;
         // with the radius rising at slope 1 and falling at slope 1 (and the
         // axis parameter still at both ends), the radius is s (1 − s), its
-        // top 1/4 half way along the axis.
+        // top 1/4 half way along the axis (the contour's x along −U).
         let dot_x = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
         let (a, b) = (end([0.0; 3], 0.0), end([0.0, 2.0, 0.0], 0.0));
         let widest = |rt: RadiusTangents| {
@@ -287,7 +289,7 @@ mod tests {
                 .flat_map(|quad| quad.iter())
                 .fold(
                     [0.0f64, 0.0],
-                    |w, p| if p[2] > w[0] { [p[2], p[1]] } else { w },
+                    |w, p| if -p[2] > w[0] { [-p[2], p[1]] } else { w },
                 )
         };
         assert_eq!(widest(RadiusTangents::default()), [0.0, 0.0]);

@@ -304,13 +304,14 @@ impl State {
         (self.h, self.l) = rotate(self.h, self.l, c, s);
     }
 
-    /// cpfg `@R`: heading along `heading` (unless it is zero), and up as
-    /// near to `up` as it can be.
+    /// cpfg `@R`: heading along `heading` (unless it is zero), and cpfg's
+    /// up (the turtle's −U) as near to `up` as it can be: L = H × up, as
+    /// cpfg's left-handed frame has it.
     fn set_heading(&mut self, heading: Vec3, up: Vec3) {
         if dot(heading, heading) > 0.0 {
             let h = normalised(heading);
             let l = if dot(up, up) > 0.0 && dot(cross(up, h), cross(up, h)) > 1e-18 {
-                normalised(cross(normalised(up), h))
+                normalised(cross(h, normalised(up)))
             } else {
                 // Keep L as close as it can be: remove its part along the
                 // new heading.
@@ -336,13 +337,15 @@ impl State {
         }
     }
 
-    /// The vector a query module asks for.
+    /// The vector a query module asks for: cpfg's, whose up is the
+    /// turtle's −U.
     fn vector(&self, kind: QueryKind) -> Vec3 {
         match kind {
             QueryKind::Position => self.pos,
             QueryKind::Heading => self.h,
             QueryKind::Left => self.l,
-            QueryKind::Up => self.u,
+            // `0 − x`, not `−x`: no −0 in the word.
+            QueryKind::Up => self.u.map(|x| 0.0 - x),
         }
     }
 }
@@ -1109,7 +1112,8 @@ impl Turtle<'_> {
                 .map(|p| {
                     let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
                     let q = add_scaled(q, st.h, p[1] * scale[1]);
-                    add_scaled(q, st.u, p[2] * scale[2])
+                    // z along cpfg's up, the turtle's −U.
+                    add_scaled(q, st.u, -p[2] * scale[2])
                 })
                 .collect();
             self.sink.polygon(Polygon {

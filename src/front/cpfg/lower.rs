@@ -82,10 +82,13 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         // `+` turns left (counter-clockwise seen from the default view).
         "+" => rot(Axis::Up, -1.0),
         "-" => rot(Axis::Up, 1.0),
+        // cpfg's frame starts H = +y, L = −x, U = −z (interpret.c): its U
+        // is the turtle's −U, and stays so when `&` tilts H towards cpfg's
+        // U and `/` rolls L towards it.
         "&" => rot(Axis::Left, -1.0),
         "^" => rot(Axis::Left, 1.0),
-        "\\" => rot(Axis::Heading, -1.0),
-        "/" => rot(Axis::Heading, 1.0),
+        "\\" => rot(Axis::Heading, 1.0),
+        "/" => rot(Axis::Heading, -1.0),
         "|" => TurtleOp::TurnAround,
         "[" => TurtleOp::Push,
         "]" => TurtleOp::Pop,
