@@ -120,3 +120,28 @@ fn an_unknown_cylinder_command_is_a_warning_at_its_span() {
     let at = src.find("@G").unwrap();
     assert_eq!(said, [("W0823".to_string(), Some(at..at + 2))]);
 }
+
+/// The end of the first of four pieces of the axis of `axiom`'s cylinder
+/// (drawn after the segment of its `F`).
+fn first_piece_end(axiom: &str) -> [f64; 3] {
+    let src = format!("Lsystem: 1\nderivation length: 1\nAxiom: {axiom}\nendlsystem\n");
+    let (sys, said) = compile(SourceFile::new("test.l", src));
+    assert!(said.is_empty(), "{said:?}");
+    let g = draw(&sys);
+    assert_eq!(g.segments.len(), 5);
+    g.segments[1].b
+}
+
+#[test]
+fn tangent_factors_belong_to_the_control_points() {
+    // From (0,0) heading +y to (1,0) heading +x. cpfg's `@Gt(a,b)` gives
+    // the points that follow a factor for the piece arriving (a) and one
+    // for the piece leaving (b): set before `@Gs`, b is the start's.
+    let leaving_flat = first_piece_end("@Gt(1,0)@Gs-(90)F@Ge(4)");
+    assert!(leaving_flat[1].abs() < 1e-9, "{leaving_flat:?}");
+    let leaving_steep = first_piece_end("@Gt(0,1)@Gs-(90)F@Ge(4)");
+    assert!(leaving_steep[1] > 0.05, "{leaving_steep:?}");
+    // The default, 1.2 both ways.
+    let plain = first_piece_end("@Gs-(90)F@Ge(4)");
+    assert!(plain[1] > leaving_steep[1], "{plain:?}");
+}

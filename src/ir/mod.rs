@@ -573,7 +573,9 @@ pub enum TurtleOp {
     /// cpfg `@Gc(n)` / `@Ge(n)`: a control point of the cylinder's axis;
     /// `end` finishes the cylinder.
     CylinderPoint { end: bool },
-    /// cpfg `@Gt(a,b)`: the tangent factors of the next Hermite segment.
+    /// cpfg `@Gt(a[,b])`: the tangent factors of the control points that
+    /// follow: `a` for the Hermite piece arriving at a point, `b` (default
+    /// `a`) for the one leaving it.
     CylinderTangents,
     /// cpfg `@Gr(a1,l1[,a2,l2])`: the radius tangents of the control points
     /// that follow, for the piece of cylinder arriving at a point (angle

@@ -162,6 +162,9 @@ struct State {
     /// The cross-section of generalized cylinders: an index into
     /// [`System::contours`] plus one, 0 for the default circle.
     contour: u16,
+    /// The tangent factors a control point set here gets (cpfg `@Gt`): for
+    /// the piece of cylinder arriving at it, and the one leaving it.
+    tangents: (f64, f64),
     /// The radius tangents a control point set here gets (cpfg `@Gr`):
     /// for the piece of cylinder arriving at it, and the one leaving it.
     radius_tangents: [[f64; 2]; 2],
@@ -179,6 +182,7 @@ struct Cylinder {
     up: Vec3,
     width: f64,
     contour: u16,
+    /// The tangent factors there (the leaving one starts the next piece).
     tangents: (f64, f64),
     /// The radius tangents there (the leaving one starts the next piece).
     radius_tangents: [[f64; 2]; 2],
@@ -198,7 +202,7 @@ impl Cylinder {
             up: st.u,
             width: st.width,
             contour: st.contour,
-            tangents: DEFAULT_TANGENTS,
+            tangents: st.tangents,
             radius_tangents: st.radius_tangents,
         }
     }
@@ -534,6 +538,7 @@ impl<'a> Turtle<'a> {
             cylinder: None,
             real: 0.0,
             contour: 0,
+            tangents: DEFAULT_TANGENTS,
             radius_tangents: [[0.0; 2]; 2],
             scale_radius_tangents: false,
         };
@@ -611,12 +616,11 @@ impl<'a> Turtle<'a> {
             TurtleOp::CylinderPoint { end } => {
                 self.cylinder_point(pieces(args.get(0).unwrap_or(1.0)), end);
             }
+            // cpfg `@Gt(a[,b])`: arriving a, leaving b (or a), for the
+            // control points that follow; nothing without a parameter.
             TurtleOp::CylinderTangents => {
-                if let Some(c) = self.state.cylinder.as_mut() {
-                    c.tangents = (
-                        args.get(0).unwrap_or(DEFAULT_TANGENTS.0),
-                        args.get(1).unwrap_or(DEFAULT_TANGENTS.1),
-                    );
+                if let Some(a) = args.get(0) {
+                    self.state.tangents = (a, args.get(1).unwrap_or(a));
                 }
             }
             TurtleOp::RadiusTangents => self.radius_tangents(args),
@@ -895,6 +899,13 @@ impl Turtle<'_> {
         }
     }
 
+    /// The tangent factors of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c` and the one arriving here (cpfg's
+    /// `interpolate_connection`).
+    fn piece_tangents(&self, c: &Cylinder) -> (f64, f64) {
+        (c.tangents.1, self.state.tangents.0)
+    }
+
     /// The radius tangents of the piece of cylinder from `c` to the turtle:
     /// the one leaving `c`, the one arriving here, their radius parts
     /// scaled by the distance `d` when the turtle says so.
@@ -936,7 +947,7 @@ impl Turtle<'_> {
         let quads = gencyl::sweep(
             &from,
             &to,
-            c.tangents,
+            self.piece_tangents(c),
             radius_tangents,
             pieces,
             &section(c.contour),
@@ -965,8 +976,9 @@ impl Turtle<'_> {
             ];
             dot(v, v).sqrt()
         };
-        let t0 = c.heading.map(|x| x * d * c.tangents.0);
-        let t1 = st.h.map(|x| x * d * c.tangents.1);
+        let (f0, f1) = self.piece_tangents(c);
+        let t0 = c.heading.map(|x| x * d * f0);
+        let t1 = st.h.map(|x| x * d * f1);
         let colour = self.colour();
         let mut a = c.point;
         for b in hermite(c.point, t0, st.pos, t1, pieces) {
