@@ -116,6 +116,7 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::CylinderStart
         | TurtleOp::CylinderPoint { .. }
         | TurtleOp::CylinderTangents
+        | TurtleOp::RadiusTangents
         | TurtleOp::Query(_)
         | TurtleOp::Elasticity { .. }
         | TurtleOp::Untwist

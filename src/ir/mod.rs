@@ -559,22 +559,34 @@ pub enum TurtleOp {
     Circle,
     /// cpfg `@M(x,y,z)`: move the turtle to a point without drawing.
     MoveTo,
-    /// cpfg `@R(hx,hy,hz[,ux,uy,uz])`: set the heading (and up vector).
+    /// cpfg `@R(hx,hy,hz[,ux,uy,uz])`: set the heading (and cpfg's up
+    /// vector, the turtle's −U: cpfg's frame is left-handed).
     SetHeading,
     /// cpfg `@v`: roll about H so that U is as close to +y as it can be.
     RollToVertical,
     /// cpfg `~id`: draw surface `id` (an index into the system's surfaces)
-    /// at the turtle, scaled by the module's parameters.
+    /// at the turtle, scaled by the module's parameters; its z goes along
+    /// cpfg's up, the turtle's −U.
     Surface(u16),
     /// cpfg `@Gs`: start a generalized cylinder at the turtle's position.
     CylinderStart,
     /// cpfg `@Gc(n)` / `@Ge(n)`: a control point of the cylinder's axis;
     /// `end` finishes the cylinder.
     CylinderPoint { end: bool },
-    /// cpfg `@Gt(a,b)`: the tangent factors of the next Hermite segment.
+    /// cpfg `@Gt(a[,b])`: the tangent factors of the control points that
+    /// follow: `a` for the Hermite piece arriving at a point, `b` (default
+    /// `a`) for the one leaving it.
     CylinderTangents,
+    /// cpfg `@Gr(a1,l1[,a2,l2])`: the radius tangents of the control points
+    /// that follow, for the piece of cylinder arriving at a point (angle
+    /// `a1` in degrees from the axis parameter, length `l1`) and the one
+    /// leaving it (`a2`, `l2`; without them as arriving); `@Gr(s)`: whether
+    /// their radius parts are scaled by the distance between control
+    /// points (non-zero `s`).
+    RadiusTangents,
     /// cpfg `?P`, `?H`, `?L`, `?U`: the turtle writes its position or frame
-    /// vector into the module's parameters (see [`crate::eval::parametric`]).
+    /// vector into the module's parameters (see [`crate::eval::parametric`]);
+    /// `?U` gets cpfg's up, the turtle's −U.
     Query(QueryKind),
     /// Fractint `|`: rotate about U by `angle` like [`TurtleOp::Rotate`],
     /// but *not* negated when turns are swapped (Fractint's `!` leaves `|`
@@ -1037,8 +1049,8 @@ pub struct System {
     pub colours: Vec<Rgb>,
     pub structure: Option<Structure>,
     /// Surfaces drawn by [`TurtleOp::Surface`]: triangles in the surface's
-    /// own frame (x along the turtle's L, y along H, z along U), with the
-    /// contact point at the origin.
+    /// own frame (x along the turtle's L, y along H, z along cpfg's up,
+    /// −U), with the contact point at the origin.
     pub surfaces: Vec<SurfaceMesh>,
     /// Contours for generalized cylinders and `curveX` (cpfg `.con`).
     pub contours: Vec<look::Contour>,

@@ -162,6 +162,15 @@ struct State {
     /// The cross-section of generalized cylinders: an index into
     /// [`System::contours`] plus one, 0 for the default circle.
     contour: u16,
+    /// The tangent factors a control point set here gets (cpfg `@Gt`): for
+    /// the piece of cylinder arriving at it, and the one leaving it.
+    tangents: (f64, f64),
+    /// The radius tangents a control point set here gets (cpfg `@Gr`):
+    /// for the piece of cylinder arriving at it, and the one leaving it.
+    radius_tangents: [[f64; 2]; 2],
+    /// Whether the radius parts of the tangents are scaled by the distance
+    /// between control points (cpfg `@Gr(s)`).
+    scale_radius_tangents: bool,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -173,7 +182,10 @@ struct Cylinder {
     up: Vec3,
     width: f64,
     contour: u16,
+    /// The tangent factors there (the leaving one starts the next piece).
     tangents: (f64, f64),
+    /// The radius tangents there (the leaving one starts the next piece).
+    radius_tangents: [[f64; 2]; 2],
 }
 
 /// cpfg's default tangent coefficients: the tangents at a Hermite
@@ -190,7 +202,8 @@ impl Cylinder {
             up: st.u,
             width: st.width,
             contour: st.contour,
-            tangents: DEFAULT_TANGENTS,
+            tangents: st.tangents,
+            radius_tangents: st.radius_tangents,
         }
     }
 }
@@ -295,13 +308,14 @@ impl State {
         (self.h, self.l) = rotate(self.h, self.l, c, s);
     }
 
-    /// cpfg `@R`: heading along `heading` (unless it is zero), and up as
-    /// near to `up` as it can be.
+    /// cpfg `@R`: heading along `heading` (unless it is zero), and cpfg's
+    /// up (the turtle's −U) as near to `up` as it can be: L = H × up, as
+    /// cpfg's left-handed frame has it.
     fn set_heading(&mut self, heading: Vec3, up: Vec3) {
         if dot(heading, heading) > 0.0 {
             let h = normalised(heading);
             let l = if dot(up, up) > 0.0 && dot(cross(up, h), cross(up, h)) > 1e-18 {
-                normalised(cross(normalised(up), h))
+                normalised(cross(h, normalised(up)))
             } else {
                 // Keep L as close as it can be: remove its part along the
                 // new heading.
@@ -327,13 +341,15 @@ impl State {
         }
     }
 
-    /// The vector a query module asks for.
+    /// The vector a query module asks for: cpfg's, whose up is the
+    /// turtle's −U.
     fn vector(&self, kind: QueryKind) -> Vec3 {
         match kind {
             QueryKind::Position => self.pos,
             QueryKind::Heading => self.h,
             QueryKind::Left => self.l,
-            QueryKind::Up => self.u,
+            // `0 − x`, not `−x`: no −0 in the word.
+            QueryKind::Up => self.u.map(|x| 0.0 - x),
         }
     }
 }
@@ -449,6 +465,11 @@ impl Args<'_> {
         self.0.get(k).copied().filter(|v| v.is_finite())
     }
 
+    /// How many parameters the module has.
+    fn len(self) -> usize {
+        self.0.len()
+    }
+
     /// Parameters `k`, `k + 1` and `k + 2` as a vector, absent ones 0.
     fn vector(self, k: usize) -> Vec3 {
         [self.get(k), self.get(k + 1), self.get(k + 2)].map(|x| x.unwrap_or(0.0))
@@ -517,6 +538,9 @@ impl<'a> Turtle<'a> {
             cylinder: None,
             real: 0.0,
             contour: 0,
+            tangents: DEFAULT_TANGENTS,
+            radius_tangents: [[0.0; 2]; 2],
+            scale_radius_tangents: false,
         };
         let mut turtle = Turtle {
             sys,
@@ -592,14 +616,14 @@ impl<'a> Turtle<'a> {
             TurtleOp::CylinderPoint { end } => {
                 self.cylinder_point(pieces(args.get(0).unwrap_or(1.0)), end);
             }
+            // cpfg `@Gt(a[,b])`: arriving a, leaving b (or a), for the
+            // control points that follow; nothing without a parameter.
             TurtleOp::CylinderTangents => {
-                if let Some(c) = self.state.cylinder.as_mut() {
-                    c.tangents = (
-                        args.get(0).unwrap_or(DEFAULT_TANGENTS.0),
-                        args.get(1).unwrap_or(DEFAULT_TANGENTS.1),
-                    );
+                if let Some(a) = args.get(0) {
+                    self.state.tangents = (a, args.get(1).unwrap_or(a));
                 }
             }
+            TurtleOp::RadiusTangents => self.radius_tangents(args),
             TurtleOp::SetColour(n) => self.state.colour = n as usize % self.palette.len(),
             TurtleOp::ShiftColour { by, up } => self.shift_colour(by, up),
             TurtleOp::NextColour => self.next_colour(),
@@ -855,10 +879,55 @@ impl Turtle<'_> {
         };
     }
 
+    /// cpfg `@Gr`: one parameter says whether radius tangents scale with
+    /// the distance between control points; two or four set the arriving
+    /// and leaving tangents from an angle (degrees) and a length each.
+    fn radius_tangents(&mut self, args: Args) {
+        let tangent = |k: usize| {
+            let (a, l) = (args.get(k).unwrap_or(0.0).to_radians(), args.get(k + 1));
+            let l = l.unwrap_or(0.0);
+            [a.cos() * l, a.sin() * l]
+        };
+        match args.len() {
+            0 => {}
+            1 => self.state.scale_radius_tangents = args.get(0).is_some_and(|s| s != 0.0),
+            n => {
+                let arriving = tangent(0);
+                let leaving = if n >= 4 { tangent(2) } else { arriving };
+                self.state.radius_tangents = [arriving, leaving];
+            }
+        }
+    }
+
+    /// The tangent factors of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c` and the one arriving here (cpfg's
+    /// `interpolate_connection`).
+    fn piece_tangents(&self, c: &Cylinder) -> (f64, f64) {
+        (c.tangents.1, self.state.tangents.0)
+    }
+
+    /// The radius tangents of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c`, the one arriving here, their radius parts
+    /// scaled by the distance `d` when the turtle says so.
+    fn piece_radius_tangents(&self, c: &Cylinder, d: f64) -> gencyl::RadiusTangents {
+        let scale = if self.state.scale_radius_tangents {
+            d
+        } else {
+            1.0
+        };
+        let scaled = |[t, r]: [f64; 2]| [t, r * scale];
+        gencyl::RadiusTangents {
+            start: scaled(c.radius_tangents[1]),
+            end: scaled(self.state.radius_tangents[0]),
+        }
+    }
+
     /// A piece of generalized cylinder with a cross-section: the contour
     /// swept from `c` to the turtle as quadrilaterals.
     fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
         let st = &self.state;
+        let chord: Vec3 = std::array::from_fn(|i| st.pos[i] - c.point[i]);
+        let radius_tangents = self.piece_radius_tangents(c, dot(chord, chord).sqrt());
         let from = gencyl::End {
             pos: c.point,
             h: c.heading,
@@ -878,7 +947,8 @@ impl Turtle<'_> {
         let quads = gencyl::sweep(
             &from,
             &to,
-            c.tangents,
+            self.piece_tangents(c),
+            radius_tangents,
             pieces,
             &section(c.contour),
             &section(st.contour),
@@ -906,8 +976,9 @@ impl Turtle<'_> {
             ];
             dot(v, v).sqrt()
         };
-        let t0 = c.heading.map(|x| x * d * c.tangents.0);
-        let t1 = st.h.map(|x| x * d * c.tangents.1);
+        let (f0, f1) = self.piece_tangents(c);
+        let t0 = c.heading.map(|x| x * d * f0);
+        let t1 = st.h.map(|x| x * d * f1);
         let colour = self.colour();
         let mut a = c.point;
         for b in hermite(c.point, t0, st.pos, t1, pieces) {
@@ -1053,7 +1124,8 @@ impl Turtle<'_> {
                 .map(|p| {
                     let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
                     let q = add_scaled(q, st.h, p[1] * scale[1]);
-                    add_scaled(q, st.u, p[2] * scale[2])
+                    // z along cpfg's up, the turtle's −U.
+                    add_scaled(q, st.u, -p[2] * scale[2])
                 })
                 .collect();
             self.sink.polygon(Polygon {

@@ -150,9 +150,10 @@ impl<'a> Tropisms<'a> {
         self.untwist(st);
     }
 
-    /// cpfg's torque: U turns about `U × D'` by `|U × D'|` radians (at
-    /// most one), D' being the torques' summed pull across H scaled by its
-    /// size, in the direction cpfg turns it (away from D'); H stays.
+    /// cpfg's torque: cpfg's up turns about `up × D'` by `|up × D'|`
+    /// radians (at most one) away from D', D' being the torques' summed
+    /// pull across H scaled by its size; H stays. cpfg's up is the
+    /// turtle's −U, so U turns towards D'.
     fn twist(&mut self, st: &mut State) {
         let mut w = [0.0; 3];
         for (k, t) in self.list.iter().enumerate() {
@@ -174,7 +175,7 @@ impl<'a> Tropisms<'a> {
         if n < PARALLEL * 0.1 {
             return;
         }
-        st.u = normalised(turned(st.u, scaled(axis, -1.0 / n), n.min(1.0)));
+        st.u = normalised(turned(st.u, scaled(axis, 1.0 / n), n.min(1.0)));
         st.l = normalised(cross(st.u, st.h));
         st.u = cross(st.h, st.l);
         self.keep_twist(st);
@@ -365,11 +366,27 @@ mod tests {
             "&(90)FF-F",
             vec![tropism([1.0, 0.0, 0.0], 0.4, TropismKind::Torque)],
         );
-        // H stays (+z after the pitch); the turn after the twist is not in
+        // H stays (−z after the pitch); the turn after the twist is not in
         // the untwisted plane.
         assert!(close(direction(&g, 1), direction(&g, 0)));
         let untwisted = draw("&(90)FF-F", vec![]);
         assert!(!close(direction(&g, 2), direction(&untwisted, 2)));
+    }
+
+    #[test]
+    fn a_torque_turns_cpfgs_up_away_from_the_vector() {
+        // cpfg: after `&(90)` H = −z and its up is −y; the torque towards
+        // +x turns that up by 0.4 rad away from +x (movements.c rolls by
+        // the inverse quaternion), to (−sin 0.4, −cos 0.4, 0); L = H × up
+        // = (−cos 0.4, sin 0.4, 0), and `-` turns H onto −L.
+        let g = draw(
+            "&(90)F-F",
+            vec![tropism([1.0, 0.0, 0.0], 0.4, TropismKind::Torque)],
+        );
+        assert!(close(direction(&g, 0), [0.0, 0.0, -1.0]));
+        let (s, c) = 0.4f64.sin_cos();
+        let d = direction(&g, 1);
+        assert!(close(d, [c, -s, 0.0]), "{d:?}");
     }
 
     #[test]

@@ -82,10 +82,13 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         // `+` turns left (counter-clockwise seen from the default view).
         "+" => rot(Axis::Up, -1.0),
         "-" => rot(Axis::Up, 1.0),
+        // cpfg's frame starts H = +y, L = −x, U = −z (interpret.c): its U
+        // is the turtle's −U, and stays so when `&` tilts H towards cpfg's
+        // U and `/` rolls L towards it.
         "&" => rot(Axis::Left, -1.0),
         "^" => rot(Axis::Left, 1.0),
-        "\\" => rot(Axis::Heading, -1.0),
-        "/" => rot(Axis::Heading, 1.0),
+        "\\" => rot(Axis::Heading, 1.0),
+        "/" => rot(Axis::Heading, -1.0),
         "|" => TurtleOp::TurnAround,
         "[" => TurtleOp::Push,
         "]" => TurtleOp::Pop,
@@ -106,6 +109,7 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
         "@Gc" => TurtleOp::CylinderPoint { end: false },
         "@Ge" => TurtleOp::CylinderPoint { end: true },
         "@Gt" => TurtleOp::CylinderTangents,
+        "@Gr" => TurtleOp::RadiusTangents,
         "@#" => TurtleOp::SetContour,
         // cpfg reads `@Ti`; the manual writes `@T`.
         "@Ts" => elasticity(ElasticityChange::Set),
@@ -209,6 +213,17 @@ impl Lowerer<'_> {
                     "`?E` modules get no answer: graftal runs no environment process",
                 )
                 .with_label("keeps the parameters the L-system gives it"),
+            );
+        } else if m.name == "@G" && self.warned_not_drawn.insert(m.name.clone()) {
+            // cpfg: "Unknown subfunction following @G", then it reads on.
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_DRAWN,
+                    m.span.clone(),
+                    "`@G` is not followed by a generalized-cylinder command",
+                )
+                .with_label("no effect on the picture")
+                .with_help("cpfg knows `@Gs`, `@Gc`, `@Ge`, `@Gt` and `@Gr`"),
             );
         } else if NOT_DRAWN.contains(&m.name.as_str())
             && self.warned_not_drawn.insert(m.name.clone())

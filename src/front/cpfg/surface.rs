@@ -297,16 +297,21 @@ impl Surface {
         out
     }
 
-    /// A point of the surface in turtle coordinates `[h, l, u]`: relative
-    /// to the contact point, along the surface's heading, left (up ×
-    /// heading) and up. The turtle draws it at `position + h·H + l·L + u·U`,
-    /// times the surface's scale.
+    /// A point of the surface in turtle coordinates `[h, l, u]` (u along
+    /// cpfg's up), as cpfg's patches.c places it: relative to the contact
+    /// point, its x, y and z are carried by left = heading × up, heading
+    /// and left × heading, and the result's x, y, z are then drawn along the
+    /// turtle's L, H and U. A file whose frame is cpfg's own (heading +y,
+    /// up −z) therefore lies along the turtle as it lies along that frame.
+    /// The turtle draws it at `position + h·H + l·L + u·U`, times the
+    /// surface's scale.
     pub fn to_turtle(&self, p: [f64; 3]) -> [f64; 3] {
         let h = unit(self.heading);
-        let u = unit(self.up);
-        let l = unit(cross(u, h));
+        let l = cross(h, unit(self.up));
+        let u = cross(l, h);
         let r = sub(p, self.contact);
-        [dot(r, h), dot(r, l), dot(r, u)]
+        let carried: [f64; 3] = std::array::from_fn(|i| r[0] * l[i] + r[1] * h[i] + r[2] * u[i]);
+        [carried[1], carried[0], carried[2]]
     }
 }
 
@@ -362,11 +367,17 @@ mod tests {
     fn turtle_frame() {
         let s = read_surface(&flat(0.0)).unwrap();
         // The contact point is the origin; +y (heading) is h, +z (up) is u,
-        // and left = up × heading = -x.
+        // and left = heading × up = +x (cpfg's patches.c).
         assert_eq!(s.to_turtle([0.0, -1.0, 0.0]), [0.0, 0.0, 0.0]);
         assert_eq!(s.to_turtle([0.0, 1.0, 0.0]), [2.0, 0.0, 0.0]);
         assert_eq!(s.to_turtle([0.0, -1.0, 3.0]), [0.0, 0.0, 3.0]);
-        assert_eq!(s.to_turtle([1.0, -1.0, 0.0]), [0.0, -1.0, 0.0]);
+        assert_eq!(s.to_turtle([1.0, -1.0, 0.0]), [0.0, 1.0, 0.0]);
+        // Most corpus surfaces are drawn in cpfg's own frame, up −z: left
+        // is −x there, and a point along −x or −z lies along L or U.
+        let s = read_surface(&flat(0.0).replace("Z: 1.00\nSIZE", "Z: -1.00\nSIZE")).unwrap();
+        assert_eq!(s.up, [0.0, 0.0, -1.0]);
+        assert_eq!(s.to_turtle([-1.0, -1.0, 0.0]), [0.0, 1.0, 0.0]);
+        assert_eq!(s.to_turtle([0.0, -1.0, -3.0]), [0.0, 0.0, 3.0]);
     }
 
     #[test]
