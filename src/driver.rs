@@ -464,6 +464,7 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
                 .collect(),
             colour: crate::ir::layout::colour(s),
             index: 0,
+            surface: false,
         })
         .filter(|p| p.points.len() >= 3)
         .collect();

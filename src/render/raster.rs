@@ -570,10 +570,10 @@ impl Scene<'_> {
             Some(normals) => pts
                 .iter()
                 .zip(normals)
-                .map(|(&q, &n)| self.colour(Kind::Surface, p.colour, p.index, q, turn(n)))
+                .map(|(&q, &n)| self.colour(Kind::of(p), p.colour, p.index, q, turn(n)))
                 .collect(),
             None => {
-                let c = self.colour(Kind::Surface, p.colour, p.index, centre, turn(tess.normal));
+                let c = self.colour(Kind::of(p), p.colour, p.index, centre, turn(tess.normal));
                 vec![c; pts.len()]
             }
         };
@@ -838,6 +838,7 @@ mod tests {
             ],
             colour: Rgb(grey, grey, grey),
             index: grey as u16,
+            surface: false,
         }
     }
 
@@ -870,6 +871,7 @@ mod tests {
             ],
             colour: Rgb(255, 255, 255),
             index: 255,
+            surface: false,
         };
         let g = Geometry {
             polygons: vec![l_shape],
@@ -1071,17 +1073,20 @@ mod tests {
                     points: vec![[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0], [3.0, 3.0, 3.0]],
                     colour: BLACK,
                     index: 0,
+                    surface: false,
                 },
                 Polygon {
                     points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
                     colour: BLACK,
                     index: 0,
+                    surface: false,
                 },
                 // A bow tie: crosses itself.
                 Polygon {
                     points: vec![[0.0; 3], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
                     colour: BLACK,
                     index: 7,
+                    surface: false,
                 },
             ],
             discs: vec![Disc {

@@ -136,7 +136,7 @@ impl Scene<'_> {
             depth: pts.iter().map(|r| r.1).sum::<f64>() / pts.len() as f64,
             svg: format!(
                 r#"<path d="{d}" fill="{}" fill-rule="evenodd"/>"#,
-                hex(self.colour(Kind::Surface, p.colour, p.index, mid, n))
+                hex(self.colour(Kind::of(p), p.colour, p.index, mid, n))
             ),
         })
     }
@@ -258,6 +258,7 @@ mod tests {
             points: vec![[0.0, 0.0, z], [1.0, 0.0, z], [1.0, 1.0, z], [0.0, 1.0, z]],
             colour: Rgb(grey, grey, grey),
             index: 0,
+            surface: false,
         };
         let g = Geometry {
             polygons: vec![square(1.0, 1), square(-1.0, 2)],

@@ -44,6 +44,10 @@ pub struct Polygon {
     /// The colour index it was drawn with: the material of a lit look
     /// ([`crate::ir::look::Lighting`]).
     pub index: u16,
+    /// Part of a surface (`~`): cpfg's colour-map shading scales the index
+    /// within its block of 64 for surfaces, and shifts it for polygons
+    /// and the tubes of cylinders (manual §8.1.3).
+    pub surface: bool,
 }
 
 /// The sequence of turtle positions along one branch (every move, drawn or
@@ -841,6 +845,7 @@ impl Turtle<'_> {
                     points,
                     colour,
                     index,
+                    surface: false,
                 });
             }
         }
@@ -960,6 +965,7 @@ impl Turtle<'_> {
                 points: q.to_vec(),
                 colour,
                 index,
+                surface: false,
             });
         }
     }
@@ -1102,6 +1108,7 @@ impl Turtle<'_> {
             points,
             colour,
             index: index_of(st.colour),
+            surface: false,
         });
     }
 
@@ -1132,6 +1139,7 @@ impl Turtle<'_> {
                 points,
                 colour,
                 index: index_of(st.colour),
+                surface: true,
             });
         }
     }
