@@ -140,6 +140,21 @@ fn consider_lets_a_right_context_read_out_of_its_branch() {
 }
 
 #[test]
+fn an_at_command_graftal_does_not_carry_out_is_a_warning_at_its_span() {
+    let src = "Lsystem: 1\nderivation length: 0\nAxiom: F@Q(1)F@D(2)@O(1)\nendlsystem\n";
+    let c = compile_text(src);
+    let warned: Vec<_> = c
+        .diagnostics
+        .iter()
+        .map(|d| (d.code.0, d.span.clone()))
+        .collect();
+    let at = |m: &str| src.find(m).map(|k| k..k + m.len());
+    assert_eq!(warned, [("W0823", at("@Q(1)")), ("W0823", at("@D(2)"))]);
+    // The rest is drawn.
+    assert_eq!(derive_text(src, 0), "F@Q(1)F@D(2)@O(1)");
+}
+
+#[test]
 fn stochastic_choice_follows_the_weights_and_the_seed() {
     let src = "lsystem: 1\nseed: 1\nderivation length: 1\naxiom: AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA\nA --> B : 1\nA --> C : 3\nendlsystem\n";
     let t = derive_text(src, 1);

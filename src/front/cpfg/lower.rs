@@ -225,6 +225,22 @@ impl Lowerer<'_> {
                 .with_label("no effect on the picture")
                 .with_help("cpfg knows `@Gs`, `@Gc`, `@Ge`, `@Gt` and `@Gr`"),
             );
+        } else if m.name.len() > 1
+            && m.name.starts_with('@')
+            && turtle_op(&m.name).is_none()
+            && !NOT_DRAWN.contains(&m.name.as_str())
+            && self.warned_not_drawn.insert(m.name.clone())
+        {
+            // cpfg's `@` commands graftal does not carry out (the scale
+            // `@D`, `@Di`, `@Dd`) or that cpfg does not know at all.
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_DRAWN,
+                    m.span.clone(),
+                    format!("`{}` is not a turtle command graftal carries out", m.name),
+                )
+                .with_label("no effect on the picture"),
+            );
         } else if NOT_DRAWN.contains(&m.name.as_str())
             && self.warned_not_drawn.insert(m.name.clone())
         {
