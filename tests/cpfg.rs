@@ -148,10 +148,29 @@ fn an_at_command_graftal_does_not_carry_out_is_a_warning_at_its_span() {
         .iter()
         .map(|d| (d.code.0, d.span.clone()))
         .collect();
-    let at = |m: &str| src.find(m).map(|k| k..k + m.len());
-    assert_eq!(warned, [("W0823", at("@Q(1)")), ("W0823", at("@D(2)"))]);
+    assert_eq!(
+        warned,
+        [
+            ("W0823", at_in(src, "@Q(1)")),
+            ("W0823", at_in(src, "@D(2)"))
+        ]
+    );
     // The rest is drawn.
     assert_eq!(derive_text(src, 0), "F@Q(1)F@D(2)@O(1)");
+    // A contour with no generalized cylinder to sweep it along.
+    let src = "Lsystem: 1\nderivation length: 0\nAxiom: @#(1)FF\nendlsystem\n";
+    let codes: Vec<_> = compile_text(src)
+        .diagnostics
+        .iter()
+        .map(|d| (d.code.0, d.span.clone()))
+        .collect();
+    assert_eq!(codes, [("W0823", at_in(src, "@#(1)"))]);
+    let src = "Lsystem: 1\nderivation length: 0\nAxiom: @#(1)@GsF@Ge\nendlsystem\n";
+    assert!(compile_text(src).diagnostics.is_empty());
+}
+
+fn at_in(src: &str, m: &str) -> Option<std::ops::Range<usize>> {
+    src.find(m).map(|k| k..k + m.len())
 }
 
 #[test]

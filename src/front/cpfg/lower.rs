@@ -155,6 +155,10 @@ struct Lowerer<'d> {
     warned_sub: bool,
     /// The first `lsystem:` after the first L-system's end.
     later_lsystem: Option<Span>,
+    /// The first `@#` and whether any `@Gs` starts a generalized
+    /// cylinder: contours are drawn only on those.
+    first_contour: Option<Span>,
+    cylinder_started: bool,
     /// What the item being lowered reported: a mistake repeated through a
     /// line (`F(foo(1))` a million times) is reported a few times, then
     /// counted.
@@ -187,6 +191,11 @@ impl Lowerer<'_> {
     }
 
     fn check_module(&mut self, m: &ast::Module) {
+        match m.name.as_str() {
+            "@#" if self.first_contour.is_none() => self.first_contour = Some(m.span.clone()),
+            "@Gs" => self.cylinder_started = true,
+            _ => {}
+        }
         if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
             if !std::mem::replace(&mut self.warned_sub, true) {
                 self.diags.push(
@@ -812,6 +821,8 @@ impl<'d> Lowerer<'d> {
             warned_env: false,
             warned_sub: false,
             later_lsystem: None,
+            first_contour: None,
+            cylinder_started: false,
             repeats: Repeats::default(),
             suggester: Suggester::default(),
             longest_global: 0,
@@ -839,6 +850,23 @@ impl Lowerer<'_> {
 
     /// A later L-system is reported unless the sub-L-system calls were:
     /// that error already says the file needs what graftal lacks.
+    /// cpfg also sweeps a contour along plain `F` cylinders; graftal only
+    /// along generalized cylinders (`@Gs` … `@Ge`), so a file that sets
+    /// contours and starts none draws round lines where cpfg does not.
+    fn report_contours_without_cylinders(&mut self) {
+        if let (Some(span), false) = (self.first_contour.take(), self.cylinder_started) {
+            self.diags.push(
+                Diagnostic::at(
+                    codes::CPFG_NOT_DRAWN,
+                    span,
+                    "contours are drawn only along generalized cylinders (`@Gs` … `@Ge`)",
+                )
+                .with_label("`F` keeps a round section here")
+                .with_help("start the cylinder with `@Gs` and end it with `@Ge`"),
+            );
+        }
+    }
+
     fn report_later_lsystem(&mut self) {
         match self.later_lsystem.take() {
             Some(span) if !self.warned_sub => self.diags.push(
@@ -1111,6 +1139,7 @@ pub fn lower_with_curves(file: &ast::File, curves: &[u32], diags: &mut Diagnosti
     }
     l.check_complete(&rd);
     l.report_later_lsystem();
+    l.report_contours_without_cylinders();
     rd.par.into_system(&mut l.sys);
     Lowered {
         system: l.sys,
