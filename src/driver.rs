@@ -507,15 +507,114 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format for an output path, by its extension.
-    pub fn from_path(path: &str) -> Option<Format> {
-        let ext = Path::new(path).extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
+    /// The formats' names, as `render --to` takes them and as extensions.
+    pub const NAMES: &'static [&'static str] = &["png", "svg"];
+
+    /// The format named `name` (`png`, `svg`; any case).
+    pub fn from_name(name: &str) -> Option<Format> {
+        match name.to_ascii_lowercase().as_str() {
             "png" => Some(Format::Png),
             "svg" => Some(Format::Svg),
             _ => None,
         }
     }
+
+    /// The format for an output path, by its extension.
+    pub fn from_path(path: &str) -> Option<Format> {
+        Format::from_name(Path::new(path).extension()?.to_str()?)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Svg => "svg",
+        }
+    }
+}
+
+/// Where a command writes its result: `-o -`, like no `-o`, is standard
+/// output; anything else is a file's path (a file named `-` is `-o ./-`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Output {
+    Stdout,
+    File(String),
+}
+
+impl Output {
+    /// The output `-o` names; `None` (no `-o`) is standard output.
+    pub fn from_arg(arg: Option<&str>) -> Output {
+        match arg {
+            None | Some("-") => Output::Stdout,
+            Some(path) => Output::File(path.to_string()),
+        }
+    }
+
+    /// The file's path, `None` for standard output.
+    pub fn path(&self) -> Option<&str> {
+        match self {
+            Output::Stdout => None,
+            Output::File(p) => Some(p),
+        }
+    }
+}
+
+/// A command line that cannot be carried out (exit status 2): what is
+/// wrong, and how to say it instead.
+#[derive(Debug, PartialEq, Eq)]
+pub struct UsageError {
+    pub message: String,
+    pub help: String,
+}
+
+/// The picture format `render` writes to `output`: `to` (`--to`) when
+/// given, else the file's extension. Standard output has no extension, so
+/// there `to` is needed; a `to` that contradicts the extension is refused
+/// rather than writing SVG text into `plant.png`. A binary PNG is refused
+/// when standard output is a terminal (`stdout_terminal`): it would fill
+/// the screen with noise and can leave the terminal in a strange state.
+pub fn picture_format(
+    output: &Output,
+    to: Option<Format>,
+    stdout_terminal: bool,
+) -> Result<Format, UsageError> {
+    let format = match (output, to) {
+        (Output::Stdout, None) => {
+            return Err(UsageError {
+                message: "`-o -` writes the picture to standard output, but in which format?"
+                    .into(),
+                help: "add `--to png` or `--to svg`".into(),
+            })
+        }
+        (Output::Stdout, Some(f)) => f,
+        (Output::File(path), to) => match (Format::from_path(path), to) {
+            (None, None) => {
+                return Err(UsageError {
+                    message: format!("cannot tell the picture format of `{path}`"),
+                    help: "end the file name in .png or .svg, or add `--to png` or `--to svg`"
+                        .into(),
+                })
+            }
+            (Some(by_name), Some(f)) if by_name != f => {
+                return Err(UsageError {
+                    message: format!(
+                        "`--to {}` but `{path}` names a {} file",
+                        f.name(),
+                        by_name.name()
+                    ),
+                    help: format!("drop `--to`, or name the file `….{}`", f.name()),
+                })
+            }
+            (_, Some(f)) | (Some(f), None) => f,
+        },
+    };
+    if format == Format::Png && *output == Output::Stdout && stdout_terminal {
+        return Err(UsageError {
+            message: "refusing to write a binary PNG to the terminal".into(),
+            help: "redirect standard output (`… -o - --to png > plant.png`), or use `--to svg`"
+                .into(),
+        });
+    }
+    Ok(format)
 }
 
 /// Renders a geometry to bytes of `format`.

@@ -2,7 +2,7 @@
 //! `std:NAME`, seeds and byte-identical output.
 
 mod common;
-use common::{graftal, temp};
+use common::{graftal, graftal_bytes, temp};
 
 #[test]
 fn derive_prints_the_word() {
@@ -276,4 +276,152 @@ fn help_names_every_notation_of_the_registry() {
         let named = format!("{} .{}", f.title(), f.extensions()[0]);
         assert!(out.stdout.contains(&named), "{named}: {}", out.stdout);
     }
+}
+
+/// Runs the `graftal` binary in a fresh directory `dir` (so a stray file
+/// named `-` would show), stdout and stderr piped.
+fn binary_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::fs::create_dir_all(dir).unwrap();
+    std::process::Command::new(env!("CARGO_BIN_EXE_graftal"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+/// The names in `dir`, sorted.
+fn files_in(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn render_dash_writes_the_picture_to_stdout_in_the_format_of_to() {
+    let dir = temp("render-stdout");
+    let args = ["render", "std:koch-island", "--size", "60x40", "-o"];
+    let png = binary_in(&dir, &[&args[..], &["-", "--to", "png"]].concat());
+    assert_eq!(png.status.code(), Some(0), "{png:?}");
+    assert_eq!(&png.stdout[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!(
+        u32::from_be_bytes(png.stdout[16..20].try_into().unwrap()),
+        60
+    );
+    // The same bytes as the file.
+    let file = binary_in(&dir, &[&args[..], &["k.png"]].concat());
+    assert_eq!(file.status.code(), Some(0), "{file:?}");
+    assert_eq!(std::fs::read(dir.join("k.png")).unwrap(), png.stdout);
+    let svg = binary_in(&dir, &[&args[..], &["-", "--to", "svg"]].concat());
+    assert_eq!(svg.status.code(), Some(0), "{svg:?}");
+    assert!(String::from_utf8(svg.stdout).unwrap().starts_with("<svg"));
+    // `--to` also names the format of a file without an extension.
+    let named = binary_in(&dir, &[&args[..], &["picture", "--to", "svg"]].concat());
+    assert_eq!(named.status.code(), Some(0), "{named:?}");
+    assert!(std::fs::read_to_string(dir.join("picture"))
+        .unwrap()
+        .starts_with("<svg"));
+    assert_eq!(files_in(&dir), ["k.png", "picture"], "no file named `-`");
+}
+
+#[test]
+fn render_dash_without_a_format_is_a_usage_error_with_help() {
+    let dir = temp("render-no-format");
+    let o = binary_in(&dir, &["render", "std:koch-island", "-o", "-"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(o.stdout.is_empty());
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("standard output"), "{err}");
+    assert!(err.contains("help: add `--to png` or `--to svg`"), "{err}");
+    // A `--to` that contradicts the file's extension is refused.
+    let o = graftal(&["render", "std:koch-island", "-o", "x.png", "--to", "svg"]);
+    assert_eq!(o.status, 2);
+    assert!(o.stderr.contains("names a png file"), "{}", o.stderr);
+    assert!(o.stderr.contains("help:"), "{}", o.stderr);
+    // `--format` is still the diagnostics' format.
+    let o = graftal(&["render", "std:koch-island", "-o", "-", "--format", "png"]);
+    assert_eq!(o.status, 2);
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+}
+
+#[test]
+fn a_binary_png_is_not_written_to_a_terminal() {
+    let args = ["render", "std:koch-island", "--size", "20x20", "-o", "-"];
+    let (status, out, err) = graftal_bytes(&[&args[..], &["--to", "png"]].concat(), true);
+    assert_eq!(status, 2);
+    assert!(out.is_empty(), "nothing on the terminal");
+    let err = String::from_utf8(err).unwrap();
+    assert!(
+        err.contains("terminal") && err.contains("redirect"),
+        "{err}"
+    );
+    // SVG is text: fine on a terminal.
+    let (status, out, _) = graftal_bytes(&[&args[..], &["--to", "svg"]].concat(), true);
+    assert_eq!(status, 0);
+    assert!(out.starts_with(b"<svg"));
+}
+
+#[test]
+fn translate_dash_is_stdout_not_a_file_named_dash() {
+    let dir = temp("translate-stdout");
+    let plain = binary_in(&dir, &["translate", "std:koch-island", "--to", "linf"]);
+    let dash = binary_in(
+        &dir,
+        &["translate", "std:koch-island", "--to", "linf", "-o", "-"],
+    );
+    assert_eq!(dash.status.code(), Some(0), "{dash:?}");
+    let text = String::from_utf8(dash.stdout).unwrap();
+    assert!(text.contains("koch-island"), "{text}");
+    assert_eq!(text.as_bytes(), plain.stdout);
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+    // As JSON the text is in the document, and there is no output file.
+    let o = graftal(&[
+        "translate",
+        "std:koch-island",
+        "--to",
+        "linf",
+        "-o",
+        "-",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(o.stdout.trim()).unwrap();
+    assert_eq!(v["output"], serde_json::Value::Null);
+    assert_eq!(v["text"].as_str(), Some(text.as_str()));
+}
+
+#[test]
+fn derive_writes_to_o_file_or_dash_for_stdout() {
+    let dir = temp("derive-o");
+    let o = binary_in(&dir, &["derive", "std:algae", "-n", "5", "-o", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    assert_eq!(o.stdout, b"abaababa\n");
+    let o = binary_in(&dir, &["derive", "std:algae", "-n", "5", "-o", "word.txt"]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    assert!(o.stdout.is_empty());
+    let word = std::fs::read_to_string(dir.join("word.txt")).unwrap();
+    assert_eq!(word, "abaababa\n");
+    // A derivation that fails leaves no file behind.
+    let o = binary_in(
+        &dir,
+        &[
+            "derive",
+            "std:koch-island",
+            "-n",
+            "9",
+            "--max-symbols",
+            "1000",
+            "-o",
+            "big.txt",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8(o.stderr).unwrap().contains("E0301"));
+    assert_eq!(files_in(&dir), ["word.txt"]);
+    let o = graftal(&["derive", "std:algae", "-o", "/no/such/dir/word.txt"]);
+    assert_eq!(o.status, 2);
+    assert!(o.stderr.contains("cannot write"), "{}", o.stderr);
 }

@@ -769,6 +769,7 @@ fn check_says_the_dialect() {
         stdout: &mut out,
         stderr: &mut err,
         terminal: false,
+        stdout_terminal: false,
     };
     let code = graftal::cli::run(["graftal", "check", path.to_str().unwrap()], &mut io);
     let out = String::from_utf8(out).unwrap();

@@ -1298,6 +1298,7 @@ fn cli_derive_on_mutated_files() {
                         stdout: &mut stdout,
                         stderr: &mut stderr,
                         terminal: false,
+                        stdout_terminal: false,
                     },
                 );
                 (status, stdout, stderr)

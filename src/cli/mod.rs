@@ -6,7 +6,7 @@
 //! usage or I/O problem.
 
 use crate::diagnostics::{self, render_all, render_json, Diagnostic};
-use crate::driver::{self, Compiled, Format, RunOptions};
+use crate::driver::{self, Compiled, Format, Output, RunOptions, UsageError};
 use crate::eval::DEFAULT_MAX_SYMBOLS;
 use crate::render::{RenderOptions, View};
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
@@ -69,7 +69,7 @@ struct TranslateArgs {
     /// The target notation.
     #[arg(long, value_parser = targets())]
     to: String,
-    /// Output file (default: stdout).
+    /// Output file; `-` (the default) is standard output.
     #[arg(short = 'o', long = "output")]
     output: Option<String>,
     /// Approximate or drop what the target cannot express, with a warning each.
@@ -86,12 +86,25 @@ struct TranslateArgs {
 }
 
 #[derive(clap::Args, Debug, Clone)]
+struct DeriveCmd {
+    #[command(flatten)]
+    args: DeriveArgs,
+    /// Output file; `-` (the default) is standard output.
+    #[arg(short = 'o', long = "output")]
+    output: Option<String>,
+}
+
+#[derive(clap::Args, Debug, Clone)]
 struct RenderArgs {
     #[command(flatten)]
     args: DeriveArgs,
-    /// Output file: .png or .svg.
+    /// Output file: .png or .svg; `-` is standard output (with `--to`).
     #[arg(short = 'o', long = "output")]
     output: String,
+    /// Picture format: png or svg [default: by the output's extension].
+    /// Needed with `-o -`; `--format` is the diagnostics' format.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Format::NAMES))]
+    to: Option<String>,
     /// Picture size in pixels.
     #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
     size: (u32, u32),
@@ -122,9 +135,10 @@ enum Command {
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
     },
-    /// Print the derived word after N steps.
-    Derive(DeriveArgs),
-    /// Draw the system to a PNG or SVG file (by the output's extension).
+    /// Print the derived word after N steps (to stdout, or to `-o FILE`).
+    Derive(DeriveCmd),
+    /// Draw the system to a PNG or SVG file (by the output's extension or
+    /// `--to`); `-o - --to svg` writes to standard output.
     Render(RenderArgs),
     /// Translate a file to another notation (pfg, LinF or STL); what the
     /// target cannot express is an error, or a warning with --lossy.
@@ -167,11 +181,13 @@ fn parse_view(s: &str) -> Result<(f64, f64), String> {
     Ok((a, e))
 }
 
-/// Where output goes, and whether stderr is a terminal (colour, progress).
+/// Where output goes, whether stderr is a terminal (colour, progress), and
+/// whether stdout is one (no binary pictures there).
 pub struct Io<'a> {
     pub stdout: &'a mut dyn Write,
     pub stderr: &'a mut dyn Write,
     pub terminal: bool,
+    pub stdout_terminal: bool,
 }
 
 /// The one-line description, naming the notations the registry reads.
@@ -251,11 +267,29 @@ fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputF
     status
 }
 
-/// `graftal derive`: the derived word on stdout.
-fn derive(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
-    with_system(io, a, |io, c, sys, opts, _| {
+/// `graftal derive`: the derived word on stdout, or in `-o FILE`.
+fn derive(io: &mut Io<'_>, a: &DeriveCmd) -> i32 {
+    let path = match Output::from_arg(a.output.as_deref()) {
+        Output::Stdout => None,
+        Output::File(p) => Some(p),
+    };
+    // Created up front: a path that cannot be written is found before
+    // deriving, and is a usage problem (status 2).
+    let mut file = match path.as_deref().map(std::fs::File::create).transpose() {
+        Ok(f) => f,
+        Err(e) => {
+            let path = path.as_deref().unwrap_or_default();
+            let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
+            return 2;
+        }
+    };
+    let status = with_system(io, &a.args, |io, c, sys, opts, _| {
         let bar = step_bar(io, sys, opts);
-        let r = driver::write_derived(c.front, sys, opts, io.stdout, |step, len| {
+        let out: &mut dyn Write = match &mut file {
+            Some(f) => f,
+            None => io.stdout,
+        };
+        let r = driver::write_derived(c.front, sys, opts, out, |step, len| {
             if let Some(bar) = &bar {
                 bar.set_position(step);
                 bar.set_message(format!("{len} symbols"));
@@ -266,7 +300,14 @@ fn derive(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
         }
         r.map_err(|d| vec![d])?;
         Ok(0)
-    })
+    });
+    if status != 0 {
+        // No half-written or empty word is left behind.
+        if let Some(p) = &path {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+    status
 }
 
 /// `graftal stats`: counts, box, depth, method and times, as text or JSON.
@@ -298,13 +339,11 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
 /// `graftal render`: the picture, drawn from shared subtrees when the
 /// driver can, else from the derived word.
 fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
-    let Some(format) = Format::from_path(&a.output) else {
-        let _ = writeln!(
-            io.stderr,
-            "error: cannot tell the picture format of `{}`: use .png or .svg",
-            a.output
-        );
-        return 2;
+    let output = Output::from_arg(Some(&a.output));
+    let to = a.to.as_deref().and_then(Format::from_name);
+    let format = match driver::picture_format(&output, to, io.stdout_terminal) {
+        Ok(f) => f,
+        Err(e) => return usage_error(io, &e),
     };
     with_system(io, &a.args, |io, c, sys, opts, _| {
         let ropts = render_options(a, sys);
@@ -319,7 +358,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             if let Some(bar) = &bar {
                 bar.finish_and_clear();
             }
-            return Ok(write_picture(io, &a.output, bytes));
+            return Ok(write_picture(io, &output, bytes));
         }
         driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
         let (word, values) = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
@@ -339,7 +378,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
         if let Some(bar) = &bar {
             bar.finish_and_clear();
         }
-        Ok(write_picture(io, &a.output, bytes))
+        Ok(write_picture(io, &output, bytes))
     })
 }
 
@@ -414,6 +453,7 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
         steps: a.steps,
     };
     let t = driver::translate(&c, sys, &req);
+    let output = Output::from_arg(a.output.as_deref());
     report(io, &c, &t.diagnostics.0, a.format);
     if a.format == OutputFormat::Json {
         let span = |s: &Option<crate::ir::Span>| {
@@ -446,11 +486,11 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
             "to": target.name(),
             "exact": t.is_exact(),
             "written": t.text.is_some(),
-            "output": a.output,
+            "output": output.path(),
             "names": names,
             "constructs": constructs,
         });
-        if a.output.is_none() {
+        if output == Output::Stdout {
             doc["text"] = serde_json::json!(t.text);
         }
         let _ = writeln!(io.stdout, "{doc}");
@@ -458,19 +498,11 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
     let Some(text) = t.text else {
         return 1;
     };
-    match &a.output {
-        Some(path) => {
-            if let Err(e) = std::fs::write(path, text) {
-                let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
-                return 2;
-            }
-        }
-        None if a.format == OutputFormat::Json => {}
-        None => {
-            let _ = write!(io.stdout, "{text}");
-        }
+    // With `--format json` the text is in the JSON document on stdout.
+    if output == Output::Stdout && a.format == OutputFormat::Json {
+        return 0;
     }
-    0
+    write_output(io, &output, text.as_bytes())
 }
 
 /// Loads and compiles `a.file`, prints its diagnostics, and runs `f` on the
@@ -596,7 +628,11 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
 }
 
 /// Writes a rendered picture to `output`; the exit status.
-fn write_picture(io: &mut Io<'_>, output: &str, bytes: Result<Vec<u8>, driver::LoadError>) -> i32 {
+fn write_picture(
+    io: &mut Io<'_>,
+    output: &Output,
+    bytes: Result<Vec<u8>, driver::LoadError>,
+) -> i32 {
     let bytes = match bytes {
         Ok(b) => b,
         Err(e) => {
@@ -604,11 +640,31 @@ fn write_picture(io: &mut Io<'_>, output: &str, bytes: Result<Vec<u8>, driver::L
             return 2;
         }
     };
-    if let Err(e) = std::fs::write(output, bytes) {
-        let _ = writeln!(io.stderr, "error: cannot write `{output}`: {e}");
-        return 2;
+    write_output(io, output, &bytes)
+}
+
+/// Writes `bytes` to a file or to stdout; the exit status. A closed pipe
+/// (`| head`) is not an error, as for `derive`.
+fn write_output(io: &mut Io<'_>, output: &Output, bytes: &[u8]) -> i32 {
+    match output {
+        Output::Stdout => {
+            let _ = io.stdout.write_all(bytes).and_then(|()| io.stdout.flush());
+        }
+        Output::File(path) => {
+            if let Err(e) = std::fs::write(path, bytes) {
+                let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
+                return 2;
+            }
+        }
     }
     0
+}
+
+/// Prints a command line that cannot be carried out, with its help line;
+/// the exit status (2).
+fn usage_error(io: &mut Io<'_>, e: &UsageError) -> i32 {
+    let _ = writeln!(io.stderr, "error: {}\n  help: {}", e.message, e.help);
+    2
 }
 
 /// Derives with a progress bar on a terminal (never in pipes or CI).
@@ -680,12 +736,14 @@ pub fn main() -> i32 {
     let stdout = std::io::stdout();
     let stderr = std::io::stderr();
     let terminal = stderr.is_terminal();
+    let stdout_terminal = stdout.is_terminal();
     let mut out = stdout.lock();
     let mut err = stderr.lock();
     let mut io = Io {
         stdout: &mut out,
         stderr: &mut err,
         terminal,
+        stdout_terminal,
     };
     run(std::env::args_os(), &mut io)
 }

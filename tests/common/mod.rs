@@ -16,21 +16,29 @@ pub struct Out {
 
 /// Runs `graftal ARGS…` through `cli::run`, as a pipe (no terminal).
 pub fn graftal(args: &[&str]) -> Out {
+    let (status, stdout, stderr) = graftal_bytes(args, false);
+    Out {
+        status,
+        stdout: String::from_utf8(stdout).unwrap(),
+        stderr: String::from_utf8(stderr).unwrap(),
+    }
+}
+
+/// Runs `graftal ARGS…` through `cli::run` with stderr a pipe and stdout a
+/// terminal or not; the status and the bytes of stdout and stderr.
+pub fn graftal_bytes(args: &[&str], stdout_terminal: bool) -> (i32, Vec<u8>, Vec<u8>) {
     let mut stdout = Vec::new();
     let mut stderr = Vec::new();
     let mut io = Io {
         stdout: &mut stdout,
         stderr: &mut stderr,
         terminal: false,
+        stdout_terminal,
     };
     let mut argv = vec!["graftal"];
     argv.extend_from_slice(args);
     let status = run(argv, &mut io);
-    Out {
-        status,
-        stdout: String::from_utf8(stdout).unwrap(),
-        stderr: String::from_utf8(stderr).unwrap(),
-    }
+    (status, stdout, stderr)
 }
 
 /// A path named `name` in this test binary's temporary directory.
