@@ -425,3 +425,42 @@ fn derive_writes_to_o_file_or_dash_for_stdout() {
     assert_eq!(o.status, 2);
     assert!(o.stderr.contains("cannot write"), "{}", o.stderr);
 }
+
+#[test]
+fn derive_prints_parameters_as_people_write_them() {
+    // Ten subtractions of 0.1 from 1 leave 1.4e-16, and three leave
+    // 0.7000000000000001: both are binary artefacts, printed as 0 and 0.7.
+    let path = temp("artefacts.l");
+    std::fs::write(
+        &path,
+        "Lsystem: 1\nderivation length: 3\nAxiom: A(1)B(0.000025)\nA(x) --> A(x-0.1)\nendlsystem\n",
+    )
+    .unwrap();
+    let file = path.to_str().unwrap();
+    let o = graftal(&["derive", file]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert_eq!(o.stdout, "A(0.7)B(2.5e-5)\n");
+    let o = graftal(&["derive", file, "-n", "10"]);
+    assert_eq!(o.stdout, "A(0)B(2.5e-5)\n");
+}
+
+#[test]
+fn stl_angle_of_an_angle_factor_is_exact_and_names_the_factor() {
+    let path = temp("fourteen.l");
+    std::fs::write(&path, "angle factor: 14\naxiom: F\nF --> F+F\n").unwrap();
+    let o = graftal(&["translate", path.to_str().unwrap(), "--to", "stl"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let angle = o.stdout.lines().find(|l| l.starts_with("ANGLE")).unwrap();
+    assert_eq!(angle, "ANGLE 25.714285714285715 # 360/14");
+    let degrees: f64 = angle["ANGLE ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(degrees.to_radians(), std::f64::consts::TAU / 14.0);
+    // A short angle needs no comment.
+    std::fs::write(&path, "angle factor: 8\naxiom: F\nF --> F+F\n").unwrap();
+    let o = graftal(&["translate", path.to_str().unwrap(), "--to", "stl"]);
+    assert!(o.stdout.contains("\nANGLE 45\n"), "{}", o.stdout);
+}

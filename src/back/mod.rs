@@ -873,7 +873,7 @@ pub fn angle_factor(e: &mut Emitter<'_>, by_symbol: &[(SymbolId, f64)], target: 
     }
     let list: Vec<String> = angles
         .iter()
-        .map(|a| format!("{:.6}", a.to_degrees()))
+        .map(|a| crate::ir::number::readable(a.to_degrees()))
         .collect();
     let odd = odd_angle(by_symbol);
     e.problem(
@@ -922,25 +922,10 @@ pub fn repeated(e: &mut Emitter<'_>, s: SymbolId, c: char, k: i64) -> String {
     std::iter::repeat_n(c, n as usize).collect()
 }
 
-/// `x` as a short decimal that reads back as the same `f64`.
-/// An angle in radians as the degrees people write: the shortest decimal
-/// whose conversion to radians gives the angle back exactly.
-pub fn degrees(radians: f64) -> String {
-    let deg = radians.to_degrees();
-    (0..=17)
-        .map(|digits| format!("{deg:.digits$}").parse::<f64>().unwrap_or(deg))
-        .find(|d| d.to_radians() == radians)
-        .map_or_else(|| number(deg), number)
-}
-
-pub fn number(x: f64) -> String {
-    let s = format!("{x}");
-    if s.contains('e') || s.contains("inf") || s.contains("NaN") {
-        format!("{x:?}")
-    } else {
-        s
-    }
-}
+pub use crate::ir::number::degrees;
+/// `x` as a short decimal that reads back as the same `f64` (see
+/// [`crate::ir::number`]).
+pub use crate::ir::number::exact as number;
 
 // ---------------------------------------------------------------------
 // Names

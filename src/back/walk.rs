@@ -226,7 +226,7 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
                 let middle = if how.middle_in_degrees {
                     let mid: Vec<String> = t
                         .iter()
-                        .map(|x| format!("{:.4}", x.1.to_degrees()))
+                        .map(|x| crate::ir::number::readable(x.1.to_degrees()))
                         .collect();
                     format!(" ({} degrees)", mid.join(", "))
                 } else {

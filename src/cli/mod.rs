@@ -324,10 +324,10 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
                 );
             }
             OutputFormat::Human => {
-                let b = s.bbox;
+                let b = s.bbox.map(crate::ir::number::readable);
                 let _ = writeln!(
                     io.stdout,
-                    "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
+                    "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{}, {}, {}] .. [{}, {}, {}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
                     s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
                 );
             }

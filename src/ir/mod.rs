@@ -214,6 +214,7 @@ pub mod d0l;
 pub mod growth;
 pub mod layout;
 pub mod look;
+pub mod number;
 pub mod program;
 
 pub use d0l::D0l;
@@ -438,7 +439,6 @@ impl Word {
     /// way pfg and the goldens print derived strings), and each module's
     /// parameters in parentheses as cpfg writes them (`F(1.5)A(2,3)`).
     pub fn display(&self, table: &SymbolTable) -> String {
-        use std::fmt::Write as _;
         let mut s = String::with_capacity(self.0.len());
         for (i, &id) in self.0.iter().enumerate() {
             s.push_str(table.name(id));
@@ -449,7 +449,7 @@ impl Word {
                     if k > 0 {
                         s.push(',');
                     }
-                    let _ = write!(s, "{a}");
+                    s.push_str(&number::readable(*a));
                 }
                 s.push(')');
             }

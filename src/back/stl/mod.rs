@@ -631,7 +631,14 @@ fn text(e: &mut Emitter<'_>, n: u64, rules: &Rules, out_rules: &[Macro], seed: &
         "# {} derivation steps are written into the rules.",
         e.steps
     );
-    let _ = writeln!(out, "ANGLE {}", number(360.0 / n as f64));
+    // STL has no angle factor: the exact degrees, and the factor in a
+    // comment when the degrees are not a short number.
+    let degrees = crate::ir::number::turn_fraction_degrees(n);
+    if degrees.len() > 8 {
+        let _ = writeln!(out, "ANGLE {degrees} # 360/{n}");
+    } else {
+        let _ = writeln!(out, "ANGLE {degrees}");
+    }
     let _ = writeln!(out, "B = {} (0)", number(sys.settings.width));
     let _ = writeln!(out, "L = {} (0)", number(sys.settings.step));
     for (_, name, body) in out_rules {

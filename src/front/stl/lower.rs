@@ -36,6 +36,7 @@ use crate::front::name_list;
 use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
+use crate::ir::number::readable;
 use crate::ir::{
     Angle, Axis, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span,
     SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
@@ -1463,8 +1464,8 @@ fn warn_clamped(diags: &mut Diagnostics, st: &Settings, max_seen: u32) {
                     span,
                     format!(
                         "the stem {what} {which} reaches {} at level {k}; clamped to {}",
-                        base - dec * k as f64,
-                        base * 0.1
+                        readable(base - dec * k as f64),
+                        readable(base * 0.1)
                     ),
                 )
                 .with_label(format!("this decrement makes {which} non-positive"))
