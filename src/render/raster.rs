@@ -1000,6 +1000,35 @@ mod tests {
     }
 
     #[test]
+    fn a_transparent_background_stays_transparent_around_what_is_drawn() {
+        let g = Geometry {
+            polygons: vec![square(0.0, 1.0, 255)],
+            ..Geometry::default()
+        };
+        let opts = RenderOptions {
+            background: Rgb(10, 20, 30),
+            background_alpha: 0,
+            ..small(40)
+        };
+        let pm = draw(&g, &lighting(Shading::Filled, LineStyle::Pixel), &opts);
+        let alphas: Vec<u8> = pm.pixels().iter().map(|p| p.alpha()).collect();
+        assert_eq!(alphas[0], 0);
+        assert!(alphas.contains(&255));
+        // An edge pixel half covered is the square's colour, half opaque:
+        // no tint of the transparent background's colour.
+        let inside = pm.pixel(20, 20).unwrap();
+        assert_eq!(inside.alpha(), 255);
+        let near = |a: u8, b: u8| a.abs_diff(b) <= 3;
+        for p in pm.pixels().iter().filter(|p| (1..255).contains(&p.alpha())) {
+            let c = p.demultiply();
+            assert!(
+                near(c.red(), inside.red()) && near(c.blue(), inside.blue()),
+                "{c:?} {inside:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_camera_puts_its_target_at_the_centre() {
         // A small square at the target and a bigger one off to the side.
         let target = [3.0, 1.0, 0.0];
