@@ -656,6 +656,12 @@ pub fn render_bytes_with(
 /// camera unless a view was asked for.
 fn apply_look(sys: &System, opts: &mut RenderOptions) {
     opts.background = sys.look.background.unwrap_or(render::WHITE);
+    opts.background_alpha = 255;
+    if let Some(bg) = opts.style.background {
+        opts.background = bg.rgb;
+        opts.background_alpha = bg.alpha;
+    }
+    opts.base_width = sys.settings.width;
     opts.camera = if opts.view_given {
         None
     } else {
@@ -746,7 +752,11 @@ pub fn render_shared_with(
     let steps = opts.derive_options(sys).steps;
     // A lit look or a camera draws through the full geometry.
     let look = &sys.look;
+    // So do a rotation (the fit needs every point, not the box) and a
+    // palette (it colours each segment).
     if ropts.spline
+        || ropts.style.rotate != 0.0
+        || ropts.style.palette.is_some()
         || ropts.view != render::View::default()
         || steps > MAX_TREE_DEPTH
         || look.lighting.is_some()

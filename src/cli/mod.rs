@@ -119,6 +119,41 @@ struct RenderArgs {
     /// Do not draw an STL file's layout shapes under the tree.
     #[arg(long)]
     no_layout: bool,
+    /// Background: a name (white), #rrggbb, #rrggbbaa, or none/transparent
+    /// [default: the file's own, else white].
+    #[arg(long, value_parser = crate::ir::colours::parse)]
+    background: Option<crate::ir::colours::Rgba>,
+    /// Pixels of a line of the system's initial width; other widths scale
+    /// with it.
+    #[arg(long, value_parser = parse_stroke_width)]
+    stroke_width: Option<f64>,
+    /// Blank border on every side: pixels (50), or a share (5%, 0.05)
+    /// [default: 5%].
+    #[arg(long, value_parser = crate::render::Margin::parse)]
+    margin: Option<crate::render::Margin>,
+    /// Degrees to turn the picture (counterclockwise) before fitting it.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_degrees, allow_hyphen_values = true)]
+    rotate: f64,
+    /// Line colours instead of the system's: mono (black), depth (by
+    /// branch depth), rainbow (along the turtle's path).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::render::Palette::NAMES))]
+    palette: Option<String>,
+}
+
+fn parse_stroke_width(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|w| w.is_finite() && *w >= 0.0 && *w <= f64::from(MAX_SIDE))
+        .ok_or_else(|| format!("`{s}` is not a width in pixels (0..={MAX_SIDE})"))
+}
+
+fn parse_degrees(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|d| d.is_finite())
+        .ok_or_else(|| format!("`{s}` is not an angle in degrees"))
 }
 
 #[derive(Subcommand, Debug)]
@@ -399,6 +434,16 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
         view,
         spline: a.spline,
         view_given: a.view.is_some(),
+        style: crate::render::Style {
+            background: a.background,
+            stroke_width: a.stroke_width,
+            margin: a.margin,
+            rotate: a.rotate,
+            palette: a
+                .palette
+                .as_deref()
+                .and_then(crate::render::Palette::from_name),
+        },
         ..RenderOptions::default()
     }
 }

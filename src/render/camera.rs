@@ -157,15 +157,23 @@ impl Projector {
     /// parallel projection centres what is drawn (cpfg's auto-centring), a
     /// perspective keeps the target (the view axis) at the centre.
     pub(crate) fn fit(&self, pts: &[[f64; 2]], opts: &RenderOptions) -> Fit {
+        self.fit_padded(pts, opts, 0.0)
+    }
+
+    /// [`Projector::fit`] keeping `pad` more pixels within an asked-for
+    /// margin ([`Fit::padded`]).
+    pub(crate) fn fit_padded(&self, pts: &[[f64; 2]], opts: &RenderOptions, pad: f64) -> Fit {
         if !self.perspective() {
-            return Fit::new(pts.iter(), opts);
+            return Fit::padded(pts.iter(), opts, pad);
         }
         let (mut mx, mut my) = (0.0f64, 0.0f64);
         for p in pts {
             mx = mx.max(p[0].abs());
             my = my.max(p[1].abs());
         }
-        Fit::new([[-mx, -my], [mx, my]].iter(), opts)
+        // All four corners: a rotated fit holds the turned rectangle.
+        let corners = [[-mx, -my], [mx, -my], [mx, my], [-mx, my]];
+        Fit::padded(corners.iter(), opts, pad)
     }
 }
 

@@ -12,7 +12,7 @@ pub mod svg;
 
 use crate::ir::look::Camera;
 use crate::ir::Rgb;
-use crate::turtle::{Geometry, Segment, Vec3};
+use crate::turtle::{Geometry, Vec3};
 use camera::Projector;
 
 /// The background of a picture whose look names none.
@@ -56,6 +56,132 @@ pub struct RenderOptions {
     pub camera: Option<Camera>,
     /// The background.
     pub background: Rgb,
+    /// The background's opacity: 0 transparent (PNG alpha 0, no SVG
+    /// background), 255 opaque.
+    pub background_alpha: u8,
+    /// The line width a stroke width is relative to: the system's initial
+    /// width ([`crate::ir::Settings::width`]).
+    pub base_width: f64,
+    /// What the command line asks of the picture's style.
+    pub style: Style,
+}
+
+/// Style options every drawing tool has (`graftal render --background`,
+/// `--stroke-width`, `--margin`, `--rotate`, `--palette`); `None` keeps the
+/// system's own.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Style {
+    /// The background instead of the look's (or white).
+    pub background: Option<crate::ir::colours::Rgba>,
+    /// Pixels of a line of the system's initial width; other widths scale
+    /// with it (a line twice as wide is twice as many pixels).
+    pub stroke_width: Option<f64>,
+    /// The blank border the fit keeps on every side.
+    pub margin: Option<Margin>,
+    /// Degrees the picture turns (counterclockwise) before it is fitted.
+    pub rotate: f64,
+    /// Line colours instead of the system's.
+    pub palette: Option<Palette>,
+}
+
+/// A blank border: pixels, or a share of the picture's width (left and
+/// right) and height (top and bottom).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Margin {
+    Pixels(f64),
+    Fraction(f64),
+}
+
+impl Margin {
+    /// `50` (pixels), `5%` or `0.05` (a share: a number below 1).
+    pub fn parse(s: &str) -> Result<Margin, String> {
+        let t = s.trim();
+        let (number, percent) = match t.strip_suffix('%') {
+            Some(n) => (n, true),
+            None => (t, false),
+        };
+        let v: f64 = number
+            .trim()
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite() && *v >= 0.0)
+            .ok_or_else(|| {
+                format!("`{s}` is not a margin: pixels (`50`) or a share (`5%`, `0.05`)")
+            })?;
+        let margin = match (percent, v < 1.0) {
+            (true, _) => Margin::Fraction(v / 100.0),
+            (false, true) => Margin::Fraction(v),
+            (false, false) => Margin::Pixels(v),
+        };
+        match margin {
+            Margin::Fraction(f) if f >= 0.5 => {
+                Err(format!("margin `{s}` leaves no room: below 50%"))
+            }
+            m => Ok(m),
+        }
+    }
+
+    /// The margins left and right, top and bottom, of a `w` × `h` picture.
+    fn pixels(self, w: f64, h: f64) -> (f64, f64) {
+        match self {
+            Margin::Pixels(p) => (p, p),
+            Margin::Fraction(f) => (w * f, h * f),
+        }
+    }
+}
+
+/// Line colours for systems without their own (`--palette`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Palette {
+    /// Every line black.
+    Mono,
+    /// By branch depth: brown at the trunk to green at the deepest tips.
+    Depth,
+    /// Along the turtle's path: the hues of the rainbow, red to violet.
+    Rainbow,
+}
+
+impl Palette {
+    pub const NAMES: [&'static str; 3] = ["mono", "depth", "rainbow"];
+
+    pub fn from_name(name: &str) -> Option<Palette> {
+        match name {
+            "mono" => Some(Palette::Mono),
+            "depth" => Some(Palette::Depth),
+            "rainbow" => Some(Palette::Rainbow),
+            _ => None,
+        }
+    }
+
+    /// The colour of segment `i` of `n`, at branch depth `depth` of
+    /// `max_depth`.
+    fn colour(self, i: usize, n: usize, depth: u16, max_depth: usize) -> Rgb {
+        let share = |k: f64, of: f64| {
+            if of > 0.0 {
+                (k / of).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        };
+        match self {
+            Palette::Mono => Rgb(0, 0, 0),
+            Palette::Depth => {
+                let t = share(f64::from(depth), max_depth as f64);
+                let mix = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+                Rgb(mix(101.0, 60.0), mix(67.0, 179.0), mix(33.0, 60.0))
+            }
+            Palette::Rainbow => hue(0.8 * share(i as f64, n.saturating_sub(1) as f64)),
+        }
+    }
+}
+
+/// The fully saturated colour of hue `h` (0 red, 1/3 green, 2/3 blue).
+fn hue(h: f64) -> Rgb {
+    let channel = |offset: f64| {
+        let x = ((h * 6.0 + offset) % 6.0 - 3.0).abs() - 1.0;
+        (x.clamp(0.0, 1.0) * 255.0).round() as u8
+    };
+    Rgb(channel(0.0), channel(4.0), channel(2.0))
 }
 
 impl Default for RenderOptions {
@@ -69,6 +195,9 @@ impl Default for RenderOptions {
             view_given: false,
             camera: None,
             background: WHITE,
+            background_alpha: 255,
+            base_width: 1.0,
+            style: Style::default(),
         }
     }
 }
@@ -89,6 +218,8 @@ pub struct Picture {
     pub width: u32,
     pub height: u32,
     pub background: Rgb,
+    /// The background's opacity ([`RenderOptions::background_alpha`]).
+    pub background_alpha: u8,
     pub runs: Vec<Run>,
     pub polygons: Vec<(Rgb, Vec<[f64; 2]>)>,
 }
@@ -236,7 +367,7 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         .chain(polys.iter().flat_map(|p| p.1.iter().copied()))
         .chain(disc_extent)
         .collect();
-    let fit = proj.fit(&extent, opts);
+    let fit = proj.fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths));
     let runs = runs(&segments, &fit, g.world_widths);
     let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys
         .into_iter()
@@ -254,8 +385,33 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         width: opts.width,
         height: opts.height,
         background: opts.background,
+        background_alpha: opts.background_alpha,
         runs,
         polygons,
+    }
+}
+
+/// Half the widest of `segments` in pixels, where that does not depend
+/// on the fit (widths in pixels, or `--stroke-width`): what an asked-for
+/// margin keeps free besides, so that round caps and their anti-aliased
+/// edge stay inside it.
+fn half_widest(segments: &[FlatSegment], opts: &RenderOptions, world_widths: bool) -> f64 {
+    let widest = segments.iter().map(|s| s.width.abs()).fold(0.0, f64::max);
+    margin_pad(widest, opts, world_widths)
+}
+
+/// [`half_widest`] of lines at most `widest` wide.
+pub(crate) fn margin_pad(widest: f64, opts: &RenderOptions, world_widths: bool) -> f64 {
+    if opts.style.margin.is_none() || (world_widths && opts.style.stroke_width.is_none()) {
+        return 0.0;
+    }
+    let probe = Fit::new(std::iter::empty(), opts);
+    // And a pixel that anti-aliasing touches.
+    let half = probe.line_width(widest, world_widths) / 2.0 + 1.0;
+    if half.is_finite() {
+        half
+    } else {
+        0.0
     }
 }
 
@@ -274,7 +430,7 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
     let mut flat = Vec::new();
     let on_plane = |p: Vec3| proj.project(p).map(|r| r.0);
     if opts.spline {
-        for path in &g.paths {
+        for (k, path) in g.paths.iter().enumerate() {
             let Some(ctrl) = path
                 .points
                 .iter()
@@ -284,36 +440,42 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
                 continue;
             };
             let curve = bspline(&ctrl);
+            let colour = match opts.style.palette {
+                Some(p) => p.colour(k, g.paths.len(), 0, g.max_depth),
+                None => path.colour,
+            };
             flat.extend(curve.windows(2).map(|w| FlatSegment {
                 a: w[0],
                 b: w[1],
-                colour: path.colour,
+                colour,
                 width: path.width,
             }));
         }
     } else {
-        let project_segment = |s: &Segment| {
+        let n = g.segments.len();
+        let project_segment = |i: usize| {
+            let s = &g.segments[i];
             Some(FlatSegment {
                 a: on_plane(s.a)?,
                 b: on_plane(s.b)?,
-                colour: s.colour,
+                colour: match opts.style.palette {
+                    Some(p) => p.colour(i, n, s.depth, g.max_depth),
+                    None => s.colour,
+                },
                 width: s.width,
             })
         };
         match depth_order(g, proj) {
-            Some(order) => flat.extend(
-                order
-                    .into_iter()
-                    .filter_map(|i| project_segment(&g.segments[i])),
-            ),
-            None => flat.extend(g.segments.iter().filter_map(project_segment)),
+            Some(order) => flat.extend(order.into_iter().filter_map(project_segment)),
+            None => flat.extend((0..n).filter_map(project_segment)),
         }
     }
     flat
 }
 
-/// The picture plane fitted into the picture: what it draws, centred,
-/// filling the share of the picture the options ask for.
+/// The picture plane fitted into the picture: what it draws, turned by
+/// the style's rotation, centred, filling the share of the picture the
+/// options ask for inside the margin.
 pub(crate) struct Fit {
     /// Pixels per picture-plane unit.
     pub(crate) scale: f64,
@@ -323,6 +485,10 @@ pub(crate) struct Fit {
     /// Pixels per pixel of line width: lines are thicker in pictures more
     /// than 600 pixels across, so that they look the same.
     line_unit: f64,
+    /// Cosine and sine of the rotation.
+    turn: (f64, f64),
+    /// `--stroke-width` per unit of the system's initial width.
+    stroke_per_width: Option<f64>,
 }
 
 impl Fit {
@@ -331,24 +497,43 @@ impl Fit {
         points: impl Iterator<Item = &'p [f64; 2]>,
         opts: &RenderOptions,
     ) -> Self {
+        Fit::padded(points, opts, 0.0)
+    }
+
+    /// [`Fit::new`] keeping `pad` more pixels free within an asked-for
+    /// margin: half the widest line, so that its caps stay inside.
+    pub(crate) fn padded<'p>(
+        points: impl Iterator<Item = &'p [f64; 2]>,
+        opts: &RenderOptions,
+        pad: f64,
+    ) -> Self {
+        let turn = opts.style.rotate.to_radians().sin_cos();
+        let turn = (turn.1, turn.0);
         let mut min = [f64::INFINITY; 2];
         let mut max = [f64::NEG_INFINITY; 2];
         for p in points {
+            let p = rotate(*p, turn);
             for k in 0..2 {
                 min[k] = min[k].min(p[k]);
                 max[k] = max[k].max(p[k]);
             }
         }
         let (w, h) = (opts.width as f64, opts.height as f64);
-        let fill = 0.9 * opts.scale.clamp(1.0, 100.0) / 100.0;
+        let share = opts.scale.clamp(1.0, 100.0) / 100.0;
+        // Without a margin the figure fills 90% of each side, as pfg's.
+        let (mx, my) = opts.style.margin.map_or((0.05 * w, 0.05 * h), |m| {
+            let (mx, my) = m.pixels(w, h);
+            (mx + pad, my + pad)
+        });
+        let (room_w, room_h) = ((w - 2.0 * mx).max(1.0), (h - 2.0 * my).max(1.0));
         let (bw, bh) = (max[0] - min[0], max[1] - min[1]);
         let sx = if bw > 0.0 {
-            w * fill / bw
+            room_w * share / bw
         } else {
             f64::INFINITY
         };
         let sy = if bh > 0.0 {
-            h * fill / bh
+            room_h * share / bh
         } else {
             f64::INFINITY
         };
@@ -356,19 +541,25 @@ impl Fit {
         if !s.is_finite() {
             s = 1.0;
         }
+        let base = Some(opts.base_width.abs()).filter(|b| b.is_finite() && *b > 0.0);
         Fit {
             scale: s,
             centre: [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0],
             width: w,
             height: h,
             line_unit: (w.min(h) / 600.0).max(1.0),
+            turn,
+            stroke_per_width: opts.style.stroke_width.map(|sw| sw / base.unwrap_or(1.0)),
         }
     }
 
-    /// A line of `width` in pixels: turtle units scaled with the picture,
+    /// A line of `width` in pixels: `--stroke-width` scaled by the width's
+    /// share of the initial one, else turtle units scaled with the picture,
     /// or pixels that grow with pictures over 600 pixels.
     pub(crate) fn line_width(&self, width: f64, world_widths: bool) -> f64 {
-        if world_widths {
+        if let Some(per) = self.stroke_per_width {
+            per * width
+        } else if world_widths {
             (width * self.scale).max(0.5)
         } else {
             self.line_unit * width
@@ -378,11 +569,20 @@ impl Fit {
     /// `p` in pixels (y down).
     pub(crate) fn to_px(&self, p: [f64; 2]) -> [f64; 2] {
         let [cx, cy] = self.centre;
+        let p = rotate(p, self.turn);
         [
             self.width / 2.0 + (p[0] - cx) * self.scale,
             self.height / 2.0 - (p[1] - cy) * self.scale,
         ]
     }
+}
+
+/// `p` turned by the angle of cosine and sine `turn` about the origin.
+fn rotate(p: [f64; 2], (c, s): (f64, f64)) -> [f64; 2] {
+    if (c, s) == (1.0, 0.0) {
+        return p;
+    }
+    [p[0] * c - p[1] * s, p[0] * s + p[1] * c]
 }
 
 /// `segments` in pixels, as runs of one colour and width in which
@@ -438,6 +638,7 @@ mod tests {
             width: 1.0,
             colour: Rgb(c, c, c),
             index: 0,
+            depth: 0,
         }
     }
 

@@ -37,7 +37,7 @@ pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pi
     let mut drawn = 0u64;
     let mut pixmap = Pixmap::new(pic.width, pic.height)?;
     let bg = pic.background;
-    pixmap.fill(Color::from_rgba8(bg.0, bg.1, bg.2, 255));
+    pixmap.fill(Color::from_rgba8(bg.0, bg.1, bg.2, pic.background_alpha));
     for (colour, pts) in &pic.polygons {
         let mut pb = PathBuilder::new();
         let mut it = pts.iter();
@@ -131,6 +131,7 @@ mod tests {
                 width: 32,
                 height: 32,
                 background: crate::render::WHITE,
+                background_alpha: 255,
                 runs: vec![Run {
                     colour: Rgb(0, 0, 0),
                     width,

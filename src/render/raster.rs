@@ -58,9 +58,10 @@ struct Target {
     depth: Vec<f32>,
 }
 
+/// An opaque colour as `0xAARRGGBB`.
 fn pack(c: Colour) -> u32 {
     let q = |x: f32| (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u32;
-    (q(c[0]) << 16) | (q(c[1]) << 8) | q(c[2])
+    (255 << 24) | (q(c[0]) << 16) | (q(c[1]) << 8) | q(c[2])
 }
 
 /// Twice the signed area of (a, b, p); swapping a and b negates it exactly,
@@ -70,13 +71,14 @@ fn edge(a: &SVert, b: &SVert, px: f64, py: f64) -> f64 {
 }
 
 impl Target {
-    fn new(y0: i64, rows: i64, width: i64, background: Rgb) -> Target {
+    fn new(y0: i64, rows: i64, width: i64, (background, alpha): (Rgb, u8)) -> Target {
         let n = (rows * width).max(0) as usize;
+        let bg = pack(to_colour(background)) & 0x00ff_ffff | u32::from(alpha) << 24;
         Target {
             y0,
             rows,
             width,
-            colour: vec![pack(to_colour(background)); n],
+            colour: vec![bg; n],
             depth: vec![f32::INFINITY; n],
         }
     }
@@ -242,7 +244,7 @@ pub fn png(
             i64::from(row * ss),
             i64::from(rows * ss),
             i64::from(w * ss),
-            opts.background,
+            (opts.background, opts.background_alpha),
         );
         scene.draw(&mut t);
         std::io::Write::write_all(&mut stream, &downsample(&t, w, rows, ss)).ok()?;
@@ -261,17 +263,22 @@ fn downsample(t: &Target, w: u32, rows: u32, ss: u32) -> Vec<u8> {
     let mut out = Vec::with_capacity(w * rows * 4);
     for y in 0..rows {
         for x in 0..w {
-            let mut sum = [0u32; 3];
+            // Colours weighed by their opacity, so that a transparent
+            // background's colour does not tint the edges.
+            let mut sum = [0u32; 4];
             for sy in 0..ss {
                 let base = (y * ss + sy) * t.width as usize + x * ss;
                 for c in &t.colour[base..base + ss] {
-                    sum[0] += (c >> 16) & 255;
-                    sum[1] += (c >> 8) & 255;
-                    sum[2] += c & 255;
+                    let a = c >> 24;
+                    sum[0] += ((c >> 16) & 255) * a;
+                    sum[1] += ((c >> 8) & 255) * a;
+                    sum[2] += (c & 255) * a;
+                    sum[3] += a;
                 }
             }
-            out.extend(sum.map(|s| ((s + n / 2) / n) as u8));
-            out.push(255);
+            let a = sum[3].max(1);
+            out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
+            out.push(((sum[3] + n / 2) / n) as u8);
         }
     }
     out
@@ -938,6 +945,7 @@ mod tests {
                 width: 2.0,
                 colour: Rgb(100, 100, 100),
                 index: 100,
+                depth: 0,
             }],
             ..Geometry::default()
         };
@@ -992,6 +1000,35 @@ mod tests {
     }
 
     #[test]
+    fn a_transparent_background_stays_transparent_around_what_is_drawn() {
+        let g = Geometry {
+            polygons: vec![square(0.0, 1.0, 255)],
+            ..Geometry::default()
+        };
+        let opts = RenderOptions {
+            background: Rgb(10, 20, 30),
+            background_alpha: 0,
+            ..small(40)
+        };
+        let pm = draw(&g, &lighting(Shading::Filled, LineStyle::Pixel), &opts);
+        let alphas: Vec<u8> = pm.pixels().iter().map(|p| p.alpha()).collect();
+        assert_eq!(alphas[0], 0);
+        assert!(alphas.contains(&255));
+        // An edge pixel half covered is the square's colour, half opaque:
+        // no tint of the transparent background's colour.
+        let inside = pm.pixel(20, 20).unwrap();
+        assert_eq!(inside.alpha(), 255);
+        let near = |a: u8, b: u8| a.abs_diff(b) <= 3;
+        for p in pm.pixels().iter().filter(|p| (1..255).contains(&p.alpha())) {
+            let c = p.demultiply();
+            assert!(
+                near(c.red(), inside.red()) && near(c.blue(), inside.blue()),
+                "{c:?} {inside:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_camera_puts_its_target_at_the_centre() {
         // A small square at the target and a bigger one off to the side.
         let target = [3.0, 1.0, 0.0];
@@ -1037,6 +1074,7 @@ mod tests {
                         width: 0.2,
                         colour: Rgb(90, 90, 90),
                         index: 90,
+                        depth: 0,
                     }
                 })
                 .collect(),
@@ -1059,6 +1097,7 @@ mod tests {
             width,
             colour: BLACK,
             index: 0,
+            depth: 0,
         };
         let g = Geometry {
             segments: vec![

@@ -17,14 +17,15 @@ pub fn picture(
 ) -> Picture {
     let whole = inst.word(steps);
     let corners = [[whole.lo[0], whole.lo[1]], [whole.hi[0], whole.hi[1]]];
-    let fit = Fit::new(corners.iter(), opts);
+    let settings = &sys.settings;
+    let pad = super::margin_pad(settings.width, opts, settings.world_widths);
+    let fit = Fit::padded(corners.iter(), opts, pad);
     let mut pen = Pen {
         lines: Vec::new(),
         at: None,
         fit: &fit,
     };
     inst.lines(steps, fit.scale, &mut pen);
-    let settings = &sys.settings;
     let palette = if sys.colours.is_empty() {
         DEFAULT_PALETTE.to_vec()
     } else {
@@ -34,6 +35,7 @@ pub fn picture(
         width: opts.width,
         height: opts.height,
         background: opts.background,
+        background_alpha: opts.background_alpha,
         runs: vec![Run {
             colour: palette[settings.colour.min(palette.len() - 1)],
             width: fit.line_width(settings.width, settings.world_widths),

@@ -33,6 +33,21 @@ fn background(c: Rgb) -> String {
     }
 }
 
+/// The background rectangle of a `w` × `h` picture: none when it is
+/// transparent, with its opacity when it is translucent.
+fn background_rect(out: &mut String, (w, h): (u32, u32), c: Rgb, alpha: u8) {
+    let opacity = match alpha {
+        0 => return,
+        255 => String::new(),
+        a => format!(r#" fill-opacity="{}""#, num(f64::from(a) / 255.0)),
+    };
+    let _ = writeln!(
+        out,
+        r#"<rect width="{w}" height="{h}" fill="{}"{opacity}/>"#,
+        background(c)
+    );
+}
+
 /// Appends `M x y L x y …` for the points to a path's `d`.
 fn polyline(d: &mut String, pts: &[[f64; 2]]) {
     for (i, p) in pts.iter().enumerate() {
@@ -49,11 +64,7 @@ pub fn write(pic: &Picture) -> String {
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
-    let _ = writeln!(
-        out,
-        r#"<rect width="{w}" height="{h}" fill="{}"/>"#,
-        background(pic.background)
-    );
+    background_rect(&mut out, (w, h), pic.background, pic.background_alpha);
     for (colour, pts) in &pic.polygons {
         let mut d = String::new();
         polyline(&mut d, pts);
@@ -234,11 +245,7 @@ pub fn write_scene(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
-    let _ = writeln!(
-        out,
-        r#"<rect width="{w}" height="{h}" fill="{}"/>"#,
-        background(opts.background)
-    );
+    background_rect(&mut out, (w, h), opts.background, opts.background_alpha);
     for item in items {
         out.push_str(&item.svg);
         out.push('\n');
@@ -268,6 +275,7 @@ mod tests {
                 width: 1.0,
                 colour: Rgb(3, 3, 3),
                 index: 0,
+                depth: 0,
             }],
             ..Geometry::default()
         };

@@ -34,6 +34,10 @@ pub struct Segment {
     /// The colour index it was drawn with: the material of a lit look
     /// ([`crate::ir::look::Lighting`]).
     pub index: u16,
+    /// How many branches it is nested in (`[` deep), for a picture coloured
+    /// by depth ([`crate::render::Palette::Depth`]).
+    #[serde(skip)]
+    pub depth: u16,
 }
 
 /// A filled polygon.
@@ -685,6 +689,11 @@ impl<'a> Turtle<'a> {
         self.palette[index.min(self.palette.len() - 1)]
     }
 
+    /// How many branches the turtle is in.
+    fn depth(&self) -> u16 {
+        u16::try_from(self.stack.len()).unwrap_or(u16::MAX)
+    }
+
     /// The colour the turtle draws with.
     fn colour(&self) -> Rgb {
         self.colour_of(self.state.colour)
@@ -711,6 +720,7 @@ impl Turtle<'_> {
                 width: self.state.width,
                 colour,
                 index: index_of(self.state.colour),
+                depth: self.depth(),
             });
         }
     }
@@ -994,6 +1004,7 @@ impl Turtle<'_> {
                 width: st.width,
                 colour,
                 index: index_of(st.colour),
+                depth: self.depth(),
             });
             a = b;
         }
