@@ -252,10 +252,18 @@ pub fn listing_json() -> serde_json::Value {
     serde_json::json!({ "entries": entries })
 }
 
+/// The longest unknown name compared with the entries' names.
+const LONGEST_SUGGESTED: usize = 200;
+
 /// The error for a `std:NAME` that does not exist: the nearest names (an
 /// entry whose name without its folder is `name`, else the nearest by
 /// spelling, else those starting with it) and where the list is.
 pub fn unknown(name: &str) -> String {
+    let shown = crate::diagnostics::shortened(&crate::diagnostics::escaped(name), 60).into_owned();
+    // No entry name is this long: comparing would only cost time.
+    if name.len() > LONGEST_SUGGESTED {
+        return format!("no stdlib entry `{shown}`; `graftal list` lists them all");
+    }
     let all: Vec<&str> = names().collect();
     let base = |n: &'static str| n.rsplit('/').next().unwrap_or(n);
     let mut near: Vec<&str> = all.iter().copied().filter(|&n| base(n) == name).collect();
@@ -275,16 +283,16 @@ pub fn unknown(name: &str) -> String {
             .filter(|&n| base(n).starts_with(name))
             .collect();
     }
-    let shown: Vec<String> = near.iter().take(3).map(|n| format!("`std:{n}`")).collect();
-    let hint = match (shown.len(), near.len() > shown.len()) {
+    let listed: Vec<String> = near.iter().take(3).map(|n| format!("`std:{n}`")).collect();
+    let hint = match (listed.len(), near.len() > listed.len()) {
         (0, _) => String::new(),
         (_, more) => format!(
             " (did you mean {}{}?)",
-            shown.join(", "),
+            listed.join(", "),
             if more { ", …" } else { "" }
         ),
     };
-    format!("no stdlib entry `{name}`{hint}; `graftal list` lists them all")
+    format!("no stdlib entry `{shown}`{hint}; `graftal list` lists them all")
 }
 
 #[cfg(test)]

@@ -114,4 +114,7 @@ fn unknown_names_suggest_the_nearest_entries() {
     assert!(m.contains("`std:algae`"), "{m}");
     let m = graftal::stdlib::unknown("");
     assert!(!m.contains("did you mean"), "{m}");
+    // A huge name is shown shortened, and not compared.
+    let m = graftal::stdlib::unknown(&"koch".repeat(100_000));
+    assert!(m.len() < 200 && !m.contains("did you mean"), "{m}");
 }
