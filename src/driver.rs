@@ -36,15 +36,7 @@ pub fn load(spec: &str) -> Result<SourceFile, LoadError> {
     if let Some(name) = spec.strip_prefix("std:") {
         return match stdlib::get(name) {
             Some(e) => Ok(SourceFile::new(e.file, e.text)),
-            None => {
-                let names: Vec<&str> = stdlib::names().collect();
-                let near = crate::diagnostics::nearest(name, &names);
-                let hint = match near.first() {
-                    Some(n) => format!(" (did you mean `std:{n}`?)"),
-                    None => String::new(),
-                };
-                Err(LoadError(format!("no stdlib entry `{name}`{hint}")))
-            }
+            None => Err(LoadError(stdlib::unknown(name))),
         };
     }
     SourceFile::read(Path::new(spec)).map_err(|e| LoadError(format!("cannot read `{spec}`: {e}")))
@@ -471,11 +463,18 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
     g.polygons.splice(0..0, shapes);
 }
 
-/// The warning for a picture with nothing in it. When the file's own
-/// `diagnostics` say the model waits on an environment that never answers
-/// (W0821), the warning says that this is why.
-pub fn nothing_drawn(word: &Word, diagnostics: &Diagnostics) -> Diagnostic {
-    let d = Diagnostic::global(
+/// The warning for a picture with nothing in it, naming the likely cause
+/// ([`why_nothing_drawn`]). When the file's own `diagnostics` say the
+/// model waits on an environment that never answers (W0821), the warning
+/// says that this is why.
+pub fn nothing_drawn(
+    sys: &System,
+    word: &Word,
+    file: &str,
+    opts: &RunOptions,
+    diagnostics: &Diagnostics,
+) -> Diagnostic {
+    let mut d = Diagnostic::global(
         codes::NOTHING_DRAWN,
         "nothing is drawn: the picture is empty",
     )
@@ -488,15 +487,59 @@ pub fn nothing_drawn(word: &Word, diagnostics: &Diagnostics) -> Diagnostic {
         .find(|d| d.code == codes::CPFG_NO_ENVIRONMENT)
     {
         Some(env) => {
-            let mut d = d.with_note(
+            d = d.with_note(
                 "the model draws only what its environment answers to `?E`, \
                  and graftal runs no environment program (W0821)",
             );
             d.notes.extend(env.notes.iter().cloned());
-            d
         }
-        None => d,
+        None => {
+            let steps = opts.derive_options(sys).steps;
+            if let Some(why) = why_nothing_drawn(sys, word, file, steps) {
+                d = d.with_note(why);
+            }
+        }
     }
+    d
+}
+
+/// The likely cause of an empty picture, checked in this order: a stdlib
+/// schema (its source prints words, not a picture); a word whose turtle
+/// only moves without drawing (`f`: a kolam, drawn with `--spline`); a
+/// word with no symbol that moves the turtle at all (a string example);
+/// no derivation steps, so only the axiom was drawn.
+pub fn why_nothing_drawn(sys: &System, word: &Word, file: &str, steps: u64) -> Option<String> {
+    if let Some(e) = stdlib::by_file(file).filter(|e| e.kind() == stdlib::Kind::Schema) {
+        return Some(format!(
+            "`std:{}` is a schema, not a drawing ({}): `graftal derive std:{}` prints its words",
+            e.name,
+            e.schema_reason().unwrap_or_default(),
+            e.name
+        ));
+    }
+    let (mut moves, mut draws) = (false, false);
+    for &s in word.symbols() {
+        if let Some(TurtleOp::Forward { draw }) = sys.op(s) {
+            moves = true;
+            draws |= draw;
+        }
+    }
+    if moves && !draws {
+        return Some(
+            "the turtle only moves without drawing (`f`): a kolam is drawn as a \
+             B-spline through its positions; try `--spline`"
+                .into(),
+        );
+    }
+    if !moves && steps > 0 {
+        return Some(
+            "no symbol of the derived word moves the turtle: a string example is \
+             read with `graftal derive`, or its symbols need `F` to draw"
+                .into(),
+        );
+    }
+    (steps == 0)
+        .then(|| "the derivation has 0 steps, so only the axiom is drawn: try `-n 4`".into())
 }
 
 /// Output formats of [`render`].

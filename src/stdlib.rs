@@ -119,6 +119,182 @@ pub fn names() -> impl Iterator<Item = &'static str> {
     ENTRIES.iter().map(|e| e.name)
 }
 
+/// The entry a loaded file came from, by the file name [`get`] gave it
+/// (`std:algae.l`); `None` for files outside the stdlib.
+pub fn by_file(file: &str) -> Option<&'static Entry> {
+    ENTRIES.iter().find(|e| e.file == file)
+}
+
+/// Whether the stdlib file `file` is drawn as a spline by default.
+pub fn draws_as_spline(file: &str) -> bool {
+    by_file(file).is_some_and(|e| e.kind() == Kind::Spline)
+}
+
+/// How an entry is meant to be seen, from the `graftal:` line of its
+/// header comment (`graftal: schema …`, `graftal: spline`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Draws at its defaults.
+    Drawing,
+    /// Draws at its defaults as a B-spline through the turtle's positions
+    /// (the kolams): `render` draws it so without `--spline`.
+    Spline,
+    /// A string example or schema: the source prints its words, not a
+    /// picture. `render` says so; `derive` is how it is read.
+    Schema,
+}
+
+impl Kind {
+    /// The word `graftal list` shows.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Drawing => "draws",
+            Kind::Spline => "draws (spline)",
+            Kind::Schema => "schema",
+        }
+    }
+}
+
+/// The stdlib folders' indexes, whose tables give each entry's figure.
+const INDEXES: &[&str] = &[
+    include_str!("../stdlib/pfg/INDEX.md"),
+    include_str!("../stdlib/linf/INDEX.md"),
+];
+
+impl Entry {
+    /// The text after `graftal:` in the header, the entry's metadata.
+    fn meta(&self) -> Option<&'static str> {
+        self.text
+            .lines()
+            .take_while(|l| !l.contains("*/"))
+            .find_map(|l| l.trim_start_matches(['#', ' ']).strip_prefix("graftal:"))
+            .map(str::trim)
+    }
+
+    /// What the entry is meant to give at its defaults.
+    pub fn kind(&self) -> Kind {
+        match self.meta() {
+            Some(m) if m.starts_with("schema") => Kind::Schema,
+            Some(m) if m.starts_with("spline") => Kind::Spline,
+            _ => Kind::Drawing,
+        }
+    }
+
+    /// Why a schema draws nothing: its metadata after `schema`.
+    pub fn schema_reason(&self) -> Option<&'static str> {
+        let m = self.meta()?.strip_prefix("schema")?;
+        Some(m.trim_start_matches([' ', ':', '(']).trim_end_matches(')'))
+    }
+
+    /// The figure the entry reproduces: its row in the folder's INDEX.md,
+    /// else the first `Fig. …` (or section) of its header, else empty.
+    pub fn figure(&self) -> String {
+        let base = self.name.rsplit('/').next().unwrap_or(self.name);
+        let row = INDEXES.iter().flat_map(|t| t.lines()).find_map(|l| {
+            let mut cells = l.split('|').map(str::trim).skip(1);
+            let name = cells.next()?.trim_matches('`');
+            (name == base || name == self.name).then(|| cells.next().map(str::to_string))?
+        });
+        row.or_else(|| {
+            let head: String = self.text.lines().take(4).collect::<Vec<_>>().join(" ");
+            let at = ["Fig. ", "Section ", "section "]
+                .iter()
+                .find_map(|k| head.find(k))?;
+            let fig: String = head[at..]
+                .chars()
+                .take_while(|c| !matches!(c, ':' | ',' | '"'))
+                .collect();
+            Some(fig.trim().to_string())
+        })
+        .unwrap_or_default()
+    }
+}
+
+/// `graftal list`: one line per entry, `std:NAME`, its figure and its
+/// [`Kind`], in columns.
+pub fn listing() -> String {
+    let width = ENTRIES.iter().map(|e| e.name.len()).max().unwrap_or(0) + 4;
+    let rows: Vec<(String, String)> = ENTRIES
+        .iter()
+        .map(|e| (e.figure(), e.kind().name().into()))
+        .collect();
+    let fig = rows
+        .iter()
+        .map(|(f, _)| f.chars().count())
+        .max()
+        .unwrap_or(0);
+    ENTRIES
+        .iter()
+        .zip(rows)
+        .map(|(e, (f, k))| format!("{:width$}  {f:fig$}  {k}\n", format!("std:{}", e.name)))
+        .collect()
+}
+
+/// `graftal list --format json`: `{"entries": [{"name", "figure", "kind",
+/// "draws"}]}`, `kind` being `drawing`, `spline` or `schema`.
+pub fn listing_json() -> serde_json::Value {
+    let entries: Vec<serde_json::Value> = ENTRIES
+        .iter()
+        .map(|e| {
+            let kind = match e.kind() {
+                Kind::Drawing => "drawing",
+                Kind::Spline => "spline",
+                Kind::Schema => "schema",
+            };
+            serde_json::json!({
+                "name": format!("std:{}", e.name),
+                "figure": e.figure(),
+                "kind": kind,
+                "draws": e.kind() != Kind::Schema,
+            })
+        })
+        .collect();
+    serde_json::json!({ "entries": entries })
+}
+
+/// The longest unknown name compared with the entries' names.
+const LONGEST_SUGGESTED: usize = 200;
+
+/// The error for a `std:NAME` that does not exist: the nearest names (an
+/// entry whose name without its folder is `name`, else the nearest by
+/// spelling, else those starting with it) and where the list is.
+pub fn unknown(name: &str) -> String {
+    let shown = crate::diagnostics::shortened(&crate::diagnostics::escaped(name), 60).into_owned();
+    // No entry name is this long: comparing would only cost time.
+    if name.len() > LONGEST_SUGGESTED {
+        return format!("no stdlib entry `{shown}`; `graftal list` lists them all");
+    }
+    let all: Vec<&str> = names().collect();
+    let base = |n: &'static str| n.rsplit('/').next().unwrap_or(n);
+    let mut near: Vec<&str> = all.iter().copied().filter(|&n| base(n) == name).collect();
+    if near.is_empty() {
+        let bases: Vec<&str> = all.iter().map(|&n| base(n)).collect();
+        let by_spelling = crate::diagnostics::nearest(name, &bases);
+        near = all
+            .iter()
+            .copied()
+            .filter(|&n| by_spelling.contains(&base(n)))
+            .collect();
+    }
+    if near.is_empty() && !name.is_empty() {
+        near = all
+            .iter()
+            .copied()
+            .filter(|&n| base(n).starts_with(name))
+            .collect();
+    }
+    let listed: Vec<String> = near.iter().take(3).map(|n| format!("`std:{n}`")).collect();
+    let hint = match (listed.len(), near.len() > listed.len()) {
+        (0, _) => String::new(),
+        (_, more) => format!(
+            " (did you mean {}{}?)",
+            listed.join(", "),
+            if more { ", …" } else { "" }
+        ),
+    };
+    format!("no stdlib entry `{shown}`{hint}; `graftal list` lists them all")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

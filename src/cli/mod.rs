@@ -182,8 +182,14 @@ enum Command {
     Stats(DeriveArgs),
     /// Explain a diagnostic code, e.g. `graftal explain E0004`.
     Explain { code: String },
-    /// List the standard library (`std:NAME`).
-    List,
+    /// List the standard library (`std:NAME`): each entry's figure and
+    /// whether it draws at its defaults or is a schema (a string example).
+    List {
+        #[arg(long, value_enum, default_value_t)]
+        format: OutputFormat,
+    },
+    /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
+    Show { name: String },
 }
 
 /// The largest picture side: 8192² pixels take 256 MB.
@@ -259,7 +265,8 @@ where
         Command::Render(a) => render(io, &a),
         Command::Translate(a) => translate(io, &a),
         Command::Explain { code } => explain(io, &code),
-        Command::List => list(io),
+        Command::List { format } => list(io, format),
+        Command::Show { name } => show(io, &name),
     }
 }
 
@@ -280,14 +287,16 @@ fn usage(io: &mut Io<'_>, e: &clap::Error) -> i32 {
 /// `graftal check`: each file's diagnostics, and its listing.
 fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputFormat) -> i32 {
     let mut status = 0;
+    let mut listings = Vec::new();
     for f in files {
         let (path, named) = driver::split_entry(f);
         match driver::load(&path) {
             Ok(file) => {
                 let c = driver::compile_entry(file, entry.or(named.as_deref()));
                 report(io, &c, &c.diagnostics.0, format);
-                if format == OutputFormat::Human {
-                    list_entries(io, &c);
+                match format {
+                    OutputFormat::Human => list_entries(io, &c),
+                    OutputFormat::Json => listings.push(listing_json(&c)),
                 }
                 if c.diagnostics.has_errors() || (c.system.is_none() && !c.needs_entry()) {
                     status = status.max(1);
@@ -298,6 +307,9 @@ fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputF
                 status = 2;
             }
         }
+    }
+    if format == OutputFormat::Json {
+        let _ = writeln!(io.stdout, "{}", serde_json::json!({ "files": listings }));
     }
     status
 }
@@ -381,7 +393,12 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
         Err(e) => return usage_error(io, &e),
     };
     with_system(io, &a.args, |io, c, sys, opts, _| {
-        let ropts = render_options(a, sys);
+        // The stdlib's kolams are drawn as the book draws them.
+        let spline = a.spline || crate::stdlib::draws_as_spline(&c.file.name);
+        let ropts = RenderOptions {
+            spline,
+            ..render_options(a, sys)
+        };
         let bar = draw_bar(io);
         let mut progress = |drawn: u64, total: u64| {
             if let Some(bar) = &bar {
@@ -397,7 +414,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
         }
         driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
         let (word, values) = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
-        let mut g = driver::interpret(sys, &word, &values, opts, a.spline).map_err(|d| vec![d])?;
+        let mut g = driver::interpret(sys, &word, &values, opts, spline).map_err(|d| vec![d])?;
         if !a.no_layout {
             driver::add_layout(sys, &mut g);
         }
@@ -405,7 +422,13 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             report(
                 io,
                 c,
-                &[driver::nothing_drawn(&word, &c.diagnostics)],
+                &[driver::nothing_drawn(
+                    sys,
+                    &word,
+                    &c.file.name,
+                    opts,
+                    &c.diagnostics,
+                )],
                 a.args.format,
             );
         }
@@ -471,12 +494,29 @@ fn explain(io: &mut Io<'_>, code: &str) -> i32 {
     0
 }
 
-/// `graftal list`: the standard library's names.
-fn list(io: &mut Io<'_>) -> i32 {
-    for e in crate::stdlib::ENTRIES {
-        let _ = writeln!(io.stdout, "std:{}", e.name);
-    }
+/// `graftal list`: the standard library's names, figures and kinds.
+fn list(io: &mut Io<'_>, format: OutputFormat) -> i32 {
+    let text = match format {
+        OutputFormat::Human => crate::stdlib::listing(),
+        OutputFormat::Json => format!("{}\n", crate::stdlib::listing_json()),
+    };
+    let _ = write!(io.stdout, "{text}");
     0
+}
+
+/// `graftal show`: a stdlib entry's source text.
+fn show(io: &mut Io<'_>, name: &str) -> i32 {
+    let name = name.strip_prefix("std:").unwrap_or(name);
+    match crate::stdlib::get(name) {
+        Some(e) => {
+            let _ = write!(io.stdout, "{}", e.text);
+            0
+        }
+        None => {
+            let _ = writeln!(io.stderr, "error: {}", crate::stdlib::unknown(name));
+            2
+        }
+    }
 }
 
 /// `graftal translate`: source -> IR -> the target's emitter. Errors (what
@@ -640,9 +680,7 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
         );
     }
     let Some(lib) = &c.library else { return };
-    let listed: Vec<usize> = (0..lib.entries.len().min(LISTED_ENTRIES))
-        .chain(lib.chosen.filter(|&i| i >= LISTED_ENTRIES))
-        .collect();
+    let listed = listed_entries(lib);
     let names: Vec<_> = listed
         .iter()
         .map(|&i| diagnostics::shortened(&lib.entries[i].name, LISTED_NAME))
@@ -670,6 +708,49 @@ fn list_entries(io: &mut Io<'_>, c: &Compiled) {
             "  … and {more} more; `graftal check {file_name}:NAME` checks one"
         );
     }
+}
+
+/// The entries `check` lists: the first [`LISTED_ENTRIES`], and the
+/// chosen one if it comes later.
+fn listed_entries(lib: &crate::front::Library) -> Vec<usize> {
+    (0..lib.entries.len().min(LISTED_ENTRIES))
+        .chain(lib.chosen.filter(|&i| i >= LISTED_ENTRIES))
+        .collect()
+}
+
+/// `check --format json`'s listing of one file, an object of the one
+/// document on stdout: `file`, `notation`, `dialect` (what the human
+/// listing prints after `dialect:`, or null), and for a library `entries`
+/// (name, line, errors, warnings, chosen; as many as the human listing)
+/// and `total`; `entries` is null for a file of one system.
+fn listing_json(c: &Compiled) -> serde_json::Value {
+    let dialect = match &c.library {
+        Some(lib) => Some(lib.summary.clone()),
+        None => c.front.describe(c.system.as_ref()),
+    };
+    let entries = c.library.as_ref().map(|lib| {
+        let listed: Vec<serde_json::Value> = listed_entries(lib)
+            .into_iter()
+            .map(|i| {
+                let e = &lib.entries[i];
+                serde_json::json!({
+                    "name": e.name,
+                    "line": c.file.line_col(e.span.start).0,
+                    "errors": e.errors,
+                    "warnings": e.warnings,
+                    "chosen": lib.chosen == Some(i),
+                })
+            })
+            .collect();
+        listed
+    });
+    serde_json::json!({
+        "file": c.file.name,
+        "notation": c.front.name(),
+        "dialect": dialect,
+        "entries": entries,
+        "total": c.library.as_ref().map(|l| l.entries.len()),
+    })
 }
 
 /// Writes a rendered picture to `output`; the exit status.

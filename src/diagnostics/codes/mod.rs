@@ -372,7 +372,12 @@ Example:
 "The derived word contains no symbol that draws (in pfg, `F` or a polygon),
 so the picture is empty. This is not an error: a system can be meant only
 for `derive`. Check the derivation length and the symbols the turtle
-understands (F f + - | [ ] & ^ \\ / { } ! ').";
+understands (F f + - | [ ] & ^ \\ / { } ! ').
+
+A note names the likely cause, the first that applies: a stdlib entry
+marked as a schema (a string example: `graftal list` shows which); a turtle
+that only moves without drawing (`f`, as in a kolam: try `--spline`); a
+derived word with no symbol that moves the turtle; no derivation steps.";
 
     SCALE_RANGE = "W0004", "scale factor out of range",
 "The scale factor is the share of the picture the figure fills, from 0 to
