@@ -56,7 +56,9 @@ fn geometry(sys: &System, seed: u64) -> Geometry {
     driver::geometry(sys, &opts).expect("evaluates").1
 }
 
-/// Same segments, in the same order, within 1e-9 of the picture's size.
+/// Same segments, in the same order, within 1e-9 of the picture's size,
+/// up to a uniform scale about the turtle's start (every picture is fitted
+/// to its frame, so that is the same picture).
 fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
     if a.segments.len() != b.segments.len() {
         return Err(format!(
@@ -68,10 +70,15 @@ fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
     let (Some(ba), Some(bb)) = (a.bbox(), b.bbox()) else {
         return Ok(());
     };
-    let size = (0..3)
-        .map(|i| ba[i + 3] - ba[i])
-        .fold(0.0f64, f64::max)
-        .max(1e-12);
+    let extent = |bx: &[f64; 6]| {
+        (0..3)
+            .map(|i| bx[i + 3] - bx[i])
+            .fold(0.0f64, f64::max)
+            .max(1e-12)
+    };
+    let size = extent(&ba);
+    let scale = size / extent(&bb);
+    let bb = bb.map(|v| v * scale);
     let tol = 1e-9 * size.max(1.0);
     for i in 0..6 {
         if (ba[i] - bb[i]).abs() > tol {
@@ -80,7 +87,7 @@ fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
     }
     for (k, (s, t)) in a.segments.iter().zip(&b.segments).enumerate() {
         for i in 0..3 {
-            if (s.a[i] - t.a[i]).abs() > tol || (s.b[i] - t.b[i]).abs() > tol {
+            if (s.a[i] - scale * t.a[i]).abs() > tol || (s.b[i] - scale * t.b[i]).abs() > tol {
                 return Err(format!("segment {k} differs: {s:?} vs {t:?}"));
             }
         }
@@ -777,4 +784,75 @@ fn translations_and_their_diagnostics_match_their_snapshots() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+/// An STL seed length (`L = 10`) scales the whole picture, and every
+/// picture is fitted to its frame: pfg and LinF say the same without a
+/// length factor, exactly.
+#[test]
+fn a_constant_stl_length_is_a_uniform_scale_and_translates_exactly() {
+    let src = "ANGLE 30\nL = 10\nPlant = [I 3 F[RF]F[LF]F]\nSEED\nPlant\nENDSEED\n";
+    let c = compile("plant.stl", src);
+    for to in ["pfg", "linf"] {
+        let t = translate(&c, target(to), false);
+        let text = t.text.as_deref().unwrap_or_else(|| {
+            panic!(
+                "{to}: not written: {}",
+                t.diagnostics.render(&c.file, false)
+            )
+        });
+        assert!(t.diagnostics.is_empty(), "{to}: {:?}", t.diagnostics);
+        assert!(!text.contains('@'), "{to}: a length factor in\n{text}");
+        let out = compile(&format!("plant.{}", ext(target(to))), text);
+        same_drawing(
+            &geometry(c.system.as_ref().unwrap(), 0),
+            &geometry(out.system.as_ref().unwrap(), 0),
+        )
+        .unwrap();
+    }
+}
+
+/// Lengths that differ from level to level are still refused by pfg, in
+/// one diagnostic that quotes the STL line, not LinF's `0.8@`.
+#[test]
+fn stl_level_lengths_are_reported_in_stl_syntax_once() {
+    let src = "ANGLE 30\nL = 10 (2)\nP = [I 3 F[RF]F[LF]F]\nSEED\nP\nENDSEED\n";
+    let c = compile("plant.stl", src);
+    for lossy in [false, true] {
+        let t = translate(&c, target("pfg"), lossy);
+        let lengths: Vec<_> = t
+            .diagnostics
+            .iter()
+            .filter(|d| d.code.0 == if lossy { "W0607" } else { "E0607" })
+            .collect();
+        assert_eq!(lengths.len(), 1, "{:?}", t.diagnostics);
+        let d = lengths[0];
+        assert!(d.message.contains("`L = 10 (2)`"), "{}", d.message);
+        assert!(!d.message.contains('@'), "{}", d.message);
+        let span = d.span.clone().expect("a span");
+        assert_eq!(&src[span], "L = 10 (2)");
+    }
+}
+
+/// A step length other than 1 is a uniform scale too: pfg writes its steps
+/// 1 long, exactly.
+#[test]
+fn a_step_length_is_a_uniform_scale_for_pfg() {
+    let c = compile("k.l", "angle factor: 4\naxiom: F+F-F\n");
+    let mut sys = c.system.clone().expect("compiles");
+    sys.settings.step = 10.0;
+    let t = driver::translate(
+        &c,
+        &sys,
+        &Request {
+            target: target("pfg"),
+            lossy: false,
+            steps: None,
+        },
+    );
+    assert!(t.is_exact(), "{:?}", t.diagnostics);
+    assert!(t
+        .mapping
+        .iter()
+        .any(|m| m.construct == "the step length 10"));
 }

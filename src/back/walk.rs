@@ -342,6 +342,17 @@ pub fn no_length_factor(e: &mut Emitter<'_>, sym: &Sym, x: f64, why: &str) -> St
     if x == 1.0 {
         return String::new();
     }
+    // A factor made for an STL source's stem levels is told as the STL
+    // file wrote it: one problem for all its levels.
+    if let Some(line) = e.written.get(&sym.id).cloned() {
+        return dropped(
+            e,
+            sym,
+            Kind::Length,
+            format!("the stem lengths `{line}` differ from level to level: {why}"),
+            "every stem is drawn the same length",
+        );
+    }
     dropped(
         e,
         sym,
