@@ -223,7 +223,7 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
         let t = match turns(sys, op) {
             Some(Turns::Fixed(t)) => t,
             Some(Turns::Random(t)) => {
-                let middle = if how.middle_in_degrees {
+                let middle = if how.middle_in_degrees && !t.is_empty() {
                     let mid: Vec<String> = t
                         .iter()
                         .map(|x| crate::ir::number::readable(x.1.to_degrees()))
