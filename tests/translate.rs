@@ -932,3 +932,40 @@ fn a_source_too_large_to_compare_is_skipped_with_a_note() {
         "{notes:?}"
     );
 }
+
+/// A LinF axiom that starts with a length factor scales the whole picture:
+/// pfg says the same without it.
+#[test]
+fn a_length_factor_starting_the_axiom_is_a_uniform_scale() {
+    let src = "lines f\nangles (0, pi/2)\naxiom 10@ f + f\nrules\n  f = f - f\n";
+    let c = compile("s.linf", src);
+    let t = translate(&c, target("pfg"), false);
+    assert!(t.is_exact(), "{:?}", t.diagnostics);
+    let text = t.text.unwrap();
+    let out = compile("s.l", &text);
+    same_drawing(
+        &geometry(c.system.as_ref().unwrap(), 0),
+        &geometry(out.system.as_ref().unwrap(), 0),
+    )
+    .unwrap();
+    // Elsewhere a factor changes the picture's proportions: still refused.
+    let c = compile("t.linf", "lines f\nangles (0, pi/2)\naxiom f + 10@ f\n");
+    let t = translate(&c, target("pfg"), false);
+    assert!(t.diagnostics.iter().any(|d| d.code.0 == "E0607"));
+}
+
+/// An interval angle is reported with its middle in degrees only when it
+/// has one to give.
+#[test]
+fn interval_messages_have_no_empty_degrees() {
+    let entry = ENTRIES
+        .iter()
+        .find(|e| e.name == "linf/fig12-trees")
+        .unwrap();
+    let c = compile("t.linf", entry.text);
+    let t = translate(&c, target("pfg"), true);
+    for d in t.diagnostics.iter() {
+        let all = format!("{} {:?}", d.message, d.help);
+        assert!(!all.contains("( degrees)"), "{all}");
+    }
+}

@@ -620,7 +620,23 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
         plain.colours.clear();
         plain.settings.colour = 0;
     }
+    drop_leading_scale(&mut plain);
     (plain, problems)
+}
+
+/// Drops the length factors (LinF `10@ f`) that start the axiom and that
+/// no production rewrites: they scale the whole picture, and every picture
+/// is fitted to its frame, so without them it is the same picture.
+fn drop_leading_scale(sys: &mut System) {
+    let rewritten: HashSet<SymbolId> = (sys.productions.iter())
+        .flat_map(|p| p.predecessor.iter().copied())
+        .collect();
+    let uniform = |s: &SymbolId| {
+        matches!(sys.op(*s), Some(TurtleOp::ScaleLength(x)) if x > 0.0 && x.is_finite())
+            && !rewritten.contains(s)
+    };
+    let leading = sys.axiom.0.iter().take_while(|s| uniform(s)).count();
+    sys.axiom.0.drain(..leading);
 }
 
 /// The first line of `src` that starts with the word `word` (followed by
