@@ -859,6 +859,12 @@ fn a_step_length_is_a_uniform_scale_for_pfg() {
         .any(|m| m.construct == "the step length 10"));
 }
 
+/// The stdlib entry `name`, compiled as a file named `file`.
+fn std_entry(name: &str, file: &str) -> Compiled {
+    let entry = ENTRIES.iter().find(|e| e.name == name).expect("an entry");
+    compile(file, entry.text)
+}
+
 /// The segments `c`'s system draws, and those of `text` read as `to`.
 fn segment_counts(c: &Compiled, text: &str, to: Target) -> (usize, usize) {
     let out = compile(&format!("out.{}", ext(to)), text);
@@ -872,11 +878,7 @@ fn segment_counts(c: &Compiled, text: &str, to: Target) -> (usize, usize) {
 /// one warning with both counts.
 #[test]
 fn a_lossy_translation_that_draws_another_picture_says_so_with_the_figures() {
-    let entry = ENTRIES
-        .iter()
-        .find(|e| e.name == "hogeweg-hesper-a")
-        .unwrap();
-    let c = compile("a.l", entry.text);
+    let c = std_entry("hogeweg-hesper-a", "a.l");
     let t = translate(&c, target("linf"), true);
     let text = t.text.as_deref().expect("written with --lossy");
     let (source, translated) = segment_counts(&c, text, target("linf"));
@@ -898,8 +900,7 @@ fn a_lossy_translation_that_draws_another_picture_says_so_with_the_figures() {
 /// adds no such warning; nor does a translation without `--lossy`.
 #[test]
 fn a_lossy_translation_of_the_same_segments_gets_no_picture_warning() {
-    let entry = ENTRIES.iter().find(|e| e.name == "fibonacci-bush").unwrap();
-    let c = compile("b.l", entry.text);
+    let c = std_entry("fibonacci-bush", "b.l");
     let t = translate(&c, target("linf"), true);
     let text = t.text.as_deref().expect("written with --lossy");
     assert!(!t.diagnostics.is_empty());
@@ -958,11 +959,7 @@ fn a_length_factor_starting_the_axiom_is_a_uniform_scale() {
 /// has one to give.
 #[test]
 fn interval_messages_have_no_empty_degrees() {
-    let entry = ENTRIES
-        .iter()
-        .find(|e| e.name == "linf/fig12-trees")
-        .unwrap();
-    let c = compile("t.linf", entry.text);
+    let c = std_entry("linf/fig12-trees", "t.linf");
     let t = translate(&c, target("pfg"), true);
     for d in t.diagnostics.iter() {
         let all = format!("{} {:?}", d.message, d.help);
