@@ -14,12 +14,13 @@
 //!   it every term is expanded: an Outline Description's grown tree comes
 //!   out as its explicit tree (or, when pfg's alphabet is too small for
 //!   the distinct terms, the axiom is that tree, with no productions);
-//! * stem levels become length factors: the axiom starts with the seed's
-//!   length (`L`), each term's production with the ratio of its level's
-//!   length to its parent's, and a seed term followed by more of the seed
-//!   is followed by the inverse ratio (a branch's `]` restores the length
-//!   by itself). Stem broadness has no equivalent: unless every stem is 1
-//!   wide, that is reported, as is a layout.
+//! * stem levels become length factors: the seed's length (`L`) is the
+//!   unit (a uniform scale, which fitting the picture undoes), each term's
+//!   production starts with the ratio of its level's length to its
+//!   parent's, and a seed term followed by more of the seed is followed by
+//!   the inverse ratio (a branch's `]` restores the length by itself).
+//!   Stem broadness has no equivalent: unless every stem is 1 wide, that
+//!   is reported, as is a layout.
 
 use super::{Kind, Problem};
 use crate::ir::{BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word};
@@ -239,7 +240,14 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         })
         .max()
         .unwrap_or(0);
-    let (lengths, _) = Structure::per_level(st.stems.length.0, st.stems.length.1, max_depth);
+    let (mut lengths, _) = Structure::per_level(st.stems.length.0, st.stems.length.1, max_depth);
+    // Every picture is fitted to its frame: only the ratios of the levels'
+    // lengths change it, so the seed's length is the unit and a constant
+    // `L` needs no factor at all.
+    let l0 = lengths.first().copied().unwrap_or(1.0);
+    if l0 > 0.0 && l0.is_finite() {
+        lengths.iter_mut().for_each(|l| *l /= l0);
+    }
     let (widths, _) = Structure::per_level(st.stems.broadness.0, st.stems.broadness.1, max_depth);
     if widths
         .iter()
@@ -265,8 +273,6 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         explicit,
     };
     let mut axiom = Vec::new();
-    let l0 = b.length(0);
-    axiom.extend(b.scale(l0));
     for (i, item) in st.seed.iter().enumerate() {
         match item {
             SeedItem::Word(w) => axiom.extend(w.0.iter().copied().filter(|s| !silent(s))),

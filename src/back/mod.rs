@@ -221,6 +221,10 @@ pub struct Emitter<'a> {
     seen: HashSet<(Kind, String)>,
     pub mapping: Vec<Mapped>,
     pub names: Vec<(String, String)>,
+    /// How the source writes what a symbol made for the translation
+    /// stands for (an STL length factor: the `L = …` line), so that
+    /// messages about it speak the source's syntax.
+    pub written: HashMap<SymbolId, String>,
 }
 
 impl<'a> Emitter<'a> {
@@ -242,6 +246,7 @@ impl<'a> Emitter<'a> {
             seen: HashSet::new(),
             mapping: Vec::new(),
             names: Vec::new(),
+            written: HashMap::new(),
         }
     }
 
@@ -460,22 +465,28 @@ fn translate_structure(sys: &System, source: &str, origin: &Origin, req: &Reques
     // Where things are: STL keeps no spans past lowering, so they
     // are found by the lines that define them.
     let mut where_ = SpanTable::default();
+    let mut written = HashMap::new();
     for (id, info) in flat.symbols.iter() {
-        let line = match flat.op(id) {
-            Some(TurtleOp::ScaleLength(_)) => line_starting(source, "L"),
-            _ => info
-                .name
+        let factor = matches!(flat.op(id), Some(TurtleOp::ScaleLength(_)));
+        let line = if factor {
+            line_starting(source, "L")
+        } else {
+            info.name
                 .split('_')
                 .next()
-                .and_then(|rule| line_starting(source, rule)),
+                .and_then(|rule| line_starting(source, rule))
         };
         if let Some(span) = line {
+            if let (true, Some(text)) = (factor, source.get(span.clone())) {
+                written.insert(id, text.to_string());
+            }
             where_.symbols.insert(id, span);
         }
     }
     let mut req2 = req.clone();
     req2.steps = flat.settings.steps;
     let mut e = Emitter::new(&flat, &where_, source, origin, &req2);
+    e.written = written;
     for p in problems {
         let span = p.span.or_else(|| match p.kind {
             Kind::Layout => line_starting(source, "LAYOUT"),
@@ -609,7 +620,23 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
         plain.colours.clear();
         plain.settings.colour = 0;
     }
+    drop_leading_scale(&mut plain);
     (plain, problems)
+}
+
+/// Drops the length factors (LinF `10@ f`) that start the axiom and that
+/// no production rewrites: they scale the whole picture, and every picture
+/// is fitted to its frame, so without them it is the same picture.
+fn drop_leading_scale(sys: &mut System) {
+    let rewritten: HashSet<SymbolId> = (sys.productions.iter())
+        .flat_map(|p| p.predecessor.iter().copied())
+        .collect();
+    let uniform = |s: &SymbolId| {
+        matches!(sys.op(*s), Some(TurtleOp::ScaleLength(x)) if x > 0.0 && x.is_finite())
+            && !rewritten.contains(s)
+    };
+    let leading = sys.axiom.0.iter().take_while(|s| uniform(s)).count();
+    sys.axiom.0.drain(..leading);
 }
 
 /// The first line of `src` that starts with the word `word` (followed by

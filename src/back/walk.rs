@@ -223,7 +223,7 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
         let t = match turns(sys, op) {
             Some(Turns::Fixed(t)) => t,
             Some(Turns::Random(t)) => {
-                let middle = if how.middle_in_degrees {
+                let middle = if how.middle_in_degrees && !t.is_empty() {
                     let mid: Vec<String> = t
                         .iter()
                         .map(|x| crate::ir::number::readable(x.1.to_degrees()))
@@ -341,6 +341,17 @@ pub fn no_widths(e: &mut Emitter<'_>, sym: &Sym, why: &str) -> String {
 pub fn no_length_factor(e: &mut Emitter<'_>, sym: &Sym, x: f64, why: &str) -> String {
     if x == 1.0 {
         return String::new();
+    }
+    // A factor made for an STL source's stem levels is told as the STL
+    // file wrote it: one problem for all its levels.
+    if let Some(line) = e.written.get(&sym.id).cloned() {
+        return dropped(
+            e,
+            sym,
+            Kind::Length,
+            format!("the stem lengths `{line}` differ from level to level: {why}"),
+            "every stem is drawn the same length",
+        );
     }
     dropped(
         e,

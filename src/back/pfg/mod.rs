@@ -218,15 +218,23 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             .unwrap_or(Spelling::Chars(String::new()));
         sp.spell.insert(s, base);
     }
-    if sys.settings.step != 1.0 {
+    // pfg's steps are 1 long; every picture is fitted to its frame, so
+    // another positive step length is the same picture (a negative one
+    // turns it round, and none draws nothing).
+    let step = sys.settings.step;
+    let what = format!("the step length {}", number(step));
+    if step > 0.0 && step != 1.0 {
+        e.exact(
+            what,
+            None,
+            "steps 1 long: the same picture, fitted to the frame",
+        );
+    } else if step <= 0.0 {
         e.problem(
             Kind::Length,
             None,
-            format!(
-                "the step length {}: pfg's steps are 1 long",
-                number(sys.settings.step)
-            ),
-            "steps are 1 long: the picture is the same, scaled",
+            format!("{what}: pfg's steps are 1 long"),
+            "steps are 1 long",
         );
     }
     let mut lines: Vec<String> = Vec::new();

@@ -123,6 +123,20 @@ symbols than pfg has characters, the translation is not written.
 
 Translate with fewer steps (`-n`).";
 
+    TR_PICTURE_DIFFERS = "W0614", "the approximated translation draws another picture",
+"After a `--lossy` translation, graftal draws the source and the
+translation (with the same steps, within small limits) and compares the
+number of segments and the proportions of their bounds. When they differ
+much, the approximations together changed the picture, not just its
+details: the warning gives both sets of figures.
+
+Example:
+    graftal translate std:hogeweg-hesper-a --to linf --lossy
+
+Fig. 3.11a draws 2501 segments at 30 steps; without its contexts, LinF
+draws 3. A source too large to draw quickly is not compared (a note
+says so).";
+
     TR_CONTEXT_APPROX = "W0601", "context dropped",
 "`--lossy` dropped the context of a production that the target cannot
 express (see E0601): the production applies wherever its predecessor
