@@ -240,6 +240,18 @@ pub fn compile(file: SourceFile) -> Compiled {
 /// that entry; of several, every entry is checked and
 /// [`Compiled::needs_entry`] holds.
 pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
+    compile_as(file, entry, None)
+}
+
+/// [`compile_entry`] in the notation `notation` (`--notation`), else in
+/// the one [`front::detect`] chooses; a file that reads badly in the
+/// chosen one ([`front::reads_badly`]) and cleanly in another says so on
+/// its first error.
+pub fn compile_as(
+    file: SourceFile,
+    entry: Option<&str>,
+    notation: Option<&'static dyn Front>,
+) -> Compiled {
     let mut diags = Diagnostics::default();
     if let Some(refused) = refuse_unread(&file) {
         // Not read, so not told apart either: the first front end stands
@@ -255,7 +267,19 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
         };
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
-    let front = front::detect(&ext, &file.text);
+    let front = notation.unwrap_or_else(|| front::detect(&ext, &file.text));
+    if file.text.trim().is_empty() {
+        // Every notation would say something different about nothing.
+        diags.push(empty_file(&file));
+        return Compiled {
+            file,
+            system: None,
+            spans: SpanTable::default(),
+            diagnostics: diags,
+            front,
+            library: None,
+        };
+    }
     let read = front.read(&file, entry, &mut diags);
     if entry.is_some() && read.library.is_none() {
         diags.push(
@@ -279,6 +303,14 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
         );
     }
     diags.sort();
+    if notation.is_none() && front::reads_badly(&file, &diags) {
+        if let Some(other) = front::reads_cleanly_as(&file, front) {
+            let note = front::other_notation_note(front, &ext, other);
+            if let Some(first) = diags.0.iter_mut().find(|d| d.is_error()) {
+                first.notes.push(note);
+            }
+        }
+    }
     let (system, spans) = match read.lowered {
         Some(l) => (Some(l.system), l.spans),
         None => (None, SpanTable::default()),
@@ -301,6 +333,16 @@ pub fn notations() -> String {
         .map(|f| format!("{} .{}", f.title(), f.extensions().join(" .")))
         .collect();
     each.join(", ")
+}
+
+/// The one diagnostic for a file of nothing but white space, the same
+/// in every notation.
+fn empty_file(file: &SourceFile) -> Diagnostic {
+    Diagnostic::global(
+        codes::EMPTY_FILE,
+        format!("`{}` is empty: there is no L-system in it", file.name),
+    )
+    .with_help("write an axiom and productions; `graftal list` names examples to start from")
 }
 
 /// The one diagnostic for a file no front end reads: larger than

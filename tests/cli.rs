@@ -575,3 +575,75 @@ fn rendering_a_schema_or_a_kolam_says_why_or_draws() {
     ]);
     assert!(o.stderr.contains("0 steps"), "{}", o.stderr);
 }
+
+/// Every argument and subcommand of the command line says what it is for
+/// in `--help`.
+#[test]
+fn every_argument_and_subcommand_has_help() {
+    use clap::CommandFactory;
+    fn walk(cmd: &clap::Command, path: &str, missing: &mut Vec<String>) {
+        for arg in cmd.get_arguments() {
+            if arg.get_help().is_none() && arg.get_long_help().is_none() {
+                missing.push(format!("{path} {}", arg.get_id()));
+            }
+        }
+        for sub in cmd.get_subcommands() {
+            let path = format!("{path} {}", sub.get_name());
+            if sub.get_about().is_none() && sub.get_long_about().is_none() {
+                missing.push(path.clone());
+            }
+            walk(sub, &path, missing);
+        }
+    }
+    let mut cmd = graftal::cli::Cli::command();
+    // Help and version arguments are added when the command is built.
+    cmd.build();
+    let mut missing = Vec::new();
+    walk(&cmd, "graftal", &mut missing);
+    assert!(missing.is_empty(), "without help: {missing:?}");
+}
+
+/// The top-level help names every notation and its extensions.
+#[test]
+fn top_level_help_names_the_notations() {
+    let o = graftal(&["--help"]);
+    assert_eq!(o.status, 0);
+    for name in ["pfg .l", "LinF .linf", "STL .stl", "cpfg .l", "Fractint .l"] {
+        assert!(o.stdout.contains(name), "{name}: {}", o.stdout);
+    }
+    assert!(o.stdout.contains("--notation"), "{}", o.stdout);
+}
+
+/// `graftal explain` without a code lists every code with its title.
+#[test]
+fn explain_without_a_code_lists_the_codes() {
+    let o = graftal(&["explain"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let listed: Vec<&str> = o
+        .stdout
+        .lines()
+        .filter_map(|l| l.split_once("  ").map(|(code, _)| code))
+        .collect();
+    let all: Vec<&str> = graftal::diagnostics::codes::all()
+        .map(|i| i.code.0)
+        .collect();
+    assert_eq!(listed, all);
+    assert!(o.stdout.contains("E0014  empty file\n"), "{}", o.stdout);
+    assert!(o
+        .stdout
+        .contains("W0808  malformed view-file value ignored\n"));
+}
+
+/// `check` of a valid file says which notation it read, and how much.
+#[test]
+fn check_says_what_it_read() {
+    let o = graftal(&["check", "std:koch-island"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(
+        o.stdout.ends_with(": dialect: pfg, 1 production\n"),
+        "{}",
+        o.stdout
+    );
+    let o = graftal(&["check", "std:linf/fig06-plant"]);
+    assert!(o.stdout.contains(": dialect: LinF, "), "{}", o.stdout);
+}

@@ -16,7 +16,9 @@ use std::io::{IsTerminal, Write};
 #[command(
     name = "graftal",
     version,
-    about = "Read, check, derive, draw, translate and explain L-systems"
+    about = "Read, check, derive, draw, translate and explain L-systems",
+    after_help = "FILE is a path or std:NAME (`graftal list`). The notation comes from the \
+extension, and for `.l` (pfg, cpfg, Fractint) from the content; `--notation` overrides it."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -25,9 +27,16 @@ pub struct Cli {
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 enum OutputFormat {
+    /// For people: ariadne's snippets, in colour on a terminal.
     #[default]
     Human,
+    /// One JSON object per line.
     Json,
+}
+
+/// Notations graftal reads: the front ends' names.
+fn notations() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(crate::front::FRONTS.iter().map(|f| f.name()))
 }
 
 /// Notations `translate` writes: the emitters' names.
@@ -35,14 +44,25 @@ fn targets() -> clap::builder::PossibleValuesParser {
     clap::builder::PossibleValuesParser::new(crate::back::BACKS.iter().map(|b| b.name()))
 }
 
+/// How a file is read: which entry of a library, in which notation.
+#[derive(clap::Args, Debug, Clone)]
+struct Reading {
+    /// The entry of a Fractint library (case-insensitive, as in Fractint).
+    #[arg(long)]
+    entry: Option<String>,
+    /// Read the file in this notation, whatever its extension or content
+    /// [default: by the extension, and by content for `.l`].
+    #[arg(long, value_parser = notations())]
+    notation: Option<String>,
+}
+
 #[derive(clap::Args, Debug, Clone)]
 struct DeriveArgs {
     /// A path, or std:NAME for a standard-library system; FILE:NAME
     /// chooses an entry of a Fractint library.
     file: String,
-    /// The entry of a Fractint library (case-insensitive, as in Fractint).
-    #[arg(long)]
-    entry: Option<String>,
+    #[command(flatten)]
+    reading: Reading,
     /// Derivation steps (default: the file's derivation length, else 0;
     /// Fractint's order 2 for Fractint entries).
     #[arg(short = 'n', long = "steps")]
@@ -63,9 +83,8 @@ struct TranslateArgs {
     /// A path, or std:NAME for a standard-library system; FILE:NAME
     /// chooses an entry of a Fractint library.
     file: String,
-    /// The entry of a Fractint library (case-insensitive, as in Fractint).
-    #[arg(long)]
-    entry: Option<String>,
+    #[command(flatten)]
+    reading: Reading,
     /// The target notation.
     #[arg(long, value_parser = targets())]
     to: String,
@@ -162,11 +181,13 @@ enum Command {
     /// entries are all checked and listed on stdout (FILE:NAME or --entry
     /// checks one).
     Check {
+        /// Files to check: paths, or std:NAME; FILE:NAME checks one entry
+        /// of a Fractint library.
         #[arg(required = true)]
         files: Vec<String>,
-        /// Check only this entry of each Fractint library.
-        #[arg(long)]
-        entry: Option<String>,
+        #[command(flatten)]
+        reading: Reading,
+        /// How diagnostics are printed.
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
     },
@@ -180,16 +201,24 @@ enum Command {
     Translate(TranslateArgs),
     /// Count symbols, segments, polygons; bounding box and branch depth.
     Stats(DeriveArgs),
-    /// Explain a diagnostic code, e.g. `graftal explain E0004`.
-    Explain { code: String },
+    /// Explain a diagnostic code, e.g. `graftal explain E0004`; without a
+    /// code, list every code with its title.
+    Explain {
+        /// The code, e.g. E0004 or W0001.
+        code: Option<String>,
+    },
     /// List the standard library (`std:NAME`): each entry's figure and
     /// whether it draws at its defaults or is a schema (a string example).
     List {
+        /// `human` (a line per entry) or `json` (one document).
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
     },
     /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
-    Show { name: String },
+    Show {
+        /// The entry, `std:NAME` or `NAME`.
+        name: String,
+    },
 }
 
 /// The largest picture side: 8192² pixels take 256 MB.
@@ -257,14 +286,15 @@ where
     match cli.command {
         Command::Check {
             files,
-            entry,
+            reading,
             format,
-        } => check(io, &files, entry.as_deref(), format),
+        } => check(io, &files, &reading, format),
         Command::Derive(a) => derive(io, &a),
         Command::Stats(a) => stats(io, &a),
         Command::Render(a) => render(io, &a),
         Command::Translate(a) => translate(io, &a),
-        Command::Explain { code } => explain(io, &code),
+        Command::Explain { code: Some(code) } => explain(io, &code),
+        Command::Explain { code: None } => explain_all(io),
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
     }
@@ -285,14 +315,16 @@ fn usage(io: &mut Io<'_>, e: &clap::Error) -> i32 {
 }
 
 /// `graftal check`: each file's diagnostics, and its listing.
-fn check(io: &mut Io<'_>, files: &[String], entry: Option<&str>, format: OutputFormat) -> i32 {
+fn check(io: &mut Io<'_>, files: &[String], reading: &Reading, format: OutputFormat) -> i32 {
+    let notation = reading.notation.as_deref().and_then(crate::front::by_name);
     let mut status = 0;
     let mut listings = Vec::new();
     for f in files {
         let (path, named) = driver::split_entry(f);
         match driver::load(&path) {
             Ok(file) => {
-                let c = driver::compile_entry(file, entry.or(named.as_deref()));
+                let entry = reading.entry.as_deref().or(named.as_deref());
+                let c = driver::compile_as(file, entry, notation);
                 report(io, &c, &c.diagnostics.0, format);
                 match format {
                     OutputFormat::Human => list_entries(io, &c),
@@ -494,6 +526,18 @@ fn explain(io: &mut Io<'_>, code: &str) -> i32 {
     0
 }
 
+/// `graftal explain` without a code: every code and its title, a line each.
+fn explain_all(io: &mut Io<'_>) -> i32 {
+    for info in diagnostics::codes::all() {
+        let _ = writeln!(io.stdout, "{}  {}", info.code, info.title);
+    }
+    let _ = writeln!(
+        io.stdout,
+        "\n`graftal explain CODE` explains one (E: errors, W: warnings)."
+    );
+    0
+}
+
 /// `graftal list`: the standard library's names, figures and kinds.
 fn list(io: &mut Io<'_>, format: OutputFormat) -> i32 {
     let text = match format {
@@ -523,7 +567,7 @@ fn show(io: &mut Io<'_>, name: &str) -> i32 {
 /// the target cannot express, without `--lossy`) mean exit status 1 and
 /// nothing written.
 fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
-    let Some(c) = load_and_compile(io, &a.file, a.entry.as_deref(), a.format) else {
+    let Some(c) = load_and_compile(io, &a.file, &a.reading, a.format) else {
         return 2;
     };
     let Some(sys) = &c.system else {
@@ -605,7 +649,7 @@ fn with_system(
     ) -> Result<i32, Vec<Diagnostic>>,
 ) -> i32 {
     let t = std::time::Instant::now();
-    let Some(c) = load_and_compile(io, &a.file, a.entry.as_deref(), a.format) else {
+    let Some(c) = load_and_compile(io, &a.file, &a.reading, a.format) else {
         return 2;
     };
     let parse_seconds = t.elapsed().as_secs_f64();
@@ -634,7 +678,7 @@ fn with_system(
 fn load_and_compile(
     io: &mut Io<'_>,
     spec: &str,
-    entry: Option<&str>,
+    reading: &Reading,
     format: OutputFormat,
 ) -> Option<Compiled> {
     let (path, named) = driver::split_entry(spec);
@@ -645,7 +689,9 @@ fn load_and_compile(
             return None;
         }
     };
-    let c = driver::compile_entry(file, entry.or(named.as_deref()));
+    let notation = reading.notation.as_deref().and_then(crate::front::by_name);
+    let entry = reading.entry.as_deref().or(named.as_deref());
+    let c = driver::compile_as(file, entry, notation);
     report(io, &c, &c.diagnostics.0, format);
     if c.needs_entry() {
         report(io, &c, &[driver::choose_entry(&c)], format);

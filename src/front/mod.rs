@@ -90,9 +90,16 @@ pub trait Front: Sync {
         None
     }
     /// What `check` says about a file of this notation beyond its
-    /// diagnostics (after `FILE: dialect: `), if anything.
-    fn describe(&self, _sys: Option<&System>) -> Option<String> {
-        None
+    /// diagnostics (after `FILE: dialect: `), if anything: by default,
+    /// for a file read without errors, the notation and how many
+    /// productions it has.
+    fn describe(&self, sys: Option<&System>) -> Option<String> {
+        let n = sys?.productions.len();
+        Some(format!(
+            "{}, {n} production{}",
+            self.title(),
+            if n == 1 { "" } else { "s" }
+        ))
     }
     /// The turn divided into whole angle increments as the source states
     /// it (pfg's `angle factor`), which a translation keeps when it fits.
@@ -169,6 +176,74 @@ pub fn detect(ext: &str, text: &str) -> &'static dyn Front {
         }
     }
     best
+}
+
+/// Whether a reading of `file` failed badly enough that the file is more
+/// likely in another notation: it has errors, and their spans cover at
+/// least half of the file's non-blank lines (a LinF file read as pfg: 20
+/// errors on its 22 lines; an STL file read as LinF: one error over 5 of
+/// its 8 lines; a pfg file with a typo: one error on one line). An error
+/// with no place (nothing found at all) counts as covering every line.
+pub fn reads_badly(file: &SourceFile, diags: &Diagnostics) -> bool {
+    if !diags.has_errors() {
+        return false;
+    }
+    let lines: Vec<&str> = file.text.split('\n').collect();
+    let mut covered = vec![false; lines.len()];
+    for d in diags.iter().filter(|d| d.is_error()) {
+        let Some(span) = &d.span else { return true };
+        let first = file.line_col(span.start).0;
+        let last = file.line_col(span.end.max(span.start + 1) - 1).0.max(first);
+        for c in covered.iter_mut().take(last).skip(first - 1) {
+            *c = true;
+        }
+    }
+    let non_blank = lines.iter().filter(|l| !l.trim().is_empty()).count();
+    let bad = lines
+        .iter()
+        .zip(&covered)
+        .filter(|(l, &c)| c && !l.trim().is_empty())
+        .count();
+    2 * bad >= non_blank
+}
+
+/// The first front end other than `first` that reads `file` cleanly: no
+/// errors, and an axiom or a production (or, for a library, an entry).
+/// Tried in [`FRONTS`] order, each on its own diagnostics.
+pub fn reads_cleanly_as(file: &SourceFile, first: &dyn Front) -> Option<&'static dyn Front> {
+    FRONTS.iter().copied().find(|f| {
+        if f.name() == first.name() {
+            return false;
+        }
+        let mut d = Diagnostics::default();
+        let read = f.read(file, None, &mut d);
+        let something = read.library.as_ref().is_some_and(|l| !l.entries.is_empty())
+            || read
+                .lowered
+                .as_ref()
+                .is_some_and(|l| !l.system.productions.is_empty() || !l.system.axiom.is_empty());
+        !d.has_errors() && something
+    })
+}
+
+/// What to tell about a file read as `first` (by its extension `ext`,
+/// without the dot) that reads cleanly as `other`: which notation was
+/// assumed, and how to read it as the other (renaming it only when that
+/// gives the other notation its own extension).
+pub fn other_notation_note(first: &dyn Front, ext: &str, other: &dyn Front) -> String {
+    let own_ext = other
+        .extensions()
+        .iter()
+        .find(|e| FRONTS.iter().filter(|f| f.extensions().contains(e)).count() == 1);
+    let how = match own_ext {
+        Some(e) if *e != ext => format!("rename it `.{e}` or pass `--notation {}`", other.name()),
+        _ => format!("pass `--notation {}`", other.name()),
+    };
+    format!(
+        "read as {} (from `.{ext}`); the file reads cleanly as {}: {how}",
+        first.title(),
+        other.title()
+    )
 }
 
 /// The front end registered as `name`.

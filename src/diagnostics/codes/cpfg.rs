@@ -142,19 +142,19 @@ Example:
     #error only 0, 1 or 2 leaves are modelled
     #endif";
 
-    CPFG_VIEW_VALUE = "E0812", "malformed view-file value",
-"A view-file command's value is not of the kind it takes: numbers for
-`angle factor:`, `initial line width:`, `scale factor:`, three numbers
-separated by commas for `viewpoint:`, `on`/`off` for flags, a name and a
-number for `surface:`. The command is ignored and its default kept.
+    CPFG_VIEW_BLANK = "E0812", "view-file value left as `?`",
+"A view-file command's value is `?`: the object is an exercise (the vlab
+course objects leave `?` where the student writes a value), and its
+picture depends on the blank. Fill it in.
 
 Example:
-    angle factor: sixteen
-    viewpoint: 0 0 1
+    angle increment: ?
 
 Write:
-    angle factor: 16
-    viewpoint: 0,0,1";
+    angle increment: 18
+
+(A value of the wrong kind, rather than a blank, is warning W0808: the
+line is ignored and its default kept.)";
 
     CPFG_FUNCTION_FILE = "E0813", "malformed function file",
 "A function file (`.func`, written by vlab's funcedit) or function set
@@ -297,4 +297,20 @@ Example:
     background scene: scene.dat
 
 To draw the scene's objects, model them in the L-system itself.";
+
+    CPFG_VIEW_VALUE = "W0808", "malformed view-file value ignored",
+"A view-file command's value is not of the kind it takes: numbers for
+`angle factor:`, `initial line width:`, `scale factor:`, three numbers
+separated by commas for `viewpoint:`, `on`/`off` for flags, a name and a
+number for `surface:`. The line is ignored and the command's default kept,
+as cpfg does, so this is a warning: the picture may differ from the one
+intended.
+
+Example:
+    angle factor: sixteen
+    viewpoint: 0 0 1
+
+Write:
+    angle factor: 16
+    viewpoint: 0,0,1";
 }

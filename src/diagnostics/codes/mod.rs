@@ -105,6 +105,13 @@ once instead of reporting every byte.
 Example:
     graftal check plant.png     <- give the `.l`, `.linf` or `.stl` file";
 
+    EMPTY_FILE = "E0014", "empty file",
+"The file holds nothing but white space (or nothing at all), so there is
+no L-system to read. The same error is given in every notation.
+
+Example:
+    graftal check new.l      <- saved before anything was written in it";
+
     NESTED_TOO_DEEPLY = "E0013", "nested too deeply",
 "graftal follows nesting (parentheses in expressions, brackets and braces,
 branches of a structure, the levels of a derivation an emitter walks) to a

@@ -327,7 +327,7 @@ impl Command<'_> {
         if self.value.trim() == "?" {
             return d.push(
                 Diagnostic::at(
-                    codes::CPFG_VIEW_VALUE,
+                    codes::CPFG_VIEW_BLANK,
                     self.value_span.clone(),
                     format!(
                         "`{}:` is left as `?`: the object is an exercise with blanks to fill in",
@@ -1121,7 +1121,7 @@ mod tests {
     fn unknown_misspelt_and_unused() {
         let src = "angel factor: 16\ntappered lines: off\nfont: V: 0 1 0\n// scale factor: 3\nangle factor: x\n";
         let (v, d) = read_view(src);
-        assert_eq!(codes_of(&d), ["W0804", "W0805", "E0812"]);
+        assert_eq!(codes_of(&d), ["W0804", "W0805", "W0808"]);
         assert_eq!(&src[d.0[0].span.clone().unwrap()], "angel factor");
         assert_eq!(
             d.0[0].help.as_deref(),
@@ -1143,7 +1143,7 @@ mod tests {
         let (v, _) = read_view("render mode: shaded\nshade mode: 7\n");
         assert_eq!(v.render_mode, RenderMode::Wireframe);
         let (_, d) = read_view("shade mode: 9\n");
-        assert_eq!(codes_of(&d), ["E0812"]);
+        assert_eq!(codes_of(&d), ["W0808"]);
         let src = "font: x\nbackground scene: scene.dat\n";
         let (_, d) = read_view(src);
         assert_eq!(codes_of(&d), ["W0807"]);
@@ -1171,7 +1171,7 @@ mod tests {
             (4.0, 0.3, 0.6)
         );
         let (_, d) = read_view("light: Q: 1\n");
-        assert_eq!(codes_of(&d), ["E0812"]);
+        assert_eq!(codes_of(&d), ["W0808"]);
     }
 
     /// The vlab exercises leave `?` for the student: one error says so.
