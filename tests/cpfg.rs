@@ -283,7 +283,7 @@ fn run_object(dir: &Path) -> Outcome {
                 .iter()
                 .filter(|d| d.is_error())
                 // A problem in a file beside the `.l` names that file.
-                .all(|d| d.span.is_some() || d.message.contains(", line ")),
+                .all(|d| d.span.is_some() || d.side.is_some()),
             "{}: an error without a span: {errors:?}",
             dir.display()
         );
