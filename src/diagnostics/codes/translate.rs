@@ -123,6 +123,13 @@ symbols than pfg has characters, the translation is not written.
 
 Translate with fewer steps (`-n`).";
 
+    TR_PARAMETRIC = "E0614", "a parametric cpfg L-system cannot be translated",
+"Translation rewrites a system into another notation's productions.
+A cpfg L-system whose modules carry parameters computes with them at
+each step (expressions, conditions, variables), which no other notation
+graftal writes can express: the translation is not written. pfg, LinF,
+STL and Fractint systems, and cpfg ones without parameters, translate.";
+
     TR_CONTEXT_APPROX = "W0601", "context dropped",
 "`--lossy` dropped the context of a production that the target cannot
 express (see E0601): the production applies wherever its predecessor
