@@ -7,12 +7,13 @@
 //! the replacement characters that stand for invalid UTF-8 are shown
 //! escaped (`\u{7}`), in snippets and in every string.
 
-use super::{codes, Diagnostic, NotKept, Severity};
+use super::{codes, Diagnostic, NotKept, Severity, SideFile};
 use crate::source::SourceFile;
 use ariadne::{Color, Config, IndexType, Label, Report, ReportKind, Source};
 use serde_json::{json, Value};
 use std::borrow::Cow;
 use std::ops::Range;
+use std::sync::Arc;
 
 /// At most this many diagnostics are rendered for people (clang's
 /// `-ferror-limit` is 20 too); the rest are counted, by code, in a last
@@ -53,14 +54,13 @@ pub fn render_human(d: &Diagnostic, file: &SourceFile, colour: bool) -> String {
 /// [`MAX_SHOWN`], then a line that counts the others.
 pub fn render_all(ds: &[Diagnostic], file: &SourceFile, colour: bool) -> String {
     let mut renderer = Renderer::new(file, colour);
+    let mut sides = SideFiles::default();
     let mut out = String::new();
     for d in ds.iter().take(MAX_SHOWN) {
         match &d.side {
-            // A side file is small and has few diagnostics: it is indexed
-            // for each.
-            Some(side) => {
-                let side = SourceFile::new(side.name.clone(), side.text.clone());
-                out.push_str(&Renderer::new(&side, colour).render(d));
+            Some(_) => {
+                let side = sides.file_of(d, file);
+                out.push_str(&Renderer::new(side, colour).render(d));
             }
             None => out.push_str(&renderer.render(d)),
         }
@@ -663,11 +663,37 @@ fn line_windows(file: &SourceFile, line: usize, placed: &[&Placed]) -> Vec<Range
 
 /// One diagnostic as the JSON object of the CLI contract.
 pub fn to_json(d: &Diagnostic, file: &SourceFile) -> Value {
-    let side = d
-        .side
-        .as_ref()
-        .map(|s| SourceFile::new(s.name.clone(), s.text.clone()));
-    let file = side.as_ref().unwrap_or(file);
+    let mut sides = SideFiles::default();
+    json_in(d, sides.file_of(d, file))
+}
+
+/// The side files of diagnostics, indexed once each however many
+/// diagnostics they have (a view file can have one per line).
+#[derive(Default)]
+struct SideFiles {
+    last: Option<(Arc<SideFile>, SourceFile)>,
+}
+
+impl SideFiles {
+    /// The file `d`'s spans point into: its side file, or `file`.
+    fn file_of<'a>(&'a mut self, d: &Diagnostic, file: &'a SourceFile) -> &'a SourceFile {
+        let Some(side) = &d.side else {
+            return file;
+        };
+        if !self
+            .last
+            .as_ref()
+            .is_some_and(|(s, _)| Arc::ptr_eq(s, side))
+        {
+            let indexed = SourceFile::new(side.name.clone(), side.text.clone());
+            self.last = Some((side.clone(), indexed));
+        }
+        self.last.as_ref().map_or(file, |(_, f)| f)
+    }
+}
+
+/// [`to_json`] with `file` the file `d`'s spans point into.
+fn json_in(d: &Diagnostic, file: &SourceFile) -> Value {
     let place = |s: &std::ops::Range<usize>| {
         let (line, column) = file.line_col(s.start);
         (line, column)
@@ -707,8 +733,9 @@ pub fn to_json(d: &Diagnostic, file: &SourceFile) -> Value {
 /// All diagnostics of one file as JSON lines (one object per line).
 pub fn render_json(ds: &[Diagnostic], file: &SourceFile) -> String {
     let mut out = String::new();
+    let mut sides = SideFiles::default();
     for d in ds {
-        push_json_line(&mut out, &to_json(d, file).to_string());
+        push_json_line(&mut out, &json_in(d, sides.file_of(d, file)).to_string());
     }
     out
 }
