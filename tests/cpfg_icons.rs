@@ -367,7 +367,7 @@ const REFUSED: &str = "not read";
 /// graftal's own: work left, each with what is known of the cause. Like
 /// `NOT_COMPARABLE`, each must still miss the thresholds.
 const KNOWN_GAPS: &[(&str, &str)] = &[
-    ("11-CPFG-Sedge", "refused: sub-L-systems are not supported (E0830)"),
+    ("11-CPFG-Sedge", "refused: sub-L-systems are not supported (E0839)"),
     (
         "04-Signaling-10-mycelis-realistic",
         "fewer flower heads open than in cpfg's picture; cause not found",

@@ -196,7 +196,7 @@ fn sub_lsystems_are_one_error_per_file() {
     let o = run_in(&dir, &["check", "sedge.l", "--format", "json"]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert_eq!(err.matches("\"code\":\"E0830\"").count(), 1, "{err}");
+    assert_eq!(err.matches("\"code\":\"E0839\"").count(), 1, "{err}");
     assert!(err.contains("sub-L-systems are not supported"), "{err}");
     assert!(!err.contains("W0825"), "{err}");
 }

@@ -261,3 +261,31 @@ fn each_linf_problem_has_its_code_and_all_errors_come_in_one_run() {
         ]
     );
 }
+
+/// Object productions, sub-L-systems, missing curves and the translation
+/// of a parametric cpfg L-system are different problems, each with its code
+/// and its `graftal explain` text.
+#[test]
+fn cpfg_refusals_have_codes_of_their_own() {
+    let src = "lsystem: 1\nderivation length: 2\naxiom: A(1)\n\
+               A(x) --> ?(1, 2) B(curveX(1, x))\nB(x) -o> A(x)\nendlsystem\n";
+    let c = compile(SourceFile::new("refusals.l", src));
+    let found: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
+    let expected = [
+        codes::CPFG_SUB_LSYSTEM,
+        codes::CPFG_NO_CURVE,
+        codes::CPFG_UNSUPPORTED,
+    ];
+    for code in expected {
+        assert!(found.contains(&code.0), "{code} not in {found:?}");
+    }
+    let mut all: Vec<&str> = expected.iter().map(|c| c.0).collect();
+    all.push(codes::TR_PARAMETRIC.0);
+    all.sort_unstable();
+    all.dedup();
+    assert_eq!(all.len(), 4);
+    for code in all {
+        let info = codes::lookup(code).unwrap();
+        assert!(info.explanation.len() > 100, "{code}");
+    }
+}

@@ -383,3 +383,40 @@ fn frames_stay_orthonormal_through_a_long_random_walk_in_3d() {
         .fold(0.0, f64::max);
     assert!(worst < 1e-12, "step length drifted by {worst:e}");
 }
+
+/// The codes and helps of a LinF file's diagnostics.
+fn linf_diagnostics(src: &str) -> Vec<(&'static str, String)> {
+    let mut d = graftal::diagnostics::Diagnostics::default();
+    graftal::front::linf::read(src, &mut d);
+    d.iter()
+        .map(|d| (d.code.0, d.help.clone().unwrap_or_default()))
+        .collect()
+}
+
+#[test]
+fn a_misspelt_block_keyword_is_one_error_that_suggests_the_keyword() {
+    let found = linf_diagnostics("lines f\nangels (0, pi/2)\naxiom f+f\nrules\nf = f+f\n");
+    assert_eq!(
+        found,
+        vec![("E0419", "did you mean `angles`?".to_string())],
+        "{found:?}"
+    );
+}
+
+#[test]
+fn an_arrow_for_equals_is_reported_once_and_the_next_line_is_read() {
+    let found = linf_diagnostics("lines f\nangles (0, pi/2)\naxiom f\nrules\nf -> f+f\nf = f+g\n");
+    let codes: Vec<&str> = found.iter().map(|(c, _)| *c).collect();
+    // The arrow once; the rule is read (f defined twice); the next line's
+    // own mistake (`g` is no angle) is still found.
+    assert_eq!(codes, vec!["E0005", "W0402", "E0403"], "{found:?}");
+}
+
+#[test]
+fn an_unknown_rotation_suggests_rotation_names_only() {
+    let src = "lines stem leaf\nangles (0, pi/2) tilt = (0, 1)\naxiom stem+laef+tilx\n";
+    let found = linf_diagnostics(src);
+    let helps: Vec<&str> = found.iter().map(|(_, h)| h.as_str()).collect();
+    assert!(!helps.iter().any(|h| h.contains("leaf")), "{found:?}");
+    assert!(helps.contains(&"did you mean `+tilt`?"), "{found:?}");
+}

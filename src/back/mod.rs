@@ -417,7 +417,7 @@ pub fn translate(
         let mut diagnostics = crate::diagnostics::Diagnostics::default();
         diagnostics.push(
             crate::diagnostics::Diagnostic::global(
-                crate::diagnostics::codes::CPFG_UNSUPPORTED,
+                crate::diagnostics::codes::TR_PARAMETRIC,
                 "parametric cpfg L-systems cannot be translated yet",
             )
             .with_help("graftal translates pfg, LinF and STL systems, and Fractint entries"),

@@ -14,6 +14,7 @@ pub use render::{escaped, render_all, render_human, render_json, shortened, to_j
 use crate::ir::Span;
 use crate::source::SourceFile;
 use serde::Serialize;
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -46,6 +47,17 @@ pub struct Diagnostic {
     /// Set on the last diagnostic kept once a list is full ([`MAX_KEPT`]):
     /// what came after it and was counted, not kept.
     pub not_kept: Option<NotKept>,
+    /// The file the spans point into when it is not the file being read:
+    /// a side file (a cpfg view, function or surface file), so that the
+    /// diagnostic is shown, and listed in JSON, as that file's.
+    pub side: Option<Arc<SideFile>>,
+}
+
+/// A file read beside the one being read, as diagnostics quote it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SideFile {
+    pub name: String,
+    pub text: String,
 }
 
 /// Diagnostics found after a list was full ([`MAX_KEPT`]), counted only.
@@ -109,6 +121,7 @@ impl Diagnostic {
             notes: Vec::new(),
             help: None,
             not_kept: None,
+            side: None,
         }
     }
 
@@ -144,6 +157,13 @@ impl Diagnostic {
 
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(bounded(help.into()));
+        self
+    }
+
+    /// The same diagnostic, its spans in `side` rather than in the file
+    /// being read.
+    pub fn in_side_file(mut self, side: Arc<SideFile>) -> Self {
+        self.side = Some(side);
         self
     }
 
@@ -252,10 +272,12 @@ impl Diagnostics {
         self.0.is_empty()
     }
     /// Sorts by position (stable, so diagnostics at one place keep their
-    /// order); global diagnostics come last.
+    /// order); global diagnostics and those of side files come last.
     pub fn sort(&mut self) {
-        self.0
-            .sort_by_key(|d| d.span.as_ref().map_or(usize::MAX, |s| s.start));
+        self.0.sort_by_key(|d| match (&d.span, &d.side) {
+            (Some(s), None) => s.start,
+            _ => usize::MAX,
+        });
     }
     /// Renders all for people (see [`render_human`]).
     pub fn render(&self, file: &SourceFile, colour: bool) -> String {

@@ -7,12 +7,13 @@
 //! the replacement characters that stand for invalid UTF-8 are shown
 //! escaped (`\u{7}`), in snippets and in every string.
 
-use super::{codes, Diagnostic, NotKept, Severity};
+use super::{codes, Diagnostic, NotKept, Severity, SideFile};
 use crate::source::SourceFile;
 use ariadne::{Color, Config, IndexType, Label, Report, ReportKind, Source};
 use serde_json::{json, Value};
 use std::borrow::Cow;
 use std::ops::Range;
+use std::sync::Arc;
 
 /// At most this many diagnostics are rendered for people (clang's
 /// `-ferror-limit` is 20 too); the rest are counted, by code, in a last
@@ -53,9 +54,16 @@ pub fn render_human(d: &Diagnostic, file: &SourceFile, colour: bool) -> String {
 /// [`MAX_SHOWN`], then a line that counts the others.
 pub fn render_all(ds: &[Diagnostic], file: &SourceFile, colour: bool) -> String {
     let mut renderer = Renderer::new(file, colour);
+    let mut sides = SideFiles::default();
     let mut out = String::new();
     for d in ds.iter().take(MAX_SHOWN) {
-        out.push_str(&renderer.render(d));
+        match &d.side {
+            Some(_) => {
+                let side = sides.file_of(d, file);
+                out.push_str(&Renderer::new(side, colour).render(d));
+            }
+            None => out.push_str(&renderer.render(d)),
+        }
     }
     out.push_str(&not_shown(ds));
     out
@@ -288,7 +296,7 @@ impl<'a> Renderer<'a> {
 
     fn render(&mut self, d: &Diagnostic) -> String {
         let Some(primary) = &d.span else {
-            return plain(d, None);
+            return plain(d, &self.name, None);
         };
         let primary = Placed::new(self.file, primary);
         let secondary: Vec<Placed> = d
@@ -315,7 +323,7 @@ impl<'a> Renderer<'a> {
         let cost = (last - first + 1) + indexed;
         if cost > self.budget {
             let (line, col) = self.file.line_col(primary.span.start);
-            return plain(d, Some((&self.name, line, col)));
+            return plain(d, &self.name, Some((line, col)));
         }
         self.budget -= cost;
         if excerpt {
@@ -414,16 +422,20 @@ fn write_report(
         )
         .with_code(d.code)
         .with_message(text(&d.message));
-    let mut label = Label::new((name, primary)).with_color(accent);
+    let order = |span: &Range<usize>| line_order(source, span);
+    let mut label = Label::new((name, primary.clone()))
+        .with_color(accent)
+        .with_order(order(&primary));
     if let Some(msg) = &d.label {
         label = label.with_message(text(msg));
     }
     report = report.with_label(label);
     for (l, span) in d.labels.iter().zip(secondary) {
         report = report.with_label(
-            Label::new((name, span))
+            Label::new((name, span.clone()))
                 .with_message(text(&l.message))
-                .with_color(muted),
+                .with_color(muted)
+                .with_order(order(&span)),
         );
     }
     for n in notes(d) {
@@ -440,6 +452,18 @@ fn write_report(
     String::from_utf8_lossy(&buf).into_owned()
 }
 
+/// The line a label ends on, its order for ariadne. ariadne draws labels
+/// in the order given and starts a new section, headed with the primary
+/// label's place, at a label that ends on an earlier line than the one
+/// before: a secondary label above the primary one would be shown under
+/// the primary one's place. In the lines' order every line is in one
+/// section (labels on one line keep the order given: the sort is stable).
+fn line_order(source: &Source<&str>, span: &Range<usize>) -> i32 {
+    let last = span.end.max(span.start + 1) - 1;
+    let line = source.get_byte_line(last).map_or(0, |(_, idx, _)| idx);
+    i32::try_from(line).unwrap_or(i32::MAX)
+}
+
 /// The notes shown: the diagnostic's own, one for secondary labels not
 /// drawn, one for diagnostics counted and not kept.
 fn notes(d: &Diagnostic) -> Vec<String> {
@@ -453,22 +477,25 @@ fn notes(d: &Diagnostic) -> Vec<String> {
     out
 }
 
-/// A diagnostic without a snippet: a header line, its place if it has one
-/// (`--> file:line:col`), notes and help.
-fn plain(d: &Diagnostic, place: Option<(&str, usize, usize)>) -> String {
+/// A diagnostic without a snippet: a header line, the file it is about
+/// with its place if it has one (`--> file:line:col`), notes and help.
+fn plain(d: &Diagnostic, name: &str, place: Option<(usize, usize)>) -> String {
     let mut out = format!(
         "{}[{}]: {}\n",
         severity_word(d.severity),
         d.code,
         text(&d.message)
     );
-    if let Some((name, line, col)) = place {
-        out.push_str(&format!("  --> {name}:{line}:{col}"));
-        if let Some(label) = &d.label {
-            out.push_str(&format!(": {}", text(label)));
+    match place {
+        Some((line, col)) => {
+            out.push_str(&format!("  --> {name}:{line}:{col}"));
+            if let Some(label) = &d.label {
+                out.push_str(&format!(": {}", text(label)));
+            }
         }
-        out.push('\n');
+        None => out.push_str(&format!("  --> {name}")),
     }
+    out.push('\n');
     for n in notes(d) {
         out.push_str(&format!("  = note: {n}\n"));
     }
@@ -636,6 +663,37 @@ fn line_windows(file: &SourceFile, line: usize, placed: &[&Placed]) -> Vec<Range
 
 /// One diagnostic as the JSON object of the CLI contract.
 pub fn to_json(d: &Diagnostic, file: &SourceFile) -> Value {
+    let mut sides = SideFiles::default();
+    json_in(d, sides.file_of(d, file))
+}
+
+/// The side files of diagnostics, indexed once each however many
+/// diagnostics they have (a view file can have one per line).
+#[derive(Default)]
+struct SideFiles {
+    last: Option<(Arc<SideFile>, SourceFile)>,
+}
+
+impl SideFiles {
+    /// The file `d`'s spans point into: its side file, or `file`.
+    fn file_of<'a>(&'a mut self, d: &Diagnostic, file: &'a SourceFile) -> &'a SourceFile {
+        let Some(side) = &d.side else {
+            return file;
+        };
+        if !self
+            .last
+            .as_ref()
+            .is_some_and(|(s, _)| Arc::ptr_eq(s, side))
+        {
+            let indexed = SourceFile::new(side.name.clone(), side.text.clone());
+            self.last = Some((side.clone(), indexed));
+        }
+        self.last.as_ref().map_or(file, |(_, f)| f)
+    }
+}
+
+/// [`to_json`] with `file` the file `d`'s spans point into.
+fn json_in(d: &Diagnostic, file: &SourceFile) -> Value {
     let place = |s: &std::ops::Range<usize>| {
         let (line, column) = file.line_col(s.start);
         (line, column)
@@ -675,8 +733,9 @@ pub fn to_json(d: &Diagnostic, file: &SourceFile) -> Value {
 /// All diagnostics of one file as JSON lines (one object per line).
 pub fn render_json(ds: &[Diagnostic], file: &SourceFile) -> String {
     let mut out = String::new();
+    let mut sides = SideFiles::default();
     for d in ds {
-        push_json_line(&mut out, &to_json(d, file).to_string());
+        push_json_line(&mut out, &json_in(d, sides.file_of(d, file)).to_string());
     }
     out
 }
@@ -842,6 +901,47 @@ mod tests {
             std::iter::once(0..5),
         );
         assert_eq!(ours, theirs);
+    }
+
+    #[test]
+    fn a_label_on_an_earlier_line_is_shown_on_its_own_line() {
+        let text = "axiom: F\nangle: 3\nangle: 4\n";
+        let f = SourceFile::new("d.l", text);
+        let d = at(18..23, "twice").with_secondary(9..14, "first given here");
+        let out = render_human(&d, &f, false);
+        // One section, headed with the primary place, showing line 2 then
+        // line 3; no second header that puts line 2 under line 3's place.
+        assert_eq!(out.matches("d.l:").count(), 1, "{out}");
+        assert!(out.contains("─[ d.l:3:1 ]"), "{out}");
+        let two = out.find(shown_line(&out, 2)).unwrap();
+        let three = out.find(shown_line(&out, 3)).unwrap();
+        assert!(two < three, "{out}");
+    }
+
+    #[test]
+    fn a_diagnostic_without_a_place_names_its_file() {
+        let f = SourceFile::new("whole.l", "x\n");
+        let d = Diagnostic::global(codes::SYNTAX, "about the whole file");
+        let out = render_human(&d, &f, false);
+        assert_eq!(out, "Error[E0003]: about the whole file\n  --> whole.l\n");
+    }
+
+    #[test]
+    fn a_side_file_diagnostic_is_shown_and_listed_as_that_files() {
+        let f = SourceFile::new("dir/plant.l", "axiom: F\n");
+        let side = std::sync::Arc::new(crate::diagnostics::SideFile {
+            name: "dir/plant.v".into(),
+            text: "angle: 8\nbad: 3\n".into(),
+        });
+        let d = Diagnostic::at(codes::SYNTAX, 9..12, "unknown").in_side_file(side);
+        let out = render_human(&d.clone().with_label("here"), &f, false);
+        assert!(out.contains("─[ dir/plant.v:2:1 ]"), "{out}");
+        assert!(shown_line(&out, 2).contains("bad: 3"), "{out}");
+        let v = to_json(&d, &f);
+        assert_eq!(
+            (v["file"].as_str(), v["line"].as_u64()),
+            (Some("dir/plant.v"), Some(2))
+        );
     }
 
     #[test]

@@ -6,13 +6,27 @@
 use super::Code;
 
 codes! { CPFG_LSYSTEM;
-    CPFG_UNSUPPORTED = "E0830", "cpfg construct not supported",
-"graftal reads the cpfg dialect of `.l`, but not every construct of cpfg.
-This one needs something graftal does not have: sub-L-systems (`?(n,s) …
-$`) call other L-systems at run time, object productions (`-o>`) build
-instanced objects, and environmental processes (`?E` with an `.e` file)
-are separate programs. The diagnostic names the construct; the rest of the
-file is still checked.";
+    CPFG_UNSUPPORTED = "E0830", "object productions are not supported",
+"graftal reads the cpfg dialect of `.l`, but not object productions
+(`A -o> …`): cpfg builds them as instanced objects, which graftal does
+not have. Sub-L-systems (E0839) and missing curves (E0840) have codes of
+their own. The rest of the file is still checked.
+
+Example:
+    A -o> F[+F]F     <- write `A --> F[+F]F`";
+
+    CPFG_SUB_LSYSTEM = "E0839", "sub-L-systems are not supported",
+"A sub-L-system call (`?(n, s)`) starts L-system n of the file at run
+time, and `$` returns from it. graftal reads only the first L-system of a
+file and has no run-time calls, so a file that uses them is not drawn.
+The error is given once per file. Write the sub-L-system's productions
+into the main L-system.";
+
+    CPFG_NO_CURVE = "E0840", "curve not loaded",
+"`curveX`, `curveY`, `curveZ` and `curveGAL` read a curve that the view
+file loads with a `curve:` line (`curve: profile.con`). Here the view file
+loads no curve, or fewer than the one asked for: cpfg has nothing to
+read. Name the curve's file on a `curve:` line of the view file.";
 
     CPFG_NOT_FORMAL = "E0831", "a predecessor parameter must be a name",
 "The parameters of a predecessor and of its contexts are formal: names that

@@ -145,6 +145,16 @@ Example:
     axiom f
     f = f+f                 <- write `rules` before this line";
 
+    LINF_MISSPELT_KEYWORD = "E0419", "misspelt block keyword",
+"A line starts with a name close to a block keyword and goes on with `(`,
+as an `angles` or `colors` block does. graftal reads the block as the
+keyword's, so that its contents are checked and the rest of the file is
+not reported as undeclared names; the file is still an error until the
+keyword is spelt right.
+
+Example:
+    angels (0, pi/2)        <- write `angles`";
+
     LINF_DUPLICATE_BLOCK = "W0401", "block given twice",
 "Each of the six blocks may appear once. When a block keyword appears
 twice, the later block is used and the earlier one is ignored.

@@ -137,6 +137,13 @@ Fig. 3.11a draws 2501 segments at 30 steps; without its contexts, LinF
 draws 3. A source too large to draw quickly is not compared (a note
 says so).";
 
+    TR_PARAMETRIC = "E0615", "a parametric cpfg L-system cannot be translated",
+"Translation rewrites a system into another notation's productions.
+A cpfg L-system whose modules carry parameters computes with them at
+each step (expressions, conditions, variables), which no other notation
+graftal writes can express: the translation is not written. pfg, LinF,
+STL and Fractint systems, and cpfg ones without parameters, translate.";
+
     TR_CONTEXT_APPROX = "W0601", "context dropped",
 "`--lossy` dropped the context of a production that the target cannot
 express (see E0601): the production applies wherever its predecessor

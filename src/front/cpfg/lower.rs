@@ -200,7 +200,7 @@ impl Lowerer<'_> {
             if !std::mem::replace(&mut self.warned_sub, true) {
                 self.diags.push(
                     Diagnostic::at(
-                        codes::CPFG_UNSUPPORTED,
+                        codes::CPFG_SUB_LSYSTEM,
                         m.span.clone(),
                         "sub-L-systems are not supported",
                     )
@@ -440,9 +440,9 @@ impl Lowerer<'_> {
             _ => return,
         };
         let count = self.curves.len();
-        self.report(codes::CPFG_UNSUPPORTED, || {
+        self.report(codes::CPFG_NO_CURVE, || {
             Diagnostic::at(
-                codes::CPFG_UNSUPPORTED,
+                codes::CPFG_NO_CURVE,
                 name_span.clone(),
                 format!("`{name}` reads a curve, and {problem}"),
             )

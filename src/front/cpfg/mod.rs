@@ -103,26 +103,6 @@ pub const FUNCTION_SAMPLES: usize = 1025;
 /// fit).
 const MAX_SURFACE_TRIANGLES: usize = 20_000;
 
-/// A diagnostic `d` about a file `name` beside the `.l` (view, function,
-/// surface): reported without a span in the `.l`, naming the file and the
-/// line (found in `newlines`, the offsets of the side file's line ends).
-fn side_file(
-    d: &crate::diagnostics::Diagnostic,
-    name: &str,
-    newlines: &[usize],
-) -> crate::diagnostics::Diagnostic {
-    let mut g = d.clone();
-    if let Some(span) = d.span.clone() {
-        let line = newlines.partition_point(|&n| n < span.start) + 1;
-        g.message = format!("{name}, line {line}: {}", d.message);
-    } else {
-        g.message = format!("{name}: {}", d.message);
-    }
-    g.span = None;
-    g.labels.clear();
-    g
-}
-
 /// Reads a cpfg `.l` file with what cpfg reads beside it: the preprocessor
 /// runs first (with `#include`s from the file's folder and a macro for
 /// each named user function), then the L-system is read, then the view
@@ -197,7 +177,10 @@ impl Beside<'_> {
         match read(&text) {
             Ok(x) => Some(x),
             Err(d) => {
-                push_side_file(diags, &d, name, &text);
+                let path = self
+                    .dir
+                    .map_or(Path::new(name).to_path_buf(), |d| d.join(name));
+                push_side_file(diags, &d, &path, &text);
                 None
             }
         }
@@ -222,11 +205,8 @@ impl Beside<'_> {
             return view::View::default();
         };
         let text = read_lossy(&p).unwrap_or_default();
-        let name = p
-            .file_name()
-            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
         let (v, d) = view::read_view(&text);
-        push_side_file(diags, &d, &name, &text);
+        push_side_file(diags, &d, &p, &text);
         v
     }
 
@@ -451,14 +431,19 @@ fn read_lossy(path: &Path) -> Option<String> {
     file.oversize().is_none().then_some(file.text)
 }
 
-/// Reports the diagnostics of a file beside the `.l` (see [`side_file`]).
-fn push_side_file(diags: &mut Diagnostics, d: &Diagnostics, name: &str, text: &str) {
+/// Reports the diagnostics of a file beside the `.l` (view, function,
+/// surface) as that file's: their spans point into `text`, shown as `path`.
+fn push_side_file(diags: &mut Diagnostics, d: &Diagnostics, path: &Path, text: &str) {
     if d.is_empty() {
         return;
     }
-    let newlines: Vec<usize> = text.match_indices('\n').map(|(i, _)| i).collect();
+    let name = path.strip_prefix(".").unwrap_or(path).display().to_string();
+    let side = std::sync::Arc::new(crate::diagnostics::SideFile {
+        name,
+        text: text.to_string(),
+    });
     for x in d.iter() {
-        diags.push(side_file(x, name, &newlines));
+        diags.push(x.clone().in_side_file(side.clone()));
     }
 }
 

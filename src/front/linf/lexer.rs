@@ -16,7 +16,7 @@
 //! A comment that starts with `#:` is a *directive* that graftal reads and
 //! cFLC, for which it is a comment, ignores (see `grammar/linf.ebnf`).
 
-use crate::diagnostics::Diagnostics;
+use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::ir::Span;
 use logos::Logos;
 use std::fmt;
@@ -190,10 +190,31 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Lexed<'src> {
                 }
             }
             Ok(tok) => tokens.push((tok, span)),
+            Err(()) if arrow_for_eq(src, &tokens, &span) => {
+                // Read as `=`, so the rule is read and the next line too.
+                let minus = tokens.pop().map_or(span.clone(), |(_, s)| s);
+                diags.push(
+                    Diagnostic::at(
+                        codes::MALFORMED_ARROW,
+                        minus.start..span.end,
+                        "LinF writes `=`, not `->`",
+                    )
+                    .with_label("read as `=`")
+                    .with_help("write the rule as `name = string`"),
+                );
+                tokens.push((Token::Eq, minus.start..span.end));
+            }
             Err(()) => diags.push_invalid_character(src, span),
         }
     }
     Lexed { tokens, directives }
+}
+
+/// Whether the invalid character at `span` is the `>` of `->` (a `-`
+/// token just before it), the arrow of other notations.
+fn arrow_for_eq(src: &str, tokens: &[(Token<'_>, Span)], span: &Span) -> bool {
+    &src[span.clone()] == ">"
+        && matches!(tokens.last(), Some((Token::Minus(_), s)) if s.end == span.start)
 }
 
 #[cfg(test)]

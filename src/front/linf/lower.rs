@@ -1048,18 +1048,13 @@ fn unknown_angle_diagnostic(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &S
         true => cx.angle_names.iter().map(String::as_str).collect(),
         false => Vec::new(),
     };
+    // Rotation names only: a line or rule name after the signs would be
+    // another reading of the text (the default rotation, then the name),
+    // not the rotation the writer misspelt.
     let mut near: Vec<String> = nearest(text, &angles)
         .into_iter()
         .map(|n| format!("{run_text}{n}"))
         .collect();
-    if near.is_empty() && affordable && cx.default_rotation.is_some() {
-        // `+laef` for `+leaf`: the default rotation, then a name.
-        let others = cx.names(false);
-        near = nearest(text, &others)
-            .into_iter()
-            .map(|n| format!("{run_text}{n}"))
-            .collect();
-    }
     near.sort();
     if near.len() > 3 {
         near.clear();

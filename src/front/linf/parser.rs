@@ -548,7 +548,8 @@ where
 /// Parses LinF source text into an AST. Never fails: problems are pushed to
 /// `diags` and malformed items are left out of the AST.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
-    let lexed = lex(src, diags);
+    let mut lexed = lex(src, diags);
+    respell_keywords(src, &mut lexed.tokens, diags);
     let tokens = close_value_groups(cut_nesting(lexed.tokens), diags);
     let eoi = SimpleSpan::from(src.len()..src.len());
     let (out, errors) = file_parser()
@@ -812,6 +813,42 @@ fn block_help(kind: BlockKind) -> &'static str {
         BlockKind::Axiom => "this block holds one string of symbols",
         BlockKind::Rules => "this block holds rules `name = string`",
         BlockKind::Colors => "this block holds colours `(r, g, b)`",
+    }
+}
+
+/// Reads a name that starts a line, is close to a block keyword and is
+/// followed by `(` (as `angles (0, pi/2)` is) as that keyword, and reports
+/// it once: else the block is not read and every name it declares is
+/// reported as undeclared. No block holds a name followed by `(`, so a
+/// correct file is never read otherwise.
+fn respell_keywords<'a>(src: &str, tokens: &mut [(Token<'a>, Span)], diags: &mut Diagnostics) {
+    let keywords: Vec<&str> = BlockKind::ALL.iter().map(|k| k.keyword()).collect();
+    for i in 0..tokens.len() {
+        let (Token::Name(n), span) = &tokens[i] else {
+            continue;
+        };
+        let starts_line = i == 0 || src[tokens[i - 1].1.end..span.start].contains(['\n', '\r']);
+        let paren_follows = matches!(tokens.get(i + 1), Some((Token::LParen, _)));
+        let near = nearest(n, &keywords);
+        let Some(kind) = BlockKind::ALL
+            .iter()
+            .find(|k| near.first() == Some(&k.keyword()))
+        else {
+            continue;
+        };
+        if !starts_line || !paren_follows {
+            continue;
+        }
+        diags.push(
+            Diagnostic::at(
+                codes::LINF_MISSPELT_KEYWORD,
+                span.clone(),
+                format!("`{n}` is not a block keyword"),
+            )
+            .with_label(format!("read as `{}`", kind.keyword()))
+            .with_help(format!("did you mean `{}`?", kind.keyword())),
+        );
+        tokens[i].0 = Token::Keyword(*kind);
     }
 }
 
