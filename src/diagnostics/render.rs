@@ -477,13 +477,14 @@ fn notes(d: &Diagnostic) -> Vec<String> {
     out
 }
 
-/// A diagnostic without a snippet: a header line, the file it is about
-/// with its place if it has one (`--> file:line:col`), notes and help.
+/// A diagnostic without a snippet: the header ariadne writes for the
+/// others (`[CODE] Kind: message`), the file it is about with its place if
+/// it has one (`--> file:line:col`), notes and help.
 fn plain(d: &Diagnostic, name: &str, place: Option<(usize, usize)>) -> String {
     let mut out = format!(
-        "{}[{}]: {}\n",
-        severity_word(d.severity),
+        "[{}] {}: {}\n",
         d.code,
+        severity_word(d.severity),
         text(&d.message)
     );
     match place {
@@ -923,7 +924,7 @@ mod tests {
         let f = SourceFile::new("whole.l", "x\n");
         let d = Diagnostic::global(codes::SYNTAX, "about the whole file");
         let out = render_human(&d, &f, false);
-        assert_eq!(out, "Error[E0003]: about the whole file\n  --> whole.l\n");
+        assert_eq!(out, "[E0003] Error: about the whole file\n  --> whole.l\n");
     }
 
     #[test]
@@ -979,7 +980,7 @@ mod tests {
         let out = render_human(&d, &f, false);
         assert!(t.elapsed().as_secs_f64() < 1.0, "{:?}", t.elapsed());
         assert_eq!(
-            out, "Error[E0003]: the whole file\n  --> b.l:1:1: here\n",
+            out, "[E0003] Error: the whole file\n  --> b.l:1:1: here\n",
             "{out}"
         );
     }

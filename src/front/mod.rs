@@ -178,6 +178,9 @@ pub fn detect(ext: &str, text: &str) -> &'static dyn Front {
     best
 }
 
+/// The largest file [`reads_badly`] considers for reading in another notation.
+pub const GUESS_AT_MOST_BYTES: usize = 256 << 10;
+
 /// Whether a reading of `file` failed badly enough that the file is more
 /// likely in another notation: it has errors, and their spans cover at
 /// least half of the file's non-blank lines (a LinF file read as pfg: 20
@@ -185,7 +188,10 @@ pub fn detect(ext: &str, text: &str) -> &'static dyn Front {
 /// its 8 lines; a pfg file with a typo: one error on one line). An error
 /// with no place (nothing found at all) counts as covering every line.
 pub fn reads_badly(file: &SourceFile, diags: &Diagnostics) -> bool {
-    if !diags.has_errors() {
+    // A file saved under the wrong extension is a hand-written model; a
+    // bigger one is not read again in four more notations (a 4 MB line of
+    // errors would take seconds).
+    if !diags.has_errors() || file.text.len() > GUESS_AT_MOST_BYTES {
         return false;
     }
     let lines: Vec<&str> = file.text.split('\n').collect();
