@@ -14,6 +14,15 @@ fn compile_text(src: &str) -> driver::Compiled {
     driver::compile(SourceFile::new("test.l", src))
 }
 
+/// Each diagnostic of compiling `src`: its code and span.
+fn codes_and_spans(src: &str) -> Vec<(&'static str, Option<std::ops::Range<usize>>)> {
+    compile_text(src)
+        .diagnostics
+        .iter()
+        .map(|d| (d.code.0, d.span.clone()))
+        .collect()
+}
+
 fn derive_text(src: &str, steps: u64) -> String {
     let c = compile_text(src);
     let sys = c.system.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
@@ -111,12 +120,7 @@ fn equals_in_a_right_context_skips_the_rest_of_the_branch() {
     assert_eq!(derive_text(src, 1), "E(1,2)[+B(1)C]D(2)");
     // Anything but `]` after `=` never matches, and says so at the `=`.
     let src = "Lsystem: 1\nderivation length: 1\nAxiom: A[BC]\nA > [B=C] --> X\nendlsystem\n";
-    let c = compile_text(src);
-    let warned: Vec<_> = c
-        .diagnostics
-        .iter()
-        .map(|d| (d.code.0, d.span.clone()))
-        .collect();
+    let warned = codes_and_spans(src);
     let at = src.find("=C]").unwrap();
     assert_eq!(warned, [("W0826", Some(at..at + 1))]);
     assert_eq!(derive_text(src, 1), "A[BC]");
@@ -142,12 +146,7 @@ fn consider_lets_a_right_context_read_out_of_its_branch() {
 #[test]
 fn an_at_command_graftal_does_not_carry_out_is_a_warning_at_its_span() {
     let src = "Lsystem: 1\nderivation length: 0\nAxiom: F@Q(1)F@D(2)@O(1)\nendlsystem\n";
-    let c = compile_text(src);
-    let warned: Vec<_> = c
-        .diagnostics
-        .iter()
-        .map(|d| (d.code.0, d.span.clone()))
-        .collect();
+    let warned = codes_and_spans(src);
     assert_eq!(
         warned,
         [
@@ -159,12 +158,7 @@ fn an_at_command_graftal_does_not_carry_out_is_a_warning_at_its_span() {
     assert_eq!(derive_text(src, 0), "F@Q(1)F@D(2)@O(1)");
     // A contour with no generalized cylinder to sweep it along.
     let src = "Lsystem: 1\nderivation length: 0\nAxiom: @#(1)FF\nendlsystem\n";
-    let codes: Vec<_> = compile_text(src)
-        .diagnostics
-        .iter()
-        .map(|d| (d.code.0, d.span.clone()))
-        .collect();
-    assert_eq!(codes, [("W0823", at_in(src, "@#(1)"))]);
+    assert_eq!(codes_and_spans(src), [("W0823", at_in(src, "@#(1)"))]);
     let src = "Lsystem: 1\nderivation length: 0\nAxiom: @#(1)@GsF@Ge\nendlsystem\n";
     assert!(compile_text(src).diagnostics.is_empty());
 }
