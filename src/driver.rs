@@ -9,7 +9,7 @@ use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
 use crate::front::{self, Front, Library};
 use crate::ir::{SpanTable, System, TurtleOp, Word};
-use crate::render::{self, RenderOptions};
+use crate::render::{self, RenderOptions, View};
 use crate::source::{NotText, SourceFile};
 use crate::stdlib;
 use crate::turtle::instanced::Instanced;
@@ -713,6 +713,164 @@ pub fn why_nothing_drawn(sys: &System, word: &Word, file: &str, steps: u64) -> O
         .then(|| "the derivation has 0 steps, so only the axiom is drawn: try `-n 4`".into())
 }
 
+/// Pixels under which a picture's width (or length) counts as nothing:
+/// a line drawn one or two pixels wide shows no shape.
+pub const NEARLY_NOTHING: f64 = 2.0;
+
+/// The warning for a picture that draws nearly nothing at the view and
+/// size of `ropts` (W0009): what it draws is under [`NEARLY_NOTHING`]
+/// pixels across ([`render::drawn_spread`]), a line or a point. A note
+/// says why: geometry in a plane seen edge-on (with the `--view` that
+/// looks straight at it), geometry on one line, or a picture too long for
+/// its width at this size.
+pub fn nearly_nothing_drawn(
+    sys: &System,
+    g: &Geometry,
+    ropts: &RenderOptions,
+) -> Option<Diagnostic> {
+    let mut opts = *ropts;
+    apply_look(sys, &mut opts);
+    let drawn = render::drawn_spread(g, &opts);
+    if drawn.width >= NEARLY_NOTHING {
+        return None;
+    }
+    let (w, h) = (opts.width, opts.height);
+    if drawn.length < NEARLY_NOTHING {
+        return Some(
+            Diagnostic::global(codes::NEARLY_NOTHING_DRAWN, "nearly nothing is drawn: the picture is a point")
+                .with_note(format!(
+                    "what is drawn covers under {NEARLY_NOTHING} pixels of the {w}x{h} picture: its segments have no length, or all lie at one point"
+                )),
+        );
+    }
+    let d = Diagnostic::global(
+        codes::NEARLY_NOTHING_DRAWN,
+        format!(
+            "nearly nothing is drawn: the picture is a line {:.0} pixels long and {:.1} wide",
+            drawn.length, drawn.width
+        ),
+    );
+    let points = world_points(g, opts.spline);
+    let axes = principal_spreads(&points).map(|(_, axis)| axis);
+    let range = |axis: turtle::Vec3| {
+        let along = points
+            .iter()
+            .map(|p| p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2]);
+        let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        (hi - lo).max(0.0)
+    };
+    let (long, wide) = (range(axes[0]), range(axes[1]));
+    let longer = format!(
+        "the picture is {:.0} times longer than it is wide",
+        drawn.length / drawn.width.max(1e-3)
+    );
+    if wide <= 1e-9 * long {
+        return Some(d.with_note(
+            "every segment lies on one line, so the picture is a line from every view",
+        ));
+    }
+    // Even seen straight on, the widest view, the width would be lost.
+    if wide / long * drawn.length < NEARLY_NOTHING {
+        return Some(d.with_note(format!(
+            "{longer}, from every view: draw it larger with `--size`"
+        )));
+    }
+    let (az, el) = view_along(axes[2]);
+    let face_on = RenderOptions {
+        view: View::degrees(az, el),
+        camera: None,
+        ..opts
+    };
+    if render::drawn_spread(g, &face_on).width >= NEARLY_NOTHING {
+        return Some(
+            d.with_note("the geometry lies in a plane, and this view sees it edge-on")
+                .with_help(format!(
+                    "try `--view {az:.0},{el:.0}`, which looks straight at that plane"
+                )),
+        );
+    }
+    Some(d.with_note(format!("{longer}: draw it larger with `--size`")))
+}
+
+/// The points a picture of `g` is made of: segment ends and polygon
+/// corners, or with `spline` the turtle's positions the curves pass by.
+fn world_points(g: &Geometry, spline: bool) -> Vec<turtle::Vec3> {
+    if spline {
+        return g
+            .paths
+            .iter()
+            .flat_map(|p| p.points.iter().copied())
+            .collect();
+    }
+    g.segments
+        .iter()
+        .flat_map(|s| [s.a, s.b])
+        .chain(g.polygons.iter().flat_map(|p| p.points.iter().copied()))
+        .chain(g.discs.iter().map(|d| d.centre))
+        .collect()
+}
+
+/// The variances of `points` along their principal axes, largest first,
+/// each with its axis (a unit vector): the eigenvalues and eigenvectors of
+/// their covariance, by Jacobi rotations.
+fn principal_spreads(points: &[turtle::Vec3]) -> [(f64, turtle::Vec3); 3] {
+    let n = points.len().max(1) as f64;
+    let mean = [0, 1, 2].map(|k| points.iter().map(|p| p[k]).sum::<f64>() / n);
+    let mut c = [[0.0f64; 3]; 3];
+    for p in points {
+        let d = [0, 1, 2].map(|k| p[k] - mean[k]);
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] += d[i] * d[j] / n;
+            }
+        }
+    }
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..50 {
+        let (p, q) = [(0, 1), (0, 2), (1, 2)]
+            .into_iter()
+            .max_by(|a, b| c[a.0][a.1].abs().total_cmp(&c[b.0][b.1].abs()))
+            .unwrap_or((0, 1));
+        if c[p][q].abs() <= 1e-300 {
+            break;
+        }
+        let theta = 0.5 * (2.0 * c[p][q]).atan2(c[q][q] - c[p][p]);
+        let (s, co) = theta.sin_cos();
+        // c = Jᵀ c J and v = v J for the rotation J in the (p, q) plane:
+        // turning the rows of c gives c J, whose transpose is Jᵀ c (c is
+        // symmetric), and turning that again gives Jᵀ c J.
+        let turn = |row: &mut [f64; 3]| {
+            let (a, b) = (row[p], row[q]);
+            row[p] = co * a - s * b;
+            row[q] = s * a + co * b;
+        };
+        c.iter_mut().for_each(turn);
+        c = [0, 1, 2].map(|i| [c[0][i], c[1][i], c[2][i]]);
+        c.iter_mut().for_each(turn);
+        v.iter_mut().for_each(turn);
+    }
+    let mut out = [0, 1, 2].map(|k| (c[k][k].max(0.0), [v[0][k], v[1][k], v[2][k]]));
+    out.sort_by(|a, b| b.0.total_cmp(&a.0));
+    out
+}
+
+/// The view (azimuth, elevation in degrees) that looks along `normal`:
+/// the direction [`render`]'s parallel view looks from is
+/// (-sin az cos el, sin el, cos az cos el).
+fn view_along(normal: turtle::Vec3) -> (f64, f64) {
+    let n = if normal[2] < 0.0 {
+        normal.map(|x| -x)
+    } else {
+        normal
+    };
+    let el = n[1].clamp(-1.0, 1.0).asin().to_degrees();
+    let az = (-n[0]).atan2(n[2]).to_degrees();
+    // No `-0` in the suggestion.
+    (az.round() + 0.0, el.round() + 0.0)
+}
+
 /// Output formats of [`render`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -850,7 +1008,6 @@ pub fn render_bytes_with(
     mut opts: RenderOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
-    opts.scale = sys.settings.scale;
     apply_look(sys, &mut opts);
     let lighting = sys.look.lighting.as_ref();
     match (format, lighting) {
@@ -866,9 +1023,10 @@ pub fn render_bytes_with(
     }
 }
 
-/// What the system's look says of the picture: its background, and its
-/// camera unless a view was asked for.
+/// What the system's settings and look say of the picture: the share it
+/// fills, its background, and its camera unless a view was asked for.
 fn apply_look(sys: &System, opts: &mut RenderOptions) {
+    opts.scale = sys.settings.scale;
     opts.background = sys.look.background.unwrap_or(render::WHITE);
     opts.background_alpha = 255;
     if let Some(bg) = opts.style.background {
@@ -983,8 +1141,17 @@ pub fn render_shared_with(
     if !whole.draws() || whole.lo[2] != whole.hi[2] {
         return None;
     }
-    ropts.scale = sys.settings.scale;
     apply_look(sys, &mut ropts);
+    // A picture that is nearly a line is drawn the long way, which says so
+    // ([`nearly_nothing_drawn`]).
+    let flat = render::box_spread(
+        [whole.lo[0], whole.lo[1]],
+        [whole.hi[0], whole.hi[1]],
+        &ropts,
+    );
+    if flat.width < NEARLY_NOTHING {
+        return None;
+    }
     let pic = render::shared::picture(sys, &mut inst, steps, &ropts);
     Some(encode(&pic, format, &ropts, progress))
 }

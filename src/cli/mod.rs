@@ -463,6 +463,8 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
                 )],
                 a.args.format,
             );
+        } else if let Some(d) = driver::nearly_nothing_drawn(sys, &g, &ropts) {
+            report(io, c, &[d], a.args.format);
         }
         let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
         if let Some(bar) = &bar {

@@ -321,10 +321,19 @@ pub fn bspline(ctrl: &[[f64; 2]]) -> Vec<[f64; 2]> {
     out
 }
 
-/// Projects and fits `g` into a `width` × `height` picture.
-pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
-    let proj = Projector::new(opts);
-    let segments = flat_segments(g, opts, &proj);
+/// What `g` draws, projected onto the picture plane but not yet fitted:
+/// lines, polygons, discs, and the points whose bounds the fit covers.
+struct Projected {
+    segments: Vec<FlatSegment>,
+    polys: Vec<(Rgb, Vec<[f64; 2]>)>,
+    /// Colour, radius in pixels or not, centre, radius.
+    discs: Vec<(Rgb, bool, [f64; 2], f64)>,
+    extent: Vec<[f64; 2]>,
+}
+
+/// Projects `g` with `proj` ([`layout`] then fits it).
+fn projected(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Projected {
+    let segments = flat_segments(g, opts, proj);
     // Polygons with a corner behind a perspective's eye are left out.
     let polys: Vec<(Rgb, Vec<[f64; 2]>)> = g
         .polygons
@@ -367,6 +376,81 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         .chain(polys.iter().flat_map(|p| p.1.iter().copied()))
         .chain(disc_extent)
         .collect();
+    Projected {
+        segments,
+        polys,
+        discs,
+        extent,
+    }
+}
+
+/// How much of the picture a drawing covers, in pixels: its extent along
+/// the direction it spreads most (`length`) and across it (`width`). A
+/// width under a pixel or two is a line at this view and size, a length
+/// that small a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spread {
+    pub length: f64,
+    pub width: f64,
+}
+
+/// The [`Spread`] of what `g` draws, fitted into the picture of `opts` as
+/// [`layout`] fits it.
+pub fn drawn_spread(g: &Geometry, opts: &RenderOptions) -> Spread {
+    let proj = Projector::new(opts);
+    let p = projected(g, opts, &proj);
+    let fit = proj.fit(&p.extent, opts);
+    let px: Vec<[f64; 2]> = p.extent.iter().map(|&q| fit.to_px(q)).collect();
+    spread(&px)
+}
+
+/// The [`Spread`] of a flat picture whose picture-plane box is `lo`..`hi`
+/// (a parallel view, face on), fitted into the picture of `opts`.
+pub fn box_spread(lo: [f64; 2], hi: [f64; 2], opts: &RenderOptions) -> Spread {
+    let corners = [lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+    let fit = Fit::new(corners.iter(), opts);
+    let px: Vec<[f64; 2]> = corners.iter().map(|&q| fit.to_px(q)).collect();
+    spread(&px)
+}
+
+/// The extent of `points` along their principal axis and across it (so
+/// that a slanted line is as thin as a level one).
+fn spread(points: &[[f64; 2]]) -> Spread {
+    let n = points.len().max(1) as f64;
+    let mean = [0, 1].map(|k| points.iter().map(|p| p[k]).sum::<f64>() / n);
+    let (mut xx, mut xy, mut yy) = (0.0, 0.0, 0.0);
+    for p in points {
+        let (dx, dy) = (p[0] - mean[0], p[1] - mean[1]);
+        xx += dx * dx;
+        xy += dx * dy;
+        yy += dy * dy;
+    }
+    let angle = 0.5 * (2.0 * xy).atan2(xx - yy);
+    let (s, c) = angle.sin_cos();
+    let range = |f: &dyn Fn(&[f64; 2]) -> f64| {
+        let (lo, hi) = points
+            .iter()
+            .map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        (hi - lo).max(0.0)
+    };
+    Spread {
+        length: range(&|p| p[0] * c + p[1] * s),
+        width: range(&|p| p[1] * c - p[0] * s),
+    }
+}
+
+/// Projects and fits `g` into a `width` × `height` picture.
+pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
+    let proj = Projector::new(opts);
+    let Projected {
+        segments,
+        polys,
+        discs,
+        extent,
+    } = projected(g, opts, &proj);
     let fit = proj.fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths));
     let runs = runs(&segments, &fit, g.world_widths);
     let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys

@@ -386,6 +386,19 @@ marked as a schema (a string example: `graftal list` shows which); a turtle
 that only moves without drawing (`f`, as in a kolam: try `--spline`); a
 derived word with no symbol that moves the turtle; no derivation steps.";
 
+    NEARLY_NOTHING_DRAWN = "W0009", "nearly nothing is drawn",
+"What is drawn is under two pixels wide at the picture's view and size:
+a line or a point, whatever the system's shape. A note names the likely
+cause: the geometry lies in a plane seen edge-on (a 3D model drawn from
+the side of its plane: the help names the `--view AZ,EL` that looks
+straight at it), every segment lies on one line (a 2D system whose
+turns cancel, or an angle that never turns off the line), or a picture
+so long for its width that its width is lost at this `--size`.
+
+Example:
+    axiom: F&F&F        (pitched only: a figure in a vertical plane)
+    rendered with --view 90,0, which looks along that plane";
+
     SCALE_RANGE = "W0004", "scale factor out of range",
 "The scale factor is the share of the picture the figure fills, from 0 to
 100. Values outside are clamped.
