@@ -326,6 +326,8 @@ fn check(io: &mut Io<'_>, files: &[String], reading: &Reading, format: OutputFor
                 let entry = reading.entry.as_deref().or(named.as_deref());
                 let c = driver::compile_as(file, entry, notation);
                 report(io, &c, &c.diagnostics.0, format);
+                // What `derive` would add: the derivation's limits.
+                report(io, &c, &driver::derivation_diagnostics(&c), format);
                 match format {
                     OutputFormat::Human => list_entries(io, &c),
                     OutputFormat::Json => listings.push(listing_json(&c)),
@@ -704,10 +706,8 @@ fn load_and_compile(
 /// The widest entry name `check` lists; a longer one is shortened.
 const LISTED_NAME: usize = 40;
 
-/// The most entries `check` lists: a library may hold 100,000, and one
-/// line each would flood the terminal. The largest library known
-/// (Fractint's own `fractint.l`) has 69, listed whole.
-const LISTED_ENTRIES: usize = 100;
+/// The most entries `check` lists.
+use driver::LISTED_ENTRIES;
 
 /// `check`'s listing: which notation a file shared by several was read
 /// as (`FILE: dialect: …`), then a library's entries with their lines and
