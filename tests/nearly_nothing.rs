@@ -120,3 +120,15 @@ fn an_ordinary_picture_gets_no_w0009() {
     );
     assert!(w0009(&f, &[]).is_empty());
 }
+
+#[test]
+fn segments_of_no_length_are_a_point() {
+    // cpfg's `F(0)`: segments drawn where the turtle stands.
+    let f = file(
+        "point.l",
+        "Lsystem: 1\nderivation length: 0\nAxiom: F(0)+(30)F(0)\nendlsystem\n",
+    );
+    let ds = w0009(&f, &[]);
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert!(ds[0].to_string().contains("is a point"), "{}", ds[0]);
+}
