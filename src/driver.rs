@@ -1229,17 +1229,12 @@ pub fn render_shared_with(
         return None;
     }
     apply_look(sys, &mut ropts);
+    let pic = render::shared::picture(sys, &mut inst, steps, &ropts);
     // A picture that is nearly a line is drawn the long way, which says so
     // ([`nearly_nothing_drawn`]).
-    let flat = render::box_spread(
-        [whole.lo[0], whole.lo[1]],
-        [whole.hi[0], whole.hi[1]],
-        &ropts,
-    );
-    if flat.width < NEARLY_NOTHING {
+    if render::picture_spread(&pic).width < NEARLY_NOTHING {
         return None;
     }
-    let pic = render::shared::picture(sys, &mut inst, steps, &ropts);
     Some(encode(&pic, format, &ropts, progress))
 }
 

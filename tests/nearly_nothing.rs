@@ -132,3 +132,15 @@ fn segments_of_no_length_are_a_point() {
     assert_eq!(ds.len(), 1, "{ds:?}");
     assert!(ds[0].to_string().contains("is a point"), "{}", ds[0]);
 }
+
+#[test]
+fn a_slanted_line_is_as_thin_as_a_level_one() {
+    // 45° from the axes: its box is square, the line in it is not.
+    let f = file(
+        "slanted.l",
+        "derivation length: 3\nangle factor: 8\naxiom: +F\nF --> FF\n",
+    );
+    let ds = w0009(&f, &[]);
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert!(ds[0].to_string().contains("one line"), "{}", ds[0]);
+}

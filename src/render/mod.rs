@@ -404,12 +404,15 @@ pub fn drawn_spread(g: &Geometry, opts: &RenderOptions) -> Spread {
     spread(&px)
 }
 
-/// The [`Spread`] of a flat picture whose picture-plane box is `lo`..`hi`
-/// (a parallel view, face on), fitted into the picture of `opts`.
-pub fn box_spread(lo: [f64; 2], hi: [f64; 2], opts: &RenderOptions) -> Spread {
-    let corners = [lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
-    let fit = Fit::new(corners.iter(), opts);
-    let px: Vec<[f64; 2]> = corners.iter().map(|&q| fit.to_px(q)).collect();
+/// The [`Spread`] of a picture already laid out: its lines' and
+/// polygons' points, in pixels.
+pub fn picture_spread(pic: &Picture) -> Spread {
+    let px: Vec<[f64; 2]> = pic
+        .runs
+        .iter()
+        .flat_map(|r| r.lines.iter().flatten().copied())
+        .chain(pic.polygons.iter().flat_map(|p| p.1.iter().copied()))
+        .collect();
     spread(&px)
 }
 
