@@ -126,7 +126,13 @@ impl Same<'_> {
     /// The symbols that matter, by label: what each does to the turtle
     /// and, for a guarded one, its guard.
     fn symbols(&self) -> Result<(), String> {
-        let (sa, sb) = (relevant(self.a), relevant(self.b));
+        let by_label = |s: &System| -> BTreeMap<String, SymbolId> {
+            s.mentioned()
+                .into_iter()
+                .map(|i| (label(s, i), i))
+                .collect()
+        };
+        let (sa, sb) = (by_label(self.a), by_label(self.b));
         if let Some(l) = sa.keys().find(|l| !sb.contains_key(*l)) {
             return Err(format!("symbols: `{l}` only in the first system"));
         }
@@ -274,40 +280,54 @@ impl Same<'_> {
     }
 }
 
-/// The symbols that occur somewhere or do something, by label.
-fn relevant(sys: &System) -> BTreeMap<String, SymbolId> {
-    let mut ids: Vec<SymbolId> = Vec::new();
-    let mut add = |w: &[SymbolId]| ids.extend_from_slice(w);
-    add(&sys.axiom.0);
-    let phases = [&sys.decomposition, &sys.homomorphism];
-    let all = (sys.productions.iter()).chain(phases.iter().flat_map(|p| &p.productions));
-    for p in all {
-        add(&p.left);
-        add(&p.predecessor);
-        add(&p.right);
-        for a in &p.alternatives {
-            add(&a.successor.0);
-        }
-    }
-    if let Some(st) = &sys.structure {
-        for r in &st.rules {
-            add(&r.body.0);
-        }
-        for item in &st.seed {
-            if let SeedItem::Word(w) = item {
-                add(&w.0);
+impl System {
+    /// The symbols that matter to [`System::same_as`] and to a notation
+    /// that writes everything: those that occur in the axiom, a
+    /// production, a phase or the structure (and the bases of guarded
+    /// ones), and those given an operation; in id order, once each.
+    pub fn mentioned(&self) -> Vec<SymbolId> {
+        let mut seen = vec![false; self.symbols.len()];
+        let mut add = |w: &[SymbolId]| {
+            for &s in w {
+                if let Some(slot) = seen.get_mut(s.index()) {
+                    *slot = true;
+                }
+                if let Some(g) = self.symbols.info(s).guard {
+                    seen[g.base.index()] = true;
+                }
+            }
+        };
+        add(&self.axiom.0);
+        let phases = [&self.decomposition, &self.homomorphism];
+        let all = (self.productions.iter()).chain(phases.iter().flat_map(|p| &p.productions));
+        for p in all {
+            add(&p.left);
+            add(&p.predecessor);
+            add(&p.right);
+            for a in &p.alternatives {
+                add(&a.successor.0);
             }
         }
+        if let Some(st) = &self.structure {
+            for r in &st.rules {
+                add(&r.body.0);
+            }
+            for item in &st.seed {
+                if let SeedItem::Word(w) = item {
+                    add(&w.0);
+                }
+            }
+        }
+        for (i, op) in self.interpretation.iter().enumerate() {
+            if op.is_some() && i < seen.len() {
+                seen[i] = true;
+            }
+        }
+        (0..seen.len())
+            .filter(|&i| seen[i])
+            .map(|i| SymbolId(i as u32))
+            .collect()
     }
-    let bases: Vec<SymbolId> = (ids.iter())
-        .filter_map(|&s| sys.symbols.info(s).guard.map(|g| g.base))
-        .collect();
-    ids.extend(bases);
-    let with_op = (sys.interpretation.iter().enumerate())
-        .filter(|(_, op)| op.is_some())
-        .map(|(i, _)| SymbolId(i as u32));
-    ids.extend(with_op);
-    ids.into_iter().map(|s| (label(sys, s), s)).collect()
 }
 
 #[cfg(test)]
