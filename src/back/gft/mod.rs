@@ -275,3 +275,186 @@ fn phase(out: &mut String, sys: &System, sp: &Spelling, key: &str, ph: &Phase) {
     }
     out.push_str("}\n");
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ir::look::{Camera, Contour, ContourRole, Lighting, Tropism, TropismKind};
+    use crate::ir::program::{ArrayDecl, Expr, Function, Var};
+    use crate::ir::*;
+
+    /// A system with every field away from its default.
+    fn everything() -> System {
+        let mut s = System::new();
+        let (a, b, apex) = (s.intern("A"), s.intern("B"), s.intern("Apex"));
+        let plus_t = s.intern("+t");
+        let stem = s.intern_silent("stl-level-0");
+        let guarded = s.symbols.intern_guarded(0.5, a);
+        s.intern("0.5?A");
+        s.set_interpretation(a, TurtleOp::Forward { draw: true });
+        let turn = |angle| TurtleOp::Rotate {
+            axis: Axis::Left,
+            angle,
+        };
+        s.set_interpretation(b, turn(Angle::Radians(30f64.to_radians())));
+        s.set_interpretation(
+            plus_t,
+            TurtleOp::Frenet {
+                rotation: RotationId(0),
+                negate: false,
+            },
+        );
+        s.set_interpretation(
+            stem,
+            TurtleOp::Stem {
+                width: 2.0,
+                length: 3.0,
+            },
+        );
+        s.rotations.push(Rotation {
+            name: "t".into(),
+            torsion: Angle::Radians(0.0),
+            curvature: Angle::Uniform { lo: 0.0, hi: 1.5 },
+        });
+        s.axiom = Word::from(vec![a, guarded, stem]);
+        s.axiom_args = vec![vec![Expr::Num(1.0)], vec![], vec![]];
+        let mut p = Production::new(vec![b], vec![a], vec![apex], vec![]);
+        p.formals = Formals {
+            left: vec![vec![]],
+            predecessor: vec![vec![0]],
+            right: vec![vec![]],
+            locals: 2,
+        };
+        p.before = vec![Stmt::Assign(
+            program::Place::Var(Var::Local(1)),
+            Expr::Num(2.0),
+        )];
+        p.condition = Some(Expr::Binary(
+            program::BinOp::Lt,
+            Box::new(Expr::Var(Var::Local(0))),
+            Box::new(Expr::Var(Var::Global(0))),
+        ));
+        let mut alt = Alternative::new(0.25, Word::from(vec![a, plus_t]));
+        alt.args = vec![vec![Expr::Var(Var::Local(1))], vec![]];
+        let mut computed = Alternative::new(1.0, Word::from(vec![b]));
+        computed.computed_weight = Some(Expr::Num(0.75));
+        p.alternatives = vec![alt, computed];
+        s.productions.push(p.clone());
+        s.decomposition = Phase {
+            productions: vec![p.clone()],
+            depth: 2,
+            seed: None,
+        };
+        s.homomorphism = Phase {
+            productions: vec![p],
+            depth: 1,
+            seed: Some(7),
+        };
+        s.program.globals = vec!["n".into()];
+        s.program.arrays = vec![ArrayDecl {
+            name: "v".into(),
+            dims: vec![2],
+            init: vec![1.0, 2.0],
+        }];
+        s.program.functions = vec![Function {
+            name: "leaf".into(),
+            samples: vec![0.0, 0.5],
+        }];
+        s.program.start = vec![Stmt::Assign(
+            program::Place::Var(Var::Global(0)),
+            Expr::Num(0.0),
+        )];
+        s.program.end_each = vec![Stmt::Eval(Expr::Var(Var::Global(0)))];
+        s.ring = true;
+        s.cut = Some(b);
+        s.policy = RulePolicy::Weighted;
+        s.context = ContextFilter::Consider(vec![a, b]);
+        s.settings.steps = Some(4);
+        s.settings.delta = 0.1;
+        s.settings.view = Some((30f64.to_radians(), 0.0));
+        s.settings.seed = Some(3);
+        s.settings.tropisms.push(Tropism {
+            vector: [0.0, -1.0, 0.0],
+            angle: 0.0,
+            intensity: 1.0,
+            elasticity: 0.25,
+            step: 0.0,
+            kind: TropismKind::Torque,
+        });
+        s.colours = vec![Rgb(255, 0, 16)];
+        s.surfaces.push(SurfaceMesh {
+            name: "leaf".into(),
+            triangles: vec![[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]],
+        });
+        s.contours.push(Contour {
+            id: 1,
+            role: ContourRole::CrossSection,
+            points: vec![[1.0, 0.0, 0.0]],
+            closed: true,
+            length: 1.0,
+        });
+        s.look.background = Some(Rgb(0, 0, 0));
+        s.look.camera = Some(Camera {
+            eye: [0.0, 0.0, 10.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            perspective: Some(45.0),
+        });
+        s.look.lighting = Some(Lighting::default());
+        s
+    }
+
+    #[test]
+    fn every_field_is_written() {
+        let text = write(&everything(), None);
+        let lines = [
+            "steps 4",
+            "angle 0.1 rad",
+            "view 30 0",
+            "seed 3",
+            "tropism (0, -1, 0) angle 0 intensity 1 elasticity 0.25 step 0 torque",
+            "rotation t = (0, [0 1.5])",
+            "colours #ff0010",
+            "turtle none",
+            "A = forward",
+            "B = pitch 30deg",
+            "+t = frenet t",
+            "silent stl-level-0 = stem 2 3",
+            "symbol Apex",
+            "choose weighted",
+            "consider A B",
+            "ring",
+            "cut B",
+            "globals n",
+            "array v[2] = 1, 2",
+            "function leaf = 0 0.5",
+            "start {\n  n = 0;\n}",
+            "end-each {\n  n;\n}",
+            "axiom A(1) 0.5?A `stl-level-0`",
+            "B < A(x0) > Apex : { x1 = 2; } x0 < n -> A(x1) +t : 0.25",
+            "\n                                      -> B : 0.75\n",
+            "decomposition depth 2 {\n  B < A(x0)",
+            "homomorphism depth 1 seed 7 {",
+            "background #000000",
+            "camera eye (0, 0, 10) target (0, 0, 0) up (0, 1, 0) perspective 45",
+            "lighting filled line-style pixel tapered index-shift 10",
+            "light (0, 0, 1) point ambient (1, 1, 1)",
+            "surface leaf {\n  (0, 0, 0) (1, 0, 0) (0, 1, 0)\n}",
+            "contour 1 cross-section closed length 1 {\n  (1, 0, 0)\n}",
+        ];
+        for line in lines {
+            assert!(text.contains(line), "`{line}` missing from\n{text}");
+        }
+    }
+
+    #[test]
+    fn names_the_notation_cannot_read_bare_are_backquoted() {
+        let mut s = System::new();
+        let names = ["<", "{", "a b", "2x", "F"];
+        let ids: Vec<SymbolId> = names.iter().map(|n| s.intern(n)).collect();
+        s.axiom = Word::from(ids);
+        let text = write(&s, None);
+        assert!(text.contains("axiom `<` `{` `a b` `2x` F"), "{text}");
+        assert!(text.contains("symbol `a b` `2x`"), "{text}");
+    }
+}
