@@ -369,6 +369,12 @@ mod tests {
         s.cut = Some(b);
         s.policy = RulePolicy::Weighted;
         s.context = ContextFilter::Consider(vec![a, b]);
+        settings_and_look(&mut s);
+        s
+    }
+
+    /// Settings, colours, surfaces, contours and the look.
+    fn settings_and_look(s: &mut System) {
         s.settings.steps = Some(4);
         s.settings.delta = 0.1;
         s.settings.view = Some((30f64.to_radians(), 0.0));
@@ -401,7 +407,6 @@ mod tests {
             perspective: Some(45.0),
         });
         s.look.lighting = Some(Lighting::default());
-        s
     }
 
     #[test]
