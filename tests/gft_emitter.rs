@@ -138,6 +138,10 @@ fn the_command_line_translates_to_gft() {
     let out = graftal(&["translate", "std:koch-island", "--to", "gft"]);
     assert_eq!(out.status, 0, "{}", out.stderr);
     assert!(out.stdout.contains("F -> F+F-F-FF+F+F-F"), "{}", out.stdout);
+    assert!(out.stdout.starts_with("steps 3\n"), "{}", out.stdout);
+    // `-n` replaces the file's derivation length.
+    let out = graftal(&["translate", "std:koch-island", "--to", "gft", "-n", "5"]);
+    assert!(out.stdout.starts_with("steps 5\n"), "{}", out.stdout);
 }
 
 /// Printed expressions read back (by cpfg's reader, whose expression

@@ -16,20 +16,10 @@ use graftal::stdlib::ENTRIES;
 use graftal::turtle::Geometry;
 
 mod common;
-use common::{check_golden, graftal, temp};
+use common::{check_golden, graftal, read_back_targets, temp};
 
 /// A notation graftal writes.
 type Target = &'static dyn back::Back;
-
-/// The emitters whose files graftal also reads, so that a translation
-/// can be compiled again and drawn (`.gft` joins once its front end is
-/// registered; tests/gft_emitter.rs covers it until then).
-fn targets() -> Vec<Target> {
-    let read = |ext: &str| (graftal::front::FRONTS.iter()).any(|f| f.extensions().contains(&ext));
-    (back::BACKS.iter().copied())
-        .filter(|b| read(b.extension()))
-        .collect()
-}
 
 fn target(name: &str) -> Target {
     back::by_name(name).expect("a registered emitter")
@@ -207,7 +197,7 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
         let c = compile(e.file, e.text);
         assert!(c.system.is_some(), "{}", e.name);
         let from = target(c.front.name());
-        for to in targets() {
+        for to in read_back_targets() {
             let Some((is_exact, out)) = check_translation(e.name, &c, to, 0) else {
                 continue;
             };
@@ -401,7 +391,7 @@ fn random_systems_translate_exactly_or_say_why() {
         if c.system.is_none() {
             continue;
         }
-        for to in targets() {
+        for to in read_back_targets() {
             tried += 1;
             let seed = i as u64;
             if let Some((true, _)) = check_translation(&format!("{name}\n{text}"), &c, to, seed) {

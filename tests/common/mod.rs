@@ -155,3 +155,17 @@ pub fn main_l(dir: &std::path::Path) -> Option<std::path::PathBuf> {
     ls.sort();
     ls.into_iter().next()
 }
+
+/// Whether graftal reads the files an emitter writes, so that a
+/// translation can be compiled again (`.gft` once its front end is
+/// registered; tests/gft_emitter.rs covers its emitter until then).
+pub fn reads_back(to: &dyn graftal::back::Back) -> bool {
+    (graftal::front::FRONTS.iter()).any(|f| f.extensions().contains(&to.extension()))
+}
+
+/// The emitters whose files graftal also reads ([`reads_back`]).
+pub fn read_back_targets() -> Vec<&'static dyn graftal::back::Back> {
+    (graftal::back::BACKS.iter().copied())
+        .filter(|&b| reads_back(b))
+        .collect()
+}
