@@ -461,5 +461,9 @@ mod tests {
         let text = write(&s, None);
         assert!(text.contains("axiom `<` `{` `a b` `2x` F"), "{text}");
         assert!(text.contains("symbol `a b` `2x`"), "{text}");
+        let ring = s.intern("ring");
+        s.set_interpretation(ring, TurtleOp::Push);
+        let text = write(&s, None);
+        assert!(text.contains("\n`ring` = push\n"), "{text}");
     }
 }

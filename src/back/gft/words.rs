@@ -10,6 +10,56 @@ use std::fmt::Write;
 /// commas too, since blocks, seeds and parameter lists use them).
 const RESERVED: &[char] = &['(', ')', ':', '<', '>', '=', '?', '`', '"', '{', '}', ','];
 
+/// The keywords of docs/gft.md: a line that starts with one (and has no
+/// `->`) is that item, so a symbol of that name starting a line is
+/// backquoted.
+const KEYWORDS: &[&str] = &[
+    "steps",
+    "angle",
+    "length",
+    "scale",
+    "width",
+    "width-factor",
+    "width-step",
+    "widths",
+    "colour",
+    "colour-step",
+    "view",
+    "seed",
+    "tropism",
+    "turtle",
+    "symbol",
+    "silent",
+    "choose",
+    "ignore",
+    "consider",
+    "ring",
+    "cut",
+    "decomposition",
+    "homomorphism",
+    "axiom",
+    "rotation",
+    "colours",
+    "globals",
+    "array",
+    "function",
+    "start",
+    "start-each",
+    "end-each",
+    "end",
+    "rule",
+    "stems",
+    "outline",
+    "growth",
+    "background",
+    "camera",
+    "lighting",
+    "light",
+    "material",
+    "surface",
+    "contour",
+];
+
 /// How each symbol is written, and whether words put a space between
 /// modules (they do as soon as one name is not a single character, so
 /// that the longest-name rule cannot join two modules into one).
@@ -140,7 +190,12 @@ impl Spelling {
             if let Some(key) = sys.symbols.silent_key(s) {
                 let _ = writeln!(out, "silent {key} = {text}");
             } else if op.is_some() || s == SymbolId::OPEN || s == SymbolId::CLOSE {
-                let _ = writeln!(out, "{} = {text}", self.name(s));
+                let name = self.name(s);
+                if KEYWORDS.contains(&name) {
+                    let _ = writeln!(out, "`{name}` = {text}");
+                } else {
+                    let _ = writeln!(out, "{name} = {text}");
+                }
             } else if info.name.chars().count() > 1 {
                 plain_names.push(self.name(s).to_string());
             }
