@@ -8,7 +8,7 @@ use graftal::source::SourceFile;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::check_golden;
+use common::{check_golden, main_l};
 
 fn compile_text(src: &str) -> driver::Compiled {
     driver::compile(SourceFile::new("test.l", src))
@@ -215,30 +215,6 @@ fn errors_have_codes_and_spans_and_all_are_reported() {
     assert_eq!(&src[span], "foo");
     let span = at("E0005").span.clone().unwrap();
     assert_eq!(&src[span], "->");
-}
-
-/// The `.l` file of a corpus object: the one its `specifications` names
-/// on the `cpfg` line, else the only one. Every object has a
-/// `specifications` file; a missing one fails the test.
-fn main_l(dir: &Path) -> Option<PathBuf> {
-    let spec_path = dir.join("specifications");
-    let spec = std::fs::read_to_string(&spec_path)
-        .unwrap_or_else(|e| panic!("{}: {e}", spec_path.display()));
-    for line in spec.lines() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if words.first() == Some(&"cpfg") {
-            if let Some(l) = words.iter().find(|w| w.ends_with(".l")) {
-                return Some(dir.join(l));
-            }
-        }
-    }
-    let mut ls: Vec<PathBuf> = std::fs::read_dir(dir)
-        .ok()?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "l"))
-        .collect();
-    ls.sort();
-    ls.into_iter().next()
 }
 
 fn corpus() -> Vec<PathBuf> {

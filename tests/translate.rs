@@ -16,12 +16,10 @@ use graftal::stdlib::ENTRIES;
 use graftal::turtle::Geometry;
 
 mod common;
-use common::{check_golden, graftal, temp};
+use common::{check_golden, graftal, read_back_targets, temp};
 
 /// A notation graftal writes.
 type Target = &'static dyn back::Back;
-
-const TARGETS: &[Target] = back::BACKS;
 
 fn target(name: &str) -> Target {
     back::by_name(name).expect("a registered emitter")
@@ -199,7 +197,7 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
         let c = compile(e.file, e.text);
         assert!(c.system.is_some(), "{}", e.name);
         let from = target(c.front.name());
-        for &to in TARGETS {
+        for to in read_back_targets() {
             let Some((is_exact, out)) = check_translation(e.name, &c, to, 0) else {
                 continue;
             };
@@ -393,7 +391,7 @@ fn random_systems_translate_exactly_or_say_why() {
         if c.system.is_none() {
             continue;
         }
-        for &to in TARGETS {
+        for to in read_back_targets() {
             tried += 1;
             let seed = i as u64;
             if let Some((true, _)) = check_translation(&format!("{name}\n{text}"), &c, to, seed) {

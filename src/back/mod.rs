@@ -36,6 +36,7 @@
 //! --format json` prints.
 
 pub mod from_stl;
+pub mod gft;
 pub mod linf;
 pub mod pfg;
 pub mod stl;
@@ -48,7 +49,7 @@ use serde::Serialize;
 use std::collections::{HashMap, HashSet};
 
 /// Every notation graftal writes.
-pub static BACKS: &[&dyn Back] = &[&pfg::Pfg, &linf::Linf, &stl::Stl];
+pub static BACKS: &[&dyn Back] = &[&pfg::Pfg, &linf::Linf, &stl::Stl, &gft::Gft];
 
 /// A notation graftal writes.
 pub trait Back: Sync {
@@ -69,6 +70,13 @@ pub trait Back: Sync {
     /// productions are spelled out without a symbol per term (pfg's
     /// alphabet is about 80 characters).
     fn term_symbols(&self) -> Option<usize> {
+        None
+    }
+    /// The whole system, every field of it, when the notation can say
+    /// everything the IR holds (`.gft`); `steps` replaces the system's
+    /// derivation length. `None`: the notation goes through [`translate`]'s
+    /// checks and [`Back::write`].
+    fn write_everything(&self, _sys: &System, _steps: Option<u64>) -> Option<String> {
         None
     }
 }
@@ -413,6 +421,11 @@ pub fn translate(
     origin: &Origin,
     req: &Request,
 ) -> Translation {
+    if let Some(text) = req.target.write_everything(sys, req.steps) {
+        let mut e = Emitter::new(sys, spans, source, origin, req);
+        e.exact("the whole system", None, "");
+        return e.finish(text);
+    }
     if sys.rewrites_modules() {
         let mut diagnostics = crate::diagnostics::Diagnostics::default();
         diagnostics.push(

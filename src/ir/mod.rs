@@ -216,6 +216,7 @@ pub mod layout;
 pub mod look;
 pub mod number;
 pub mod program;
+mod same;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};
@@ -312,6 +313,17 @@ impl SymbolTable {
         });
         self.index.insert(key.to_string(), id);
         id
+    }
+
+    /// The key a silent symbol was interned under (its name is empty);
+    /// `None` for any other symbol.
+    pub fn silent_key(&self, id: SymbolId) -> Option<&str> {
+        if !self.name(id).is_empty() {
+            return None;
+        }
+        (self.index.iter())
+            .find(|(_, &v)| v == id)
+            .map(|(k, _)| k.as_str())
     }
 
     /// Interns a guarded occurrence (`p?base`) of `base`.

@@ -131,3 +131,41 @@ fn shorten(line: &str) -> String {
         None => line.to_string(),
     }
 }
+
+/// The `.l` file of a corpus object: the one its `specifications` names
+/// on the `cpfg` line, else the only one. Every object has a
+/// `specifications` file; a missing one fails the test.
+pub fn main_l(dir: &std::path::Path) -> Option<std::path::PathBuf> {
+    let spec_path = dir.join("specifications");
+    let spec = std::fs::read_to_string(&spec_path)
+        .unwrap_or_else(|e| panic!("{}: {e}", spec_path.display()));
+    for line in spec.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.first() == Some(&"cpfg") {
+            if let Some(l) = words.iter().find(|w| w.ends_with(".l")) {
+                return Some(dir.join(l));
+            }
+        }
+    }
+    let mut ls: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "l"))
+        .collect();
+    ls.sort();
+    ls.into_iter().next()
+}
+
+/// Whether graftal reads the files an emitter writes, so that a
+/// translation can be compiled again (`.gft` once its front end is
+/// registered; tests/gft_emitter.rs covers its emitter until then).
+pub fn reads_back(to: &dyn graftal::back::Back) -> bool {
+    (graftal::front::FRONTS.iter()).any(|f| f.extensions().contains(&to.extension()))
+}
+
+/// The emitters whose files graftal also reads ([`reads_back`]).
+pub fn read_back_targets() -> Vec<&'static dyn graftal::back::Back> {
+    (graftal::back::BACKS.iter().copied())
+        .filter(|&b| reads_back(b))
+        .collect()
+}
