@@ -969,15 +969,28 @@ fn interval_messages_have_no_empty_degrees() {
 
 #[test]
 fn linf_angles_are_written_back_as_they_were_written() {
+    // `e` is one bit above pi/3: a decimal, or it would not read back.
     let src = "angles d = (0, pi/3) t = (-pi/2, 0.3) w = (0, [0 2*pi]) c = (3*pi/4, 0.7639*pi)\n\
-               axiom f\nrules f = f +t f -w f +c f -d f\nlines f\n";
+               e = (0, 1.0471975511965979)\n\
+               axiom f\nrules f = f +t f -w f +c f -d f +e f\nlines f\n";
     let c = compile("as-written.linf", src);
     let t = translate(&c, target("linf"), false);
     let text = t.text.expect("translates");
-    for written in ["pi/3", "-pi/2", "0.3", "[0 2*pi]", "3*pi/4", "0.7639*pi"] {
+    for written in [
+        "pi/3",
+        "-pi/2",
+        "0.3",
+        "[0 2*pi]",
+        "3*pi/4",
+        "0.7639*pi",
+        "1.0471975511965979",
+    ] {
         assert!(text.contains(written), "{written} in\n{text}");
     }
-    assert!(!text.contains("6.28") && !text.contains("1.047"), "{text}");
+    assert!(
+        !text.contains("6.28") && !text.contains("1.0471975511965976"),
+        "{text}"
+    );
     // And reads back to the same angles, bit for bit.
     let back = compile("back.linf", &text);
     let rotations = |c: &Compiled| {
