@@ -174,3 +174,70 @@ fn a_stroke_width_sets_the_lines_pixels() {
     let [_, y0, _, y1] = ink(&png);
     assert!((11..=13).contains(&(y1 - y0 + 1)), "{}", y1 - y0 + 1);
 }
+
+/// The distinct stroke colours of an SVG.
+fn strokes(svg: &str) -> Vec<&str> {
+    let mut colours = attrs(svg, "stroke");
+    colours.sort();
+    colours.dedup();
+    colours
+}
+
+#[test]
+fn the_depth_palette_colours_splines_by_depth() {
+    let tree = system(
+        "spline-tree.l",
+        "derivation length: 0\nangle factor: 8\naxiom: F[+F[+F]][-F]\n",
+    );
+    let (png, svg) = draw(&tree, &["--spline", "--palette", "depth"]);
+    // Trunk, branches and the branch's branch: three depths.
+    assert_eq!(strokes(&svg).len(), 3, "{svg}");
+    let (mono, _) = draw(&tree, &["--spline", "--palette", "mono"]);
+    assert_ne!(png.data(), mono.data());
+}
+
+/// How many pixels of `pm` pass `test` on their red, green and blue.
+fn count(pm: &Pixmap, test: impl Fn(i32, i32, i32) -> bool) -> usize {
+    pm.pixels()
+        .iter()
+        .filter(|p| {
+            let c = p.demultiply();
+            test(
+                i32::from(c.red()),
+                i32::from(c.green()),
+                i32::from(c.blue()),
+            )
+        })
+        .count()
+}
+
+#[test]
+fn a_palette_recolours_a_lit_cpfg_look() {
+    // Cylinders lit by one light, coloured from cpfg's colour map.
+    let tree = system(
+        "lit-tree.l",
+        "Lsystem: 1\nderivation length: 0\nAxiom: F[+F[+F]][-F]\nendlsystem\n",
+    );
+    system(
+        "lit-tree.v",
+        "angle factor: 8\ninitial line width: 0.2\nrender mode: shaded\n\
+         line style: cylinder\nlight: V: 0 0 1\n",
+    );
+    let white = ["--background", "white"];
+    let not_grey = |r: i32, g: i32, b: i32| r.max(g).max(b) - r.min(g).min(b) > 8;
+    let (own, own_svg) = draw(&tree, &white);
+    assert!(count(&own, not_grey) > 100, "the look's own colours");
+    // Mono: black lines, lit or not; only grey where they meet the white.
+    let (mono, mono_svg) = draw(&tree, &[&white[..], &["--palette", "mono"]].concat());
+    assert_eq!(count(&mono, not_grey), 0);
+    assert_eq!(strokes(&mono_svg), ["#000000"], "{mono_svg}");
+    // Depth: a brown trunk and green tips, in the PNG and the SVG scene.
+    let (depth, depth_svg) = draw(&tree, &[&white[..], &["--palette", "depth"]].concat());
+    assert!(count(&depth, |r, g, b| r > b + 30 && r > g) > 50, "brown");
+    assert!(
+        count(&depth, |r, g, b| g > r + 30 && g > b + 30) > 50,
+        "green"
+    );
+    assert!(strokes(&depth_svg).len() >= 3, "{depth_svg}");
+    assert_ne!(strokes(&own_svg), strokes(&depth_svg), "{depth_svg}");
+}

@@ -964,3 +964,59 @@ fn interval_messages_have_no_empty_degrees() {
         assert!(!all.contains("( degrees)"), "{all}");
     }
 }
+
+#[test]
+fn linf_angles_are_written_back_as_they_were_written() {
+    // `e` is one bit above pi/3: a decimal, or it would not read back.
+    let src = "angles d = (0, pi/3) t = (-pi/2, 0.3) w = (0, [0 2*pi]) c = (3*pi/4, 0.7639*pi)\n\
+               e = (0, 1.0471975511965979)\n\
+               axiom f\nrules f = f +t f -w f +c f -d f +e f\nlines f\n";
+    let c = compile("as-written.linf", src);
+    let t = translate(&c, target("linf"), false);
+    let text = t.text.expect("translates");
+    for written in [
+        "pi/3",
+        "-pi/2",
+        "0.3",
+        "[0 2*pi]",
+        "3*pi/4",
+        "0.7639*pi",
+        "1.0471975511965979",
+    ] {
+        assert!(text.contains(written), "{written} in\n{text}");
+    }
+    assert!(
+        !text.contains("6.28") && !text.contains("1.0471975511965976"),
+        "{text}"
+    );
+    // And reads back to the same angles, bit for bit.
+    let back = compile("back.linf", &text);
+    let rotations = |c: &Compiled| {
+        let sys = c.system.as_ref().expect("compiles");
+        let mut r: Vec<String> = sys
+            .rotations
+            .iter()
+            .map(|r| format!("{:?} {:?}", r.torsion, r.curvature))
+            .collect();
+        r.sort();
+        r
+    };
+    assert_eq!(rotations(&c), rotations(&back));
+}
+
+#[test]
+fn a_refused_interval_is_quoted_as_written() {
+    let file = temp("interval.linf");
+    std::fs::write(
+        &file,
+        "angles w = (0, [0 2*pi])\naxiom f\nrules f = f +w f\nlines f\n",
+    )
+    .unwrap();
+    let o = graftal(&["translate", file.to_str().unwrap(), "--to", "pfg"]);
+    assert_eq!(o.status, 1, "{}", o.stderr);
+    assert!(
+        o.stderr.contains("the interval angle `[0 2*pi]` of `+w`"),
+        "{}",
+        o.stderr
+    );
+}

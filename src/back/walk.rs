@@ -4,7 +4,7 @@
 //! reported in the same words by every target that drops them.
 
 use super::{angle_factor, multiples, number, occurring, repeated, turns, Emitter, Kind, Turns};
-use crate::ir::{Axis, Guard, Span, SymbolId, System, TurtleOp};
+use crate::ir::{Angle, Axis, Guard, Span, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 
 /// The symbols that occur in a system (see [`occurring`]), as the
@@ -232,10 +232,15 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
                 } else {
                     String::new()
                 };
+                let written = intervals(sys, op).join(" and ");
                 e.problem(
                     Kind::Interval,
                     e.symbol_span(s),
-                    format!("the interval angle of `{}`: {}", e.name(s), how.fixed),
+                    format!(
+                        "the interval angle {written} of `{}`: {}",
+                        e.name(s),
+                        how.fixed
+                    ),
                     format!("the middle of the interval is used{middle}"),
                 );
                 t
@@ -260,6 +265,28 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
         }
     }
     angle_factor(e, &by_symbol, how.target)
+}
+
+/// The interval angles of `op` as LinF writes them (`[0 2*pi]`), each in
+/// backquotes: a rotation's torsion before its curvature.
+fn intervals(sys: &System, op: TurtleOp) -> Vec<String> {
+    let angles = match op {
+        TurtleOp::Rotate { angle, .. } => vec![angle],
+        TurtleOp::Frenet { rotation, .. } => sys
+            .rotations
+            .get(rotation.0 as usize)
+            .map_or_else(Vec::new, |r| vec![r.torsion, r.curvature]),
+        _ => Vec::new(),
+    };
+    angles
+        .into_iter()
+        .filter_map(|a| match a {
+            Angle::Uniform { lo, hi } => {
+                Some(format!("`{}`", crate::ir::number::radians_interval(lo, hi)))
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// The turns of `op` (symbol `s`) with the angle factor `n`: each rotation

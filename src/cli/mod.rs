@@ -154,7 +154,9 @@ struct RenderArgs {
     #[arg(long, default_value_t = 0.0, value_parser = parse_degrees, allow_hyphen_values = true)]
     rotate: f64,
     /// Line colours instead of the system's: mono (black), depth (by
-    /// branch depth), rainbow (along the turtle's path).
+    /// branch depth), rainbow (along the turtle's path). Lines, splines and
+    /// a lit look's cylinders and ribbons take them (shaded by its light);
+    /// polygons, surfaces and spheres keep the system's colours.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::render::Palette::NAMES))]
     palette: Option<String>,
 }

@@ -15,6 +15,9 @@
 //!   magnitude of 1e15 or more or below 1e-4 prints in exponent form
 //!   (`2.5e-7`) instead of a row of zeros. The loss is at most half a unit
 //!   in the 12th significant digit, or the value itself below the floor.
+//!
+//! Angles in radians print as people write them with [`radians`]: `2*pi`,
+//! `pi/3`, `-3*pi/4`, when that text reads back as the same `f64`.
 
 /// Significant digits [`readable`] keeps.
 pub const READABLE_DIGITS: usize = 12;
@@ -66,6 +69,62 @@ pub fn degrees(radians: f64) -> String {
         .map(|digits| format!("{deg:.digits$}").parse::<f64>().unwrap_or(deg))
         .find(|d| d.to_radians() == radians)
         .map_or_else(|| exact(deg), exact)
+}
+
+/// The largest whole multiple `k` of `pi` (or of `pi/q`) [`radians`] writes.
+pub const PI_MULTIPLE_MAX: u32 = 48;
+/// The largest divisor `q` of `pi` [`radians`] writes.
+pub const PI_DIVISOR_MAX: u32 = 24;
+
+/// An angle in radians as people write it: `k*pi`, `pi/q` or `k*pi/q`
+/// (k up to [`PI_MULTIPLE_MAX`], q up to [`PI_DIVISOR_MAX`]), else `c*pi`
+/// with a short decimal `c` (`0.7639*pi`), else [`exact`]; a multiple of pi
+/// only when it evaluates, left to right in `f64` as a LinF expression
+/// does (`k*pi/q` is `(k × π) / q`), to `x` bit for bit, so that the text
+/// reads back as the same angle.
+pub fn radians(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return exact(x);
+    }
+    let sign = if x < 0.0 { "-" } else { "" };
+    let v = x.abs();
+    let pi = std::f64::consts::PI;
+    for q in 1..=PI_DIVISOR_MAX {
+        let k = (v * f64::from(q) / pi).round();
+        if !(1.0..=f64::from(PI_MULTIPLE_MAX)).contains(&k) {
+            continue;
+        }
+        let times = if k == 1.0 { pi } else { k * pi };
+        let value = if q == 1 { times } else { times / f64::from(q) };
+        if value == v {
+            let times = if k == 1.0 {
+                "pi".to_string()
+            } else {
+                format!("{k}*pi")
+            };
+            let over = if q == 1 {
+                String::new()
+            } else {
+                format!("/{q}")
+            };
+            return format!("{sign}{times}{over}");
+        }
+    }
+    // A short decimal coefficient, as in `0.7639*pi`.
+    let c = v / pi;
+    for digits in 1..=6 {
+        let text = format!("{c:.digits$}");
+        match text.parse::<f64>() {
+            Ok(r) if r != 0.0 && r * pi == v => return format!("{sign}{}*pi", exact(r)),
+            _ => {}
+        }
+    }
+    exact(x)
+}
+
+/// An interval of radians as LinF writes it: `[0 2*pi]`.
+pub fn radians_interval(lo: f64, hi: f64) -> String {
+    format!("[{} {}]", radians(lo), radians(hi))
 }
 
 #[cfg(test)]
@@ -121,5 +180,75 @@ mod tests {
         let back = s.parse::<f64>().unwrap().to_radians();
         assert_eq!(back, std::f64::consts::TAU / 14.0);
         assert_eq!(degrees(30f64.to_radians()), "30");
+    }
+
+    /// Reads `text` as the LinF reader does: `[-]k*pi/q`, `c*pi` or a
+    /// decimal, each operation in `f64` left to right.
+    fn read_back(text: &str) -> f64 {
+        let (negative, t) = match text.strip_prefix('-') {
+            Some(t) => (true, t),
+            None => (false, text),
+        };
+        let (times, over) = t.split_once('/').unwrap_or((t, ""));
+        let pi = std::f64::consts::PI;
+        let mut v = match times.strip_suffix("pi") {
+            Some("") => pi,
+            Some(k) => k.strip_suffix('*').unwrap().parse::<f64>().unwrap() * pi,
+            None => times.parse().unwrap(),
+        };
+        if !over.is_empty() {
+            v /= over.parse::<f64>().unwrap();
+        }
+        if negative {
+            -v
+        } else {
+            v
+        }
+    }
+
+    #[test]
+    fn radians_are_written_as_multiples_of_pi() {
+        let pi = std::f64::consts::PI;
+        assert_eq!(radians(2.0 * pi), "2*pi");
+        assert_eq!(radians(pi / 3.0), "pi/3");
+        assert_eq!(radians(-pi / 2.0), "-pi/2");
+        assert_eq!(radians(3.0 * pi / 4.0), "3*pi/4");
+        assert_eq!(radians(pi), "pi");
+        assert_eq!(radians(0.7639 * pi), "0.7639*pi");
+        assert_eq!(radians(0.3), "0.3");
+        assert_eq!(radians(1.0), "1");
+        assert_eq!(radians(-0.0), "0");
+        assert_eq!(radians_interval(0.0, 2.0 * pi), "[0 2*pi]");
+        // Past the divisors written: no `/`.
+        assert!(!radians(pi / 25.0).contains('/'), "{}", radians(pi / 25.0));
+    }
+
+    #[test]
+    fn radians_read_back_to_the_same_bits() {
+        let pi = std::f64::consts::PI;
+        let mut values = vec![1e-300, 1e300, 0.1, 25.0f64.to_radians()];
+        for q in 1..=30u32 {
+            for k in -60..=60i32 {
+                let times = f64::from(k) * pi;
+                values.push(times / f64::from(q));
+                values.push(f64::from(k) * (pi / f64::from(q)));
+                values.push(f64::from(k) * std::f64::consts::TAU / f64::from(q));
+            }
+        }
+        // Degrees of every turn fraction a pfg file can ask for, and
+        // pseudo-random values.
+        values.extend((1..=360).map(|d| f64::from(d).to_radians()));
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..2000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x >> 11) as f64 / (1u64 << 53) as f64 * 40.0 - 20.0);
+        }
+        for v in values {
+            let text = radians(v);
+            let back = read_back(&text);
+            assert_eq!(back.to_bits(), (v + 0.0).to_bits(), "{v} as {text}");
+        }
     }
 }

@@ -153,6 +153,16 @@ impl Palette {
         }
     }
 
+    /// What segment `i` of `g` is painted with: its own colour without a
+    /// palette. Polygons and discs keep theirs in every path.
+    pub(crate) fn segment_paint(palette: Option<Palette>, g: &Geometry, i: usize) -> shade::Paint {
+        let s = &g.segments[i];
+        match palette {
+            Some(p) => shade::Paint::Style(p.colour(i, g.segments.len(), s.depth, g.max_depth)),
+            None => shade::Paint::own(s.colour, s.index),
+        }
+    }
+
     /// The colour of segment `i` of `n`, at branch depth `depth` of
     /// `max_depth`.
     fn colour(self, i: usize, n: usize, depth: u16, max_depth: usize) -> Rgb {
@@ -528,7 +538,7 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
             };
             let curve = bspline(&ctrl);
             let colour = match opts.style.palette {
-                Some(p) => p.colour(k, g.paths.len(), 0, g.max_depth),
+                Some(p) => p.colour(k, g.paths.len(), path.depth, g.max_depth),
                 None => path.colour,
             };
             flat.extend(curve.windows(2).map(|w| FlatSegment {
@@ -545,10 +555,7 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
             Some(FlatSegment {
                 a: on_plane(s.a)?,
                 b: on_plane(s.b)?,
-                colour: match opts.style.palette {
-                    Some(p) => p.colour(i, n, s.depth, g.max_depth),
-                    None => s.colour,
-                },
+                colour: Palette::segment_paint(opts.style.palette, g, i).colour(),
                 width: s.width,
             })
         };

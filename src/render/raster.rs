@@ -14,8 +14,8 @@
 //! input gives the same bytes.
 
 use super::camera::{cross, dot, sub, unit, Projector};
-use super::shade::{to_colour, Colour, Kind, Shader};
-use super::{Fit, RenderOptions};
+use super::shade::{to_colour, Colour, Kind, Paint, Shader};
+use super::{Fit, Palette, RenderOptions};
 use crate::ir::look::{Lighting, LineStyle, Shading};
 use crate::ir::Rgb;
 use crate::turtle::{Disc, Geometry, Polygon, Segment, Vec3};
@@ -205,6 +205,8 @@ struct Scene<'a> {
     /// Triangles of each polygon (corner indices) and, when shading is
     /// smooth, the normal at each corner.
     polygons: Vec<Tessellated>,
+    /// The style's line colours (`--palette`), instead of the system's.
+    palette: Option<Palette>,
 }
 
 struct Tessellated {
@@ -316,6 +318,7 @@ impl<'a> Scene<'a> {
             fit,
             ss: f64::from(samples_per_pixel(opts.width, opts.height)),
             polygons,
+            palette: opts.style.palette,
         }
     }
 
@@ -347,7 +350,8 @@ impl<'a> Scene<'a> {
                 Some(next) if self.lighting.tapered && next.a == s.b => next.width,
                 _ => s.width,
             };
-            self.segment(t, s, end_width);
+            let paint = Palette::segment_paint(self.palette, self.g, i);
+            self.segment(t, s, paint, end_width);
         }
         for d in &self.g.discs {
             self.disc(t, d);
@@ -356,12 +360,12 @@ impl<'a> Scene<'a> {
 
     /// A colour for a primitive lit with normal `n` at `p`, by the look's
     /// shading.
-    fn colour(&self, kind: Kind, colour: Rgb, index: u16, p: Vec3, n: Vec3) -> Colour {
+    fn colour(&self, kind: Kind, paint: Paint, p: Vec3, n: Vec3) -> Colour {
         match self.lighting.shading {
-            Shading::Filled | Shading::Wireframe => self.shader.unlit(colour, index),
+            Shading::Filled | Shading::Wireframe => self.shader.flat(paint),
             Shading::Flat | Shading::Smooth => {
                 let v = self.proj.towards_viewer(p);
-                self.shader.lit(kind, index, p, n, v)
+                self.shader.shade(kind, paint, p, n, v)
             }
         }
     }
@@ -573,14 +577,15 @@ impl Scene<'_> {
         let centre = centre.map(|c| c / pts.len() as f64);
         let facing = dot(tess.normal, self.proj.towards_viewer(centre)) >= 0.0;
         let turn = |n: Vec3| if facing { n } else { n.map(|c| -c) };
+        let paint = Paint::own(p.colour, p.index);
         let colours: Vec<Colour> = match &tess.corner_normals {
             Some(normals) => pts
                 .iter()
                 .zip(normals)
-                .map(|(&q, &n)| self.colour(Kind::of(p), p.colour, p.index, q, turn(n)))
+                .map(|(&q, &n)| self.colour(Kind::of(p), paint, q, turn(n)))
                 .collect(),
             None => {
-                let c = self.colour(Kind::of(p), p.colour, p.index, centre, turn(tess.normal));
+                let c = self.colour(Kind::of(p), paint, centre, turn(tess.normal));
                 vec![c; pts.len()]
             }
         };
@@ -595,24 +600,24 @@ impl Scene<'_> {
         }
     }
 
-    fn segment(&self, t: &mut Target, s: &Segment, end_width: f64) {
+    fn segment(&self, t: &mut Target, s: &Segment, paint: Paint, end_width: f64) {
         if self.lighting.shading == Shading::Wireframe {
-            let c = self.shader.unlit(s.colour, s.index);
+            let c = self.shader.flat(paint);
             return self.pixel_line(t, s.a, s.b, self.fit.line_width(1.0, false), c);
         }
         match self.lighting.line_style {
             LineStyle::Pixel => {
-                let c = self.shader.unlit(s.colour, s.index);
+                let c = self.shader.flat(paint);
                 let width = self.fit.line_width(s.width, self.g.world_widths);
                 self.pixel_line(t, s.a, s.b, width, c);
             }
-            LineStyle::Polygon => self.ribbon(t, s, end_width),
+            LineStyle::Polygon => self.ribbon(t, s, paint, end_width),
             LineStyle::Cylinder => {
                 let r = s.width.max(end_width).abs() / 2.0;
                 if r * self.samples_per_unit(s.a) < 1.5 {
-                    self.ribbon(t, s, end_width);
+                    self.ribbon(t, s, paint, end_width);
                 } else {
-                    self.cylinder(t, s, end_width);
+                    self.cylinder(t, s, paint, end_width);
                 }
             }
         }
@@ -620,7 +625,7 @@ impl Scene<'_> {
 
     /// A flat band of the segment's width facing the viewer (cpfg's
     /// `polygon` line style; also a cylinder too thin to show its sides).
-    fn ribbon(&self, t: &mut Target, s: &Segment, end_width: f64) {
+    fn ribbon(&self, t: &mut Target, s: &Segment, paint: Paint, end_width: f64) {
         let Some(axis) = unit(sub(s.b, s.a)) else {
             return;
         };
@@ -631,7 +636,7 @@ impl Scene<'_> {
             return;
         };
         let n = cross(side, axis);
-        let c = self.colour(Kind::Line, s.colour, s.index, mid, n);
+        let c = self.colour(Kind::Line, paint, mid, n);
         let (ra, rb) = (s.width.abs() / 2.0, end_width.abs() / 2.0);
         let at = |p: Vec3, r: f64| {
             (
@@ -657,7 +662,7 @@ impl Scene<'_> {
     /// A cylinder (a cone when tapered) from the segment's width to
     /// `end_width`, its sides lit smooth around the axis (or one colour per
     /// side when shading is flat); sides facing away are not drawn.
-    fn cylinder(&self, t: &mut Target, s: &Segment, end_width: f64) {
+    fn cylinder(&self, t: &mut Target, s: &Segment, paint: Paint, end_width: f64) {
         let Some(axis) = unit(sub(s.b, s.a)) else {
             return;
         };
@@ -688,7 +693,7 @@ impl Scene<'_> {
         let smooth = self.lighting.shading == Shading::Smooth;
         let ring = |p: Vec3, r: f64, k: usize, n: Vec3| {
             let q = [0, 1, 2].map(|i| p[i] + around(k as f64)[i] * r);
-            self.vert(q, self.colour(Kind::Line, s.colour, s.index, q, n))
+            self.vert(q, self.colour(Kind::Line, paint, q, n))
         };
         for k in 0..sides {
             let face = around(k as f64 + 0.5);
@@ -771,7 +776,7 @@ impl Scene<'_> {
                 } else {
                     c[2] - nz * r_world
                 };
-                let colour = self.colour(Kind::Line, d.colour, d.index, p, n);
+                let colour = self.colour(Kind::Line, Paint::own(d.colour, d.index), p, n);
                 t.plot(x, y, z, colour);
             }
         }

@@ -47,6 +47,32 @@ pub enum Kind {
     Surface,
 }
 
+/// What a primitive is painted with: its own colour (and colour-map index
+/// or material), or a colour the style gives it (`--palette`), which is
+/// lit by how much it faces the first light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Paint {
+    Own { colour: Rgb, index: u16 },
+    Style(Rgb),
+}
+
+impl Paint {
+    pub fn own(colour: Rgb, index: u16) -> Paint {
+        Paint::Own { colour, index }
+    }
+
+    /// The colour painted where nothing is lit.
+    pub fn colour(self) -> Rgb {
+        match self {
+            Paint::Own { colour, .. } | Paint::Style(colour) => colour,
+        }
+    }
+}
+
+/// The share of a style colour's brightness left on a side facing away
+/// from the light, so that lit shapes keep their relief in any palette.
+const STYLE_AMBIENT: f64 = 0.45;
+
 impl Kind {
     /// How a polygon is lit.
     pub fn of(p: &crate::turtle::Polygon) -> Kind {
@@ -120,6 +146,28 @@ impl<'a> Shader<'a> {
             self.material(index).diffuse
         } else {
             to_colour(colour)
+        }
+    }
+
+    /// [`Shader::unlit`] of `paint`: a style colour as it is.
+    pub fn flat(&self, paint: Paint) -> Colour {
+        match paint {
+            Paint::Own { colour, index } => self.unlit(colour, index),
+            Paint::Style(c) => to_colour(c),
+        }
+    }
+
+    /// [`Shader::lit`] of `paint`: a style colour dimmed by how far `n`
+    /// turns from the first light.
+    pub fn shade(&self, kind: Kind, paint: Paint, p: Vec3, n: Vec3, v: Vec3) -> Colour {
+        match paint {
+            Paint::Own { index, .. } => self.lit(kind, index, p, n, v),
+            Paint::Style(c) => {
+                let ndl = dot(n, self.first_light);
+                let ndl = if ndl.is_finite() { ndl.max(0.0) } else { 0.0 };
+                let k = (STYLE_AMBIENT + (1.0 - STYLE_AMBIENT) * ndl) as f32;
+                to_colour(c).map(|x| x * k)
+            }
         }
     }
 

@@ -3,8 +3,8 @@
 //! picture, printed with at most 3 decimals so output is byte-stable.
 
 use super::camera::{cross, dot, sub, unit, Projector};
-use super::shade::{Colour, Kind, Shader};
-use super::{Picture, RenderOptions};
+use super::shade::{Colour, Kind, Paint, Shader};
+use super::{Palette, Picture, RenderOptions};
 use crate::ir::look::{Lighting, LineStyle, Shading};
 use crate::ir::Rgb;
 use crate::turtle::{Disc, Geometry, Polygon, Segment, Vec3};
@@ -114,14 +114,14 @@ struct Scene<'a> {
 impl Scene<'_> {
     /// A primitive's one colour: lit at `p` with normal `n` when the look
     /// is lit and shaded, else flat.
-    fn colour(&self, kind: Kind, c: Rgb, index: u16, p: Vec3, n: Vec3) -> Rgb {
-        match self.lighting {
-            None => c,
-            Some(l) if matches!(l.shading, Shading::Flat | Shading::Smooth) => {
+    fn colour(&self, kind: Kind, paint: Paint, p: Vec3, n: Vec3) -> Rgb {
+        match (self.lighting, paint) {
+            (None, _) => paint.colour(),
+            (Some(l), _) if matches!(l.shading, Shading::Flat | Shading::Smooth) => {
                 let v = self.proj.towards_viewer(p);
-                rgb(self.shader.lit(kind, index, p, n, v))
+                rgb(self.shader.shade(kind, paint, p, n, v))
             }
-            Some(_) => rgb(self.shader.unlit(c, index)),
+            (Some(_), _) => rgb(self.shader.flat(paint)),
         }
     }
 
@@ -147,12 +147,12 @@ impl Scene<'_> {
             depth: pts.iter().map(|r| r.1).sum::<f64>() / pts.len() as f64,
             svg: format!(
                 r#"<path d="{d}" fill="{}" fill-rule="evenodd"/>"#,
-                hex(self.colour(Kind::of(p), p.colour, p.index, mid, n))
+                hex(self.colour(Kind::of(p), Paint::own(p.colour, p.index), mid, n))
             ),
         })
     }
 
-    fn segment(&self, s: &Segment, world_widths: bool) -> Option<Item> {
+    fn segment(&self, s: &Segment, paint: Paint, world_widths: bool) -> Option<Item> {
         let ((a, za), (b, zb)) = (self.proj.project(s.a)?, self.proj.project(s.b)?);
         let mid = [0, 1, 2].map(|k| (s.a[k] + s.b[k]) / 2.0);
         let v = self.proj.towards_viewer(mid);
@@ -174,7 +174,7 @@ impl Scene<'_> {
                 num(a[1]),
                 num(b[0]),
                 num(b[1]),
-                hex(self.colour(Kind::Line, s.colour, s.index, mid, n)),
+                hex(self.colour(Kind::Line, paint, mid, n)),
                 num(width)
             ),
         })
@@ -197,7 +197,7 @@ impl Scene<'_> {
                 num(c[0]),
                 num(c[1]),
                 num(r),
-                hex(self.colour(Kind::Line, d.colour, d.index, d.centre, v))
+                hex(self.colour(Kind::Line, Paint::own(d.colour, d.index), d.centre, v))
             ),
         })
     }
@@ -231,11 +231,10 @@ pub fn write_scene(
         world_lines: lighting.is_some_and(|l| l.line_style != LineStyle::Pixel),
     };
     let mut items: Vec<Item> = g.polygons.iter().filter_map(|p| scene.polygon(p)).collect();
-    items.extend(
-        g.segments
-            .iter()
-            .filter_map(|s| scene.segment(s, g.world_widths)),
-    );
+    items.extend(g.segments.iter().enumerate().filter_map(|(i, s)| {
+        let paint = Palette::segment_paint(opts.style.palette, g, i);
+        scene.segment(s, paint, g.world_widths)
+    }));
     items.extend(g.discs.iter().filter_map(|d| scene.disc(d)));
     // Farther first; a stable sort keeps the turtle's order among equals.
     items.sort_by(|a, b| b.depth.total_cmp(&a.depth));

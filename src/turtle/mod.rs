@@ -62,6 +62,9 @@ pub struct TurtlePath {
     pub points: Vec<Vec3>,
     pub width: f64,
     pub colour: Rgb,
+    /// How many branches deep the path is (0 for the trunk), for colouring
+    /// by depth ([`crate::render::Palette::Depth`]).
+    pub depth: u16,
 }
 
 /// A filled disc facing the viewer (a cpfg sphere `@O` or circle `@o`).
@@ -786,6 +789,7 @@ impl Turtle<'_> {
             points: vec![self.state.pos],
             width: self.state.width,
             colour,
+            depth: self.depth(),
         });
         self.geometry.paths.len() - 1
     }

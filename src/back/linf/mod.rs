@@ -24,6 +24,7 @@ use super::{
     hash_comment, hash_line, number, numbered, opening, single_symbol_rules, Attached, Emitter,
     Kind, Names, Rules,
 };
+use crate::ir::number::{radians, radians_interval};
 use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 use std::f64::consts::PI;
@@ -109,53 +110,9 @@ fn neg(a: Angle) -> Angle {
 /// An angle as a LinF expression that evaluates to the same value.
 fn expr(a: Angle) -> String {
     match a {
-        Angle::Uniform { lo, hi } => format!("[{} {}]", radians(lo), radians(hi)),
+        Angle::Uniform { lo, hi } => radians_interval(lo, hi),
         Angle::Radians(x) => radians(x),
         Angle::Delta(_) => "0".into(),
-    }
-}
-
-fn radians(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let sign = if x < 0.0 { "-" } else { "" };
-    let v = x.abs();
-    // k*pi/d for small d.
-    for d in 1..=360u32 {
-        let k = v * d as f64 / PI;
-        let kr = k.round();
-        if kr >= 1.0 && (k - kr).abs() < 1e-12 && gcd(kr as u64, d as u64) == 1 {
-            let num = if kr == 1.0 {
-                "pi".to_string()
-            } else {
-                format!("{}*pi", kr as u64)
-            };
-            return if d == 1 {
-                format!("{sign}{num}")
-            } else {
-                format!("{sign}{num}/{d}")
-            };
-        }
-    }
-    // x*pi with a short x.
-    let k = v / PI;
-    for digits in 1..=6 {
-        let s = format!("{k:.digits$}");
-        if let Ok(r) = s.parse::<f64>() {
-            if (r * PI - v).abs() < 1e-15 * v.max(1.0) {
-                return format!("{sign}{}*pi", s.trim_end_matches('0').trim_end_matches('.'));
-            }
-        }
-    }
-    format!("{sign}{}", number(v))
-}
-
-fn gcd(a: u64, b: u64) -> u64 {
-    if b == 0 {
-        a
-    } else {
-        gcd(b, a % b)
     }
 }
 
@@ -609,17 +566,6 @@ fn join(toks: &[&str], all_short: bool, angles: &[&str]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn angles_are_written_as_fractions_of_pi_where_they_are() {
-        assert_eq!(radians(PI / 3.0), "pi/3");
-        assert_eq!(radians(-PI / 2.0), "-pi/2");
-        assert_eq!(radians(2.0 * PI / 3.0), "2*pi/3");
-        assert_eq!(radians(PI), "pi");
-        assert_eq!(radians(0.7639 * PI), "0.7639*pi");
-        assert_eq!(radians(1.0), "1");
-        assert_eq!(radians(22.5f64.to_radians()), "pi/8");
-    }
 
     #[test]
     fn tokens_are_joined_so_that_they_split_back() {

@@ -29,6 +29,7 @@ use crate::front::name_list;
 use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
+use crate::ir::number::radians;
 use crate::ir::{
     Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
@@ -405,6 +406,7 @@ fn angle(cx: &mut Cx<'_>, c: &Component) -> Option<Angle> {
             let (l, h) = (value(cx, lo), value(cx, hi));
             let (l, h) = (l?, h?);
             if l > h {
+                let (l, h) = (radians(l), radians(h));
                 cx.diags.push(
                     Diagnostic::at(
                         codes::LINF_EMPTY_INTERVAL,
