@@ -64,7 +64,7 @@ pub struct Gene {
 impl Default for Gene {
     fn default() -> Self {
         Gene {
-            angle: 25.7,
+            angle: 22.5,
             alternate: true,
             roll: 0.0,
             length: 1.0,
