@@ -312,7 +312,12 @@ mod tests {
     fn every_file_in_stdlib_is_an_entry() {
         let root = concat!(env!("CARGO_MANIFEST_DIR"), "/stdlib");
         let mut files: Vec<String> = Vec::new();
-        for (dir, ext) in [("pfg", ".l"), ("linf", ".linf"), ("stl", ".stl")] {
+        for (dir, ext) in [
+            ("pfg", ".l"),
+            ("linf", ".linf"),
+            ("stl", ".stl"),
+            ("smith", ".smith"),
+        ] {
             let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {
                 continue;
             };
