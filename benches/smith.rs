@@ -27,7 +27,9 @@ fn smith(c: &mut Criterion) {
     group.sampling_mode(SamplingMode::Flat);
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(5));
-    group.bench_function("derive", |b| b.iter(|| driver::derive(&sys, &opts)));
+    group.bench_function("derive", |b| {
+        b.iter(|| driver::derive(&sys, &opts).map(|w| w.len()).ok())
+    });
     let ropts = RenderOptions {
         width: 1024,
         height: 1024,
