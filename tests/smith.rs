@@ -292,3 +292,36 @@ fn every_branch_keeps_its_angle_in_the_next_generation() {
     }
     assert!(compared > 100, "{compared}");
 }
+
+/// A disc at each branch end (each `]`) and at the end of the main axis;
+/// none with `leaf: none`; a segment per 0 or 1.
+#[test]
+fn leaves_at_branch_ends_and_a_segment_per_symbol() {
+    let draw = |src: &str| {
+        let sys = smith::read_ok(src);
+        let (w, g) = driver::geometry(&sys, &RunOptions::default()).expect("draws");
+        (smith::smith_text(&sys, w.symbols()), g)
+    };
+    let (word, g) = draw("rules: 0.1[1].1.1.0.11.1.0\ngenerations: 10\n");
+    assert_eq!(word, "001[11]11[10][001[1]]");
+    assert_eq!(g.discs.len(), word.matches(']').count() + 1);
+    assert_eq!(g.segments.len(), word.matches(['0', '1']).count());
+    let (_, g) = draw("rules: 0.1[1].1.1.0.11.1.0\ngenerations: 10\nleaf: none\n");
+    assert!(g.discs.is_empty());
+}
+
+/// `roll` turns each branch about its heading: the plant leaves the plane.
+#[test]
+fn a_roll_draws_in_3d() {
+    let z_extent = |src: &str| {
+        let sys = smith::read_ok(src);
+        let (_, g) = driver::geometry(&sys, &RunOptions::default()).expect("draws");
+        g.segments
+            .iter()
+            .flat_map(|s| [s.a[2], s.b[2]])
+            .fold(0f64, |m, z| m.max(z.abs()))
+    };
+    let flat = "rules: 0.1[1].1.1.0.11.1.0\ngenerations: 20\n";
+    assert!(z_extent(flat) < 1e-9);
+    assert!(z_extent(&format!("{flat}roll: 90\n")) > 0.5);
+}
