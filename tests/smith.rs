@@ -325,3 +325,14 @@ fn a_roll_draws_in_3d() {
     assert!(z_extent(flat) < 1e-9);
     assert!(z_extent(&format!("{flat}roll: 90\n")) > 0.5);
 }
+
+/// `leaf: flower`: the discs in the flower colour, the stems in another.
+#[test]
+fn flowers_are_coloured_apart_from_the_stems() {
+    let sys = smith::read_ok("rules: 0.1[1].1.1.0.11.1.0\ngenerations: 10\nleaf: flower\n");
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).expect("draws");
+    assert_eq!(g.discs.len(), 5);
+    let stem = g.segments[0].colour;
+    assert!(g.segments.iter().all(|s| s.colour == stem));
+    assert!(g.discs.iter().all(|d| d.colour != stem));
+}

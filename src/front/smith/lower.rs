@@ -41,7 +41,7 @@ pub const KEYS: [&str; 8] = [
 ];
 
 /// The symbols added for drawing, which the context filter skips.
-pub const DRAWING_SYMBOLS: [&str; 4] = ["+", "-", "/", "@"];
+pub const DRAWING_SYMBOLS: [&str; 5] = ["+", "-", "/", "@", "'"];
 
 /// What is drawn at a branch end.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -365,6 +365,7 @@ struct Symbols {
     turn: [SymbolId; 2],
     roll: Option<SymbolId>,
     leaf: Option<SymbolId>,
+    flower: Option<SymbolId>,
     alternate: bool,
 }
 
@@ -402,19 +403,25 @@ impl Symbols {
             sys.set_interpretation(l, TurtleOp::Sphere);
             l
         });
+        // A flower: a wider disc in the palette's next colour (the pfg
+        // palette, so that a translation to pfg stays exact).
+        let flower = (gene.leaf == Leaf::Flower).then(|| {
+            sys.settings.width = 4.0;
+            let f = sys.intern("'");
+            sys.set_interpretation(f, TurtleOp::NextColour);
+            f
+        });
         let ignored = DRAWING_SYMBOLS
             .iter()
             .filter_map(|s| sys.symbols.get(s))
             .collect();
         sys.context = ContextFilter::Ignore(ignored);
-        if gene.leaf == Leaf::Flower {
-            sys.settings.width = 4.0;
-        }
         Symbols {
             bit,
             turn,
             roll,
             leaf,
+            flower,
             alternate: gene.alternate,
         }
     }
@@ -441,16 +448,21 @@ impl Symbols {
                     branch += 1;
                 }
                 _ => {
-                    if let Some(l) = self.leaf {
-                        push(l, span);
-                    }
+                    self.leaf_at(span, &mut push);
                     push(SymbolId::CLOSE, span);
                 }
             }
         }
-        if let (true, Some(l), Some((_, last))) = (axiom, self.leaf, chars.last()) {
-            push(l, last);
+        if let (true, Some((_, last))) = (axiom, chars.last()) {
+            self.leaf_at(last, &mut push);
         }
         (Word::from(ids), spans)
+    }
+
+    /// The leaf (or flower) at a branch end.
+    fn leaf_at(&self, span: &Span, push: &mut impl FnMut(SymbolId, &Span)) {
+        for s in [self.flower, self.leaf].into_iter().flatten() {
+            push(s, span);
+        }
     }
 }
