@@ -100,6 +100,13 @@ pub static ENTRIES: &[Entry] = &[
     entry!("stl" / "fig07-layout" . "stl"),
     entry!("stl" / "fig09-outline-bfs" . "stl"),
     entry!("stl" / "fig10-outline-dfs" . "stl"),
+    entry!("smith" / "cartoon-tree" . "smith"),
+    entry!("smith" / "senstree" . "smith"),
+    entry!("smith" / "table1" . "smith"),
+    entry!("smith" / "three-thistle" . "smith"),
+    entry!("smith" / "white-sands" . "smith"),
+    entry!("smith" / "with-without" . "smith"),
+    entry!("smith" / "with-without-bare" . "smith"),
 ];
 
 /// The entry called `name` (with or without its extension; pfg entries
@@ -197,9 +204,11 @@ impl Entry {
         });
         row.or_else(|| {
             let head: String = self.text.lines().take(4).collect::<Vec<_>>().join(" ");
-            let at = ["Fig. ", "Section ", "section "]
-                .iter()
-                .find_map(|k| head.find(k))?;
+            let at = [
+                "Fig. ", "Section ", "section ", "Plate ", "Table ", "Figure ",
+            ]
+            .iter()
+            .find_map(|k| head.find(k))?;
             let fig: String = head[at..]
                 .chars()
                 .take_while(|c| !matches!(c, ':' | ',' | '"'))
@@ -303,7 +312,12 @@ mod tests {
     fn every_file_in_stdlib_is_an_entry() {
         let root = concat!(env!("CARGO_MANIFEST_DIR"), "/stdlib");
         let mut files: Vec<String> = Vec::new();
-        for (dir, ext) in [("pfg", ".l"), ("linf", ".linf"), ("stl", ".stl")] {
+        for (dir, ext) in [
+            ("pfg", ".l"),
+            ("linf", ".linf"),
+            ("stl", ".stl"),
+            ("smith", ".smith"),
+        ] {
             let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {
                 continue;
             };

@@ -28,7 +28,7 @@ struct Grammar {
     range: Option<&'static str>,
 }
 
-const GRAMMARS: [Grammar; 4] = [
+const GRAMMARS: [Grammar; 5] = [
     Grammar {
         file: "pfg.ebnf",
         ext: "l",
@@ -52,6 +52,12 @@ const GRAMMARS: [Grammar; 4] = [
         ext: "l",
         starts: &["file", "entry", "entry line", "string", "command"],
         range: Some("07"),
+    },
+    Grammar {
+        file: "smith.ebnf",
+        ext: "smith",
+        starts: &["file", "entry", "rule string", "image", "axiom"],
+        range: Some("097"),
     },
 ];
 
@@ -322,6 +328,14 @@ fn stl_keywords_shapes_and_reserved_names_match_the_implementation() {
         );
         assert!(!codes_of(&c).contains(&"E0505"), "{k}");
     }
+}
+
+#[test]
+fn smith_keys_match_the_lowering() {
+    assert_eq!(
+        keyword_rule("smith.ebnf", "key"),
+        graftal::front::smith::lower::KEYS
+    );
 }
 
 #[test]

@@ -96,7 +96,13 @@ fn entries_name_their_figure() {
         let fig = e.figure().to_lowercase();
         let data = e.name.starts_with("hogeweg-hesper");
         assert!(
-            fig.contains("fig") || fig.contains("section") || fig.contains('§') || data,
+            fig.contains("fig")
+                || fig.contains("section")
+                || fig.contains('§')
+                // Smith's paper names its pictures plates and its tables.
+                || fig.contains("plate")
+                || fig.contains("table")
+                || data,
             "{}: `{fig}`",
             e.name
         );

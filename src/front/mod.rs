@@ -21,6 +21,7 @@ pub mod linf;
 pub mod names;
 pub mod pfg;
 pub mod repeats;
+pub mod smith;
 pub mod stl;
 pub mod suggest;
 
@@ -36,6 +37,7 @@ pub static FRONTS: &[&dyn Front] = &[
     &stl::Stl,
     &cpfg::Cpfg,
     &fractint::Fractint,
+    &smith::Smith,
 ];
 
 /// How sure a front end is that a text is in its notation.

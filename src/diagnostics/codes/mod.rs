@@ -61,12 +61,14 @@ mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
 mod linf;
+mod smith;
 mod stl;
 mod translate;
 pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
 pub use linf::*;
+pub use smith::*;
 pub use stl::*;
 pub use translate::*;
 
@@ -80,6 +82,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(fractint::FRACTINT)
         .chain(cpfg::CPFG)
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
+        .chain(smith::SMITH)
 }
 
 codes! { GENERAL;
