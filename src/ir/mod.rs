@@ -216,6 +216,7 @@ pub mod layout;
 pub mod look;
 pub mod number;
 pub mod program;
+pub mod vocabulary;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};

@@ -9,9 +9,10 @@ use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
-    Alternative, Angle, Axis, ContextFilter, ElasticityChange, Formals, Phase, Production,
-    QueryKind, RulePolicy, Span, SpanTable, SymbolId, System, TurtleOp, Word,
+    Alternative, ContextFilter, Formals, Phase, Production, RulePolicy, Span, SpanTable, SymbolId,
+    System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -66,63 +67,9 @@ const FUNCTIONS: &[(&str, Builtin, &[usize])] = &[
     ("GetDerivationLength", Builtin::GetDerivationLength, &[0]),
 ];
 
-/// The turtle meaning of a cpfg module name (manual §6).
+/// What a cpfg symbol does ([`crate::ir::vocabulary`]'s cpfg set).
 pub fn turtle_op(name: &str) -> Option<TurtleOp> {
-    let rot = |axis, sign: f64| TurtleOp::Rotate {
-        axis,
-        angle: Angle::Delta(sign),
-    };
-    let elasticity = |change| TurtleOp::Elasticity {
-        tropism: None,
-        change,
-    };
-    Some(match name {
-        "F" | "G" => TurtleOp::Forward { draw: true },
-        "f" | "g" => TurtleOp::Forward { draw: false },
-        // `+` turns left (counter-clockwise seen from the default view).
-        "+" => rot(Axis::Up, -1.0),
-        "-" => rot(Axis::Up, 1.0),
-        // cpfg's frame starts H = +y, L = −x, U = −z (interpret.c): its U
-        // is the turtle's −U, and stays so when `&` tilts H towards cpfg's
-        // U and `/` rolls L towards it.
-        "&" => rot(Axis::Left, -1.0),
-        "^" => rot(Axis::Left, 1.0),
-        "\\" => rot(Axis::Heading, 1.0),
-        "/" => rot(Axis::Heading, -1.0),
-        "|" => TurtleOp::TurnAround,
-        "[" => TurtleOp::Push,
-        "]" => TurtleOp::Pop,
-        ";" => TurtleOp::ColourIndex { up: true },
-        "," => TurtleOp::ColourIndex { up: false },
-        "#" => TurtleOp::LineWidth { up: true },
-        "!" => TurtleOp::LineWidth { up: false },
-        "{" => TurtleOp::PolygonBegin,
-        "}" => TurtleOp::PolygonEnd,
-        "." => TurtleOp::PolygonVertex,
-        "@O" => TurtleOp::Sphere,
-        "@o" => TurtleOp::ScreenDisc,
-        "@c" => TurtleOp::Circle,
-        "@M" => TurtleOp::MoveTo,
-        "@R" => TurtleOp::SetHeading,
-        "@v" => TurtleOp::RollToVertical,
-        "@Gs" => TurtleOp::CylinderStart,
-        "@Gc" => TurtleOp::CylinderPoint { end: false },
-        "@Ge" => TurtleOp::CylinderPoint { end: true },
-        "@Gt" => TurtleOp::CylinderTangents,
-        "@Gr" => TurtleOp::RadiusTangents,
-        "@#" => TurtleOp::SetContour,
-        // cpfg reads `@Ti`; the manual writes `@T`.
-        "@Ts" => elasticity(ElasticityChange::Set),
-        "@Ti" | "@T" => elasticity(ElasticityChange::Increase),
-        "@Td" => elasticity(ElasticityChange::Decrease),
-        "@Tp" => TurtleOp::Untwist,
-        "@Tf" => TurtleOp::KeepTwist,
-        "?P" => TurtleOp::Query(QueryKind::Position),
-        "?H" => TurtleOp::Query(QueryKind::Heading),
-        "?L" => TurtleOp::Query(QueryKind::Left),
-        "?U" => TurtleOp::Query(QueryKind::Up),
-        _ => return None,
-    })
+    vocabulary::op(TurtleSet::Cpfg, name)
 }
 
 /// Turtle commands graftal reads but does not draw (W0823).

@@ -4,12 +4,11 @@
 //! entry"); the numbers are Fractint's `getnumber` ([`super::lexer::number`]).
 
 use super::ast::{Body, Entry, LineKind};
-use super::lexer::{commands, number};
+use super::lexer::commands;
 use super::parser::KEYWORDS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::ir::{
-    Alternative, Angle, Axis, Production, Rgb, Span, SpanTable, SymbolId, System, TurtleOp, Word,
-};
+use crate::ir::vocabulary::fractint_op;
+use crate::ir::{Alternative, Production, Rgb, Span, SpanTable, SymbolId, System, Word};
 
 /// Fractint's default order (the `lsystem` type's one parameter, 2 in
 /// `fractalp.c`): the steps derived when `-n` is not given.
@@ -103,44 +102,6 @@ fn build_palette() -> Vec<Rgb> {
     }
     p.resize(256, Rgb(0, 0, 0));
     p
-}
-
-/// What a command does (`n` is the entry's angle increments per turn).
-fn interpret(cmd: &str, n: u32) -> Option<TurtleOp> {
-    let first = cmd.chars().next()?;
-    let up = |k: f64| TurtleOp::Rotate {
-        axis: Axis::Up,
-        angle: Angle::Delta(k),
-    };
-    let colour = |v: f64| v.min(f64::from(u32::MAX)) as u32;
-    Some(match first {
-        // Fractint's `+` turns counter-clockwise: graftal's positive turns
-        // are clockwise.
-        '+' => up(-1.0),
-        '-' => up(1.0),
-        '|' if n % 2 == 0 => TurtleOp::TurnAround,
-        '|' => TurtleOp::TurnUnswapped(Angle::Delta(f64::from(n / 2))),
-        '!' => TurtleOp::SwapTurns,
-        '[' => TurtleOp::Push,
-        ']' => TurtleOp::Pop,
-        'f' => TurtleOp::Forward { draw: true },
-        'g' => TurtleOp::Forward { draw: false },
-        'd' => TurtleOp::ForwardReal { draw: true },
-        'm' => TurtleOp::ForwardReal { draw: false },
-        '\\' => TurtleOp::RotateReal(Angle::Radians(-number(cmd).to_radians())),
-        '/' => TurtleOp::RotateReal(Angle::Radians(number(cmd).to_radians())),
-        '@' => TurtleOp::ScaleLength(number(cmd)),
-        'c' => TurtleOp::SetColour(colour(number(cmd))),
-        '<' => TurtleOp::ShiftColour {
-            by: colour(number(cmd)),
-            up: true,
-        },
-        '>' => TurtleOp::ShiftColour {
-            by: colour(number(cmd)),
-            up: false,
-        },
-        _ => return None,
-    })
 }
 
 struct Cx<'a> {
@@ -438,7 +399,7 @@ impl Cx<'_> {
             if id == SymbolId::OPEN || id == SymbolId::CLOSE {
                 continue;
             }
-            if let Some(op) = interpret(&name, n) {
+            if let Some(op) = fractint_op(&name, n) {
                 self.sys.set_interpretation(id, op);
             }
         }
