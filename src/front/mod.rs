@@ -17,6 +17,7 @@
 pub mod cpfg;
 pub mod depth;
 pub mod fractint;
+pub mod gft;
 pub mod linf;
 pub mod names;
 pub mod pfg;
@@ -36,6 +37,7 @@ pub static FRONTS: &[&dyn Front] = &[
     &stl::Stl,
     &cpfg::Cpfg,
     &fractint::Fractint,
+    &gft::Gft,
 ];
 
 /// How sure a front end is that a text is in its notation.

@@ -60,12 +60,14 @@ macro_rules! codes {
 mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
+mod gft;
 mod linf;
 mod stl;
 mod translate;
 pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
+pub use gft::*;
 pub use linf::*;
 pub use stl::*;
 pub use translate::*;
@@ -80,6 +82,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(fractint::FRACTINT)
         .chain(cpfg::CPFG)
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
+        .chain(gft::GFT)
 }
 
 codes! { GENERAL;

@@ -23,50 +23,6 @@ pub const MAX_ARRAY: f64 = 1_000_000.0;
 
 pub use crate::ir::Lowered;
 
-/// The predefined functions: name, builtin, accepted argument counts.
-const FUNCTIONS: &[(&str, Builtin, &[usize])] = &[
-    ("sin", Builtin::Sin, &[1]),
-    ("cos", Builtin::Cos, &[1]),
-    ("tan", Builtin::Tan, &[1]),
-    ("asin", Builtin::Asin, &[1]),
-    ("acos", Builtin::Acos, &[1]),
-    ("atan", Builtin::Atan, &[1, 2]),
-    ("atan2", Builtin::Atan2, &[2]),
-    ("exp", Builtin::Exp, &[1]),
-    ("log", Builtin::Log, &[1]),
-    ("sqrt", Builtin::Sqrt, &[1]),
-    ("fabs", Builtin::Fabs, &[1]),
-    ("floor", Builtin::Floor, &[1]),
-    ("ceil", Builtin::Ceil, &[1]),
-    ("trunc", Builtin::Trunc, &[1]),
-    ("sign", Builtin::Sign, &[1]),
-    ("srand", Builtin::Srand, &[1]),
-    ("ran", Builtin::Ran, &[1]),
-    ("nran", Builtin::Nran, &[2]),
-    ("bran", Builtin::Bran, &[2]),
-    ("biran", Builtin::Biran, &[2]),
-    ("func", Builtin::Func, &[2]),
-    ("curveX", Builtin::CurveX, &[2]),
-    ("curveY", Builtin::CurveY, &[2]),
-    ("curveZ", Builtin::CurveZ, &[2]),
-    ("curveGAL", Builtin::CurveGal, &[1]),
-    ("printf", Builtin::Io, &[]),
-    ("fprintf", Builtin::Io, &[]),
-    ("fopen", Builtin::Io, &[2]),
-    ("fclose", Builtin::Io, &[1]),
-    ("fflush", Builtin::Io, &[1]),
-    ("fscanf", Builtin::Io, &[]),
-    ("stop", Builtin::Stop, &[0, 1]),
-    ("vvXmin", Builtin::ViewVolume, &[0]),
-    ("vvXmax", Builtin::ViewVolume, &[0]),
-    ("vvYmin", Builtin::ViewVolume, &[0]),
-    ("vvYmax", Builtin::ViewVolume, &[0]),
-    ("vvZmin", Builtin::ViewVolume, &[0]),
-    ("vvZmax", Builtin::ViewVolume, &[0]),
-    ("SetDerivationLength", Builtin::SetDerivationLength, &[1]),
-    ("GetDerivationLength", Builtin::GetDerivationLength, &[0]),
-];
-
 /// What a cpfg symbol does ([`crate::ir::vocabulary`]'s cpfg set).
 pub fn turtle_op(name: &str) -> Option<TurtleOp> {
     vocabulary::op(TurtleSet::Cpfg, name)
@@ -320,7 +276,7 @@ impl Lowerer<'_> {
         }
     }
 
-    /// A call of a predefined function ([`FUNCTIONS`]) at `span`; 0 if
+    /// A call of a predefined function ([`crate::ir::program::BUILTINS`]) at `span`; 0 if
     /// there is no such function.
     fn call(
         &mut self,
@@ -330,9 +286,11 @@ impl Lowerer<'_> {
         args: &[ast::Expr],
         span: &Span,
     ) -> Expr {
-        let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
+        let Some(&(_, builtin, arities)) =
+            crate::ir::program::BUILTINS.iter().find(|f| f.0 == name)
+        else {
             self.report(codes::CPFG_UNKNOWN_FUNCTION, || {
-                let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
+                let names: Vec<&str> = crate::ir::program::BUILTINS.iter().map(|f| f.0).collect();
                 let d = Diagnostic::at(
                     codes::CPFG_UNKNOWN_FUNCTION,
                     name_span.clone(),
