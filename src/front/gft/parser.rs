@@ -166,10 +166,11 @@ fn span_of(toks: &[Tok<'_>]) -> Span {
 }
 
 fn item(line: &[Tok<'_>], diags: &mut Diagnostics) -> Option<Item> {
-    if top_level(line, |t| *t == Token::Arrow).is_some() {
+    let keyword = keyword_at(line);
+    let block = keyword.as_ref().is_some_and(|k| takes_block(&k.0));
+    if !block && top_level(line, |t| *t == Token::Arrow).is_some() {
         return production(line, diags).map(Item::Production);
     }
-    let keyword = keyword_at(line);
     if let Some((name, span, n)) = &keyword {
         if KEYWORDS.iter().any(|(k, _)| k == name) {
             return keyword_item(name, span, &line[*n..], line, diags).map(Item::Keyword);
@@ -361,18 +362,22 @@ fn production(line: &[Tok<'_>], diags: &mut Diagnostics) -> Option<Production> {
 fn condition(toks: &[Tok<'_>], p: &mut Production, diags: &mut Diagnostics) {
     let mut toks = toks;
     if toks.first().is_some_and(|t| t.0.is("{")) {
-        let close = toks
-            .iter()
-            .position(|t| t.0.is("}"))
-            .unwrap_or(toks.len() - 1);
+        let close = matching(toks, 0, "{", "}");
         p.before = statements(&toks[1..close], diags);
-        toks = &toks[close + 1..];
+        toks = toks.get(close + 1..).unwrap_or_default();
     }
-    if toks.last().is_some_and(|t| t.0.is("}")) {
-        if let Some(open) = toks.iter().rposition(|t| t.0.is("{")) {
-            p.after = statements(&toks[open + 1..toks.len() - 1], diags);
-            toks = &toks[..open];
+    if let Some(open) = toks.iter().position(|t| t.0.is("{")) {
+        let close = matching(toks, open, "{", "}");
+        p.after = statements(&toks[open + 1..close], diags);
+        if close + 1 < toks.len() {
+            let span = span_of(&toks[close + 1..]);
+            diags.push(
+                Diagnostic::at(codes::SYNTAX, span, "text after the statements")
+                    .with_label("nothing may follow the statements after the condition")
+                    .with_help("write `: {before} condition {after} -> successor`"),
+            );
         }
+        toks = &toks[..open];
     }
     if !toks.is_empty() {
         p.condition = expression(toks, diags);
@@ -403,7 +408,7 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
                 i += 1;
             }
             Token::Char("(") => {
-                let close = matching(toks, i);
+                let close = matching(toks, i, "(", ")");
                 let inner = &toks[i + 1..close.min(toks.len())];
                 let args = arguments(inner, diags);
                 w.pieces.push(Piece::Args(
@@ -428,13 +433,13 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
     w
 }
 
-/// The index of the `)` that closes the `(` at `open` (or the end).
-fn matching(toks: &[Tok<'_>], open: usize) -> usize {
+/// The index of the `close` that closes the `open` at `at` (or the end).
+fn matching(toks: &[Tok<'_>], at: usize, open: &str, close: &str) -> usize {
     let mut depth = 0;
-    for (k, (t, _)) in toks.iter().enumerate().skip(open) {
-        if t.is("(") {
+    for (k, (t, _)) in toks.iter().enumerate().skip(at) {
+        if t.is(open) {
             depth += 1;
-        } else if t.is(")") {
+        } else if t.is(close) {
             depth -= 1;
             if depth == 0 {
                 return k;
