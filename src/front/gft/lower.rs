@@ -112,51 +112,59 @@ fn err(code: Code, span: &Span, msg: impl Into<String>, label: &str, help: &str)
         .with_help(help.to_string())
 }
 
-/// Every operation name `NAME = OPERATION` knows.
-const OPERATIONS: &[&str] = &[
-    "forward",
-    "move",
+/// The operations without arguments (docs/gft.md §3).
+const SIMPLE_OPERATIONS: &[(&str, TurtleOp)] = &[
+    ("forward", TurtleOp::Forward { draw: true }),
+    ("move", TurtleOp::Forward { draw: false }),
+    ("turn-around", TurtleOp::TurnAround),
+    ("push", TurtleOp::Push),
+    ("pop", TurtleOp::Pop),
+    ("polygon-begin", TurtleOp::PolygonBegin),
+    ("polygon-end", TurtleOp::PolygonEnd),
+    ("vertex", TurtleOp::PolygonVertex),
+    ("scale-width", TurtleOp::DecrementWidth),
+    ("next-colour", TurtleOp::NextColour),
+    ("previous-colour", TurtleOp::PreviousColour),
+    ("swap-turns", TurtleOp::SwapTurns),
+    ("colour-up", TurtleOp::ColourIndex { up: true }),
+    ("colour-down", TurtleOp::ColourIndex { up: false }),
+    ("width-up", TurtleOp::LineWidth { up: true }),
+    ("width-down", TurtleOp::LineWidth { up: false }),
+    ("sphere", TurtleOp::Sphere),
+    ("disc", TurtleOp::ScreenDisc),
+    ("circle", TurtleOp::Circle),
+    ("move-to", TurtleOp::MoveTo),
+    ("set-heading", TurtleOp::SetHeading),
+    ("roll-to-vertical", TurtleOp::RollToVertical),
+    ("cylinder-start", TurtleOp::CylinderStart),
+    ("cylinder-point", TurtleOp::CylinderPoint { end: false }),
+    ("cylinder-end", TurtleOp::CylinderPoint { end: true }),
+    ("cylinder-tangents", TurtleOp::CylinderTangents),
+    ("radius-tangents", TurtleOp::RadiusTangents),
+    ("set-contour", TurtleOp::SetContour),
+    ("forward-real", TurtleOp::ForwardReal { draw: true }),
+    ("move-real", TurtleOp::ForwardReal { draw: false }),
+    ("untwist", TurtleOp::Untwist),
+    ("keep-twist", TurtleOp::KeepTwist),
+];
+
+/// The operations that take arguments.
+const PARAMETRISED_OPERATIONS: &[&str] = &[
     "turn",
     "pitch",
     "roll",
-    "frenet",
-    "turn-around",
-    "push",
-    "pop",
-    "polygon-begin",
-    "polygon-end",
-    "vertex",
-    "scale-width",
-    "next-colour",
-    "previous-colour",
-    "swap-turns",
-    "scale-length",
-    "stem",
-    "colour-up",
-    "colour-down",
-    "width-up",
-    "width-down",
-    "sphere",
-    "disc",
-    "circle",
-    "move-to",
-    "set-heading",
-    "roll-to-vertical",
-    "cylinder-start",
-    "cylinder-point",
-    "cylinder-end",
-    "cylinder-tangents",
-    "radius-tangents",
-    "set-contour",
     "turn-unswapped",
     "turn-real",
-    "forward-real",
-    "move-real",
+    "frenet",
+    "scale-length",
+    "stem",
     "set-colour",
-    "untwist",
-    "keep-twist",
     "nothing",
 ];
+
+fn simple_op(name: &str) -> Option<TurtleOp> {
+    SIMPLE_OPERATIONS.iter().find(|o| o.0 == name).map(|o| o.1)
+}
 
 impl Cx<'_> {
     fn turtle(&mut self, k: &Keyword) {
@@ -254,8 +262,6 @@ impl Cx<'_> {
             cx.angle(&t, &s)
         };
         let op = match head.as_str() {
-            "forward" => Some(TurtleOp::Forward { draw: true }),
-            "move" => Some(TurtleOp::Forward { draw: false }),
             "turn" => angle(self, 1).map(|angle| TurtleOp::Rotate {
                 axis: Axis::Up,
                 angle,
@@ -271,51 +277,27 @@ impl Cx<'_> {
             "turn-unswapped" => angle(self, 1).map(TurtleOp::TurnUnswapped),
             "turn-real" => angle(self, 1).map(TurtleOp::RotateReal),
             "frenet" => self.frenet(arg(1), op_span),
-            "turn-around" => Some(TurtleOp::TurnAround),
-            "push" => Some(TurtleOp::Push),
-            "pop" => Some(TurtleOp::Pop),
-            "polygon-begin" => Some(TurtleOp::PolygonBegin),
-            "polygon-end" => Some(TurtleOp::PolygonEnd),
-            "vertex" => Some(TurtleOp::PolygonVertex),
-            "scale-width" => Some(TurtleOp::DecrementWidth),
-            "next-colour" => Some(TurtleOp::NextColour),
-            "previous-colour" => Some(TurtleOp::PreviousColour),
-            "swap-turns" => Some(TurtleOp::SwapTurns),
             "scale-length" => number(self, 1).map(TurtleOp::ScaleLength),
             "stem" => number(self, 1)
                 .zip(number(self, 2))
                 .map(|(width, length)| TurtleOp::Stem { width, length }),
-            "colour-up" => Some(TurtleOp::ColourIndex { up: true }),
-            "colour-down" => Some(TurtleOp::ColourIndex { up: false }),
-            "width-up" => Some(TurtleOp::LineWidth { up: true }),
-            "width-down" => Some(TurtleOp::LineWidth { up: false }),
-            "sphere" => Some(TurtleOp::Sphere),
-            "disc" => Some(TurtleOp::ScreenDisc),
-            "circle" => Some(TurtleOp::Circle),
-            "move-to" => Some(TurtleOp::MoveTo),
-            "set-heading" => Some(TurtleOp::SetHeading),
-            "roll-to-vertical" => Some(TurtleOp::RollToVertical),
-            "cylinder-start" => Some(TurtleOp::CylinderStart),
-            "cylinder-point" => Some(TurtleOp::CylinderPoint { end: false }),
-            "cylinder-end" => Some(TurtleOp::CylinderPoint { end: true }),
-            "cylinder-tangents" => Some(TurtleOp::CylinderTangents),
-            "radius-tangents" => Some(TurtleOp::RadiusTangents),
-            "set-contour" => Some(TurtleOp::SetContour),
-            "forward-real" => Some(TurtleOp::ForwardReal { draw: true }),
-            "move-real" => Some(TurtleOp::ForwardReal { draw: false }),
             "set-colour" => {
                 number(self, 1).map(|v| TurtleOp::SetColour(v.clamp(0.0, u32::MAX as f64) as u32))
             }
-            "untwist" => Some(TurtleOp::Untwist),
-            "keep-twist" => Some(TurtleOp::KeepTwist),
             "nothing" => {
                 if let Some(slot) = self.sys.interpretation.get_mut(id.index()) {
                     *slot = None;
                 }
                 None
             }
+            other if simple_op(other).is_some() => simple_op(other),
             other => {
-                let near = Suggester::default().nearest(other, OPERATIONS);
+                let names: Vec<&str> = SIMPLE_OPERATIONS
+                    .iter()
+                    .map(|o| o.0)
+                    .chain(PARAMETRISED_OPERATIONS.iter().copied())
+                    .collect();
+                let near = Suggester::default().nearest(other, &names);
                 let help = match near.first() {
                     Some(n) => format!("did you mean `{n}`?"),
                     None => "docs/gft.md §3 lists the operations".to_string(),
