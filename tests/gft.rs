@@ -168,6 +168,23 @@ fn definitions_override_the_turtle_set_and_declare_long_names() {
 }
 
 #[test]
+fn silent_symbols_act_without_a_name() {
+    let gft = "silent s1 = stem 8 40\naxiom `s1`F\n";
+    let sys = compiled("s.gft", gft).system.unwrap();
+    let s1 = sys.symbols.get("s1").unwrap();
+    assert_eq!(sys.symbols.name(s1), "");
+    assert_eq!(sys.axiom.symbols(), [s1, sys.symbols.get("F").unwrap()]);
+    assert_eq!(
+        sys.op(s1),
+        Some(TurtleOp::Stem {
+            width: 8.0,
+            length: 40.0
+        })
+    );
+    assert_eq!(word("s.gft", gft, 0), "F");
+}
+
+#[test]
 fn each_problem_has_its_code_and_exact_span() {
     let cases: &[(&str, &str, std::ops::Range<usize>)] = &[
         ("axoim F\naxiom F\n", "E0900", 0..5),

@@ -58,6 +58,7 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
                 op,
                 op_span,
             } => cx.define(name, span, op, op_span),
+            Item::Keyword(k) if k.name == "silent" => cx.silent(k),
             Item::Keyword(k) if k.name == "symbol" => {
                 for (name, span) in groups(&k.args) {
                     cx.declare(&name, &span);
@@ -235,9 +236,36 @@ impl Cx<'_> {
         }
     }
 
+    /// `silent KEY = OPERATION`: a symbol with an empty name under `KEY`.
+    fn silent(&mut self, k: &Keyword) {
+        let eq = k.args.iter().position(|a| a.text() == "=");
+        let key = groups(&k.args[..eq.unwrap_or(0)]);
+        match (eq, key.as_slice()) {
+            (Some(eq), [(key, span)]) if eq + 1 < k.args.len() => {
+                let key = key.trim_matches('`');
+                let id = self.sys.intern_silent(key);
+                self.spans.symbols.entry(id).or_insert_with(|| span.clone());
+                let rest = &k.args[eq + 1..];
+                let op_span = rest[0].span().start..rest[rest.len() - 1].span().end;
+                self.define_op(id, rest, &op_span);
+            }
+            _ => self.diags.push(err(
+                codes::GFT_BAD_VALUE,
+                &k.line,
+                "malformed `silent`",
+                "not `silent KEY = OPERATION`",
+                "write e.g. `silent s1 = stem 8 40`",
+            )),
+        }
+    }
+
     fn define(&mut self, name: &str, span: &Span, op: &[Arg], op_span: &Span) {
-        let g = groups(op);
         let id = self.declare(name, span);
+        self.define_op(id, op, op_span);
+    }
+
+    fn define_op(&mut self, id: SymbolId, op: &[Arg], op_span: &Span) {
+        let g = groups(op);
         let Some((head, _)) = g.first() else { return };
         let arg = |k: usize| g.get(k).cloned();
         let number = |cx: &mut Self, k: usize| -> Option<f64> {
