@@ -168,6 +168,13 @@ fn definitions_override_the_turtle_set_and_declare_long_names() {
 }
 
 #[test]
+fn arrays_and_globals_are_declared_wherever_they_are_written() {
+    let gft = "turtle cpfg\naxiom A(0)\nA(i) : i < 3 -> F(lengths[i] + n) A(i+1)\narray lengths[3] = 1, 2.5, -3\nglobals n\nstart { n = 10; }\n";
+    assert_eq!(word("a.gft", gft, 3), "F(11)F(12.5)F(7)A(3)");
+    assert_eq!(codes_of("array a[1][2] = 1, 2, 3\naxiom F\n"), ["E0903"]);
+}
+
+#[test]
 fn silent_symbols_act_without_a_name() {
     let gft = "silent s1 = stem 8 40\naxiom `s1`F\n";
     let sys = compiled("s.gft", gft).system.unwrap();

@@ -6,7 +6,7 @@
 use super::ast::{self, Arg, Block, Expr as AExpr, ExprKind, File, Item, Keyword, Piece};
 use crate::diagnostics::{codes, Code, Diagnostic, Diagnostics};
 use crate::front::suggest::Suggester;
-use crate::ir::program::{BinOp, Expr, Place, Stmt, UnOp, Var, BUILTINS};
+use crate::ir::program::{ArrayDecl, BinOp, Expr, Place, Stmt, UnOp, Var, BUILTINS};
 use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, Angle, Axis, ContextFilter, Formals, Lowered, Production, Rgb, Rotation,
@@ -59,6 +59,12 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
                 op_span,
             } => cx.define(name, span, op, op_span),
             Item::Keyword(k) if k.name == "silent" => cx.silent(k),
+            Item::Keyword(k) if k.name == "array" => cx.array(k),
+            Item::Keyword(k) if k.name == "globals" => {
+                for (name, _) in groups(&k.args).into_iter().filter(|g| g.0 != ",") {
+                    cx.global(&name);
+                }
+            }
             Item::Keyword(k) if k.name == "symbol" => {
                 for (name, span) in groups(&k.args) {
                     cx.declare(&name, &span);
@@ -564,11 +570,6 @@ impl Cx<'_> {
                 self.sys.cut = w.and_then(|w| w.symbols().first().copied());
             }
             "colours" => self.colours(k),
-            "globals" => {
-                for (name, _) in groups(&k.args).into_iter().filter(|g| g.0 != ",") {
-                    self.global(&name);
-                }
-            }
             "decomposition" | "homomorphism" => self.phase(k),
             "start" | "start-each" | "end-each" | "end" => {
                 let Some(Block::Statements(s)) = &k.block else {
@@ -584,6 +585,44 @@ impl Cx<'_> {
                 } = s;
             }
             _ => {}
+        }
+    }
+
+    /// `array NAME[D1][D2]… [= V, V, …]` (cpfg's arrays; values row-major).
+    fn array(&mut self, k: &Keyword) {
+        let g = groups(&k.args);
+        let name = k.args.first().map(|a| a.text().to_string()).unwrap_or_default();
+        let eq = g.iter().position(|a| a.0 == "=").unwrap_or(g.len());
+        let head: String = g[..eq].iter().map(|a| a.0.as_str()).collect();
+        let dims: Option<Vec<usize>> = head
+            .strip_prefix(name.as_str())
+            .map(|d| d.trim_start_matches('[').trim_end_matches(']'))
+            .map(|d| d.split("][").map(|n| n.parse().ok()).collect())
+            .unwrap_or_default();
+        let init: Option<Vec<f64>> = g[(eq + 1).min(g.len())..]
+            .iter()
+            .map(|a| a.0.trim_end_matches(','))
+            .filter(|a| !a.is_empty())
+            .map(|a| a.parse().ok())
+            .collect();
+        let size = dims
+            .as_ref()
+            .map(|d| d.iter().try_fold(1usize, |n, &x| n.checked_mul(x)));
+        match (dims, init, size) {
+            (Some(dims), Some(init), Some(Some(n)))
+                if !dims.is_empty() && n <= 1 << 20 && init.len() <= n && !name.is_empty() =>
+            {
+                let id = self.sys.program.arrays.len() as u16;
+                self.arrays.insert(name.clone(), (id, dims.len()));
+                self.sys.program.arrays.push(ArrayDecl { name, dims, init });
+            }
+            _ => self.diags.push(err(
+                codes::GFT_BAD_VALUE,
+                &k.line,
+                "malformed array",
+                "not `array NAME[N]… = VALUES`",
+                "write e.g. `array lengths[3] = 1, 2, 3` (at most 1048576 elements)",
+            )),
         }
     }
 
