@@ -120,6 +120,7 @@ fn fractint_commands_take_their_numbers() {
     let fractint = "X {\n  Angle 8\n  Axiom FX\n  X=C12F+X-C3F\n}\n";
     assert_eq!(word("x.gft", &gft, 3), word("x.l", fractint, 3));
     let sys = compiled("x.gft", &gft).system.unwrap();
+    assert_eq!(sys.colours.len(), 256);
     let c12 = sys.symbols.get("c12").unwrap();
     assert_eq!(sys.op(c12), Some(TurtleOp::SetColour(12)));
 }

@@ -591,7 +591,11 @@ impl Cx<'_> {
     /// `array NAME[D1][D2]… [= V, V, …]` (cpfg's arrays; values row-major).
     fn array(&mut self, k: &Keyword) {
         let g = groups(&k.args);
-        let name = k.args.first().map(|a| a.text().to_string()).unwrap_or_default();
+        let name = k
+            .args
+            .first()
+            .map(|a| a.text().to_string())
+            .unwrap_or_default();
         let eq = g.iter().position(|a| a.0 == "=").unwrap_or(g.len());
         let head: String = g[..eq].iter().map(|a| a.0.as_str()).collect();
         let dims: Option<Vec<usize>> = head
@@ -660,6 +664,12 @@ impl Cx<'_> {
     }
 
     fn colours(&mut self, k: &Keyword) {
+        if let [Arg::Word(w, _)] = k.args.as_slice() {
+            if w == "fractint" {
+                self.sys.colours = crate::ir::colours::fractint_palette();
+                return;
+            }
+        }
         for a in &k.args {
             let rgb = match a {
                 Arg::Colour(c, _) => {
