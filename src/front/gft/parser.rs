@@ -111,8 +111,11 @@ fn keyword_at(line: &[Tok<'_>]) -> Option<(String, Span, usize)> {
 fn logical_lines<'a, 's>(tokens: &'a [Tok<'s>], diags: &mut Diagnostics) -> Vec<&'a [Tok<'s>]> {
     let mut lines = Vec::new();
     let (mut start, mut parens, mut braces, mut too_deep) = (0, 0usize, 0usize, false);
+    // Whether the line that starts at `start` is a block item, found once
+    // per line (a line of a million `a-a-…` would otherwise be quadratic).
+    let block_at = |start: usize| keyword_at(&tokens[start..]).is_some_and(|k| takes_block(&k.0));
+    let mut block = block_at(0);
     for (i, (t, span)) in tokens.iter().enumerate() {
-        let block = keyword_at(&tokens[start..]).is_some_and(|k| takes_block(&k.0));
         match t {
             Token::Char("(") => parens += 1,
             Token::Char(")") => parens = parens.saturating_sub(1),
@@ -135,6 +138,7 @@ fn logical_lines<'a, 's>(tokens: &'a [Tok<'s>], diags: &mut Diagnostics) -> Vec<
                 lines.push(&tokens[start..i]);
             }
             (start, parens, braces, too_deep) = (i + 1, 0, 0, false);
+            block = start < tokens.len() && block_at(start);
         }
     }
     if start < tokens.len() && !too_deep {
