@@ -20,7 +20,7 @@ fn inputs() -> Vec<PathBuf> {
         .map(|e| e.unwrap().path())
         .filter(|p| {
             p.extension()
-                .is_some_and(|e| e == "l" || e == "linf" || e == "stl")
+                .is_some_and(|e| e == "l" || e == "linf" || e == "stl" || e == "gft")
         })
         .collect();
     v.sort();

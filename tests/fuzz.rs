@@ -181,14 +181,16 @@ enum Notation {
     Stl,
     Cpfg,
     Fractint,
+    Gft,
 }
 
-const NOTATIONS: [Notation; 5] = [
+const NOTATIONS: [Notation; 6] = [
     Notation::Pfg,
     Notation::Linf,
     Notation::Stl,
     Notation::Cpfg,
     Notation::Fractint,
+    Notation::Gft,
 ];
 
 impl Notation {
@@ -200,6 +202,7 @@ impl Notation {
             Notation::Stl => "stl",
             Notation::Cpfg => "cpfg",
             Notation::Fractint => "fractint",
+            Notation::Gft => "gft",
         }
     }
 
@@ -215,6 +218,7 @@ impl Notation {
             Notation::Stl => STL_FRAGMENTS,
             Notation::Cpfg => CPFG_FRAGMENTS,
             Notation::Fractint => FRACTINT_FRAGMENTS,
+            Notation::Gft => GFT_FRAGMENTS,
         }
     }
 }
@@ -265,6 +269,15 @@ const FRACTINT_FRAGMENTS: &[&str] = &[
     "Name {\n", "}\n", "{", "}", "Angle 6\n", "Angle 0\n", "Angle 99999999999\n", "Axiom F\n",
     "F=F+F--F+F\n", "F=", "X=", "@1.5", "@I", "@Q", "@Q2", "|", "!", "\\30", "/30", "C1", "<5",
     ">5", "D", "M", "G", ";", "[", "]", "+", "-",
+];
+
+#[rustfmt::skip]
+const GFT_FRAGMENTS: &[&str] = &[
+    "axiom F\n", "F -> F+F\n", "  -> F : 0.5\n", "->", "turtle cpfg\n", "turtle fractint\n",
+    "steps 99999999999\n", "angle 360/7\n", "A(x) : x < 10 -> F(x) A(x+1)\n", "(", ")", "{", "}",
+    "`", "?", "0.5?", ":", "<", ">", "rotation t = (0, [0 2*pi])\n", "+t = frenet t\n",
+    "decomposition depth 99999 {\nA -> AA\n}\n", "start { n = 0; }\n", "globals n\n",
+    "symbol Apex\n", "X = turn 1e308deg\n", "colours #000000\n", "/*", "*/", "ring\n", "cut %\n",
 ];
 
 /// Fragments of every notation: numbers at the edges, odd characters.
@@ -361,6 +374,7 @@ fn notation_of(name: &str, text: &[u8]) -> Option<Notation> {
     let ext = name.rsplit_once('.')?.1;
     match ext {
         "linf" => Some(Notation::Linf),
+        "gft" => Some(Notation::Gft),
         "stl" => Some(Notation::Stl),
         "l" => {
             Notation::from_name(graftal::front::detect("l", &String::from_utf8_lossy(text)).name())
@@ -380,6 +394,7 @@ fn load_seeds() -> Vec<Vec<Input>> {
         "tests/in",
         "tests/diagnostics",
         "tests/corpus/fractint",
+        "tests/corpus/gft",
     ];
     for dir in single_files {
         for path in files_in(&repo(dir)) {

@@ -28,7 +28,7 @@ struct Grammar {
     range: Option<&'static str>,
 }
 
-const GRAMMARS: [Grammar; 5] = [
+const GRAMMARS: [Grammar; 6] = [
     Grammar {
         file: "pfg.ebnf",
         ext: "l",
@@ -58,6 +58,12 @@ const GRAMMARS: [Grammar; 5] = [
         ext: "smith",
         starts: &["file", "entry", "rule string", "image", "axiom"],
         range: Some("097"),
+    },
+    Grammar {
+        file: "graftal.ebnf",
+        ext: "gft",
+        starts: &["file", "item", "word", "production", "expression"],
+        range: Some("090"),
     },
 ];
 
@@ -635,6 +641,15 @@ fn constraint_codes_checked(g: &Grammar) {
         missing.is_empty(),
         "constraint codes without a counterexample: {missing:?}"
     );
+}
+
+#[test]
+fn gft_keywords_match_the_parser() {
+    let parser: Vec<String> = graftal::front::gft::parser::KEYWORDS
+        .iter()
+        .map(|(k, _)| k.to_string())
+        .collect();
+    assert_eq!(keyword_rule("graftal.ebnf", "keyword"), parser);
 }
 
 #[test]

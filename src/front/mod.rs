@@ -17,6 +17,7 @@
 pub mod cpfg;
 pub mod depth;
 pub mod fractint;
+pub mod gft;
 pub mod linf;
 pub mod names;
 pub mod pfg;
@@ -38,6 +39,7 @@ pub static FRONTS: &[&dyn Front] = &[
     &cpfg::Cpfg,
     &fractint::Fractint,
     &smith::Smith,
+    &gft::Gft,
 ];
 
 /// How sure a front end is that a text is in its notation.

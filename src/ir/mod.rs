@@ -217,6 +217,7 @@ pub mod look;
 pub mod number;
 pub mod program;
 mod same;
+pub mod vocabulary;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};

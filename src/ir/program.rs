@@ -108,6 +108,50 @@ pub enum Expr {
     Call(Builtin, Vec<Expr>),
 }
 
+/// The predefined functions: name, builtin, accepted argument counts.
+pub const BUILTINS: &[(&str, Builtin, &[usize])] = &[
+    ("sin", Builtin::Sin, &[1]),
+    ("cos", Builtin::Cos, &[1]),
+    ("tan", Builtin::Tan, &[1]),
+    ("asin", Builtin::Asin, &[1]),
+    ("acos", Builtin::Acos, &[1]),
+    ("atan", Builtin::Atan, &[1, 2]),
+    ("atan2", Builtin::Atan2, &[2]),
+    ("exp", Builtin::Exp, &[1]),
+    ("log", Builtin::Log, &[1]),
+    ("sqrt", Builtin::Sqrt, &[1]),
+    ("fabs", Builtin::Fabs, &[1]),
+    ("floor", Builtin::Floor, &[1]),
+    ("ceil", Builtin::Ceil, &[1]),
+    ("trunc", Builtin::Trunc, &[1]),
+    ("sign", Builtin::Sign, &[1]),
+    ("srand", Builtin::Srand, &[1]),
+    ("ran", Builtin::Ran, &[1]),
+    ("nran", Builtin::Nran, &[2]),
+    ("bran", Builtin::Bran, &[2]),
+    ("biran", Builtin::Biran, &[2]),
+    ("func", Builtin::Func, &[2]),
+    ("curveX", Builtin::CurveX, &[2]),
+    ("curveY", Builtin::CurveY, &[2]),
+    ("curveZ", Builtin::CurveZ, &[2]),
+    ("curveGAL", Builtin::CurveGal, &[1]),
+    ("printf", Builtin::Io, &[]),
+    ("fprintf", Builtin::Io, &[]),
+    ("fopen", Builtin::Io, &[2]),
+    ("fclose", Builtin::Io, &[1]),
+    ("fflush", Builtin::Io, &[1]),
+    ("fscanf", Builtin::Io, &[]),
+    ("stop", Builtin::Stop, &[0, 1]),
+    ("vvXmin", Builtin::ViewVolume, &[0]),
+    ("vvXmax", Builtin::ViewVolume, &[0]),
+    ("vvYmin", Builtin::ViewVolume, &[0]),
+    ("vvYmax", Builtin::ViewVolume, &[0]),
+    ("vvZmin", Builtin::ViewVolume, &[0]),
+    ("vvZmax", Builtin::ViewVolume, &[0]),
+    ("SetDerivationLength", Builtin::SetDerivationLength, &[1]),
+    ("GetDerivationLength", Builtin::GetDerivationLength, &[0]),
+];
+
 /// cpfg's truth: any value but 0.
 pub fn truth(v: f64) -> bool {
     v != 0.0

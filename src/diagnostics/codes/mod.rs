@@ -60,6 +60,7 @@ macro_rules! codes {
 mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
+mod gft;
 mod linf;
 mod smith;
 mod stl;
@@ -67,6 +68,7 @@ mod translate;
 pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
+pub use gft::*;
 pub use linf::*;
 pub use smith::*;
 pub use stl::*;
@@ -83,6 +85,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(cpfg::CPFG)
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
         .chain(smith::SMITH)
+        .chain(gft::GFT)
 }
 
 codes! { GENERAL;

@@ -9,9 +9,10 @@ use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
-    Alternative, Angle, Axis, ContextFilter, ElasticityChange, Formals, Phase, Production,
-    QueryKind, RulePolicy, Span, SpanTable, SymbolId, System, TurtleOp, Word,
+    Alternative, ContextFilter, Formals, Phase, Production, RulePolicy, Span, SpanTable, SymbolId,
+    System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -22,107 +23,9 @@ pub const MAX_ARRAY: f64 = 1_000_000.0;
 
 pub use crate::ir::Lowered;
 
-/// The predefined functions: name, builtin, accepted argument counts.
-const FUNCTIONS: &[(&str, Builtin, &[usize])] = &[
-    ("sin", Builtin::Sin, &[1]),
-    ("cos", Builtin::Cos, &[1]),
-    ("tan", Builtin::Tan, &[1]),
-    ("asin", Builtin::Asin, &[1]),
-    ("acos", Builtin::Acos, &[1]),
-    ("atan", Builtin::Atan, &[1, 2]),
-    ("atan2", Builtin::Atan2, &[2]),
-    ("exp", Builtin::Exp, &[1]),
-    ("log", Builtin::Log, &[1]),
-    ("sqrt", Builtin::Sqrt, &[1]),
-    ("fabs", Builtin::Fabs, &[1]),
-    ("floor", Builtin::Floor, &[1]),
-    ("ceil", Builtin::Ceil, &[1]),
-    ("trunc", Builtin::Trunc, &[1]),
-    ("sign", Builtin::Sign, &[1]),
-    ("srand", Builtin::Srand, &[1]),
-    ("ran", Builtin::Ran, &[1]),
-    ("nran", Builtin::Nran, &[2]),
-    ("bran", Builtin::Bran, &[2]),
-    ("biran", Builtin::Biran, &[2]),
-    ("func", Builtin::Func, &[2]),
-    ("curveX", Builtin::CurveX, &[2]),
-    ("curveY", Builtin::CurveY, &[2]),
-    ("curveZ", Builtin::CurveZ, &[2]),
-    ("curveGAL", Builtin::CurveGal, &[1]),
-    ("printf", Builtin::Io, &[]),
-    ("fprintf", Builtin::Io, &[]),
-    ("fopen", Builtin::Io, &[2]),
-    ("fclose", Builtin::Io, &[1]),
-    ("fflush", Builtin::Io, &[1]),
-    ("fscanf", Builtin::Io, &[]),
-    ("stop", Builtin::Stop, &[0, 1]),
-    ("vvXmin", Builtin::ViewVolume, &[0]),
-    ("vvXmax", Builtin::ViewVolume, &[0]),
-    ("vvYmin", Builtin::ViewVolume, &[0]),
-    ("vvYmax", Builtin::ViewVolume, &[0]),
-    ("vvZmin", Builtin::ViewVolume, &[0]),
-    ("vvZmax", Builtin::ViewVolume, &[0]),
-    ("SetDerivationLength", Builtin::SetDerivationLength, &[1]),
-    ("GetDerivationLength", Builtin::GetDerivationLength, &[0]),
-];
-
-/// The turtle meaning of a cpfg module name (manual §6).
+/// What a cpfg symbol does ([`crate::ir::vocabulary`]'s cpfg set).
 pub fn turtle_op(name: &str) -> Option<TurtleOp> {
-    let rot = |axis, sign: f64| TurtleOp::Rotate {
-        axis,
-        angle: Angle::Delta(sign),
-    };
-    let elasticity = |change| TurtleOp::Elasticity {
-        tropism: None,
-        change,
-    };
-    Some(match name {
-        "F" | "G" => TurtleOp::Forward { draw: true },
-        "f" | "g" => TurtleOp::Forward { draw: false },
-        // `+` turns left (counter-clockwise seen from the default view).
-        "+" => rot(Axis::Up, -1.0),
-        "-" => rot(Axis::Up, 1.0),
-        // cpfg's frame starts H = +y, L = −x, U = −z (interpret.c): its U
-        // is the turtle's −U, and stays so when `&` tilts H towards cpfg's
-        // U and `/` rolls L towards it.
-        "&" => rot(Axis::Left, -1.0),
-        "^" => rot(Axis::Left, 1.0),
-        "\\" => rot(Axis::Heading, 1.0),
-        "/" => rot(Axis::Heading, -1.0),
-        "|" => TurtleOp::TurnAround,
-        "[" => TurtleOp::Push,
-        "]" => TurtleOp::Pop,
-        ";" => TurtleOp::ColourIndex { up: true },
-        "," => TurtleOp::ColourIndex { up: false },
-        "#" => TurtleOp::LineWidth { up: true },
-        "!" => TurtleOp::LineWidth { up: false },
-        "{" => TurtleOp::PolygonBegin,
-        "}" => TurtleOp::PolygonEnd,
-        "." => TurtleOp::PolygonVertex,
-        "@O" => TurtleOp::Sphere,
-        "@o" => TurtleOp::ScreenDisc,
-        "@c" => TurtleOp::Circle,
-        "@M" => TurtleOp::MoveTo,
-        "@R" => TurtleOp::SetHeading,
-        "@v" => TurtleOp::RollToVertical,
-        "@Gs" => TurtleOp::CylinderStart,
-        "@Gc" => TurtleOp::CylinderPoint { end: false },
-        "@Ge" => TurtleOp::CylinderPoint { end: true },
-        "@Gt" => TurtleOp::CylinderTangents,
-        "@Gr" => TurtleOp::RadiusTangents,
-        "@#" => TurtleOp::SetContour,
-        // cpfg reads `@Ti`; the manual writes `@T`.
-        "@Ts" => elasticity(ElasticityChange::Set),
-        "@Ti" | "@T" => elasticity(ElasticityChange::Increase),
-        "@Td" => elasticity(ElasticityChange::Decrease),
-        "@Tp" => TurtleOp::Untwist,
-        "@Tf" => TurtleOp::KeepTwist,
-        "?P" => TurtleOp::Query(QueryKind::Position),
-        "?H" => TurtleOp::Query(QueryKind::Heading),
-        "?L" => TurtleOp::Query(QueryKind::Left),
-        "?U" => TurtleOp::Query(QueryKind::Up),
-        _ => return None,
-    })
+    vocabulary::op(TurtleSet::Cpfg, name)
 }
 
 /// Turtle commands graftal reads but does not draw (W0823).
@@ -373,7 +276,7 @@ impl Lowerer<'_> {
         }
     }
 
-    /// A call of a predefined function ([`FUNCTIONS`]) at `span`; 0 if
+    /// A call of a predefined function ([`crate::ir::program::BUILTINS`]) at `span`; 0 if
     /// there is no such function.
     fn call(
         &mut self,
@@ -383,9 +286,11 @@ impl Lowerer<'_> {
         args: &[ast::Expr],
         span: &Span,
     ) -> Expr {
-        let Some(&(_, builtin, arities)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
+        let Some(&(_, builtin, arities)) =
+            crate::ir::program::BUILTINS.iter().find(|f| f.0 == name)
+        else {
             self.report(codes::CPFG_UNKNOWN_FUNCTION, || {
-                let names: Vec<&str> = FUNCTIONS.iter().map(|f| f.0).collect();
+                let names: Vec<&str> = crate::ir::program::BUILTINS.iter().map(|f| f.0).collect();
                 let d = Diagnostic::at(
                     codes::CPFG_UNKNOWN_FUNCTION,
                     name_span.clone(),

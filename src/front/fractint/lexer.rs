@@ -82,39 +82,7 @@ pub fn commands(body: &str) -> Vec<(&str, Span)> {
         .collect()
 }
 
-/// The number of a command: Fractint's `getnumber` — after the command
-/// character, up to two prefixes `q` (square root) and `i` (inverse), then
-/// the longest number `atof` reads from `[0-9.]*`; a value that is not
-/// positive is 0 (Fractint 19's sanity check, before the prefixes apply).
-pub fn number(cmd: &str) -> f64 {
-    let rest = &cmd[cmd.char_indices().nth(1).map_or(cmd.len(), |(i, _)| i)..];
-    let digits_at = rest
-        .find(|c: char| c != 'q' && c != 'i')
-        .unwrap_or(rest.len());
-    let (prefix, digits) = rest.split_at(digits_at);
-    // atof: digits, at most one point, more digits.
-    let mut end = 0;
-    let mut point = false;
-    for (i, c) in digits.char_indices() {
-        if c == '.' && !point {
-            point = true;
-        } else if !c.is_ascii_digit() {
-            break;
-        }
-        end = i + 1;
-    }
-    let mut v: f64 = digits[..end].parse().unwrap_or(0.0);
-    if v.is_nan() || v <= 0.0 || v.is_infinite() {
-        return 0.0;
-    }
-    if prefix.contains('q') {
-        v = v.sqrt();
-    }
-    if prefix.contains('i') {
-        v = 1.0 / v;
-    }
-    v
-}
+pub use crate::ir::vocabulary::fractint_number as number;
 
 #[cfg(test)]
 mod tests {

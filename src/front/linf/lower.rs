@@ -30,6 +30,7 @@ use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::number::radians;
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
@@ -904,16 +905,16 @@ fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
             }
             Item::NextColour(span) => {
                 nesting.next_colour(span);
-                push_op(cx, &mut out, "{", TurtleOp::NextColour, span.clone());
+                push_op(cx, &mut out, "{", linf_op("{"), span.clone());
                 i + 1
             }
             Item::PreviousColour(span) => {
                 nesting.previous_colour(cx, span);
-                push_op(cx, &mut out, "}", TurtleOp::PreviousColour, span.clone());
+                push_op(cx, &mut out, "}", linf_op("}"), span.clone());
                 i + 1
             }
             Item::Swap(span) => {
-                push_op(cx, &mut out, "!", TurtleOp::SwapTurns, span.clone());
+                push_op(cx, &mut out, "!", linf_op("!"), span.clone());
                 i + 1
             }
         };
@@ -926,6 +927,11 @@ fn lower_string(cx: &mut Cx<'_>, items: &[Item]) -> (Vec<SymbolId>, Vec<Span>) {
         cx.spans.symbols.entry(*id).or_insert_with(|| span.clone());
     }
     (out.word, out.spans)
+}
+
+/// What LinF's fixed symbol `name` does ([`vocabulary`]'s LinF set).
+fn linf_op(name: &str) -> TurtleOp {
+    vocabulary::op(TurtleSet::Linf, name).unwrap_or(TurtleOp::Push)
 }
 
 /// A number, as written: `x@` scales the length, `p?s` guards `s`; any

@@ -4,65 +4,11 @@ use super::ast::{File, Header, Item, Production as AstProduction, Symbols};
 use super::parser::HEADERS;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::front::repeats::push_lazily;
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
-    Alternative, Angle, Axis, ContextFilter, Production, Span, SpanTable, SymbolId, System,
-    TurtleOp, Word,
+    Alternative, ContextFilter, Production, Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
-
-/// The pfg turtle: what each reserved character does (Appendix A's `draw`,
-/// the 3D symbols of §2 Fig. 2.12, and `{ } ! '` of §2 and §3.1).
-pub const TURTLE_SYMBOLS: &[(&str, TurtleOp)] = &[
-    ("F", TurtleOp::Forward { draw: true }),
-    ("f", TurtleOp::Forward { draw: false }),
-    (
-        "+",
-        TurtleOp::Rotate {
-            axis: Axis::Up,
-            angle: Angle::Delta(1.0),
-        },
-    ),
-    (
-        "-",
-        TurtleOp::Rotate {
-            axis: Axis::Up,
-            angle: Angle::Delta(-1.0),
-        },
-    ),
-    (
-        "&",
-        TurtleOp::Rotate {
-            axis: Axis::Left,
-            angle: Angle::Delta(1.0),
-        },
-    ),
-    (
-        "^",
-        TurtleOp::Rotate {
-            axis: Axis::Left,
-            angle: Angle::Delta(-1.0),
-        },
-    ),
-    (
-        "\\",
-        TurtleOp::Rotate {
-            axis: Axis::Heading,
-            angle: Angle::Delta(1.0),
-        },
-    ),
-    (
-        "/",
-        TurtleOp::Rotate {
-            axis: Axis::Heading,
-            angle: Angle::Delta(-1.0),
-        },
-    ),
-    ("|", TurtleOp::TurnAround),
-    ("{", TurtleOp::PolygonBegin),
-    ("}", TurtleOp::PolygonEnd),
-    ("!", TurtleOp::DecrementWidth),
-    ("'", TurtleOp::NextColour),
-];
 
 pub use crate::ir::Lowered;
 
@@ -94,9 +40,11 @@ impl Ctx<'_> {
 /// usable only if no error was pushed.
 pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     let mut sys = System::new();
-    for (name, op) in TURTLE_SYMBOLS {
-        let id = sys.intern(name);
-        sys.set_interpretation(id, *op);
+    for name in TurtleSet::Pfg.names() {
+        if let Some(op) = vocabulary::op(TurtleSet::Pfg, name) {
+            let id = sys.intern(name);
+            sys.set_interpretation(id, op);
+        }
     }
     let mut cx = Ctx {
         sys,

@@ -37,9 +37,10 @@ use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::number::readable;
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
-    Angle, Axis, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span,
-    SpanTable, Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
+    BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, SpanTable,
+    Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
 };
 use std::collections::HashMap;
 
@@ -1516,18 +1517,17 @@ type ComponentIds = [SymbolId; 7];
 
 /// Interns the drawing components with their turtle meaning.
 fn intern_components(sys: &mut System) -> ComponentIds {
-    let turn = |d: f64| TurtleOp::Rotate {
-        axis: Axis::Up,
-        angle: Angle::Delta(d),
-    };
     let mut ids = [crate::ir::SymbolId::OPEN; 7];
-    for (c, name, op) in [
-        (Comp::F, "F", TurtleOp::Forward { draw: true }),
-        (Comp::L, "L", turn(-1.0)),
-        (Comp::R, "R", turn(1.0)),
-        (Comp::Plus, "+", turn(-1.0)),
-        (Comp::Minus, "-", turn(1.0)),
+    for (c, name) in [
+        (Comp::F, "F"),
+        (Comp::L, "L"),
+        (Comp::R, "R"),
+        (Comp::Plus, "+"),
+        (Comp::Minus, "-"),
     ] {
+        let Some(op) = vocabulary::op(TurtleSet::Stl, name) else {
+            continue;
+        };
         let id = sys.intern(name);
         sys.set_interpretation(id, op);
         ids[c as usize] = id;

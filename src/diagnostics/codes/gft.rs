@@ -1,0 +1,75 @@
+//! Diagnostic codes of the `.gft` front end (`E09xx`, `W09xx`).
+
+use super::Code;
+
+codes! { GFT;
+    GFT_UNKNOWN_KEYWORD = "E0900", "unknown keyword",
+"A line of a `.gft` file that has no `->` starts with a keyword (`axiom`,
+`angle`, `steps`, `turtle`, …) or is `NAME = OPERATION`. Keywords are
+lowercase, words joined by `-` (docs/gft.md lists them).
+
+Example:
+    axoim F         <- did you mean `axiom`?";
+
+    GFT_UNKNOWN_LINE = "E0901", "not an item",
+"A line is a keyword line, `NAME = OPERATION` or a production with `->`.
+
+Example:
+    F F+F           <- write `F -> F+F`";
+
+    GFT_UNKNOWN_OPERATION = "E0902", "unknown turtle operation or set",
+"`NAME = OPERATION` gives a symbol one of the operations of docs/gft.md §3
+(`forward`, `move`, `turn A`, `push`, `nothing`, …); `turtle SET` names one
+of the sets `pfg`, `linf`, `stl`, `cpfg`, `fractint`, `none`.
+
+Example:
+    X = forwrd      <- did you mean `forward`?
+    turtle lsys     <- a set graftal knows: `pfg`, `cpfg`, …";
+
+    GFT_BAD_VALUE = "E0903", "bad value",
+"The value of a setting or an operation is not what it takes: a number
+where a number is needed (a whole one for `steps`, `seed` and `colour`), an
+angle as `30deg`, `0.5rad`, `delta` or `2*delta`, a colour as `#rrggbb`.
+
+Example:
+    steps ten       <- write `steps 10`
+    angle           <- write `angle 90`";
+
+    GFT_UNBALANCED = "E0904", "unbalanced brackets or braces",
+"Every `[` of a word is closed by a `]` in the same word, and a block item
+(`decomposition`, `start`, …) takes its `{ … }`.
+
+Example:
+    F -> F[+F       <- add `]`
+    start n = 0;    <- write `start { n = 0; }`";
+
+    GFT_DUPLICATE = "E0905", "setting given twice",
+"Each setting appears at most once in a file: which one would hold is
+not obvious to a reader.
+
+Example:
+    angle 90
+    angle 60        <- remove one";
+
+    GFT_UNKNOWN_NAME = "E0906", "unknown name",
+"A name in an expression is a production's parameter or local, a global
+declared with `globals`, an array declared with `array`, `pi`, or one of
+cpfg's built-in functions; `frenet NAME` names a `rotation`.
+
+Example:
+    A(x) -> F(y)    <- `y` is not a parameter of this production";
+
+    GFT_PARAMETER_COUNT = "E0907", "wrong number of parameters",
+"A built-in function takes the number of arguments cpfg gives it, and a
+predecessor's module binds names, not values.
+
+Example:
+    A(x) -> F(sin(x, 2))   <- `sin` takes one argument
+    A(1) -> F              <- write a name: `A(x) : x == 1 -> F`";
+
+    GFT_NO_AXIOM = "W0900", "no axiom",
+"A file without `axiom` derives the empty word: nothing is drawn.
+
+Example:
+    F -> F+F        <- add `axiom F`";
+}

@@ -1,0 +1,144 @@
+//! The `.gft` syntax tree: items as written, words not yet split into
+//! symbols (that needs the file's declarations, see `lower`).
+
+use crate::ir::Span;
+
+/// A file: its items in order.
+#[derive(Clone, Debug, Default)]
+pub struct File {
+    pub items: Vec<Item>,
+}
+
+#[derive(Clone, Debug)]
+pub enum Item {
+    /// `KEYWORD ARGS… [{ BLOCK }]`: a setting or declaration.
+    Keyword(Keyword),
+    /// `NAME = OPERATION`.
+    Define {
+        name: String,
+        span: Span,
+        op: Vec<Arg>,
+        op_span: Span,
+    },
+    Production(Production),
+}
+
+#[derive(Clone, Debug)]
+pub struct Keyword {
+    pub name: String,
+    pub span: Span,
+    pub args: Vec<Arg>,
+    /// The productions or statements of a block item.
+    pub block: Option<Block>,
+    /// The value of a keyword that takes an expression.
+    pub value: Option<Expr>,
+    /// The word of `axiom`, `ignore`, `consider`, `cut`.
+    pub word: Option<Word>,
+    /// The whole line.
+    pub line: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum Block {
+    Productions(Vec<Production>),
+    Statements(Vec<Stmt>),
+}
+
+/// One argument of a keyword line, as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Arg {
+    Word(String, Span),
+    Number(f64, String, Span),
+    Colour(String, Span),
+    Quoted(String, Span),
+    Punct(String, Span),
+}
+
+impl Arg {
+    pub fn span(&self) -> &Span {
+        match self {
+            Arg::Word(_, s)
+            | Arg::Number(_, _, s)
+            | Arg::Colour(_, s)
+            | Arg::Quoted(_, s)
+            | Arg::Punct(_, s) => s,
+        }
+    }
+    pub fn text(&self) -> &str {
+        match self {
+            Arg::Word(t, _) | Arg::Number(_, t, _) | Arg::Colour(t, _) | Arg::Quoted(t, _) => t,
+            Arg::Punct(t, _) => t,
+        }
+    }
+}
+
+/// A word before splitting: pieces of symbol text, quoted names, guards
+/// and parameter lists.
+#[derive(Clone, Debug, Default)]
+pub struct Word {
+    pub pieces: Vec<Piece>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum Piece {
+    /// Symbol characters, split by the longest declared name.
+    Text(String, Span),
+    /// `` `name` ``.
+    Quoted(String, Span),
+    /// `p?` before a module.
+    Guard(f64, Span),
+    /// `( e, … )` after a module.
+    Args(Vec<Expr>, Span),
+}
+
+#[derive(Clone, Debug)]
+pub struct Production {
+    pub left: Option<Word>,
+    pub predecessor: Word,
+    pub right: Option<Word>,
+    pub before: Vec<Stmt>,
+    pub condition: Option<Expr>,
+    pub after: Vec<Stmt>,
+    pub alternatives: Vec<Alternative>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub struct Alternative {
+    pub successor: Word,
+    pub weight: Option<Expr>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum ExprKind {
+    Num(f64),
+    Str(String),
+    Name(String),
+    /// `a[i][j]`.
+    Element(String, Vec<Expr>),
+    Call(String, Vec<Expr>),
+    Unary(&'static str, Box<Expr>),
+    Binary(String, Box<Expr>, Box<Expr>),
+    Cond(Box<Expr>, Box<Expr>, Box<Expr>),
+}
+
+#[derive(Clone, Debug)]
+pub enum Stmt {
+    Assign {
+        name: String,
+        index: Vec<Expr>,
+        value: Expr,
+        span: Span,
+    },
+    Expr(Expr),
+    If(Expr, Vec<Stmt>, Vec<Stmt>),
+    While(Expr, Vec<Stmt>),
+    Do(Vec<Stmt>, Expr),
+}

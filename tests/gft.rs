@@ -1,0 +1,291 @@
+//! The `.gft` front end (docs/gft.md): each construct read from a small
+//! file, derived, and compared with the same model in the notation it
+//! comes from; every diagnostic code with its span; every error of a file
+//! in one run.
+
+use graftal::diagnostics::codes;
+use graftal::driver::{self, compile, Compiled, RunOptions};
+use graftal::ir::{Angle, RulePolicy, TurtleOp};
+use graftal::source::SourceFile;
+
+fn compiled(name: &str, text: &str) -> Compiled {
+    compile(SourceFile::new(name.to_string(), text))
+}
+
+/// The word `text` (a file called `name`) derives in `steps` steps.
+fn word(name: &str, text: &str, steps: u64) -> String {
+    let c = compiled(name, text);
+    assert!(!c.diagnostics.has_errors(), "{name}: {:#?}", c.diagnostics);
+    let sys = c.system.expect("a system");
+    let opts = RunOptions {
+        steps: Some(steps),
+        ..RunOptions::default()
+    };
+    let w = driver::derive(&sys, &opts).expect("derives");
+    c.front.word_text(&sys, &w)
+}
+
+fn corpus(name: &str) -> String {
+    let path = format!("{}/tests/corpus/gft/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(path).expect("corpus file")
+}
+
+/// The codes of the diagnostics of a `.gft` text, in order.
+fn codes_of(text: &str) -> Vec<&'static str> {
+    compiled("t.gft", text)
+        .diagnostics
+        .iter()
+        .map(|d| d.code.0)
+        .collect()
+}
+
+#[test]
+fn the_koch_island_fits_in_five_lines_and_derives_as_in_pfg() {
+    let gft = corpus("koch-island.gft");
+    assert!(gft.lines().count() <= 5);
+    let pfg = "angle factor: 4\naxiom: F-F-F-F\nF --> F-F+F+FF-F-F+F\n";
+    assert_eq!(word("k.gft", &gft, 2), word("k.l", pfg, 2));
+    let gft_sys = compiled("k.gft", &gft).system.unwrap();
+    let pfg_sys = compiled("k.l", pfg).system.unwrap();
+    assert_eq!(gft_sys.settings.delta, pfg_sys.settings.delta);
+    assert_eq!(gft_sys.settings.steps, Some(2));
+}
+
+#[test]
+fn a_parametric_tree_derives_as_in_cpfg() {
+    let cpfg =
+        "lsystem: 1\naxiom: A(1)\nA(x) : x < 10 --> F(x) [+(30) A(x*0.7)] A(x+1)\nendlsystem\n";
+    assert_eq!(word("t.gft", &corpus("tree.gft"), 6), word("t.l", cpfg, 6));
+}
+
+#[test]
+fn continuation_alternatives_are_one_stochastic_production() {
+    let gft =
+        "angle 360/14\naxiom F\nF -> F[+F]F[-F]F : 0.33\n  -> F[+F]F : 0.33\n  -> F[-F]F : 0.34\n";
+    let sys = compiled("b.gft", gft).system.unwrap();
+    let weights: Vec<f64> = sys.productions[0]
+        .alternatives
+        .iter()
+        .map(|a| a.weight)
+        .collect();
+    assert_eq!(
+        (sys.productions.len(), weights),
+        (1, vec![0.33, 0.33, 0.34])
+    );
+    let pfg = "angle factor: 14\naxiom: F\nF --> F[+F]F[-F]F : 0.33\nF --> F[+F]F : 0.33\nF --> F[-F]F : 0.34\n";
+    assert_eq!(word("b.gft", gft, 4), word("b.l", pfg, 4));
+}
+
+#[test]
+fn contexts_with_ignored_symbols_derive_as_in_pfg() {
+    let gft = corpus("signal.gft");
+    let body: String = gft
+        .lines()
+        .filter(|l| l.contains("->"))
+        .map(|l| l.replace("->", "-->") + "\n")
+        .collect();
+    let pfg = format!("angle factor: 16\nignore: +-F\naxiom: F1F1F1\n{body}");
+    for n in 0..8 {
+        assert_eq!(word("s.gft", &gft, n), word("s.l", &pfg, n), "step {n}");
+    }
+}
+
+#[test]
+fn frenet_rotations_intervals_and_guards_read_as_in_linf() {
+    let gft = corpus("frenet.gft");
+    let linf =
+        "lines f\nangles t = (0, pi/3) w = (0, [0 2*pi])\naxiom f\nrules\n  f = f+t-t[0.5?f]+w\n";
+    for n in 0..5 {
+        assert_eq!(word("f.gft", &gft, n), word("f.linf", linf, n), "step {n}");
+    }
+    let sys = compiled("f.gft", &gft).system.unwrap();
+    assert_eq!(
+        sys.rotations[1].curvature,
+        Angle::Uniform {
+            lo: 0.0,
+            hi: std::f64::consts::TAU
+        }
+    );
+    let minus_t = sys.symbols.get("-t").unwrap();
+    assert!(matches!(
+        sys.op(minus_t),
+        Some(TurtleOp::Frenet { negate: true, .. })
+    ));
+    assert!(sys.symbols.get("0.5?f").is_some());
+}
+
+#[test]
+fn fractint_commands_take_their_numbers() {
+    let gft = corpus("fractint.gft");
+    let fractint = "X {\n  Angle 8\n  Axiom FX\n  X=C12F+X-C3F\n}\n";
+    assert_eq!(word("x.gft", &gft, 3), word("x.l", fractint, 3));
+    let sys = compiled("x.gft", &gft).system.unwrap();
+    assert_eq!(sys.colours.len(), 256);
+    let c12 = sys.symbols.get("c12").unwrap();
+    assert_eq!(sys.op(c12), Some(TurtleOp::SetColour(12)));
+}
+
+#[test]
+fn programs_and_phases_derive_as_in_cpfg() {
+    let gft = "turtle cpfg\nsteps 3\naxiom A\nA -> AB\ndecomposition depth 2 {\nB -> F\n}\nhomomorphism {\nA -> +F\n}\n";
+    let cpfg = "lsystem: 1\naxiom: A\nA --> AB\ndecomposition\nmaximum depth: 2\nB --> F\nhomomorphism\nA --> +F\nendlsystem\n";
+    assert_eq!(word("d.gft", gft, 3), word("d.l", cpfg, 3));
+    let sys = compiled("d.gft", gft).system.unwrap();
+    assert_eq!(
+        (sys.decomposition.depth, sys.homomorphism.productions.len()),
+        (2, 1)
+    );
+    // Globals and the blocks around the derivation: `n` counts the steps.
+    assert_eq!(word("p.gft", &corpus("program.gft"), 4), "AFF");
+}
+
+#[test]
+fn statements_conditions_and_policy_reach_the_ir() {
+    let gft = "turtle cpfg\nchoose weighted\nseed 7\nring\ncut %\naxiom A(1)\nA(x) : { y = x * 2; } y < 8 -> A(y)\n";
+    let sys = compiled("c.gft", gft).system.unwrap();
+    let p = &sys.productions[0];
+    assert_eq!(
+        (p.before.len(), p.condition.is_some(), p.formals.locals),
+        (1, true, 2)
+    );
+    assert_eq!(sys.policy, RulePolicy::Weighted);
+    assert_eq!(sys.settings.seed, Some(7));
+    assert!(sys.ring && sys.cut == sys.symbols.get("%"));
+    assert_eq!(word("c.gft", gft, 3), "A(4)");
+}
+
+#[test]
+fn definitions_override_the_turtle_set_and_declare_long_names() {
+    let gft = "symbol Apex\nG = move\nX = nothing\nF = turn 30deg\naxiom ApexGXF\n";
+    let sys = compiled("n.gft", gft).system.unwrap();
+    assert_eq!(sys.axiom.len(), 4);
+    let op = |n: &str| sys.op(sys.symbols.get(n).unwrap());
+    assert_eq!(op("G"), Some(TurtleOp::Forward { draw: false }));
+    assert_eq!(op("X"), None);
+    assert!(
+        matches!(op("F"), Some(TurtleOp::Rotate { angle: Angle::Radians(a), .. }) if (a - 30f64.to_radians()).abs() < 1e-15)
+    );
+    assert_eq!(op("Apex"), None);
+}
+
+#[test]
+fn arrays_and_globals_are_declared_wherever_they_are_written() {
+    let gft = "turtle cpfg\naxiom A(0)\nA(i) : i < 3 -> F(lengths[i] + n) A(i+1)\narray lengths[3] = 1, 2.5, -3\nglobals n\nstart { n = 10; }\n";
+    assert_eq!(word("a.gft", gft, 3), "F(11)F(12.5)F(7)A(3)");
+    assert_eq!(codes_of("array a[1][2] = 1, 2, 3\naxiom F\n"), ["E0903"]);
+}
+
+#[test]
+fn silent_symbols_act_without_a_name() {
+    let gft = "silent s1 = stem 8 40\naxiom `s1`F\n";
+    let sys = compiled("s.gft", gft).system.unwrap();
+    let s1 = sys.symbols.get("s1").unwrap();
+    assert_eq!(sys.symbols.name(s1), "");
+    assert_eq!(sys.axiom.symbols(), [s1, sys.symbols.get("F").unwrap()]);
+    assert_eq!(
+        sys.op(s1),
+        Some(TurtleOp::Stem {
+            width: 8.0,
+            length: 40.0
+        })
+    );
+    assert_eq!(word("s.gft", gft, 0), "F");
+}
+
+#[test]
+fn each_problem_has_its_code_and_exact_span() {
+    let cases: &[(&str, &str, std::ops::Range<usize>)] = &[
+        ("axoim F\naxiom F\n", "E0900", 0..5),
+        ("axiom F\n[F]\n", "E0901", 8..11),
+        ("X = forwrd\naxiom X\n", "E0902", 4..10),
+        ("steps ten\naxiom F\n", "E0903", 0..9),
+        ("axiom F]\n", "E0904", 7..8),
+        ("angle 90\nangle 60\naxiom F\n", "E0905", 9..14),
+        ("axiom A(1)\nA(x) -> F(y)\n", "E0906", 21..22),
+        ("axiom A(1)\nA(x) -> F(sin(x, 2))\n", "E0907", 21..30),
+        ("axiom A\nA(1) -> B\n", "E0907", 10..11),
+    ];
+    for (text, code, span) in cases {
+        let c = compiled("t.gft", text);
+        let d: Vec<_> = c.diagnostics.iter().collect();
+        assert_eq!(d.len(), 1, "{text:?}: {d:#?}");
+        assert_eq!(
+            (d[0].code.0, d[0].span.clone()),
+            (*code, Some(span.clone())),
+            "{text:?}"
+        );
+    }
+    assert_eq!(codes_of("F -> F+F\n"), ["W0900"]);
+}
+
+#[test]
+fn unknown_keywords_and_operations_suggest_the_nearest() {
+    let c = compiled("t.gft", "axiom F\nwidht 2\nX = forwrd\n");
+    let helps: Vec<String> = c
+        .diagnostics
+        .iter()
+        .filter_map(|d| d.help.clone())
+        .collect();
+    assert_eq!(helps, ["did you mean `width`?", "did you mean `forward`?"]);
+}
+
+#[test]
+fn every_error_of_a_file_in_one_run() {
+    let text = "axoim F\nangle 90\nangle 60\nF -> F[+F\nX = forwrd\nturtle lsys\nA(x) -> F(y)\nsteps ten\n";
+    assert_eq!(
+        codes_of(text),
+        ["E0900", "E0905", "E0904", "E0902", "E0902", "E0906", "E0903", "W0900"]
+    );
+}
+
+#[test]
+fn junk_never_panics() {
+    let pieces = [
+        "->",
+        "(",
+        ")",
+        "{",
+        "}",
+        "[",
+        "]",
+        ":",
+        "<",
+        ">",
+        "?",
+        "`",
+        "\"",
+        "/*",
+        "=",
+        "axiom",
+        "start",
+        "decomposition",
+        "turtle",
+        "rotation",
+        "1e999",
+        "-",
+        "F",
+        "\n",
+        " ",
+        ",",
+        ";",
+    ];
+    let mut state = 12345u64;
+    for _ in 0..500 {
+        let mut text = String::new();
+        for _ in 0..40 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            text.push_str(pieces[(state >> 33) as usize % pieces.len()]);
+        }
+        let c = compiled("j.gft", &text);
+        if let (Some(sys), false) = (&c.system, c.diagnostics.has_errors()) {
+            let opts = RunOptions {
+                steps: Some(3),
+                ..RunOptions::default()
+            };
+            let _ = driver::derive(sys, &opts);
+        }
+    }
+    let _ = codes::GFT_UNKNOWN_KEYWORD;
+}
