@@ -289,3 +289,25 @@ fn junk_never_panics() {
     }
     let _ = codes::GFT_UNKNOWN_KEYWORD;
 }
+
+#[test]
+fn a_file_without_a_turtle_line_draws_with_pfgs_turtle() {
+    let c = compiled("k.gft", "steps 1\nangle 90\naxiom F+F\n");
+    let sys = c.system.expect("a system");
+    let f = sys.symbols.get("F").unwrap();
+    assert_eq!(sys.op(f), Some(TurtleOp::Forward { draw: true }));
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    assert_eq!(g.segments.len(), 2);
+}
+
+#[test]
+fn a_declared_name_written_without_spaces_is_one_module() {
+    let text = "rotation b = (0, 1)\n+b = frenet b\naxiom F+bF[+bF]\n";
+    let c = compiled("b.gft", text);
+    assert!(!c.diagnostics.has_errors(), "{:#?}", c.diagnostics);
+    let sys = c.system.expect("a system");
+    let word = driver::derive(&sys, &RunOptions::default()).unwrap();
+    let b = sys.symbols.get("+b").unwrap();
+    assert_eq!(word.symbols().iter().filter(|&&s| s == b).count(), 2);
+    assert!(sys.symbols.get("b").is_none(), "no stray `b`");
+}

@@ -47,6 +47,8 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     if let Some(k) = keyword("turtle").next() {
         cx.turtle(k);
     }
+    // A file without a `turtle` line uses pfg's set (docs/gft.md §3).
+    cx.install_turtle_set();
     for k in keyword("rotation") {
         cx.rotation(k);
     }
@@ -193,6 +195,10 @@ impl Cx<'_> {
                 ));
             }
         }
+    }
+
+    /// What the chosen set's symbols do, and its multi-character names.
+    fn install_turtle_set(&mut self) {
         for name in self.set.names() {
             if let Some(op) = vocabulary::op(self.set, name) {
                 let id = self.sys.intern(name);

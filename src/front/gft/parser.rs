@@ -428,9 +428,17 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
                         .with_help("a symbol with this name is written in backquotes: `` `<` ``")
                 });
             }
-            t => w
-                .pieces
-                .push(Piece::Text(t.text().to_string(), span.clone())),
+            // Text written without space between its tokens is one piece,
+            // split later by the longest declared name (`+b`, `.5@`).
+            t => match w.pieces.last_mut() {
+                Some(Piece::Text(text, at)) if at.end == span.start => {
+                    text.push_str(t.text());
+                    at.end = span.end;
+                }
+                _ => w
+                    .pieces
+                    .push(Piece::Text(t.text().to_string(), span.clone())),
+            },
         }
         i += 1;
     }
