@@ -408,3 +408,14 @@ fn the_look_functions_tropisms_and_their_operations_are_read() {
     // And what is read is written back the same.
     through_gft("t.gft", text);
 }
+
+#[test]
+fn a_declared_name_of_several_tokens_is_found_in_a_spaced_word() {
+    let sys = graftal::front::gft::read_ok(
+        "rotation a = (0, 1)\n+a = frenet a\nX = forward\naxiom X [ +a X ] +aX\n",
+    );
+    let names: Vec<&str> = (sys.axiom.symbols().iter())
+        .map(|&s| sys.symbols.name(s))
+        .collect();
+    assert_eq!(names, ["X", "[", "+a", "X", "]", "+a", "X"]);
+}

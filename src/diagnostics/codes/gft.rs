@@ -67,22 +67,6 @@ Example:
     A(x) -> F(sin(x, 2))   <- `sin` takes one argument
     A(1) -> F              <- write a name: `A(x) : x == 1 -> F`";
 
-    GFT_SEED_TOO_LARGE = "E0908", "the seed expands too far",
-"An STL seed (`seed`, docs/gft.md §8) is expanded over its rules into the
-word drawn; terms nested in terms multiply, and graftal stops at 8000000
-symbols.
-
-Example:
-    rule R = [F][F][F][F][F][F][F][F]
-    seed R{R{R{R{R{R{R{R{R{}}}}}}}}}   <- nest fewer terms";
-
-    GFT_GROWTH_STOPPED = "E0909", "growth stopped",
-"An outline grows its seed's rules (docs/gft.md §8) until their levels are
-used or no branch fits; graftal stops at a million stems.
-
-Example:
-    growth breadth-first levels 256   <- use fewer levels or a smaller outline";
-
     GFT_NO_AXIOM = "W0900", "no axiom",
 "A file without `axiom` derives the empty word: nothing is drawn.
 

@@ -457,9 +457,17 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
                         .with_help("a symbol with this name is written in backquotes: `` `<` ``")
                 });
             }
-            t => w
-                .pieces
-                .push(Piece::Text(t.text().to_string(), span.clone())),
+            // Text written without space between tokens is one piece, so
+            // that a declared name of several tokens (`+a`) is found whole.
+            t => match w.pieces.last_mut() {
+                Some(Piece::Text(text, s)) if s.end == span.start => {
+                    text.push_str(t.text());
+                    s.end = span.end;
+                }
+                _ => w
+                    .pieces
+                    .push(Piece::Text(t.text().to_string(), span.clone())),
+            },
         }
         i += 1;
     }

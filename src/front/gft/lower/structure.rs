@@ -94,7 +94,7 @@ impl Cx<'_> {
 
     fn too_large(&mut self, span: &Span) {
         self.diags.push(err(
-            codes::GFT_SEED_TOO_LARGE,
+            codes::GFT_BAD_VALUE,
             span,
             format!(
                 "the seed expands to more than {} symbols",
@@ -111,7 +111,7 @@ impl Cx<'_> {
             Ok(out) => {
                 if out.truncated {
                     self.diags.push(err(
-                        codes::GFT_GROWTH_STOPPED,
+                        codes::GFT_BAD_VALUE,
                         span,
                         format!("growth stopped at {} stems", crate::ir::growth::MAX_STEMS),
                         "grows too many stems",
