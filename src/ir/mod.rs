@@ -217,6 +217,7 @@ pub mod look;
 pub mod number;
 pub mod program;
 mod same;
+pub mod seed;
 pub mod vocabulary;
 
 pub use d0l::D0l;
@@ -868,8 +869,14 @@ impl Default for Settings {
 pub struct Structure {
     /// Named rules (a table of rules, each with its self-resemblance count).
     pub rules: Vec<StlRule>,
-    /// The seed: strings and branching terms over the rules.
+    /// The seed: strings and branching terms over the rules (for an
+    /// outline, the grown seed: its growth points replaced by what grew).
     pub seed: Vec<SeedItem>,
+    /// For an outline, the seed as the file plants it, with its growth
+    /// points ([`BranchTerm::grows`]): what a notation writes, so that
+    /// reading it grows `seed` again. Empty without an outline.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub planted: Vec<SeedItem>,
     /// Where and how the seed grows, for an outline.
     pub constraint: GrowthConstraint,
     /// Stem broadness and length per level.
@@ -947,6 +954,11 @@ pub struct StlRule {
     pub body: Word,
     /// `[I n X]`: the self-resemblance count, if given.
     pub resemblance: Option<u32>,
+    /// For a rule with a count that an outline grows: the rule whose body
+    /// one level of growth adds (`Rk` of `[I n Rk]`, or a rule made to
+    /// hold the `X` of `[I n X]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<StlRuleId>,
 }
 
 /// Index into [`Structure::rules`].
@@ -965,6 +977,10 @@ pub enum SeedItem {
 pub struct BranchTerm {
     pub rule: StlRuleId,
     pub entries: Vec<BranchEntry>,
+    /// A growth point of an outline (only in [`Structure::planted`]): the
+    /// rule grows here, and `entries` is empty.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub grows: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -244,6 +244,19 @@ impl Same<'_> {
         debug("context", &set(self.a), &set(self.b))
     }
 
+    /// Seed items: words by their symbols' names, terms field by field.
+    fn seed(&self, key: &str, a: &[SeedItem], b: &[SeedItem]) -> Result<(), String> {
+        debug(&format!("{key}.len()"), &a.len(), &b.len())?;
+        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+            let at = format!("{key}[{i}]");
+            match (x, y) {
+                (SeedItem::Word(x), SeedItem::Word(y)) => self.word(&at, x, y)?,
+                _ => debug(&at, x, y)?,
+            }
+        }
+        Ok(())
+    }
+
     fn structure(&self) -> Result<(), String> {
         let (a, b) = match (&self.a.structure, &self.b.structure) {
             (None, None) => return Ok(()),
@@ -266,15 +279,10 @@ impl Same<'_> {
                 &x.resemblance,
                 &y.resemblance,
             )?;
+            debug(&format!("structure.rules[{i}].unit"), &x.unit, &y.unit)?;
         }
-        debug("structure.seed.len()", &a.seed.len(), &b.seed.len())?;
-        for (i, (x, y)) in a.seed.iter().zip(&b.seed).enumerate() {
-            let at = format!("structure.seed[{i}]");
-            match (x, y) {
-                (SeedItem::Word(x), SeedItem::Word(y)) => self.word(&at, x, y)?,
-                _ => debug(&at, x, y)?,
-            }
-        }
+        self.seed("structure.seed", &a.seed, &b.seed)?;
+        self.seed("structure.planted", &a.planted, &b.planted)?;
         debug("structure.constraint", &a.constraint, &b.constraint)?;
         debug("structure.stems", &a.stems, &b.stems)
     }
@@ -312,7 +320,7 @@ impl System {
             for r in &st.rules {
                 add(&r.body.0);
             }
-            for item in &st.seed {
+            for item in st.seed.iter().chain(&st.planted) {
                 if let SeedItem::Word(w) = item {
                     add(&w.0);
                 }
