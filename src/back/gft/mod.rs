@@ -3,8 +3,8 @@
 //!
 //! The file is written in a fixed order: settings that differ from the
 //! default, rotations, colours, what each symbol does to the turtle
-//! (`turtle none` and one `NAME = operation` line per symbol that does
-//! something), the rule policy, context filter, ring and cut, the program,
+//! (the turtle set that needs the fewest `NAME = operation` lines, and
+//! those lines), the rule policy, context filter, ring and cut, the program,
 //! the axiom, the productions, the phases, the structure, the look,
 //! surfaces and contours. Numbers are [`expr::num`]: bit-exact. Where
 //! docs/gft.md is silent, docs/gft-emitter-notes.md says what is written.
@@ -44,7 +44,9 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     let mut out = String::new();
     settings(&mut out, &sys.settings, steps);
     look::rotations(&mut out, sys);
-    if !sys.colours.is_empty() {
+    if sys.colours == crate::ir::colours::fractint_palette() {
+        out.push_str("colours fractint\n");
+    } else if !sys.colours.is_empty() {
         let hex: Vec<String> = sys.colours.iter().map(|&c| look::hex(c)).collect();
         let _ = writeln!(out, "colours {}", hex.join(" "));
     }
@@ -420,7 +422,6 @@ mod tests {
             "tropism (0, -1, 0) angle 0 intensity 1 elasticity 0.25 step 0 torque",
             "rotation t = (0, [0 1.5])",
             "colours #ff0010",
-            "turtle none",
             "A = forward",
             "B = pitch 30deg",
             "+t = frenet t",
@@ -463,6 +464,7 @@ mod tests {
         assert!(text.contains("symbol `a b` `2x`"), "{text}");
         let ring = s.intern("ring");
         s.set_interpretation(ring, TurtleOp::Push);
+        s.axiom.push(ring, &[]);
         let text = write(&s, None);
         assert!(text.contains("\n`ring` = push\n"), "{text}");
     }

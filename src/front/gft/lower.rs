@@ -47,6 +47,8 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     if let Some(k) = keyword("turtle").next() {
         cx.turtle(k);
     }
+    // Without a `turtle` line the set is pfg's (docs/gft.md §3).
+    cx.give_set();
     for k in keyword("rotation") {
         cx.rotation(k);
     }
@@ -192,6 +194,16 @@ impl Cx<'_> {
                     "the sets are `pfg`, `linf`, `stl`, `cpfg`, `fractint` and `none`",
                 ));
             }
+        }
+    }
+
+    /// Gives the set's symbols their meaning and their names to words.
+    fn give_set(&mut self) {
+        // Fractint's commands get their meaning where they are used, with
+        // the file's angle (`|` turns by half a turn's increments), as the
+        // Fractint front end gives them: see `declare_use`.
+        if self.set == TurtleSet::Fractint {
+            return;
         }
         for name in self.set.names() {
             if let Some(op) = vocabulary::op(self.set, name) {

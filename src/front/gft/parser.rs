@@ -428,9 +428,18 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
                         .with_help("a symbol with this name is written in backquotes: `` `<` ``")
                 });
             }
-            t => w
-                .pieces
-                .push(Piece::Text(t.text().to_string(), span.clone())),
+            // Tokens written without space between them are one text
+            // (`+t`, Fractint's `\90`), which lowering splits by the
+            // longest declared name.
+            t => match w.pieces.last_mut() {
+                Some(Piece::Text(text, s)) if s.end == span.start => {
+                    text.push_str(t.text());
+                    s.end = span.end;
+                }
+                _ => w
+                    .pieces
+                    .push(Piece::Text(t.text().to_string(), span.clone())),
+            },
         }
         i += 1;
     }
