@@ -702,6 +702,12 @@ pub struct Formals {
     /// Local slots: the formal parameters, then the variables the
     /// production's statements assign.
     pub locals: u16,
+    /// The author's names of the local slots (slot i's is `names[i]`;
+    /// empty where a notation has none, an unnamed slot is ""). Spelling
+    /// only, as spans are: `System::same_as` ignores them, and the `.gft`
+    /// emitter writes them where they read back as the same slots.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub names: Vec<String>,
 }
 
 impl Formals {

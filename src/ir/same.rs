@@ -192,7 +192,16 @@ impl Same<'_> {
             self.ids(&format!("{at}.left"), &p.left, &q.left)?;
             self.ids(&format!("{at}.predecessor"), &p.predecessor, &q.predecessor)?;
             self.ids(&format!("{at}.right"), &p.right, &q.right)?;
-            debug(&format!("{at}.formals"), &p.formals, &q.formals)?;
+            // The names are spelling, as spans are (`Formals::names`).
+            let unnamed = |f: &super::Formals| super::Formals {
+                names: Vec::new(),
+                ..f.clone()
+            };
+            debug(
+                &format!("{at}.formals"),
+                &unnamed(&p.formals),
+                &unnamed(&q.formals),
+            )?;
             debug(&format!("{at}.before"), &p.before, &q.before)?;
             debug(&format!("{at}.condition"), &p.condition, &q.condition)?;
             debug(&format!("{at}.after"), &p.after, &q.after)?;

@@ -182,12 +182,28 @@ fn program(out: &mut String, p: &Program) {
     }
 }
 
-/// The names of a production's local slots: `x0`, `x1`, … (with `_`
-/// added while a name is a global's or an array's).
+/// The names of a production's local slots: the author's
+/// (`Formals::names`) when each is a distinct identifier that no global or
+/// array has, else `x0`, `x1`, … (with `_` added while a name is a
+/// global's or an array's).
 fn local_names(sys: &System, p: &Production) -> Vec<String> {
     let taken = |n: &str| {
         sys.program.globals.iter().any(|g| g == n) || sys.program.arrays.iter().any(|a| a.name == n)
     };
+    let names = &p.formals.names;
+    let identifier = |n: &str| {
+        n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !["if", "else", "while", "do"].contains(&n)
+            && !crate::ir::program::BUILTINS.iter().any(|b| b.0 == n)
+    };
+    let distinct = (0..names.len()).all(|i| !names[..i].contains(&names[i]));
+    let usable = names.len() == usize::from(p.formals.locals)
+        && distinct
+        && names.iter().all(|n| identifier(n) && !taken(n));
+    if usable {
+        return names.clone();
+    }
     (0..p.formals.locals)
         .map(|k| {
             let mut name = format!("x{k}");
@@ -326,6 +342,7 @@ mod tests {
             predecessor: vec![vec![0]],
             right: vec![vec![]],
             locals: 2,
+            names: Vec::new(),
         };
         p.before = vec![Stmt::Assign(
             program::Place::Var(Var::Local(1)),

@@ -548,6 +548,7 @@ impl Lowerer<'_> {
                 predecessor: predecessor.1,
                 right: right.1,
                 locals: scope.locals.len().min(u16::MAX as usize) as u16,
+                names: scope.locals.clone(),
             },
             before,
             condition,

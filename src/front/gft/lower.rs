@@ -973,6 +973,7 @@ impl Cx<'_> {
             predecessor: fp,
             right: fr,
             locals: locals.0.len() as u16,
+            names: locals.0.clone(),
         };
         if prod.formals.left.is_empty()
             && prod.formals.predecessor.is_empty()
