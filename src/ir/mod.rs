@@ -703,9 +703,26 @@ pub struct Formals {
     /// Local slots: the formal parameters, then the variables the
     /// production's statements assign.
     pub locals: u16,
+    /// The author's names of the local slots (slot i's is `names[i]`;
+    /// empty where a notation has none, an unnamed slot is ""). Spelling
+    /// only, as spans are: `System::same_as` ignores them, and the `.gft`
+    /// emitter writes them where they read back as the same slots.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub names: Vec<String>,
 }
 
 impl Formals {
+    /// The one form of a side whose modules bind nothing: no entries (the
+    /// matcher reads a missing entry as no parameters, so both forms match
+    /// the same modules; the IR keeps one so that equal systems are equal).
+    pub fn tidy(&mut self) {
+        for side in [&mut self.left, &mut self.predecessor, &mut self.right] {
+            if side.iter().all(Vec::is_empty) {
+                side.clear();
+            }
+        }
+    }
+
     /// The slots module `k` of `side` binds (none for a plain production).
     pub fn of(side: &[Vec<u16>], k: usize) -> &[u16] {
         side.get(k).map_or(&[], |v| v.as_slice())
@@ -748,6 +765,18 @@ impl Production {
             alternatives,
         }
     }
+    /// The one form of what binds or passes no parameters (see
+    /// [`Formals::tidy`]): sides and successors whose modules have no
+    /// expressions hold none, as the fields' documentation says.
+    pub fn tidy(&mut self) {
+        self.formals.tidy();
+        for alt in &mut self.alternatives {
+            if alt.args.iter().all(Vec::is_empty) {
+                alt.args.clear();
+            }
+        }
+    }
+
     pub fn is_context_sensitive(&self) -> bool {
         !self.left.is_empty() || !self.right.is_empty()
     }

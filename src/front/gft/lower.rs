@@ -50,8 +50,8 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     if let Some(k) = keyword("turtle").next() {
         cx.turtle(k);
     }
-    // A file without a `turtle` line uses pfg's set (docs/gft.md §3).
-    cx.install_turtle_set();
+    // Without a `turtle` line the set is pfg's (docs/gft.md §3).
+    cx.give_set();
     for k in keyword("rotation") {
         cx.rotation(k);
     }
@@ -210,8 +210,14 @@ impl Cx<'_> {
         }
     }
 
-    /// What the chosen set's symbols do, and its multi-character names.
-    fn install_turtle_set(&mut self) {
+    /// Gives the set's symbols their meaning and their names to words.
+    fn give_set(&mut self) {
+        // Fractint's commands get their meaning where they are used, with
+        // the file's angle (`|` turns by half a turn's increments), as the
+        // Fractint front end gives them: see `declare_use`.
+        if self.set == TurtleSet::Fractint {
+            return;
+        }
         for name in self.set.names() {
             if let Some(op) = vocabulary::op(self.set, name) {
                 let id = self.sys.intern(name);
@@ -810,12 +816,10 @@ impl Cx<'_> {
                 }
             }
         }
-        let mut word = Word::new();
+        // The parameters are expressions beside the word, as cpfg's reader
+        // keeps them: the word itself holds symbols only.
+        let word = Word::from(ids.clone());
         let has_args = args.iter().any(|a| !a.is_empty());
-        for (i, id) in ids.iter().enumerate() {
-            let n = args.get(i).map_or(0, Vec::len);
-            word.push(*id, &vec![0.0; n]);
-        }
         if has_args {
             args.resize(ids.len(), Vec::new());
         } else {
@@ -1010,6 +1014,7 @@ impl Cx<'_> {
             predecessor: fp,
             right: fr,
             locals: locals.0.len() as u16,
+            names: locals.0.clone(),
         };
         if prod.formals.left.is_empty()
             && prod.formals.predecessor.is_empty()
