@@ -325,6 +325,7 @@ mod tests {
             ("linf", ".linf"),
             ("stl", ".stl"),
             ("smith", ".smith"),
+            ("gft", ".gft"),
         ] {
             let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {
                 continue;

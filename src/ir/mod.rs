@@ -786,7 +786,15 @@ impl Production {
     /// Whether the production binds or computes parameters, tests a
     /// condition, runs statements or computes its weights.
     pub fn uses_modules(&self) -> bool {
-        self.formals != Formals::default()
+        // Brackets in a context (cpfg's `[B]C`, `=]`) are matched over
+        // branches by module rewriting only.
+        let brackets = |side: &[SymbolId]| {
+            side.iter()
+                .any(|&s| s == SymbolId::OPEN || s == SymbolId::CLOSE)
+        };
+        brackets(&self.left)
+            || brackets(&self.right)
+            || self.formals != Formals::default()
             || !self.before.is_empty()
             || self.condition.is_some()
             || !self.after.is_empty()

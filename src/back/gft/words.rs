@@ -270,8 +270,14 @@ impl Spelling {
         if self.set != TurtleSet::Pfg {
             let _ = writeln!(out, "turtle {}", self.set.name());
         }
-        let mentioned = sys.mentioned();
+        let mut mentioned = sys.mentioned();
         let changed = overrides(sys, &mentioned, self.set).unwrap_or_default();
+        // By name, not by id: ids follow the order a reader met the names,
+        // which a file written this way changes; names make it canonical.
+        mentioned.sort_by_key(|&s| match sys.symbols.silent_key(s) {
+            Some(key) => (true, natural(key)),
+            None => (false, natural(sys.symbols.name(s))),
+        });
         let mut plain_names = Vec::new();
         for s in mentioned {
             let info = sys.symbols.info(s);
@@ -298,6 +304,13 @@ impl Spelling {
             let _ = writeln!(out, "symbol {}", plain_names.join(" "));
         }
     }
+}
+
+/// A name as people sort it: `level-2` before `level-10`.
+fn natural(name: &str) -> (String, u64, String) {
+    let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+    let number = name[stem.len()..].parse().unwrap_or(0);
+    (stem.to_string(), number, name.to_string())
 }
 
 /// An angle of a turtle operation: `delta`, `-delta`, `2.5*delta`,
