@@ -18,6 +18,7 @@ pub mod driver;
 pub mod eval;
 pub mod front;
 pub mod ir;
+pub mod lsp;
 pub mod random;
 pub mod render;
 pub mod source;
