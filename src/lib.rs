@@ -16,6 +16,7 @@ pub mod cli;
 pub mod diagnostics;
 pub mod driver;
 pub mod eval;
+pub mod format;
 pub mod front;
 pub mod ir;
 pub mod lsp;

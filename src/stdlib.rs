@@ -107,6 +107,11 @@ pub static ENTRIES: &[Entry] = &[
     entry!("smith" / "white-sands" . "smith"),
     entry!("smith" / "with-without" . "smith"),
     entry!("smith" / "with-without-bare" . "smith"),
+    entry!("gft" / "hogeweg-hesper-a" . "gft"),
+    entry!("gft" / "koch-island" . "gft"),
+    entry!("gft" / "signal-plant-3d" . "gft"),
+    entry!("gft" / "stochastic-tree" . "gft"),
+    entry!("gft" / "two-heading-curve" . "gft"),
 ];
 
 /// The entry called `name` (with or without its extension; pfg entries
@@ -163,7 +168,10 @@ impl Kind {
 }
 
 /// The stdlib folders' indexes, whose tables give each entry's figure.
+/// gft's comes first: its rows name entries in full (`gft/koch-island`),
+/// so that they never give a pfg entry of the same base name its figure.
 const INDEXES: &[&str] = &[
+    include_str!("../stdlib/gft/INDEX.md"),
     include_str!("../stdlib/pfg/INDEX.md"),
     include_str!("../stdlib/linf/INDEX.md"),
 ];

@@ -102,6 +102,8 @@ fn entries_name_their_figure() {
                 // Smith's paper names its pictures plates and its tables.
                 || fig.contains("plate")
                 || fig.contains("table")
+                // The .gft library's own models, printed in no book.
+                || (e.name.starts_with("gft/") && fig.starts_with("new: "))
                 || data,
             "{}: `{fig}`",
             e.name

@@ -585,7 +585,7 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
             TurtleOp::SetColour(_) | TurtleOp::ShiftColour { .. } => {
                 problem(
                     Kind::Attribute,
-                    format!("the Fractint colour command `{name}`: {to} has no colour indices"),
+                    format!("the colour command `{name}` (sets a palette index): {to} has no colour indices"),
                     "it is dropped",
                 );
                 None

@@ -219,6 +219,19 @@ enum Command {
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
     },
+    /// Rewrite `.gft` files in the canonical layout (the one `translate
+    /// --to gft` writes), keeping their comments. Each file is rewritten in
+    /// place; `-` reads standard input and writes standard output. A file
+    /// with errors is left as it is (exit status 1).
+    Fmt {
+        /// `.gft` files, or `-` for standard input.
+        #[arg(required = true)]
+        files: Vec<String>,
+        /// Write nothing: list the files that would change, exit status 1
+        /// if any would.
+        #[arg(long)]
+        check: bool,
+    },
     /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
     Show {
         /// The entry, `std:NAME` or `NAME`.
@@ -303,6 +316,7 @@ where
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
         Command::Lsp => lsp(io),
+        Command::Fmt { files, check } => files.iter().map(|f| fmt(io, f, check)).max().unwrap_or(0),
     }
 }
 
@@ -572,6 +586,58 @@ fn show(io: &mut Io<'_>, name: &str) -> i32 {
             2
         }
     }
+}
+
+/// `graftal fmt` of one file (`-`: standard input to standard output).
+fn fmt(io: &mut Io<'_>, spec: &str, check: bool) -> i32 {
+    let file = if spec == "-" {
+        match std::io::read_to_string(std::io::stdin()) {
+            Ok(text) => crate::source::SourceFile::new("<stdin>", text),
+            Err(e) => {
+                let _ = writeln!(io.stderr, "error: cannot read standard input: {e}");
+                return 2;
+            }
+        }
+    } else {
+        match crate::source::SourceFile::read(std::path::Path::new(spec)) {
+            Ok(f) => f,
+            Err(e) => {
+                let _ = writeln!(io.stderr, "error: cannot read `{spec}`: {e}");
+                return 2;
+            }
+        }
+    };
+    let f = crate::format::format(file);
+    let text = match f.outcome {
+        crate::format::Outcome::Formatted(text) => text,
+        crate::format::Outcome::HasErrors => {
+            report(
+                io,
+                &f.compiled,
+                &f.compiled.diagnostics.0,
+                OutputFormat::Human,
+            );
+            return 1;
+        }
+        crate::format::Outcome::NotSame(why) => {
+            let _ = writeln!(io.stderr, "error: `{spec}` not formatted: {why}");
+            return 1;
+        }
+    };
+    let changed = text != f.compiled.file.text;
+    if check {
+        if changed {
+            let _ = writeln!(io.stdout, "{spec} would be reformatted");
+        }
+        return i32::from(changed);
+    }
+    if spec == "-" {
+        return write_output(io, &Output::Stdout, text.as_bytes());
+    }
+    if !changed {
+        return 0;
+    }
+    write_output(io, &Output::File(spec.to_string()), text.as_bytes())
 }
 
 /// `graftal translate`: source -> IR -> the target's emitter. Errors (what

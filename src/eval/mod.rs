@@ -536,11 +536,14 @@ fn confirm_cycle<S: Stepper>(
 }
 
 /// A stochastic production's alternative, given the weights in file
-/// order: one draw, compared with the cumulative weights (the last one when
-/// rounding leaves the draw past them all).
-fn choose(weights: impl ExactSizeIterator<Item = f64>, rng: &mut Rng) -> usize {
+/// order: one draw, scaled to the weights' sum and compared with the
+/// cumulative weights (the last one when rounding leaves the draw past them
+/// all). Weights are relative (`: 3` and `: 1` is three to one), as the IR
+/// says; a sum of exactly 1 leaves the draw untouched.
+fn choose(weights: impl ExactSizeIterator<Item = f64> + Clone, rng: &mut Rng) -> usize {
     let n = weights.len();
-    let r = rng.next_f64();
+    let total: f64 = weights.clone().sum();
+    let r = rng.next_f64() * total;
     let mut acc = 0.0;
     for (i, w) in weights.enumerate() {
         acc += w;
@@ -929,6 +932,18 @@ mod tests {
         let c = derive(&s, &DeriveOptions::new(1).seed(8)).unwrap();
         assert_eq!(a, b);
         assert_ne!(a, c);
+        let ys = a.display(&s.symbols).matches('y').count();
+        assert!((60..=90).contains(&ys), "{ys} of 100 should be near 75");
+    }
+
+    #[test]
+    fn weights_are_relative_whatever_their_sum() {
+        let mut s = sys("axiom: AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA\nA --> x : 0.5\nA --> y : 0.5\n");
+        // As a reader that keeps weights as written would give them.
+        for (alt, w) in s.productions[0].alternatives.iter_mut().zip([1.0, 3.0]) {
+            alt.weight = w;
+        }
+        let a = derive(&s, &DeriveOptions::new(1).seed(7)).unwrap();
         let ys = a.display(&s.symbols).matches('y').count();
         assert!((60..=90).contains(&ys), "{ys} of 100 should be near 75");
     }

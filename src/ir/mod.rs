@@ -217,6 +217,7 @@ pub mod look;
 pub mod number;
 pub mod program;
 mod same;
+pub mod seed;
 pub mod vocabulary;
 
 pub use d0l::D0l;
@@ -702,9 +703,26 @@ pub struct Formals {
     /// Local slots: the formal parameters, then the variables the
     /// production's statements assign.
     pub locals: u16,
+    /// The author's names of the local slots (slot i's is `names[i]`;
+    /// empty where a notation has none, an unnamed slot is ""). Spelling
+    /// only, as spans are: `System::same_as` ignores them, and the `.gft`
+    /// emitter writes them where they read back as the same slots.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub names: Vec<String>,
 }
 
 impl Formals {
+    /// The one form of a side whose modules bind nothing: no entries (the
+    /// matcher reads a missing entry as no parameters, so both forms match
+    /// the same modules; the IR keeps one so that equal systems are equal).
+    pub fn tidy(&mut self) {
+        for side in [&mut self.left, &mut self.predecessor, &mut self.right] {
+            if side.iter().all(Vec::is_empty) {
+                side.clear();
+            }
+        }
+    }
+
     /// The slots module `k` of `side` binds (none for a plain production).
     pub fn of(side: &[Vec<u16>], k: usize) -> &[u16] {
         side.get(k).map_or(&[], |v| v.as_slice())
@@ -747,6 +765,18 @@ impl Production {
             alternatives,
         }
     }
+    /// The one form of what binds or passes no parameters (see
+    /// [`Formals::tidy`]): sides and successors whose modules have no
+    /// expressions hold none, as the fields' documentation says.
+    pub fn tidy(&mut self) {
+        self.formals.tidy();
+        for alt in &mut self.alternatives {
+            if alt.args.iter().all(Vec::is_empty) {
+                alt.args.clear();
+            }
+        }
+    }
+
     pub fn is_context_sensitive(&self) -> bool {
         !self.left.is_empty() || !self.right.is_empty()
     }
@@ -868,8 +898,14 @@ impl Default for Settings {
 pub struct Structure {
     /// Named rules (a table of rules, each with its self-resemblance count).
     pub rules: Vec<StlRule>,
-    /// The seed: strings and branching terms over the rules.
+    /// The seed: strings and branching terms over the rules (for an
+    /// outline, the grown seed: its growth points replaced by what grew).
     pub seed: Vec<SeedItem>,
+    /// For an outline, the seed as the file plants it, with its growth
+    /// points ([`BranchTerm::grows`]): what a notation writes, so that
+    /// reading it grows `seed` again. Empty without an outline.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub planted: Vec<SeedItem>,
     /// Where and how the seed grows, for an outline.
     pub constraint: GrowthConstraint,
     /// Stem broadness and length per level.
@@ -947,6 +983,11 @@ pub struct StlRule {
     pub body: Word,
     /// `[I n X]`: the self-resemblance count, if given.
     pub resemblance: Option<u32>,
+    /// For a rule with a count that an outline grows: the rule whose body
+    /// one level of growth adds (`Rk` of `[I n Rk]`, or a rule made to
+    /// hold the `X` of `[I n X]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<StlRuleId>,
 }
 
 /// Index into [`Structure::rules`].
@@ -965,6 +1006,10 @@ pub enum SeedItem {
 pub struct BranchTerm {
     pub rule: StlRuleId,
     pub entries: Vec<BranchEntry>,
+    /// A growth point of an outline (only in [`Structure::planted`]): the
+    /// rule grows here, and `entries` is empty.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub grows: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -4,6 +4,8 @@
 //! Each binary that says `mod common;` uses part of this.
 #![allow(dead_code)]
 
+pub mod random;
+
 use graftal::cli::{run, Io};
 use std::path::Path;
 

@@ -85,6 +85,10 @@ fn term(st: &Structure, t: &BranchTerm) -> String {
         .rules
         .get(t.rule.0 as usize)
         .map_or("", |r| r.name.as_str());
+    if t.grows {
+        // A growth point of a planted seed: the rule's name alone.
+        return name.to_string();
+    }
     let entries: Vec<String> = (t.entries.iter())
         .map(|e| match e {
             BranchEntry::Empty => String::new(),
@@ -155,6 +159,9 @@ pub fn structure(out: &mut String, sys: &System, sp: &Spelling, st: &Structure) 
         if let Some(n) = r.resemblance {
             let _ = write!(out, " resemblance {n}");
         }
+        if let Some(u) = r.unit.and_then(|u| st.rules.get(u.0 as usize)) {
+            let _ = write!(out, " unit {}", u.name);
+        }
         out.push('\n');
     }
     let (b, l) = (st.stems.broadness, st.stems.length);
@@ -166,7 +173,13 @@ pub fn structure(out: &mut String, sys: &System, sp: &Spelling, st: &Structure) 
         num(l.0),
         num(l.1)
     );
-    let items: Vec<String> = (st.seed.iter())
+    // An outline's seed as planted: reading it grows it again.
+    let seed = if st.planted.is_empty() {
+        &st.seed
+    } else {
+        &st.planted
+    };
+    let items: Vec<String> = (seed.iter())
         .map(|item| match item {
             SeedItem::Word(w) => sp.word(w, &[], &no_names),
             SeedItem::Term(t) => term(st, t),

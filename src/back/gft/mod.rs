@@ -3,8 +3,8 @@
 //!
 //! The file is written in a fixed order: settings that differ from the
 //! default, rotations, colours, what each symbol does to the turtle
-//! (`turtle none` and one `NAME = operation` line per symbol that does
-//! something), the rule policy, context filter, ring and cut, the program,
+//! (the turtle set that needs the fewest `NAME = operation` lines, and
+//! those lines), the rule policy, context filter, ring and cut, the program,
 //! the axiom, the productions, the phases, the structure, the look,
 //! surfaces and contours. Numbers are [`expr::num`]: bit-exact. Where
 //! docs/gft.md is silent, docs/gft-emitter-notes.md says what is written.
@@ -44,7 +44,9 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     let mut out = String::new();
     settings(&mut out, &sys.settings, steps);
     look::rotations(&mut out, sys);
-    if !sys.colours.is_empty() {
+    if sys.colours == crate::ir::colours::fractint_palette() {
+        out.push_str("colours fractint\n");
+    } else if !sys.colours.is_empty() {
         let hex: Vec<String> = sys.colours.iter().map(|&c| look::hex(c)).collect();
         let _ = writeln!(out, "colours {}", hex.join(" "));
     }
@@ -180,12 +182,28 @@ fn program(out: &mut String, p: &Program) {
     }
 }
 
-/// The names of a production's local slots: `x0`, `x1`, … (with `_`
-/// added while a name is a global's or an array's).
+/// The names of a production's local slots: the author's
+/// (`Formals::names`) when each is a distinct identifier that no global or
+/// array has, else `x0`, `x1`, … (with `_` added while a name is a
+/// global's or an array's).
 fn local_names(sys: &System, p: &Production) -> Vec<String> {
     let taken = |n: &str| {
         sys.program.globals.iter().any(|g| g == n) || sys.program.arrays.iter().any(|a| a.name == n)
     };
+    let names = &p.formals.names;
+    let identifier = |n: &str| {
+        n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !["if", "else", "while", "do"].contains(&n)
+            && !crate::ir::program::BUILTINS.iter().any(|b| b.0 == n)
+    };
+    let distinct = (0..names.len()).all(|i| !names[..i].contains(&names[i]));
+    let usable = names.len() == usize::from(p.formals.locals)
+        && distinct
+        && names.iter().all(|n| identifier(n) && !taken(n));
+    if usable {
+        return names.clone();
+    }
     (0..p.formals.locals)
         .map(|k| {
             let mut name = format!("x{k}");
@@ -324,6 +342,7 @@ mod tests {
             predecessor: vec![vec![0]],
             right: vec![vec![]],
             locals: 2,
+            names: Vec::new(),
         };
         p.before = vec![Stmt::Assign(
             program::Place::Var(Var::Local(1)),
@@ -420,7 +439,6 @@ mod tests {
             "tropism (0, -1, 0) angle 0 intensity 1 elasticity 0.25 step 0 torque",
             "rotation t = (0, [0 1.5])",
             "colours #ff0010",
-            "turtle none",
             "A = forward",
             "B = pitch 30deg",
             "+t = frenet t",
@@ -463,6 +481,7 @@ mod tests {
         assert!(text.contains("symbol `a b` `2x`"), "{text}");
         let ring = s.intern("ring");
         s.set_interpretation(ring, TurtleOp::Push);
+        s.axiom.push(ring, &[]);
         let text = write(&s, None);
         assert!(text.contains("\n`ring` = push\n"), "{text}");
     }

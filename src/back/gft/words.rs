@@ -3,6 +3,7 @@
 use super::expr::{self, num, Names};
 use super::look::degrees_or_radians;
 use crate::ir::program::Expr;
+use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, ElasticityChange, QueryKind, SymbolId, System, TurtleOp, Word};
 use std::fmt::Write;
 
@@ -66,6 +67,88 @@ const KEYWORDS: &[&str] = &[
 pub struct Spelling {
     spelled: Vec<String>,
     spaced: bool,
+    /// The turtle set that needs the fewest lines ([`choose_set`]).
+    set: TurtleSet,
+}
+
+/// The angle increments per turn that Fractint's `|` uses, as the reader
+/// counts them from the file's angle.
+fn divisions(sys: &System) -> u32 {
+    let n = (std::f64::consts::TAU / sys.settings.delta).round();
+    n.clamp(0.0, f64::from(u32::MAX)) as u32
+}
+
+/// What the reader gives the symbol `name` under `set` (docs/gft.md §3).
+fn given(set: TurtleSet, name: &str, divisions: u32) -> Option<TurtleOp> {
+    match set {
+        TurtleSet::Fractint => vocabulary::fractint_op(name, divisions),
+        _ if set.names().contains(&name) => vocabulary::op(set, name),
+        _ => None,
+    }
+}
+
+/// The symbols that need a `NAME = operation` line under `set` (those
+/// whose operation is not the one the set gives), or `None` when the set
+/// cannot say what the system does: Fractint gives a command its meaning
+/// where it is used, so `c12 = nothing` would not hold.
+fn overrides(sys: &System, occurring: &[SymbolId], set: TurtleSet) -> Option<Vec<SymbolId>> {
+    let n = divisions(sys);
+    let mut out = Vec::new();
+    for &s in occurring {
+        let info = sys.symbols.info(s);
+        if info.guard.is_some() || sys.symbols.silent_key(s).is_some() {
+            continue;
+        }
+        let op = sys.op(s);
+        let set_op = given(set, &info.name, n);
+        if op == set_op {
+            continue;
+        }
+        if op.is_none() && set == TurtleSet::Fractint {
+            return None;
+        }
+        out.push(s);
+    }
+    Some(out)
+}
+
+/// The turtle set whose file is shortest: the fewest override lines, and
+/// a `turtle` line only when the set is not the default (pfg). Ties go to
+/// the first set of [`TurtleSet::ALL`].
+fn choose_set(sys: &System, occurring: &[SymbolId]) -> TurtleSet {
+    let cost = |set: TurtleSet| {
+        let lines = overrides(sys, occurring, set)?.len();
+        Some(lines + usize::from(set != TurtleSet::Pfg))
+    };
+    TurtleSet::ALL
+        .into_iter()
+        .filter_map(|set| cost(set).map(|c| (c, set)))
+        .min_by_key(|&(c, _)| c)
+        .map_or(TurtleSet::None, |(_, set)| set)
+}
+
+/// Whether words written without spaces could be read back joined: the
+/// set declares a longer name made of occurring one-character names
+/// (cpfg's `@O` from `@` and `O`), or, with Fractint's set, a command
+/// that takes a number could swallow an occurring digit, `.`, `q` or `i`.
+fn set_would_join(sys: &System, occurring: &[SymbolId], set: TurtleSet) -> bool {
+    let names: Vec<&str> = occurring
+        .iter()
+        .map(|&s| sys.symbols.name(s))
+        .filter(|n| n.chars().count() == 1)
+        .collect();
+    let has = |c: char| names.iter().any(|n| n.starts_with(c));
+    let longer = set.names().iter().filter(|n| n.chars().count() > 1);
+    if longer.clone().any(|n| n.chars().all(has)) {
+        return true;
+    }
+    set == TurtleSet::Fractint
+        && names
+            .iter()
+            .any(|n| n.starts_with(vocabulary::fractint_takes_number))
+        && names
+            .iter()
+            .any(|n| n.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '.' | 'q' | 'i')))
 }
 
 /// Whether `name` reads back as itself without backquotes.
@@ -89,10 +172,12 @@ fn bare(name: &str) -> bool {
 impl Spelling {
     pub fn new(sys: &System) -> Self {
         let mentioned = sys.mentioned();
-        let spaced = mentioned.iter().any(|&s| {
-            let info = sys.symbols.info(s);
-            info.guard.is_some() || info.name.chars().count() != 1
-        });
+        let set = choose_set(sys, &mentioned);
+        let spaced = set_would_join(sys, &mentioned, set)
+            || mentioned.iter().any(|&s| {
+                let info = sys.symbols.info(s);
+                info.guard.is_some() || info.name.chars().count() != 1
+            });
         let spell = |id: SymbolId| -> String {
             let info = sys.symbols.info(id);
             if let Some(key) = sys.symbols.silent_key(id) {
@@ -112,7 +197,11 @@ impl Spelling {
                 spelled[id.index()] = format!("{}?{}", num(g.probability), spelled[g.base.index()]);
             }
         }
-        Spelling { spelled, spaced }
+        Spelling {
+            spelled,
+            spaced,
+            set,
+        }
     }
 
     pub fn name(&self, id: SymbolId) -> &str {
@@ -172,31 +261,36 @@ impl Spelling {
         out
     }
 
-    /// `turtle none`, then what each symbol does: `NAME = operation` for
-    /// the symbols that do something, `silent KEY = operation` for silent
-    /// ones, `symbol …` for longer names that do nothing.
+    /// `turtle SET` (left out for pfg, the default), then what each
+    /// symbol does where the set says otherwise: `NAME = operation`
+    /// (`nothing` included), `silent KEY = operation` for silent symbols,
+    /// `symbol …` for longer names that do nothing and the set does not
+    /// declare.
     pub fn turtle(&self, out: &mut String, sys: &System) {
-        out.push_str("turtle none\n");
+        if self.set != TurtleSet::Pfg {
+            let _ = writeln!(out, "turtle {}", self.set.name());
+        }
+        let mentioned = sys.mentioned();
+        let changed = overrides(sys, &mentioned, self.set).unwrap_or_default();
         let mut plain_names = Vec::new();
-        for s in sys.mentioned() {
+        for s in mentioned {
             let info = sys.symbols.info(s);
-            let op = sys.interpretation.get(s.index()).copied().flatten();
-            let branch = (s == SymbolId::OPEN && op == Some(TurtleOp::Push))
-                || (s == SymbolId::CLOSE && op == Some(TurtleOp::Pop));
-            if branch || info.guard.is_some() {
-                continue;
-            }
+            let op = sys.op(s);
             let text = op.map_or("nothing".to_string(), |op| operation(sys, op));
             if let Some(key) = sys.symbols.silent_key(s) {
                 let _ = writeln!(out, "silent {key} = {text}");
-            } else if op.is_some() || s == SymbolId::OPEN || s == SymbolId::CLOSE {
+            } else if changed.contains(&s) {
                 let name = self.name(s);
                 if KEYWORDS.contains(&name) {
                     let _ = writeln!(out, "`{name}` = {text}");
                 } else {
                     let _ = writeln!(out, "{name} = {text}");
                 }
-            } else if info.name.chars().count() > 1 {
+            } else if info.guard.is_none()
+                && op.is_none()
+                && info.name.chars().count() > 1
+                && !self.set.names().contains(&info.name.as_str())
+            {
                 plain_names.push(self.name(s).to_string());
             }
         }

@@ -548,6 +548,7 @@ impl Lowerer<'_> {
                 predecessor: predecessor.1,
                 right: right.1,
                 locals: scope.locals.len().min(u16::MAX as usize) as u16,
+                names: scope.locals.clone(),
             },
             before,
             condition,
@@ -649,11 +650,24 @@ struct Gathered {
 
 impl Gathered {
     fn into_system(self, sys: &mut System) {
-        // The axiom is modules, as every cpfg word is.
-        (sys.axiom, sys.axiom_args) = self.axiom;
+        // The axiom's expressions, none when no module has any (as the IR
+        // says: one system, one form).
+        let (axiom, args) = self.axiom;
+        sys.axiom = axiom;
+        sys.axiom_args = if args.iter().all(Vec::is_empty) {
+            Vec::new()
+        } else {
+            args
+        };
         sys.productions = self.productions;
         sys.decomposition = self.decomposition;
         sys.homomorphism = self.homomorphism;
+        let phases = [&mut sys.decomposition, &mut sys.homomorphism];
+        let all =
+            (sys.productions.iter_mut()).chain(phases.into_iter().flat_map(|p| &mut p.productions));
+        for p in all {
+            p.tidy();
+        }
         sys.program = self.program;
         sys.ring = self.ring;
         sys.settings.seed = self.seed;

@@ -42,6 +42,19 @@ pub struct Keyword {
 pub enum Block {
     Productions(Vec<Production>),
     Statements(Vec<Stmt>),
+    /// The lines of `outline`, `surface` and `contour`, as written.
+    Lines(Vec<Vec<Arg>>),
+}
+
+impl Keyword {
+    /// The values of a block of lines, all lines together (none for any
+    /// other item).
+    pub fn lines(&self) -> Vec<Arg> {
+        match &self.block {
+            Some(Block::Lines(lines)) => lines.concat(),
+            _ => Vec::new(),
+        }
+    }
 }
 
 /// One argument of a keyword line, as written.

@@ -125,6 +125,23 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
     out
 }
 
+/// The spans of `src`'s comments in order (an unterminated one runs to the
+/// end): `graftal fmt` carries them across, since the IR has no place for
+/// them.
+pub fn comment_spans(src: &str) -> Vec<Span> {
+    let mut lexer = Token::lexer(src);
+    let mut out = Vec::new();
+    while let Some(result) = lexer.next() {
+        if matches!(
+            result,
+            Ok(Token::Comment) | Err(LexError::UnterminatedComment)
+        ) {
+            out.push(lexer.span());
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,6 +157,13 @@ mod tests {
             texts("A(x)->F /* c\n */ `<`<=.5e1 #00ff00"),
             ["A", "(", "x", ")", "->", "F", "`<`", "<=", ".5e1", "#00ff00"]
         );
+    }
+
+    #[test]
+    fn comment_spans_skip_quoted_text() {
+        let src = "F `/*` /* a */ G\n/* b";
+        let texts: Vec<&str> = comment_spans(src).into_iter().map(|s| &src[s]).collect();
+        assert_eq!(texts, ["/* a */", "/* b"]);
     }
 
     #[test]

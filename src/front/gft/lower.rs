@@ -14,6 +14,9 @@ use crate::ir::{
 };
 use std::collections::HashMap;
 
+mod items;
+mod structure;
+
 struct Cx<'d> {
     sys: System,
     spans: SpanTable,
@@ -47,8 +50,14 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     if let Some(k) = keyword("turtle").next() {
         cx.turtle(k);
     }
+    // Without a `turtle` line the set is pfg's (docs/gft.md §3).
+    cx.give_set();
     for k in keyword("rotation") {
         cx.rotation(k);
+    }
+    // Surfaces before the operations that name them.
+    for k in keyword("surface") {
+        cx.surface(k);
     }
     for item in &file.items {
         match item {
@@ -84,7 +93,9 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
             Item::Define { .. } => {}
         }
     }
-    if keyword("axiom").next().is_none() {
+    cx.structure(file);
+    // A structure's seed gives the axiom.
+    if keyword("axiom").next().is_none() && cx.sys.structure.is_none() {
         cx.diags.push(
             Diagnostic::global(codes::GFT_NO_AXIOM, "no axiom")
                 .with_help("add a line `axiom WORD`, e.g. `axiom F`"),
@@ -167,6 +178,10 @@ const PARAMETRISED_OPERATIONS: &[&str] = &[
     "stem",
     "set-colour",
     "nothing",
+    "query",
+    "colour-shift",
+    "elasticity",
+    "surface",
 ];
 
 fn simple_op(name: &str) -> Option<TurtleOp> {
@@ -192,6 +207,16 @@ impl Cx<'_> {
                     "the sets are `pfg`, `linf`, `stl`, `cpfg`, `fractint` and `none`",
                 ));
             }
+        }
+    }
+
+    /// Gives the set's symbols their meaning and their names to words.
+    fn give_set(&mut self) {
+        // Fractint's commands get their meaning where they are used, with
+        // the file's angle (`|` turns by half a turn's increments), as the
+        // Fractint front end gives them: see `declare_use`.
+        if self.set == TurtleSet::Fractint {
+            return;
         }
         for name in self.set.names() {
             if let Some(op) = vocabulary::op(self.set, name) {
@@ -324,6 +349,7 @@ impl Cx<'_> {
                 }
                 None
             }
+            "query" | "colour-shift" | "elasticity" | "surface" => self.named_op(&g, op_span),
             other if simple_op(other).is_some() => simple_op(other),
             other => {
                 let names: Vec<&str> = SIMPLE_OPERATIONS
@@ -452,7 +478,12 @@ struct Locals(Vec<String>);
 
 impl Cx<'_> {
     fn once(&mut self, k: &Keyword) -> bool {
-        if let Some(first) = self.settings.get(&k.name) {
+        self.once_as(k, &k.name)
+    }
+
+    /// Whether `k` is the first item under `key` (else reported, E0905).
+    fn once_as(&mut self, k: &Keyword, key: &str) -> bool {
+        if let Some(first) = self.settings.get(key) {
             let d = err(
                 codes::GFT_DUPLICATE,
                 &k.span,
@@ -464,7 +495,7 @@ impl Cx<'_> {
             self.diags.push(d);
             return false;
         }
-        self.settings.insert(k.name.clone(), k.span.clone());
+        self.settings.insert(key.to_string(), k.span.clone());
         true
     }
 
@@ -507,8 +538,16 @@ impl Cx<'_> {
     fn keyword(&mut self, k: &Keyword) {
         let settings = &mut self.sys.settings;
         let _ = settings;
-        if !matches!(k.name.as_str(), "symbol" | "rotation" | "array" | "globals") && !self.once(k)
-        {
+        let repeated = [
+            "symbol", "silent", "rotation", "array", "globals", "rule", "light", "material",
+            "surface", "contour", "function", "tropism",
+        ];
+        if structure::is_structure_seed(k) {
+            // Read with the structure; given once like the settings.
+            self.once_as(k, "structure seed");
+            return;
+        }
+        if !repeated.contains(&k.name.as_str()) && !self.once(k) || self.look_item(k) {
             return;
         }
         match k.name.as_str() {
@@ -729,6 +768,18 @@ impl Cx<'_> {
     /// A word's modules, their parameter expressions (empty when none has
     /// any) and spans. Brackets must balance (E0904).
     fn word(&mut self, w: &ast::Word, locals: &mut Locals) -> (Word, Vec<Vec<Expr>>, Vec<Span>) {
+        let (word, args, spans) = self.word_unbalanced(w, locals);
+        self.balance(w, word.symbols(), &spans);
+        (word, args, spans)
+    }
+
+    /// A word's modules, parameter expressions and spans, its brackets
+    /// unchecked (an STL seed's words open branches that its terms fill).
+    fn word_unbalanced(
+        &mut self,
+        w: &ast::Word,
+        locals: &mut Locals,
+    ) -> (Word, Vec<Vec<Expr>>, Vec<Span>) {
         let mut ids: Vec<SymbolId> = Vec::new();
         let mut spans: Vec<Span> = Vec::new();
         let mut args: Vec<Vec<Expr>> = Vec::new();
@@ -765,8 +816,22 @@ impl Cx<'_> {
                 }
             }
         }
+        // The parameters are expressions beside the word, as cpfg's reader
+        // keeps them: the word itself holds symbols only.
+        let word = Word::from(ids.clone());
+        let has_args = args.iter().any(|a| !a.is_empty());
+        if has_args {
+            args.resize(ids.len(), Vec::new());
+        } else {
+            args.clear();
+        }
+        (word, args, spans)
+    }
+
+    /// Reports a `]` without `[` and an unclosed `[` (E0904).
+    fn balance(&mut self, w: &ast::Word, ids: &[SymbolId], spans: &[Span]) {
         let mut depth = 0i64;
-        for (id, s) in ids.iter().zip(&spans) {
+        for (id, s) in ids.iter().zip(spans) {
             depth += i64::from(*id == SymbolId::OPEN) - i64::from(*id == SymbolId::CLOSE);
             if depth < 0 {
                 self.diags.push(err(
@@ -788,18 +853,6 @@ impl Cx<'_> {
                 "close every `[` with `]` in the same word",
             ));
         }
-        let mut word = Word::new();
-        let has_args = args.iter().any(|a| !a.is_empty());
-        for (i, id) in ids.iter().enumerate() {
-            let n = args.get(i).map_or(0, Vec::len);
-            word.push(*id, &vec![0.0; n]);
-        }
-        if has_args {
-            args.resize(ids.len(), Vec::new());
-        } else {
-            args.clear();
-        }
-        (word, args, spans)
     }
 
     fn symbol(&mut self, name: &str, span: &Span, guard: Option<f64>) -> SymbolId {
@@ -961,6 +1014,7 @@ impl Cx<'_> {
             predecessor: fp,
             right: fr,
             locals: locals.0.len() as u16,
+            names: locals.0.clone(),
         };
         if prod.formals.left.is_empty()
             && prod.formals.predecessor.is_empty()

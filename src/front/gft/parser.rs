@@ -50,7 +50,24 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("start-each", true),
     ("end-each", true),
     ("end", true),
+    ("function", false),
+    ("tropism", false),
+    ("rule", false),
+    ("stems", false),
+    ("outline", true),
+    ("growth", false),
+    ("background", false),
+    ("camera", false),
+    ("lighting", false),
+    ("light", false),
+    ("material", false),
+    ("surface", true),
+    ("contour", true),
 ];
+
+/// Block items whose block holds lines of values, not productions or
+/// statements.
+const VALUE_BLOCKS: &[&str] = &["outline", "surface", "contour"];
 
 /// Keywords whose value is an expression (`angle 360/7`).
 const EXPRESSION_KEYWORDS: &[&str] = &[
@@ -215,7 +232,10 @@ fn unknown_line(line: &[Tok<'_>], keyword: Option<(String, Span, usize)>, diags:
     .with_label("not a keyword");
     let keywords: Vec<&str> = KEYWORDS.iter().map(|(k, _)| *k).collect();
     let near = Suggester::default().nearest(&name, &keywords);
-    d = match near.first() {
+    // Among equally near keywords, one that starts like the name (`widht`:
+    // `width`, not `light`).
+    let first = near.iter().find(|k| k.get(..1) == name.get(..1));
+    d = match first.or(near.first()) {
         Some(k) => d.with_help(format!("did you mean `{k}`?")),
         None => d.with_help("a production needs `->`: `F -> F+F`"),
     };
@@ -256,7 +276,7 @@ fn keyword_item(
     };
     if !takes_block(name) {
         kw.args = args(rest);
-        if EXPRESSION_KEYWORDS.contains(&name) {
+        if EXPRESSION_KEYWORDS.contains(&name) && !structure_seed(name, rest) {
             let unit = rest
                 .last()
                 .is_some_and(|t| matches!(t.0, Token::Ident("rad" | "deg")));
@@ -280,7 +300,10 @@ fn keyword_item(
     };
     kw.args = args(&rest[..open]);
     let inner = &rest[open + 1..close.max(open + 1)];
-    kw.block = Some(if matches!(name, "decomposition" | "homomorphism") {
+    kw.block = Some(if VALUE_BLOCKS.contains(&name) {
+        let lines = inner.split(|t| t.0 == Token::Newline);
+        Block::Lines(lines.filter(|l| !l.is_empty()).map(args).collect())
+    } else if matches!(name, "decomposition" | "homomorphism") {
         let mut ps = Vec::new();
         for l in inner.split(|t| t.0 == Token::Newline) {
             if !l.is_empty() {
@@ -292,6 +315,12 @@ fn keyword_item(
         Block::Statements(statements(inner, diags))
     });
     Some(kw)
+}
+
+/// Whether a `seed` line is an STL seed (docs/gft.md §8), not the file's
+/// random seed (§4), which is one whole number.
+pub fn structure_seed(name: &str, rest: &[Tok<'_>]) -> bool {
+    name == "seed" && !matches!(rest, [(Token::Number(_), _)])
 }
 
 /// A production line: `[left <] pred [> right] [: [{…}] cond [{…}]] -> succ [: weight] …`.
@@ -428,9 +457,17 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
                         .with_help("a symbol with this name is written in backquotes: `` `<` ``")
                 });
             }
-            t => w
-                .pieces
-                .push(Piece::Text(t.text().to_string(), span.clone())),
+            // Text written without space between its tokens is one piece,
+            // split later by the longest declared name (`+b`, `.5@`).
+            t => match w.pieces.last_mut() {
+                Some(Piece::Text(text, at)) if at.end == span.start => {
+                    text.push_str(t.text());
+                    at.end = span.end;
+                }
+                _ => w
+                    .pieces
+                    .push(Piece::Text(t.text().to_string(), span.clone())),
+            },
         }
         i += 1;
     }

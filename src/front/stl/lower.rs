@@ -123,6 +123,8 @@ struct Ctx<'a> {
     /// The rule names, for splitting runs of them; made when the first
     /// run is split, after every rule is declared.
     name_index: Option<LongestNames>,
+    /// The rule each counted rule an outline grew grows by.
+    grown_units: HashMap<usize, usize>,
 }
 
 enum Piece {
@@ -1218,6 +1220,7 @@ impl<'a> Ctx<'a> {
             repeats: Repeats::default(),
             suggester: Suggester::default(),
             name_index: None,
+            grown_units: HashMap::new(),
         }
     }
 }
@@ -1286,6 +1289,7 @@ impl Ctx<'_> {
                 name: src.name.clone(),
                 body: ir_word(&self.full[r], comp_ids),
                 resemblance: self.count[r],
+                unit: (self.grown_units.get(&r)).map(|&u| StlRuleId(u as u32)),
             })
             .collect()
     }
@@ -1331,6 +1335,8 @@ pub fn lower(file: &File, src_len: usize, diags: &mut Diagnostics) -> Lowered {
     let (bw, _) = Structure::per_level(st.b.0, st.b.1, max_level);
     let (lw, _) = Structure::per_level(st.l.0, st.l.1, max_level);
     if let Some(layout_span) = &hd.layout_span {
+        // The seed as planted, before growth replaces its growth points.
+        structure.planted = parts.iter().map(|p| ir_seed_item(p, &comp_ids)).collect();
         if !grow_outline(&mut ctx, &mut parts, st, &hd.shapes, &bw, &lw) {
             no_growth(ctx.diags, layout_span);
         }
@@ -1352,6 +1358,7 @@ fn new_structure(st: &Settings, layout: Vec<Shape>) -> Structure {
     Structure {
         rules: Vec::new(),
         seed: Vec::new(),
+        planted: Vec::new(),
         constraint: GrowthConstraint {
             outline: layout,
             strategy: if st.depth_first {
@@ -1509,6 +1516,7 @@ fn ir_term(t: &Term) -> BranchTerm {
                 TermEntry::Term(c) => BranchEntry::Term(ir_term(c)),
             })
             .collect(),
+        grows: t.growth,
     }
 }
 
@@ -1609,11 +1617,15 @@ impl Ctx<'_> {
             if unit_of[r].is_some() {
                 continue;
             }
-            unit_of[r] = Some(match (self.count[r], self.unit_ref[r]) {
+            let unit = match (self.count[r], self.unit_ref[r]) {
                 (None, _) => r,
                 (Some(_), Some(k)) => k,
                 (Some(_), None) => self.add_unit_rule(r),
-            });
+            };
+            if self.count[r].is_some() {
+                self.grown_units.insert(r, unit);
+            }
+            unit_of[r] = Some(unit);
         }
         unit_of
     }
