@@ -13,14 +13,19 @@ const WAIT: Duration = Duration::from_secs(30);
 struct Client {
     child: Child,
     stdin: ChildStdin,
-    messages: Receiver<Value>,
+    /// Each message, with when its last byte arrived.
+    messages: Receiver<(Instant, Value)>,
+    /// When the last message taken from `messages` arrived: the time an
+    /// answer took is measured to it, not to the end of parsing its JSON
+    /// in this (debug) test, which is the client's cost.
+    arrived: Instant,
     next_id: i64,
     /// Notifications read while waiting for a response.
     notes: Vec<Value>,
 }
 
 /// Reads framed messages (`Content-Length: N`, a blank line, N bytes).
-fn read_messages(out: impl Read + Send + 'static) -> Receiver<Value> {
+fn read_messages(out: impl Read + Send + 'static) -> Receiver<(Instant, Value)> {
     let (tx, rx) = channel();
     std::thread::spawn(move || {
         let mut r = BufReader::new(out);
@@ -43,8 +48,9 @@ fn read_messages(out: impl Read + Send + 'static) -> Receiver<Value> {
             if r.read_exact(&mut body).is_err() {
                 return;
             }
+            let arrived = Instant::now();
             let v: Value = serde_json::from_slice(&body).expect("a JSON message");
-            if tx.send(v).is_err() {
+            if tx.send((arrived, v)).is_err() {
                 return;
             }
         }
@@ -68,6 +74,7 @@ impl Client {
             child,
             stdin,
             messages,
+            arrived: Instant::now(),
             next_id: 0,
             notes: Vec::new(),
         };
@@ -96,7 +103,8 @@ impl Client {
         let id = self.next_id;
         self.send(json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
         loop {
-            let msg = self.messages.recv_timeout(WAIT).expect("a response");
+            let (arrived, msg) = self.messages.recv_timeout(WAIT).expect("a response");
+            self.arrived = arrived;
             if msg["id"] == json!(id) && msg.get("method").is_none() {
                 return msg;
             }
@@ -114,7 +122,8 @@ impl Client {
             return m["params"]["diagnostics"].as_array().unwrap().clone();
         }
         loop {
-            let msg = self.messages.recv_timeout(WAIT).expect("diagnostics");
+            let (arrived, msg) = self.messages.recv_timeout(WAIT).expect("diagnostics");
+            self.arrived = arrived;
             if is_for(&msg) {
                 return msg["params"]["diagnostics"].as_array().unwrap().clone();
             }
@@ -353,12 +362,12 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     let mut c = Client::start();
     let t = Instant::now();
     let ds = c.open(URI, &text);
-    let open = t.elapsed();
+    let open = c.arrived - t;
     assert_eq!(ds.len(), 1_001); // the first 1,000 and a count of the rest
     let t = Instant::now();
     c.change(URI, 2, &text.replacen("axiom: F", "axiom: F+F", 1));
-    let change = t.elapsed();
-    let mut slowest = open.max(change);
+    let change = c.arrived - t;
+    let mut times = vec![("open", open), ("change", change)];
     for (method, line, col) in [
         ("textDocument/hover", 2, 7),
         ("textDocument/definition", 2, 7),
@@ -367,7 +376,7 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     ] {
         let t = Instant::now();
         let r = c.at(method, URI, line, col);
-        slowest = slowest.max(t.elapsed());
+        times.push((method, c.arrived - t));
         assert!(r.get("result").is_some(), "{r}");
     }
     let t = Instant::now();
@@ -375,10 +384,9 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
         "textDocument/documentSymbol",
         json!({ "textDocument": { "uri": URI } }),
     );
-    slowest = slowest.max(t.elapsed());
-    assert!(
-        slowest < BOUND,
-        "slowest answer {slowest:?} (open {open:?}, change {change:?})"
-    );
+    times.push(("textDocument/documentSymbol", c.arrived - t));
+    eprintln!("answer times: {times:?}");
+    let slowest = times.iter().map(|t| t.1).max().unwrap();
+    assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
 }

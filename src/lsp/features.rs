@@ -4,15 +4,15 @@
 
 use super::position::{offset, range};
 use super::publish::explanation;
-use super::{parse, Document};
+use super::{json, parse, Document};
 use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use lsp_types::request::{
     Completion, DocumentSymbolRequest, GotoDefinition, HoverRequest, References, Request as _,
 };
 use lsp_types::{
-    CompletionItem, CompletionItemKind, DocumentSymbol, Hover, HoverContents, Location,
-    MarkupContent, MarkupKind, SymbolKind, TextDocumentPositionParams,
+    CompletionItem, CompletionItemKind, Hover, HoverContents, MarkupContent, MarkupKind,
+    SymbolKind, TextDocumentPositionParams,
 };
 use serde_json::Value;
 use std::collections::HashMap;
@@ -23,7 +23,7 @@ pub fn answer(
     docs: &HashMap<String, Document>,
     method: &str,
     params: &Value,
-) -> Result<Option<Value>, String> {
+) -> Result<Option<String>, String> {
     let at = |p: &TextDocumentPositionParams| {
         let doc = docs.get(p.text_document.uri.as_str());
         doc.map(|d| (d, offset(&d.compiled.file, p.position)))
@@ -32,31 +32,29 @@ pub fn answer(
         HoverRequest::METHOD => {
             let p: lsp_types::HoverParams = parse(params)?;
             let hover = at(&p.text_document_position_params).and_then(|(d, o)| hover(d, o));
-            serde_json::to_value(hover)
+            serde_json::to_string(&hover)
         }
         GotoDefinition::METHOD => {
             let p: lsp_types::GotoDefinitionParams = parse(params)?;
             let found = at(&p.text_document_position_params)
-                .map(|(d, o)| locations(d, o, true))
-                .unwrap_or_default();
-            serde_json::to_value(found)
+                .map_or_else(|| "[]".into(), |(d, o)| locations(d, o, true));
+            Ok(found)
         }
         References::METHOD => {
             let p: lsp_types::ReferenceParams = parse(params)?;
             let found = at(&p.text_document_position)
-                .map(|(d, o)| locations(d, o, false))
-                .unwrap_or_default();
-            serde_json::to_value(found)
+                .map_or_else(|| "[]".into(), |(d, o)| locations(d, o, false));
+            Ok(found)
         }
         DocumentSymbolRequest::METHOD => {
             let p: lsp_types::DocumentSymbolParams = parse(params)?;
             let doc = docs.get(p.text_document.uri.as_str());
-            serde_json::to_value(doc.map(outline).unwrap_or_default())
+            Ok(doc.map_or_else(|| "[]".into(), outline))
         }
         Completion::METHOD => {
             let p: lsp_types::CompletionParams = parse(params)?;
             let doc = docs.get(p.text_document_position.text_document.uri.as_str());
-            serde_json::to_value(doc.map(completions).unwrap_or_default())
+            serde_json::to_string(&doc.map(completions).unwrap_or_default())
         }
         _ => return Ok(None),
     };
@@ -65,15 +63,21 @@ pub fn answer(
 
 /// A place where a symbol is written: in a production's predecessor (a
 /// definition) or anywhere else (the axiom, a successor).
-struct Occurrence {
+pub struct Occurrence {
     span: Span,
     symbol: SymbolId,
     defines: bool,
 }
 
+/// Every place a symbol of `doc`'s system is written, found once per
+/// compile (the first request after it) and kept with the document.
+fn occurrences(doc: &Document) -> &[Occurrence] {
+    doc.occurrences.get_or_init(|| find_occurrences(doc))
+}
+
 /// Every place a symbol of `doc`'s system is written, as the span table
 /// records it; predecessors are found in their production's text.
-fn occurrences(doc: &Document) -> Vec<Occurrence> {
+fn find_occurrences(doc: &Document) -> Vec<Occurrence> {
     let c = &doc.compiled;
     let Some(sys) = &c.system else {
         return Vec::new();
@@ -142,17 +146,16 @@ fn symbol_at(occ: &[Occurrence], at: usize) -> Option<SymbolId> {
 }
 
 /// The productions of the symbol at `at` (`definitions`), or every place it
-/// is written.
-fn locations(doc: &Document, at: usize, definitions: bool) -> Vec<Location> {
+/// is written: `Location[]` as JSON.
+fn locations(doc: &Document, at: usize, definitions: bool) -> String {
     let occ = occurrences(doc);
-    let Some(symbol) = symbol_at(&occ, at) else {
-        return Vec::new();
-    };
+    let symbol = symbol_at(occ, at);
     let file = &doc.compiled.file;
-    occ.iter()
-        .filter(|o| o.symbol == symbol && (o.defines || !definitions))
-        .map(|o| Location::new(doc.uri.clone(), range(file, &o.span)))
-        .collect()
+    let found = occ
+        .iter()
+        .filter(|o| Some(o.symbol) == symbol && (o.defines || !definitions))
+        .map(|o| range(file, &o.span));
+    json::locations(&doc.uri, found)
 }
 
 /// What hovering at `at` shows: the explanation of the diagnostics there,
@@ -168,7 +171,7 @@ fn hover(doc: &Document, at: usize) -> Option<Hover> {
         })
         .filter_map(|d| explanation(d.code.0))
         .collect();
-    if let (Some(sys), Some(symbol)) = (&c.system, symbol_at(&occurrences(doc), at)) {
+    if let (Some(sys), Some(symbol)) = (&c.system, symbol_at(occurrences(doc), at)) {
         parts.push(symbol_text(doc, sys, symbol));
     }
     if parts.is_empty() {
@@ -255,7 +258,7 @@ fn what_it_does(rotations: &[Rotation], op: TurtleOp) -> String {
 
 fn angle_text(angle: Angle) -> String {
     match angle {
-        Angle::Delta(f) if f == 1.0 => "the angle increment δ".into(),
+        Angle::Delta(1.0) => "the angle increment δ".into(),
         Angle::Delta(f) => format!("{f} × the angle increment δ"),
         Angle::Radians(r) => format!("{}°", r.to_degrees()),
         Angle::Uniform { lo, hi } => format!(
@@ -267,21 +270,10 @@ fn angle_text(angle: Angle) -> String {
 }
 
 /// The outline: each production under its predecessor's name, and a
-/// library's entries.
-#[allow(deprecated)] // `DocumentSymbol::deprecated` must still be given.
-fn outline(doc: &Document) -> Vec<DocumentSymbol> {
+/// library's entries: `DocumentSymbol[]` as JSON.
+fn outline(doc: &Document) -> String {
     let c = &doc.compiled;
     let file = &c.file;
-    let symbol = |name: String, kind: SymbolKind, span: &Span| DocumentSymbol {
-        name,
-        detail: None,
-        kind,
-        tags: None,
-        deprecated: None,
-        range: range(file, span),
-        selection_range: range(file, span),
-        children: None,
-    };
     let mut out = Vec::new();
     if let Some(lib) = &c.library {
         for e in &lib.entries {
@@ -290,7 +282,7 @@ fn outline(doc: &Document) -> Vec<DocumentSymbol> {
             } else {
                 e.name.clone()
             };
-            out.push(symbol(name, SymbolKind::MODULE, &e.span));
+            out.push((name, SymbolKind::MODULE, range(file, &e.span)));
         }
     }
     if let Some(sys) = &c.system {
@@ -304,10 +296,10 @@ fn outline(doc: &Document) -> Vec<DocumentSymbol> {
             } else {
                 name
             };
-            out.push(symbol(name, SymbolKind::FUNCTION, span));
+            out.push((name, SymbolKind::FUNCTION, range(file, span)));
         }
     }
-    out
+    json::outline(out.into_iter())
 }
 
 /// The turtle set of `doc`'s notation (the `.gft` default is no set).

@@ -14,7 +14,13 @@ pub fn position(file: &SourceFile, offset: usize) -> Position {
     }
     let line = file.line_index(offset);
     let start = file.line_range(line).start.min(offset);
-    let column = text[start..offset].encode_utf16().count();
+    let before = &text[start..offset];
+    // An ASCII prefix (the common case) is one unit a byte.
+    let column = if before.is_ascii() {
+        before.len()
+    } else {
+        before.encode_utf16().count()
+    };
     Position::new(line as u32, column as u32)
 }
 

@@ -27,7 +27,14 @@ pub fn by_file(
     let mut own = Vec::new();
     let mut sides: BTreeMap<String, (Uri, SourceFile, Vec<lsp_types::Diagnostic>)> =
         BTreeMap::new();
+    let mut unshown = 0;
     for d in ds {
+        if d.side.is_none() && own.len() == MAX_PUBLISHED {
+            // Not converted: the conversion of ten thousand took longer
+            // than a keystroke may.
+            unshown += 1;
+            continue;
+        }
         let side = d.side.as_ref().and_then(|s| {
             let uri = uri::from_path(&s.name)?;
             Some((s, uri))
@@ -46,9 +53,8 @@ pub fn by_file(
             None => own.push(convert(d, file, file_uri)),
         }
     }
-    if own.len() > MAX_PUBLISHED {
-        let more = own.len() - MAX_PUBLISHED;
-        own.truncate(MAX_PUBLISHED);
+    if unshown > 0 {
+        let more = unshown;
         own.push(lsp_types::Diagnostic {
             severity: Some(DiagnosticSeverity::INFORMATION),
             source: Some("graftal".to_string()),
@@ -120,5 +126,5 @@ fn message(d: &Diagnostic) -> String {
 
 /// The explanation `graftal explain CODE` prints, as Markdown.
 pub fn explanation(code: &str) -> Option<String> {
-    diagnostics::codes::lookup(code).map(|info| diagnostics::codes::explain_text(info))
+    diagnostics::codes::lookup(code).map(diagnostics::codes::explain_text)
 }
