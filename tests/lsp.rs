@@ -390,3 +390,81 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
 }
+
+/// A Neovim configuration that starts `graftal lsp` ($GRAFTAL_EXE) on the
+/// file it opens and writes the diagnostics Neovim holds for it, as JSON,
+/// to $GRAFTAL_NVIM_OUT once the server has published them. Written for
+/// Neovim 0.7 (Debian 12's), which has `start_client` but not `start`.
+const NVIM_CONFIG: &str = r#"
+local done = false
+vim.api.nvim_create_autocmd("VimEnter", { callback = function()
+  local id = vim.lsp.start_client({
+    name = "graftal",
+    cmd = { vim.env.GRAFTAL_EXE, "lsp" },
+    root_dir = vim.fn.getcwd(),
+    handlers = {
+      ["textDocument/publishDiagnostics"] = function(err, result, ctx, config)
+        vim.lsp.diagnostic.on_publish_diagnostics(err, result, ctx, config)
+        local seen = {}
+        for _, d in ipairs(vim.diagnostic.get(vim.uri_to_bufnr(result.uri))) do
+          local lsp = d.user_data and d.user_data.lsp or {}
+          table.insert(seen, { lnum = d.lnum, col = d.col, severity = d.severity,
+                               code = d.code or lsp.code, message = d.message })
+        end
+        vim.fn.writefile({ vim.fn.json_encode(seen) }, vim.env.GRAFTAL_NVIM_OUT)
+        done = true
+      end,
+    },
+  })
+  vim.lsp.buf_attach_client(0, id)
+  vim.wait(20000, function() return done end, 50)
+  vim.cmd("qa!")
+end })
+"#;
+
+/// Neovim, as an editor runs it: `nvim --headless` opens a file with a
+/// mistake, starts `graftal lsp`, and holds the diagnostic at the byte
+/// column of the mistake (Neovim converts the UTF-16 column itself).
+#[test]
+fn neovim_shows_the_diagnostics_of_a_file_it_opens() {
+    let found = Command::new("nvim").arg("--version").output();
+    if found.is_err() {
+        assert!(
+            std::env::var("GRAFTAL_NO_NVIM").as_deref() == Ok("1"),
+            "nvim is not installed: install Neovim (`apt-get install neovim`; \
+             .ci/run does) or set GRAFTAL_NO_NVIM=1 to skip this test"
+        );
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("graftal-nvim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (config, file, out) = (
+        dir.join("init.lua"),
+        dir.join("plant.l"),
+        dir.join("seen.json"),
+    );
+    std::fs::write(&config, NVIM_CONFIG).unwrap();
+    std::fs::write(&file, BROKEN).unwrap();
+    let status = Command::new("nvim")
+        .args(["--headless", "-n", "-i", "NONE", "-u"])
+        .arg(&config)
+        .arg(&file)
+        .current_dir(&dir)
+        .env("GRAFTAL_EXE", env!("CARGO_BIN_EXE_graftal"))
+        .env("GRAFTAL_NVIM_OUT", &out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .status()
+        .expect("nvim runs");
+    let seen = std::fs::read_to_string(&out);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(status.success(), "nvim: {status}");
+    let seen: Value = serde_json::from_str(&seen.expect("Neovim wrote the diagnostics")).unwrap();
+    let seen = seen.as_array().unwrap();
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    let line = BROKEN.lines().nth(3).unwrap();
+    assert_eq!(seen[0]["lnum"], 3);
+    assert_eq!(seen[0]["col"], line.rfind("-->").unwrap());
+    assert_eq!(seen[0]["code"], "E0003");
+    assert_eq!(seen[0]["severity"], 1); // vim.diagnostic.severity.ERROR
+}
