@@ -21,7 +21,7 @@ struct Client {
     arrived: Instant,
     next_id: i64,
     /// Notifications read while waiting for a response.
-    notes: Vec<Value>,
+    notes: Vec<(Instant, Value)>,
 }
 
 /// Reads framed messages (`Content-Length: N`, a blank line, N bytes).
@@ -108,7 +108,7 @@ impl Client {
             if msg["id"] == json!(id) && msg.get("method").is_none() {
                 return msg;
             }
-            self.notes.push(msg);
+            self.notes.push((arrived, msg));
         }
     }
 
@@ -117,8 +117,9 @@ impl Client {
         let is_for = |m: &Value| {
             m["method"] == "textDocument/publishDiagnostics" && m["params"]["uri"] == uri
         };
-        if let Some(i) = self.notes.iter().position(is_for) {
-            let m = self.notes.remove(i);
+        if let Some(i) = self.notes.iter().position(|(_, m)| is_for(m)) {
+            let (arrived, m) = self.notes.remove(i);
+            self.arrived = arrived;
             return m["params"]["diagnostics"].as_array().unwrap().clone();
         }
         loop {
@@ -127,7 +128,7 @@ impl Client {
             if is_for(&msg) {
                 return msg["params"]["diagnostics"].as_array().unwrap().clone();
             }
-            self.notes.push(msg);
+            self.notes.push((arrived, msg));
         }
     }
 
