@@ -19,6 +19,7 @@ pub mod eval;
 pub mod format;
 pub mod front;
 pub mod ir;
+pub mod lsp;
 pub mod random;
 pub mod render;
 pub mod source;

@@ -209,6 +209,9 @@ enum Command {
         /// The code, e.g. E0004 or W0001.
         code: Option<String>,
     },
+    /// Serve the Language Server Protocol on stdin and stdout (LSP 3.17):
+    /// an editor's diagnostics, hover, definitions, outline and completion.
+    Lsp,
     /// List the standard library (`std:NAME`): each entry's figure and
     /// whether it draws at its defaults or is a schema (a string example).
     List {
@@ -312,6 +315,7 @@ where
         Command::Explain { code: None } => explain_all(io),
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
+        Command::Lsp => lsp(io),
         Command::Fmt { files, check } => files.iter().map(|f| fmt(io, f, check)).max().unwrap_or(0),
     }
 }
@@ -523,6 +527,17 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
     }
 }
 
+/// `graftal lsp`: serves the protocol until the client says `exit`.
+fn lsp(io: &mut Io<'_>) -> i32 {
+    match crate::lsp::run_stdio(io.stdout) {
+        Ok(()) => 0,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: graftal lsp: {e}");
+            1
+        }
+    }
+}
+
 /// `graftal explain`: a diagnostic code's title and explanation.
 fn explain(io: &mut Io<'_>, code: &str) -> i32 {
     let Some(info) = diagnostics::codes::lookup(code) else {
@@ -532,17 +547,7 @@ fn explain(io: &mut Io<'_>, code: &str) -> i32 {
         );
         return 2;
     };
-    let _ = writeln!(
-        io.stdout,
-        "{} ({}): {}\n\n{}",
-        info.code,
-        match info.code.severity() {
-            diagnostics::Severity::Error => "error",
-            diagnostics::Severity::Warning => "warning",
-        },
-        info.title,
-        info.explanation
-    );
+    let _ = writeln!(io.stdout, "{}", diagnostics::codes::explain_text(info));
     0
 }
 

@@ -46,6 +46,19 @@ pub struct CodeInfo {
     pub explanation: &'static str,
 }
 
+/// What `graftal explain CODE` prints: the code, its severity and title,
+/// then its explanation.
+pub fn explain_text(info: &CodeInfo) -> String {
+    let severity = match info.code.severity() {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+    };
+    format!(
+        "{} ({severity}): {}\n\n{}",
+        info.code, info.title, info.explanation
+    )
+}
+
 /// Declares codes: a constant for each and a registry slice `$registry`.
 macro_rules! codes {
     ($registry:ident; $($name:ident = $code:literal, $title:literal, $expl:literal;)*) => {
