@@ -278,3 +278,26 @@ mod random {
         }
     }
 }
+
+/// A small cpfg text (`name.l`) compiles and reads back exactly.
+fn cpfg_reads_back(name: &str, text: &str) {
+    let c = driver::compile(SourceFile::new(format!("{name}.l"), text));
+    assert!(!c.diagnostics.has_errors(), "{name}: {:#?}", c.diagnostics);
+    let sys = c.system.as_ref().expect("compiles");
+    let mut tally = Tally::default();
+    round_trip(name, sys, 7, &mut tally).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// cpfg's `*` (no condition) before statements reads back.
+#[test]
+fn a_star_condition_with_statements_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) : * { y = x + 1; } --> F(y) A(y)\nendlsystem\n";
+    cpfg_reads_back("star", text);
+}
+
+/// `printf` takes any number of arguments.
+#[test]
+fn printf_with_any_number_of_arguments_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) : 1 { printf(\"x\"); printf(\"%f %f\", x, x); } --> F A(x + 1)\nendlsystem\n";
+    cpfg_reads_back("printf", text);
+}

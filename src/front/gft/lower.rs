@@ -1109,7 +1109,10 @@ impl Cx<'_> {
             ExprKind::Call(n, args) => {
                 let args: Vec<Expr> = args.iter().map(|a| self.expr(a, locals)).collect();
                 match BUILTINS.iter().find(|b| b.0 == n) {
-                    Some((_, b, counts)) if counts.contains(&args.len()) => Expr::Call(*b, args),
+                    // An empty list of counts means any number (`printf`, `fprintf`, `fscanf`).
+                    Some((_, b, counts)) if counts.is_empty() || counts.contains(&args.len()) => {
+                        Expr::Call(*b, args)
+                    }
                     Some((_, _, counts)) => {
                         self.diags.push(err(
                             codes::GFT_PARAMETER_COUNT,
