@@ -301,3 +301,10 @@ fn printf_with_any_number_of_arguments_reads_back() {
     let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) : 1 { printf(\"x\"); printf(\"%f %f\", x, x); } --> F A(x + 1)\nendlsystem\n";
     cpfg_reads_back("printf", text);
 }
+
+/// Several globals (`globals a, b`) are all declared when read back.
+#[test]
+fn several_globals_read_back() {
+    let text = "Lsystem: 1\nStart: {total=0; count=0;}\nStartEach: {total=total+1;}\nderivation length: 2\naxiom: A(1)\nA(x) : count == 0 --> F(total) A(x)\nendlsystem\n";
+    cpfg_reads_back("globals", text);
+}

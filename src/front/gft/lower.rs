@@ -70,8 +70,11 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
             Item::Keyword(k) if k.name == "silent" => cx.silent(k),
             Item::Keyword(k) if k.name == "array" => cx.array(k),
             Item::Keyword(k) if k.name == "globals" => {
-                for (name, _) in groups(&k.args).into_iter().filter(|g| g.0 != ",") {
-                    cx.global(&name);
+                // `globals a, b`: a comma joins the name before it in a group.
+                let groups = groups(&k.args);
+                let names = groups.iter().flat_map(|g| g.0.split(','));
+                for name in names.filter(|n| !n.is_empty()) {
+                    cx.global(name);
                 }
             }
             Item::Keyword(k) if k.name == "symbol" => {
