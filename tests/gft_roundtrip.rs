@@ -308,3 +308,10 @@ fn several_globals_read_back() {
     let text = "Lsystem: 1\nStart: {total=0; count=0;}\nStartEach: {total=total+1;}\nderivation length: 2\naxiom: A(1)\nA(x) : count == 0 --> F(total) A(x)\nendlsystem\n";
     cpfg_reads_back("globals", text);
 }
+
+/// A production that opens a branch another closes reads back as written.
+#[test]
+fn unbalanced_brackets_read_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A\nA --> F[+A\nB --> F]B\nendlsystem\n";
+    cpfg_reads_back("brackets", text);
+}

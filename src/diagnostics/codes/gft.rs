@@ -35,12 +35,11 @@ Example:
     steps ten       <- write `steps 10`
     angle           <- write `angle 90`";
 
-    GFT_UNBALANCED = "E0904", "unbalanced brackets or braces",
-"Every `[` of a word is closed by a `]` in the same word, and a block item
-(`decomposition`, `start`, …) takes its `{ … }`.
+    GFT_UNBALANCED = "E0904", "unbalanced braces",
+"A block item (`decomposition`, `start`, …) takes its `{ … }`, and an STL
+seed's term closes its entries with `}`.
 
 Example:
-    F -> F[+F       <- add `]`
     start n = 0;    <- write `start { n = 0; }`";
 
     GFT_DUPLICATE = "E0905", "setting given twice",
@@ -72,4 +71,13 @@ Example:
 
 Example:
     F -> F+F        <- add `axiom F`";
+
+    GFT_UNBALANCED_BRACKETS = "W0901", "unbalanced brackets",
+"A `[` of a word is not closed by a `]` in the same word, or a `]` closes
+no `[`. cpfg and Fractint words may be so (a production may open a branch
+that another closes), and the word is read as written; check that the
+branches close where you mean them to.
+
+Example:
+    F -> F[+F       <- add `]` unless another production closes it";
 }

@@ -769,7 +769,7 @@ impl Cx<'_> {
     }
 
     /// A word's modules, their parameter expressions (empty when none has
-    /// any) and spans. Brackets must balance (E0904).
+    /// any) and spans. Unbalanced brackets are read as written (W0901).
     fn word(&mut self, w: &ast::Word, locals: &mut Locals) -> (Word, Vec<Vec<Expr>>, Vec<Span>) {
         let (word, args, spans) = self.word_unbalanced(w, locals);
         self.balance(w, word.symbols(), &spans);
@@ -831,29 +831,30 @@ impl Cx<'_> {
         (word, args, spans)
     }
 
-    /// Reports a `]` without `[` and an unclosed `[` (E0904).
+    /// Warns of a `]` without `[` and an unclosed `[` (W0901): cpfg and
+    /// Fractint words may be so, and the IR holds them as written.
     fn balance(&mut self, w: &ast::Word, ids: &[SymbolId], spans: &[Span]) {
         let mut depth = 0i64;
         for (id, s) in ids.iter().zip(spans) {
             depth += i64::from(*id == SymbolId::OPEN) - i64::from(*id == SymbolId::CLOSE);
             if depth < 0 {
                 self.diags.push(err(
-                    codes::GFT_UNBALANCED,
+                    codes::GFT_UNBALANCED_BRACKETS,
                     s,
                     "`]` without `[`",
                     "closes no branch",
-                    "remove it or open the branch with `[`",
+                    "remove it unless another word opens its branch",
                 ));
                 depth = 0;
             }
         }
         if depth > 0 {
             self.diags.push(err(
-                codes::GFT_UNBALANCED,
+                codes::GFT_UNBALANCED_BRACKETS,
                 &w.span,
                 "unclosed `[`",
                 "a branch is not closed",
-                "close every `[` with `]` in the same word",
+                "close it with `]` unless another word closes it",
             ));
         }
     }
