@@ -315,3 +315,33 @@ fn unbalanced_brackets_read_back() {
     let text = "Lsystem: 1\nderivation length: 2\naxiom: A\nA --> F[+A\nB --> F]B\nendlsystem\n";
     cpfg_reads_back("brackets", text);
 }
+
+/// A view with a negative angle keeps its sign.
+#[test]
+fn a_negative_view_reads_back() {
+    let back = graftal::front::gft::read_ok("view -0.25 -0.5 rad\naxiom F\n");
+    assert_eq!(back.settings.view, Some((-0.25, -0.5)));
+}
+
+/// Materials whose last slots are empty read back with the same length.
+#[test]
+fn empty_last_material_slots_read_back() {
+    let mut sys = graftal::front::gft::read_ok("material 1 ambient (0, 0, 0) diffuse (1, 0, 0) specular (0, 0, 0) emission (0, 0, 0) shininess 20 transparency 0\naxiom F\n");
+    let l = sys.look.lighting.as_mut().expect("lighting");
+    l.materials.resize(4, None);
+    let text = graftal::back::gft::write(&sys, None);
+    let back = graftal::front::gft::read_ok(&text);
+    sys.same_as(&back).unwrap_or_else(|e| panic!("{e}\n{text}"));
+}
+
+/// A function without a name (a `.func` file's) and with negative samples
+/// reads back.
+#[test]
+fn an_unnamed_function_reads_back() {
+    let back = graftal::front::gft::read_ok("function  = -0.5 0 1\naxiom F\n");
+    let f = &back.program.functions[0];
+    assert_eq!(
+        (f.name.as_str(), f.samples.clone()),
+        ("", vec![-0.5, 0.0, 1.0])
+    );
+}

@@ -683,13 +683,10 @@ impl Cx<'_> {
     }
 
     fn view(&mut self, k: &Keyword) {
-        let nums: Vec<f64> = k
-            .args
+        // A sign is its own token: read the groups (`-0.1`) as numbers.
+        let nums: Vec<f64> = groups(&k.args)
             .iter()
-            .filter_map(|a| match a {
-                Arg::Number(v, _, _) => Some(*v),
-                _ => None,
-            })
+            .filter_map(|g| g.0.parse().ok())
             .collect();
         let rad = k.args.last().is_some_and(|a| a.text() == "rad");
         match nums.as_slice() {
