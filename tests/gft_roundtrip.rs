@@ -345,3 +345,13 @@ fn an_unnamed_function_reads_back() {
         ("", vec![-0.5, 0.0, 1.0])
     );
 }
+
+/// A name cpfg never assigns (worth 0) reads back as the same local.
+#[test]
+fn a_name_never_assigned_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) --> F(x + undefined) A(x)\nendlsystem\n";
+    let c = driver::compile(SourceFile::new("unassigned.l", text));
+    let sys = c.system.as_ref().expect("compiles");
+    let mut tally = Tally::default();
+    round_trip("unassigned", sys, 7, &mut tally).unwrap_or_else(|e| panic!("{e}"));
+}

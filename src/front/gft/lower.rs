@@ -1093,8 +1093,21 @@ impl Cx<'_> {
                 } else if let Some(&g) = self.globals.get(n) {
                     Expr::Var(Var::Global(g))
                 } else {
-                    self.unknown(n, &e.span);
-                    Expr::Num(0.0)
+                    // As in cpfg: a name never assigned is a local worth 0
+                    // (the IR of a cpfg file holds such locals).
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::GFT_UNASSIGNED,
+                            e.span.clone(),
+                            format!("`{n}` is never assigned; its value is 0"),
+                        )
+                        .with_label("not a parameter, local or global")
+                        .with_help(
+                            "declare a global with `globals NAME` or bind it in the predecessor",
+                        ),
+                    );
+                    locals.0.push(n.clone());
+                    Expr::Var(Var::Local((locals.0.len() - 1) as u16))
                 }
             }
             ExprKind::Element(n, idx) => {
