@@ -355,3 +355,10 @@ fn a_name_never_assigned_reads_back() {
     let mut tally = Tally::default();
     round_trip("unassigned", sys, 7, &mut tally).unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// A constant cpfg probability (`: P1` with `#define P1 33`) reads back.
+#[test]
+fn a_constant_probability_reads_back() {
+    let text = "#define P1 33\nLsystem: 1\nseed: 2\nderivation length: 2\naxiom: F\nF --> F[+F]F : P1\nF --> F : 33\nendlsystem\n";
+    cpfg_reads_back("weights", text);
+}
