@@ -199,9 +199,9 @@ fn each_problem_has_its_code_and_exact_span() {
         ("axiom F\n[F]\n", "E0901", 8..11),
         ("X = forwrd\naxiom X\n", "E0902", 4..10),
         ("steps ten\naxiom F\n", "E0903", 0..9),
-        ("axiom F]\n", "E0904", 7..8),
+        ("axiom F]\n", "W0901", 7..8),
         ("angle 90\nangle 60\naxiom F\n", "E0905", 9..14),
-        ("axiom A(1)\nA(x) -> F(y)\n", "E0906", 21..22),
+        ("axiom A(1)\nA(x) -> F(y)\n", "W0902", 21..22),
         ("axiom A(1)\nA(x) -> F(sin(x, 2))\n", "E0907", 21..30),
         ("axiom A\nA(1) -> B\n", "E0907", 10..11),
     ];
@@ -234,7 +234,7 @@ fn every_error_of_a_file_in_one_run() {
     let text = "axoim F\nangle 90\nangle 60\nF -> F[+F\nX = forwrd\nturtle lsys\nA(x) -> F(y)\nsteps ten\n";
     assert_eq!(
         codes_of(text),
-        ["E0900", "E0905", "E0904", "E0902", "E0902", "E0906", "E0903", "W0900"]
+        ["E0900", "E0905", "W0901", "E0902", "E0902", "W0902", "E0903", "W0900"]
     );
 }
 

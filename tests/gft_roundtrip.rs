@@ -278,3 +278,87 @@ mod random {
         }
     }
 }
+
+/// A small cpfg text (`name.l`) compiles and reads back exactly.
+fn cpfg_reads_back(name: &str, text: &str) {
+    let c = driver::compile(SourceFile::new(format!("{name}.l"), text));
+    assert!(!c.diagnostics.has_errors(), "{name}: {:#?}", c.diagnostics);
+    let sys = c.system.as_ref().expect("compiles");
+    let mut tally = Tally::default();
+    round_trip(name, sys, 7, &mut tally).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// cpfg's `*` (no condition) before statements reads back.
+#[test]
+fn a_star_condition_with_statements_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) : * { y = x + 1; } --> F(y) A(y)\nendlsystem\n";
+    cpfg_reads_back("star", text);
+}
+
+/// `printf` takes any number of arguments.
+#[test]
+fn printf_with_any_number_of_arguments_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) : 1 { printf(\"x\"); printf(\"%f %f\", x, x); } --> F A(x + 1)\nendlsystem\n";
+    cpfg_reads_back("printf", text);
+}
+
+/// Several globals (`globals a, b`) are all declared when read back.
+#[test]
+fn several_globals_read_back() {
+    let text = "Lsystem: 1\nStart: {total=0; count=0;}\nStartEach: {total=total+1;}\nderivation length: 2\naxiom: A(1)\nA(x) : count == 0 --> F(total) A(x)\nendlsystem\n";
+    cpfg_reads_back("globals", text);
+}
+
+/// A production that opens a branch another closes reads back as written.
+#[test]
+fn unbalanced_brackets_read_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A\nA --> F[+A\nB --> F]B\nendlsystem\n";
+    cpfg_reads_back("brackets", text);
+}
+
+/// A view with a negative angle keeps its sign.
+#[test]
+fn a_negative_view_reads_back() {
+    let back = graftal::front::gft::read_ok("view -0.25 -0.5 rad\naxiom F\n");
+    assert_eq!(back.settings.view, Some((-0.25, -0.5)));
+}
+
+/// Materials whose last slots are empty read back with the same length.
+#[test]
+fn empty_last_material_slots_read_back() {
+    let mut sys = graftal::front::gft::read_ok("material 1 ambient (0, 0, 0) diffuse (1, 0, 0) specular (0, 0, 0) emission (0, 0, 0) shininess 20 transparency 0\naxiom F\n");
+    let l = sys.look.lighting.as_mut().expect("lighting");
+    l.materials.resize(4, None);
+    let text = graftal::back::gft::write(&sys, None);
+    let back = graftal::front::gft::read_ok(&text);
+    sys.same_as(&back).unwrap_or_else(|e| panic!("{e}\n{text}"));
+}
+
+/// A function without a name (a `.func` file's) and with negative samples
+/// reads back.
+#[test]
+fn an_unnamed_function_reads_back() {
+    let back = graftal::front::gft::read_ok("function  = -0.5 0 1\naxiom F\n");
+    let f = &back.program.functions[0];
+    assert_eq!(
+        (f.name.as_str(), f.samples.clone()),
+        ("", vec![-0.5, 0.0, 1.0])
+    );
+}
+
+/// A name cpfg never assigns (worth 0) reads back as the same local.
+#[test]
+fn a_name_never_assigned_reads_back() {
+    let text = "Lsystem: 1\nderivation length: 2\naxiom: A(1)\nA(x) --> F(x + undefined) A(x)\nendlsystem\n";
+    let c = driver::compile(SourceFile::new("unassigned.l", text));
+    let sys = c.system.as_ref().expect("compiles");
+    let mut tally = Tally::default();
+    round_trip("unassigned", sys, 7, &mut tally).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// A constant cpfg probability (`: P1` with `#define P1 33`) reads back.
+#[test]
+fn a_constant_probability_reads_back() {
+    let text = "#define P1 33\nLsystem: 1\nseed: 2\nderivation length: 2\naxiom: F\nF --> F[+F]F : P1\nF --> F : 33\nendlsystem\n";
+    cpfg_reads_back("weights", text);
+}

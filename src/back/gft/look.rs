@@ -258,7 +258,13 @@ pub fn look(out: &mut String, look: &Look) {
         );
     }
     for (i, m) in l.materials.iter().enumerate() {
-        let Some(m) = m else { continue };
+        let Some(m) = m else {
+            // A last empty slot keeps the list's length: `material N` alone.
+            if i + 1 == l.materials.len() {
+                let _ = writeln!(out, "material {i}");
+            }
+            continue;
+        };
         let _ = writeln!(
             out,
             "material {i} ambient {} diffuse {} specular {} emission {} shininess {} transparency {}",

@@ -35,12 +35,11 @@ Example:
     steps ten       <- write `steps 10`
     angle           <- write `angle 90`";
 
-    GFT_UNBALANCED = "E0904", "unbalanced brackets or braces",
-"Every `[` of a word is closed by a `]` in the same word, and a block item
-(`decomposition`, `start`, …) takes its `{ … }`.
+    GFT_UNBALANCED = "E0904", "unbalanced braces",
+"A block item (`decomposition`, `start`, …) takes its `{ … }`, and an STL
+seed's term closes its entries with `}`.
 
 Example:
-    F -> F[+F       <- add `]`
     start n = 0;    <- write `start { n = 0; }`";
 
     GFT_DUPLICATE = "E0905", "setting given twice",
@@ -52,12 +51,13 @@ Example:
     angle 60        <- remove one";
 
     GFT_UNKNOWN_NAME = "E0906", "unknown name",
-"A name in an expression is a production's parameter or local, a global
-declared with `globals`, an array declared with `array`, `pi`, or one of
-cpfg's built-in functions; `frenet NAME` names a `rotation`.
+"An array in an expression is declared with `array`, a call is one of
+cpfg's built-in functions, `frenet NAME` names a `rotation`, and a seed's
+or `unit`'s rule is declared with `rule` (a plain name never assigned is a
+local worth 0, W0902).
 
 Example:
-    A(x) -> F(y)    <- `y` is not a parameter of this production";
+    A(x) -> F(v[0])    <- declare `array v[1]`";
 
     GFT_PARAMETER_COUNT = "E0907", "wrong number of parameters",
 "A built-in function takes the number of arguments cpfg gives it, and a
@@ -72,4 +72,20 @@ Example:
 
 Example:
     F -> F+F        <- add `axiom F`";
+
+    GFT_UNBALANCED_BRACKETS = "W0901", "unbalanced brackets",
+"A `[` of a word is not closed by a `]` in the same word, or a `]` closes
+no `[`. cpfg and Fractint words may be so (a production may open a branch
+that another closes), and the word is read as written; check that the
+branches close where you mean them to.
+
+Example:
+    F -> F[+F       <- add `]` unless another production closes it";
+
+    GFT_UNASSIGNED = "W0902", "a name never assigned",
+"A name in an expression that is no parameter, local, global or array is,
+as in cpfg, a local whose value is 0. It is often a misspelt name.
+
+Example:
+    A(x) -> F(y)    <- `y` is 0: did you mean `x`?";
 }

@@ -539,6 +539,12 @@ impl Lowerer<'_> {
         let after = self.stmts(&mut scope, &p.after);
         let (successor, args) = self.calls(&mut scope, &p.successor);
         let computed_weight = p.probability.as_ref().map(|e| self.expr(&mut scope, e));
+        // A constant probability is the weight (one form in the IR, as the
+        // gft reader keeps it).
+        let (weight, computed_weight) = match computed_weight {
+            Some(Expr::Num(v)) => (v, None),
+            c => (1.0, c),
+        };
         Production {
             left: left.0,
             predecessor: predecessor.0,
@@ -554,7 +560,7 @@ impl Lowerer<'_> {
             condition,
             after,
             alternatives: vec![Alternative {
-                weight: 1.0,
+                weight,
                 computed_weight,
                 successor,
                 args,
@@ -982,10 +988,7 @@ impl Lowerer<'_> {
     /// it stands in.
     fn production_item(&mut self, p: &ast::Production, rd: &mut Reading) {
         let prod = self.production(p);
-        if prod.alternatives[0].computed_weight.is_some()
-            && rd.par.seed.is_none()
-            && rd.stage == Stage::Productions
-        {
+        if p.probability.is_some() && rd.par.seed.is_none() && rd.stage == Stage::Productions {
             self.diags.push(
                 Diagnostic::at(
                     codes::CPFG_PROBABILITY_IGNORED,

@@ -70,8 +70,11 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
             Item::Keyword(k) if k.name == "silent" => cx.silent(k),
             Item::Keyword(k) if k.name == "array" => cx.array(k),
             Item::Keyword(k) if k.name == "globals" => {
-                for (name, _) in groups(&k.args).into_iter().filter(|g| g.0 != ",") {
-                    cx.global(&name);
+                // `globals a, b`: a comma joins the name before it in a group.
+                let groups = groups(&k.args);
+                let names = groups.iter().flat_map(|g| g.0.split(','));
+                for name in names.filter(|n| !n.is_empty()) {
+                    cx.global(name);
                 }
             }
             Item::Keyword(k) if k.name == "symbol" => {
@@ -680,13 +683,10 @@ impl Cx<'_> {
     }
 
     fn view(&mut self, k: &Keyword) {
-        let nums: Vec<f64> = k
-            .args
+        // A sign is its own token: read the groups (`-0.1`) as numbers.
+        let nums: Vec<f64> = groups(&k.args)
             .iter()
-            .filter_map(|a| match a {
-                Arg::Number(v, _, _) => Some(*v),
-                _ => None,
-            })
+            .filter_map(|g| g.0.parse().ok())
             .collect();
         let rad = k.args.last().is_some_and(|a| a.text() == "rad");
         match nums.as_slice() {
@@ -766,7 +766,7 @@ impl Cx<'_> {
     }
 
     /// A word's modules, their parameter expressions (empty when none has
-    /// any) and spans. Brackets must balance (E0904).
+    /// any) and spans. Unbalanced brackets are read as written (W0901).
     fn word(&mut self, w: &ast::Word, locals: &mut Locals) -> (Word, Vec<Vec<Expr>>, Vec<Span>) {
         let (word, args, spans) = self.word_unbalanced(w, locals);
         self.balance(w, word.symbols(), &spans);
@@ -828,29 +828,30 @@ impl Cx<'_> {
         (word, args, spans)
     }
 
-    /// Reports a `]` without `[` and an unclosed `[` (E0904).
+    /// Warns of a `]` without `[` and an unclosed `[` (W0901): cpfg and
+    /// Fractint words may be so, and the IR holds them as written.
     fn balance(&mut self, w: &ast::Word, ids: &[SymbolId], spans: &[Span]) {
         let mut depth = 0i64;
         for (id, s) in ids.iter().zip(spans) {
             depth += i64::from(*id == SymbolId::OPEN) - i64::from(*id == SymbolId::CLOSE);
             if depth < 0 {
                 self.diags.push(err(
-                    codes::GFT_UNBALANCED,
+                    codes::GFT_UNBALANCED_BRACKETS,
                     s,
                     "`]` without `[`",
                     "closes no branch",
-                    "remove it or open the branch with `[`",
+                    "remove it unless another word opens its branch",
                 ));
                 depth = 0;
             }
         }
         if depth > 0 {
             self.diags.push(err(
-                codes::GFT_UNBALANCED,
+                codes::GFT_UNBALANCED_BRACKETS,
                 &w.span,
                 "unclosed `[`",
                 "a branch is not closed",
-                "close every `[` with `]` in the same word",
+                "close it with `]` unless another word closes it",
             ));
         }
     }
@@ -1092,8 +1093,21 @@ impl Cx<'_> {
                 } else if let Some(&g) = self.globals.get(n) {
                     Expr::Var(Var::Global(g))
                 } else {
-                    self.unknown(n, &e.span);
-                    Expr::Num(0.0)
+                    // As in cpfg: a name never assigned is a local worth 0
+                    // (the IR of a cpfg file holds such locals).
+                    self.diags.push(
+                        Diagnostic::at(
+                            codes::GFT_UNASSIGNED,
+                            e.span.clone(),
+                            format!("`{n}` is never assigned; its value is 0"),
+                        )
+                        .with_label("not a parameter, local or global")
+                        .with_help(
+                            "declare a global with `globals NAME` or bind it in the predecessor",
+                        ),
+                    );
+                    locals.0.push(n.clone());
+                    Expr::Var(Var::Local((locals.0.len() - 1) as u16))
                 }
             }
             ExprKind::Element(n, idx) => {
@@ -1109,7 +1123,10 @@ impl Cx<'_> {
             ExprKind::Call(n, args) => {
                 let args: Vec<Expr> = args.iter().map(|a| self.expr(a, locals)).collect();
                 match BUILTINS.iter().find(|b| b.0 == n) {
-                    Some((_, b, counts)) if counts.contains(&args.len()) => Expr::Call(*b, args),
+                    // An empty list of counts means any number (`printf`, `fprintf`, `fscanf`).
+                    Some((_, b, counts)) if counts.is_empty() || counts.contains(&args.len()) => {
+                        Expr::Call(*b, args)
+                    }
                     Some((_, _, counts)) => {
                         self.diags.push(err(
                             codes::GFT_PARAMETER_COUNT,

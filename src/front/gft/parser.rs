@@ -391,7 +391,7 @@ fn production(line: &[Tok<'_>], diags: &mut Diagnostics) -> Option<Production> {
     Some(p)
 }
 
-/// `[{ statements }] condition [{ statements }]`.
+/// `[{ statements }] condition [{ statements }]`; the condition may be `*` (none).
 fn condition(toks: &[Tok<'_>], p: &mut Production, diags: &mut Diagnostics) {
     let mut toks = toks;
     if toks.first().is_some_and(|t| t.0.is("{")) {
@@ -412,7 +412,9 @@ fn condition(toks: &[Tok<'_>], p: &mut Production, diags: &mut Diagnostics) {
         }
         toks = &toks[..open];
     }
-    if !toks.is_empty() {
+    // cpfg's `*` stands for "no condition" where statements follow it.
+    let star = toks.len() == 1 && toks[0].0.is("*");
+    if !toks.is_empty() && !star {
         p.condition = expression(toks, diags);
     }
 }

@@ -341,6 +341,14 @@ impl Cx<'_> {
     fn material(&mut self, k: &Keyword) {
         let mut f = Fields::new(k);
         let index: Option<u16> = f.number("");
+        // `material N` alone: slot N holds no material (the list's length).
+        if let (Some(i), 1) = (index, f.all().len()) {
+            let ms = &mut self.lighting_mut().materials;
+            if ms.len() <= usize::from(i) {
+                ms.resize(usize::from(i) + 1, None);
+            }
+            return;
+        }
         let (a, d) = (f.triple("ambient"), f.triple("diffuse"));
         let (s, e) = (f.triple("specular"), f.triple("emission"));
         let (shininess, transparency) = (f.number("shininess"), f.number("transparency"));
@@ -449,19 +457,24 @@ impl Cx<'_> {
         );
     }
 
-    /// `function NAME = SAMPLES`.
+    /// `function [NAME] = SAMPLES`: a `.func` file's function may have no
+    /// name (`func(1, x)` calls it by number).
     fn function(&mut self, k: &Keyword) {
         let mut f = Fields::new(k);
-        let name = f.word("", &[]);
-        let eq = f
-            .all()
-            .get(1)
-            .map(|v| matches!(v, Val::Word(w, _) if w == "="));
+        let is_eq = |v: &Val| matches!(v, Val::Word(w, _) if w == "=");
+        let unnamed = f.all().first().is_some_and(is_eq);
+        let name = if unnamed {
+            Some(String::new())
+        } else {
+            f.word("", &[])
+        };
+        let at = usize::from(!unnamed);
+        let eq = f.all().get(at).map(is_eq);
         if eq != Some(true) {
-            let v = f.all().get(1).cloned();
+            let v = f.all().get(at).cloned();
             let _: Option<()> = f.fail(v.as_ref(), "`=` after the name".into());
         }
-        let samples: Option<Vec<f64>> = (f.all().iter().skip(2))
+        let samples: Option<Vec<f64>> = (f.all().iter().skip(at + 1))
             .map(|v| match v {
                 Val::Num(t, _) => t.parse().ok(),
                 _ => None,
