@@ -478,7 +478,7 @@ mod tests {
         s.axiom = Word::from(ids);
         let text = write(&s, None);
         assert!(text.contains("axiom `<` `{` `a b` `2x` F"), "{text}");
-        assert!(text.contains("symbol `a b` `2x`"), "{text}");
+        assert!(text.contains("symbol `2x` `a b`"), "{text}");
         let ring = s.intern("ring");
         s.set_interpretation(ring, TurtleOp::Push);
         s.axiom.push(ring, &[]);
