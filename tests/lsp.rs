@@ -178,6 +178,22 @@ impl Client {
     }
 }
 
+/// `exit` before `shutdown` ends the server with status 1, as LSP asks.
+#[test]
+fn exit_without_shutdown_ends_with_status_1() {
+    let mut c = Client::start();
+    c.notify("exit", Value::Null);
+    let deadline = Instant::now() + WAIT;
+    loop {
+        if let Some(status) = c.child.try_wait().unwrap() {
+            assert_eq!(status.code(), Some(1), "{status}");
+            return;
+        }
+        assert!(Instant::now() < deadline, "the server did not exit");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
 impl Drop for Client {
     /// A failed test leaves no server behind.
     fn drop(&mut self) {

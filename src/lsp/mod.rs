@@ -74,7 +74,11 @@ pub fn run_stdio(stdout: &mut dyn Write) -> Result<(), String> {
             }
         }
     });
-    serve(&incoming, stdout).map_err(|e| e.to_string())
+    match serve(&incoming, stdout) {
+        Ok(true) => Ok(()),
+        Ok(false) => Err("`exit` without `shutdown` first".to_string()),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 /// What the server can do, as `initialize` answers.
@@ -101,8 +105,9 @@ enum Stage {
 }
 
 /// Serves the messages of `incoming`, writing to `out`, until `exit` (or
-/// until the client goes away).
-pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Result<()> {
+/// until the client goes away). `Ok(true)` when `shutdown` came first: LSP
+/// asks for exit status 0 then, and 1 otherwise.
+pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Result<bool> {
     let mut server = Server::default();
     let mut stage = Stage::Starting;
     for msg in incoming {
@@ -139,7 +144,7 @@ pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Resu
                 };
                 write_body(out, &body)?;
             }
-            Message::Notification(n) if n.method == "exit" => return Ok(()),
+            Message::Notification(n) if n.method == "exit" => return Ok(stage == Stage::ShutDown),
             Message::Notification(n) if stage == Stage::Running => {
                 // A panic while compiling loses that document's diagnostics,
                 // not the server.
@@ -151,7 +156,7 @@ pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Resu
             Message::Notification(_) | Message::Response(_) => {}
         }
     }
-    Ok(())
+    Ok(stage == Stage::ShutDown)
 }
 
 /// Writes one message: its header, then `body`.
@@ -284,11 +289,24 @@ mod tests {
         }
         drop(tx);
         let mut out = Vec::new();
-        serve(&rx, &mut out).unwrap();
+        let shut_down = serve(&rx, &mut out).unwrap();
+        let asked = messages.iter().any(|m| m["method"] == "shutdown");
+        assert_eq!(shut_down, asked, "exit status 0 only after `shutdown`");
         let text = String::from_utf8(out).unwrap();
         (text.split("Content-Length: ").skip(1))
             .map(|m| serde_json::from_str(m.split_once("\r\n\r\n").unwrap().1).unwrap())
             .collect()
+    }
+
+    #[test]
+    fn exit_without_shutdown_is_not_a_clean_end() {
+        let req = |id: i32, method: &str| json!({ "id": id, "method": method, "params": null });
+        // `served` asserts what `serve` says of the end.
+        let out = served(&[
+            req(1, "initialize"),
+            json!({ "method": "exit", "params": null }),
+        ]);
+        assert_eq!(out.len(), 1);
     }
 
     #[test]
