@@ -14,7 +14,7 @@ use graftal::stdlib::ENTRIES;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{check_golden, graftal, main_l};
+use common::{check_golden, cpfg_object_dirs, fractint_corpus_entries, graftal, main_l};
 
 fn corpus(part: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -48,37 +48,16 @@ fn every_stdlib_entry_is_written() {
 
 #[test]
 fn every_fractint_entry_of_the_corpus_is_written() {
-    let files = [
-        "fractint.l",
-        "penrose.l",
-        "tiling.l",
-        "history/fractint.l.v15.0",
-    ];
-    let mut total = 0;
-    for file in ["history/fractint.l.v16.0", "history/fractint.l.v19.0"]
-        .iter()
-        .chain(&files)
-    {
-        let path = corpus("fractint").join(file);
-        let source = SourceFile::read(&path).unwrap();
-        let lib = driver::compile(source.clone()).library.expect("a library");
-        for entry in &lib.entries {
-            let c = driver::compile_entry(source.clone(), Some(&entry.name));
-            to_gft(&c, &format!("{file}:{}", entry.name));
-            total += 1;
-        }
+    let entries = fractint_corpus_entries();
+    for (name, c) in &entries {
+        to_gft(c, name);
     }
-    assert_eq!(total, 271);
+    assert_eq!(entries.len(), 271);
 }
 
 #[test]
 fn every_cpfg_object_that_compiles_is_written() {
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(corpus("cpfg"))
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_dir())
-        .collect();
-    dirs.sort();
+    let dirs = cpfg_object_dirs();
     let mut written = 0;
     for dir in &dirs {
         let Some(l) = main_l(dir) else { continue };

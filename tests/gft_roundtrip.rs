@@ -16,8 +16,8 @@ use graftal::stdlib::ENTRIES;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::main_l;
 use common::random::{random_linf, random_pfg, Gen};
+use common::{cpfg_object_dirs, fractint_corpus_entries, main_l};
 
 const MAX_SYMBOLS: usize = 200_000;
 
@@ -149,22 +149,7 @@ fn every_stdlib_entry_reads_back_exactly() {
 
 #[test]
 fn every_fractint_entry_reads_back_exactly() {
-    let mut systems = Vec::new();
-    for file in [
-        "fractint.l",
-        "penrose.l",
-        "tiling.l",
-        "history/fractint.l.v15.0",
-        "history/fractint.l.v16.0",
-        "history/fractint.l.v19.0",
-    ] {
-        let source = SourceFile::read(&corpus("fractint").join(file)).unwrap();
-        let lib = driver::compile(source.clone()).library.expect("a library");
-        for entry in &lib.entries {
-            let c = driver::compile_entry(source.clone(), Some(&entry.name));
-            systems.push((format!("{file}:{}", entry.name), c));
-        }
-    }
+    let systems = fractint_corpus_entries();
     assert_eq!(systems.len(), 271);
     let t = check_all(systems);
     eprintln!("fractint: {t:?}");
@@ -173,12 +158,7 @@ fn every_fractint_entry_reads_back_exactly() {
 
 #[test]
 fn every_cpfg_object_that_compiles_reads_back_exactly() {
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(corpus("cpfg"))
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_dir())
-        .collect();
-    dirs.sort();
+    let dirs = cpfg_object_dirs();
     let systems = dirs.iter().filter_map(|dir| {
         let l = main_l(dir)?;
         let c = driver::compile(SourceFile::read(&l).unwrap());

@@ -158,6 +158,47 @@ pub fn main_l(dir: &std::path::Path) -> Option<std::path::PathBuf> {
     ls.into_iter().next()
 }
 
+fn corpus(part: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/corpus")
+        .join(part)
+}
+
+/// The object folders of the cpfg corpus (tests/corpus/cpfg), sorted.
+pub fn cpfg_object_dirs() -> Vec<std::path::PathBuf> {
+    let mut dirs: Vec<std::path::PathBuf> = std::fs::read_dir(corpus("cpfg"))
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.is_dir())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// Every entry of the Fractint corpus's libraries (tests/corpus/fractint,
+/// the history included), compiled, named `FILE:ENTRY`.
+pub fn fractint_corpus_entries() -> Vec<(String, graftal::driver::Compiled)> {
+    use graftal::{driver, source::SourceFile};
+    let files = [
+        "fractint.l",
+        "penrose.l",
+        "tiling.l",
+        "history/fractint.l.v15.0",
+        "history/fractint.l.v16.0",
+        "history/fractint.l.v19.0",
+    ];
+    let mut out = Vec::new();
+    for file in files {
+        let source = SourceFile::read(&corpus("fractint").join(file)).unwrap();
+        let lib = driver::compile(source.clone()).library.expect("a library");
+        for entry in &lib.entries {
+            let c = driver::compile_entry(source.clone(), Some(&entry.name));
+            out.push((format!("{file}:{}", entry.name), c));
+        }
+    }
+    out
+}
+
 /// Whether graftal reads the files an emitter writes, so that a
 /// translation can be compiled again (`.gft` once its front end is
 /// registered; tests/gft_emitter.rs covers its emitter until then).
