@@ -381,6 +381,24 @@ pub(crate) fn strip_block_comments(text: &str) -> String {
     out
 }
 
+/// A logos callback's part for a `/*` just read: skips to past the `*/`
+/// and says whether there was one (an unclosed comment takes the rest).
+pub(crate) fn skip_block_comment<'s, T>(lex: &mut logos::Lexer<'s, T>) -> bool
+where
+    T: logos::Logos<'s, Source = str>,
+{
+    match lex.remainder().find("*/") {
+        Some(end) => {
+            lex.bump(end + 2);
+            true
+        }
+        None => {
+            lex.bump(lex.remainder().len());
+            false
+        }
+    }
+}
+
 /// `/* … */` comments of `src` with their spans (an unclosed one runs to
 /// the end).
 pub(crate) fn block_comments(src: &str) -> Vec<(Span, String)> {

@@ -52,15 +52,10 @@ pub enum Token<'src> {
 }
 
 fn block_comment<'s>(lex: &mut logos::Lexer<'s, Token<'s>>) -> Result<(), LexError> {
-    match lex.remainder().find("*/") {
-        Some(end) => {
-            lex.bump(end + 2);
-            Ok(())
-        }
-        None => {
-            lex.bump(lex.remainder().len());
-            Err(LexError::UnterminatedComment)
-        }
+    if crate::front::skip_block_comment(lex) {
+        Ok(())
+    } else {
+        Err(LexError::UnterminatedComment)
     }
 }
 
