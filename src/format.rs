@@ -40,7 +40,14 @@ pub struct Formatting {
 /// Formats a `.gft` file (whatever its name: it is read as `.gft`).
 pub fn format(file: SourceFile) -> Formatting {
     let compiled = driver::compile_as(file, None, crate::front::by_name("gft"));
-    let outcome = match &compiled.system {
+    let outcome = outcome(&compiled);
+    Formatting { compiled, outcome }
+}
+
+/// The outcome of formatting `compiled`, a `.gft` file read already (the
+/// language server's open document).
+pub fn outcome(compiled: &Compiled) -> Outcome {
+    match &compiled.system {
         None => Outcome::HasErrors,
         Some(sys) => {
             let text = with_comments(&compiled.file.text, &crate::back::gft::write(sys, None));
@@ -49,8 +56,7 @@ pub fn format(file: SourceFile) -> Formatting {
                 Err(why) => Outcome::NotSame(why),
             }
         }
-    };
-    Formatting { compiled, outcome }
+    }
 }
 
 /// `Ok` when `text` reads without errors as the same system as `sys`.

@@ -349,7 +349,15 @@ fn completion_and_outline() {
         .iter()
         .map(|s| s["name"].clone())
         .collect();
-    assert_eq!(names, vec![json!("X"), json!("F")]);
+    // The settings, then the productions, in the order written.
+    let expected = [
+        "derivation length: 2",
+        "angle factor: 4",
+        "axiom: X",
+        "X",
+        "F",
+    ];
+    assert_eq!(names, expected.map(|n| json!(n)));
     c.stop();
 }
 
@@ -402,7 +410,31 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
         json!({ "textDocument": { "uri": URI } }),
     );
     times.push(("textDocument/documentSymbol", c.arrived - t));
-    eprintln!("answer times: {times:?}");
+    let t = Instant::now();
+    let whole = json!({ "start": { "line": 0, "character": 0 }, "end": { "line": 10_003, "character": 0 } });
+    let r = c.request(
+        "textDocument/codeAction",
+        json!({ "textDocument": { "uri": URI }, "range": whole, "context": { "diagnostics": [] } }),
+    );
+    times.push(("textDocument/codeAction", c.arrived - t));
+    assert!(r["result"].is_array(), "{r}");
+    // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s.
+    let gft_uri = "file:///tmp/graftal-lsp-test/big.gft";
+    let mut gft = String::from("axiom A0\nangle 90\n");
+    for i in 0..9_998 {
+        gft.push_str(&format!("A{i}  ->  F+A{}\n", i + 1));
+    }
+    c.open(gft_uri, &gft);
+    let t = Instant::now();
+    let r = c.request(
+        "textDocument/formatting",
+        json!({ "textDocument": { "uri": gft_uri }, "options": { "tabSize": 4, "insertSpaces": true } }),
+    );
+    // Not yet within the bound: formatting reads the file, writes it and
+    // reads it back (about 300 ms on 10,000 lines in the debug build).
+    let formatting = c.arrived - t;
+    assert_eq!(r["result"].as_array().map(Vec::len), Some(1), "{r}");
+    eprintln!("answer times: {times:?}, formatting {formatting:?}");
     let slowest = times.iter().map(|t| t.1).max().unwrap();
     assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
@@ -487,4 +519,343 @@ fn neovim_shows_the_diagnostics_of_a_file_it_opens() {
     assert_eq!(seen[0]["col"], line.rfind("-->").unwrap());
     assert_eq!(seen[0]["code"], "E0003");
     assert_eq!(seen[0]["severity"], 1); // vim.diagnostic.severity.ERROR
+}
+
+/// A folder with a cpfg object: its `.l` and the files beside it.
+fn cpfg_object(name: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("graftal-lsp-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (file, text) in files {
+        std::fs::write(dir.join(file), text).unwrap();
+    }
+    dir
+}
+
+const CPFG_PLANT: &str = "Lsystem: 1\n#define LEN 2\n#define GROW(x) F(x*LEN)\nderivation length: 2\nAxiom: F(1)\nF(x) --> GROW(x)\nendlsystem\n";
+
+/// The view and function files of a cpfg object are read from disk beside
+/// the document, and their problems published on their own URIs.
+#[test]
+fn cpfg_side_files_are_read_from_disk_and_reported_on_them() {
+    let dir = cpfg_object(
+        "side",
+        &[
+            ("plant.v", "angel factor: 16\nfunction: br.func\n"),
+            ("br.func", "fver 1 1\nname: br\nsamples: 5\npoints: x\n"),
+        ],
+    );
+    let uri = |f: &str| format!("file://{}", dir.join(f).display());
+    let mut c = Client::start();
+    let own = c.open(&uri("plant.l"), CPFG_PLANT);
+    let view = c.diagnostics(&uri("plant.v"));
+    let func = c.diagnostics(&uri("br.func"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(own, Vec::<Value>::new());
+    assert_eq!(view.len(), 1, "{view:?}");
+    assert_eq!(view[0]["code"], "W0804");
+    assert_eq!(
+        view[0]["range"]["start"],
+        json!({ "line": 0, "character": 0 })
+    );
+    assert_eq!(func.len(), 1, "{func:?}");
+    assert_eq!(func[0]["code"], "E0813");
+    assert_eq!(func[0]["range"]["start"]["line"], 3);
+    c.stop();
+}
+
+/// The hover text at (`line`, `character`) of `uri`.
+fn hover_text(c: &mut Client, uri: &str, line: u32, character: u32) -> String {
+    let h = c.at("textDocument/hover", uri, line, character);
+    h["result"]["contents"]["value"]
+        .as_str()
+        .unwrap_or_else(|| panic!("no hover: {h}"))
+        .to_string()
+}
+
+/// The start lines of the `Location[]` `r` answered.
+fn lines_of(r: &Value) -> Vec<u64> {
+    let found = r["result"].as_array().unwrap_or_else(|| panic!("{r}"));
+    found
+        .iter()
+        .map(|l| l["range"]["start"]["line"].as_u64().unwrap())
+        .collect()
+}
+
+const STL_URI: &str = "file:///tmp/graftal-lsp-test/tree.stl";
+const STL_TREE: &str =
+    "ANGLE 30\nLEVELS 3\nR1 = [I 4 [F]] R2\nR2 = F[+R1][-R1]\nSEED\nR2\nENDSEED\n";
+
+#[test]
+fn stl_rules_hover_define_and_are_referenced() {
+    let mut c = Client::start();
+    c.open(STL_URI, STL_TREE);
+    // `R1` in the body of R2.
+    let value = hover_text(&mut c, STL_URI, 3, 8);
+    assert!(value.contains("STL rule `R1` = `[I 4 [F]] R2`"), "{value}");
+    assert!(value.contains("self-resemblance count 4"), "{value}");
+    let d = c.at("textDocument/definition", STL_URI, 3, 8);
+    assert_eq!(lines_of(&d), [2], "{d}");
+    assert_eq!(d["result"][0]["range"]["end"]["character"], 2);
+    // `R2`: declared on line 4, used in R1's body and the seed.
+    let r = c.at("textDocument/references", STL_URI, 5, 0);
+    assert_eq!(lines_of(&r), [2, 3, 5], "{r}");
+    c.stop();
+}
+
+const LINF_URI: &str = "file:///tmp/graftal-lsp-test/curve.linf";
+const LINF_CURVE: &str = "lines f\nangles t = (0, pi/3)\naxiom f\nrules f = f +t f\n";
+
+#[test]
+fn linf_rotations_and_declared_names() {
+    let mut c = Client::start();
+    let ds = c.open(LINF_URI, LINF_CURVE);
+    assert_eq!(ds, Vec::<Value>::new());
+    // `t` in the rule: its pair.
+    let value = hover_text(&mut c, LINF_URI, 3, 13);
+    assert!(value.contains("LinF rotation `t` = `(0, pi/3)`"), "{value}");
+    let d = c.at("textDocument/definition", LINF_URI, 3, 13);
+    assert_eq!(lines_of(&d), [1], "{d}");
+    // `f`: declared in `lines`, rewritten on line 4; written five times.
+    let d = c.at("textDocument/definition", LINF_URI, 2, 6);
+    assert_eq!(lines_of(&d), [0, 3], "{d}");
+    let r = c.at("textDocument/references", LINF_URI, 2, 6);
+    assert_eq!(lines_of(&r), [0, 2, 3, 3, 3], "{r}");
+    c.stop();
+}
+
+#[test]
+fn cpfg_macros_hover_with_their_expansion() {
+    let dir = cpfg_object("macros", &[]);
+    let uri = format!("file://{}", dir.join("plant.l").display());
+    let mut c = Client::start();
+    c.open(&uri, CPFG_PLANT);
+    // `GROW` in the production of line 6.
+    let value = hover_text(&mut c, &uri, 5, 10);
+    assert!(
+        value.contains("function-like macro `GROW`: expands as `#define GROW(x) F(x*LEN)`"),
+        "{value}"
+    );
+    let d = c.at("textDocument/definition", &uri, 5, 10);
+    assert_eq!(lines_of(&d), [2], "{d}");
+    // `LEN`: defined on line 2, used in GROW's expansion.
+    let r = c.at("textDocument/references", &uri, 1, 9);
+    assert_eq!(lines_of(&r), [1, 2], "{r}");
+    let s = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": uri } }),
+    );
+    let names: Vec<_> = (s["result"].as_array().unwrap().iter())
+        .map(|s| s["name"].as_str().unwrap().to_string())
+        .collect();
+    assert!(names.contains(&"LEN".to_string()), "{names:?}");
+    assert!(
+        names.contains(&"derivation length: 2".to_string()),
+        "{names:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+const FRACTINT_URI: &str = "file:///tmp/graftal-lsp-test/lib.l";
+const FRACTINT_LIB: &str =
+    "Koch {\n  Angle 6\n  Axiom F\n  F=F+F--F+F\n}\nDragon {\n  Angle 4\n  Axiom FX\n  X=X+YF+\n  Y=-FX-Y\n}\n";
+
+#[test]
+fn fractint_entries_are_outlined_and_defined() {
+    let mut c = Client::start();
+    c.open(FRACTINT_URI, FRACTINT_LIB);
+    let s = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": FRACTINT_URI } }),
+    );
+    let entries: Vec<_> = (s["result"].as_array().unwrap().iter())
+        .filter(|s| s["kind"] == 2) // module
+        .map(|s| (s["name"].clone(), s["range"]["start"]["line"].clone()))
+        .collect();
+    assert_eq!(
+        entries,
+        [(json!("Koch"), json!(0)), (json!("Dragon"), json!(5))]
+    );
+    let d = c.at("textDocument/definition", FRACTINT_URI, 5, 2);
+    assert_eq!(lines_of(&d), [5], "{d}");
+    let value = hover_text(&mut c, FRACTINT_URI, 5, 2);
+    assert!(value.contains("Fractint entry `Dragon`"), "{value}");
+    c.stop();
+}
+
+#[test]
+fn a_code_written_in_a_comment_hovers_with_its_explanation() {
+    let mut c = Client::start();
+    let text = "/* see E0003 */\nderivation length: 2\naxiom: F\nF --> F+F\n";
+    c.open(URI, text);
+    let value = hover_text(&mut c, URI, 0, 9);
+    assert!(value.contains(explain("E0003").trim()), "{value}");
+    c.stop();
+}
+
+/// The quick fixes offered over the range of diagnostic `d` of `uri`.
+fn quick_fixes(c: &mut Client, uri: &str, d: &Value) -> Vec<Value> {
+    let r = c.request(
+        "textDocument/codeAction",
+        json!({
+            "textDocument": { "uri": uri },
+            "range": d["range"],
+            "context": { "diagnostics": [d] },
+        }),
+    );
+    r["result"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{r}"))
+        .clone()
+}
+
+/// `text` with the single edit of quick fix `fix` made.
+fn apply(text: &str, uri: &str, fix: &Value) -> String {
+    let edits = fix["edit"]["changes"][uri].as_array().unwrap();
+    assert_eq!(edits.len(), 1, "{fix}");
+    let at = |p: &Value| {
+        let line = p["line"].as_u64().unwrap() as usize;
+        let start: usize = text.split_inclusive('\n').take(line).map(str::len).sum();
+        start + p["character"].as_u64().unwrap() as usize // ASCII here
+    };
+    let r = &edits[0]["range"];
+    let mut out = text.to_string();
+    out.replace_range(
+        at(&r["start"])..at(&r["end"]),
+        edits[0]["newText"].as_str().unwrap(),
+    );
+    out
+}
+
+/// Each diagnostic that knows its fix offers it as a quick fix, and the
+/// fixed text has no diagnostic left: a mistyped pfg header, a cpfg `->`,
+/// an unknown STL rule, a mistyped `.gft` keyword.
+#[test]
+fn quick_fixes_make_the_suggested_replacement() {
+    let dir = cpfg_object("fixes", &[]);
+    let cpfg = format!("file://{}", dir.join("plant.l").display());
+    let gft = "file:///tmp/graftal-lsp-test/fix.gft";
+    let cases = [
+        (
+            URI,
+            "derivation length: 2\nangel factor: 4\naxiom: F\nF --> F+F\n",
+            "E0101",
+            "angle factor",
+        ),
+        (
+            cpfg.as_str(),
+            "Lsystem: 1\nderivation length: 2\nAxiom: F\nF -> F+F\nendlsystem\n",
+            "E0005",
+            "-->",
+        ),
+        (
+            STL_URI,
+            "ANGLE 30\nR1 = [F]\nSEED\nR2\nENDSEED\n",
+            "E0501",
+            "R1",
+        ),
+        (gft, "axiom F\nF -> F+F\nwidht 3\n", "E0900", "width"),
+    ];
+    let mut c = Client::start();
+    for (uri, text, code, replacement) in cases {
+        let ds = c.open(uri, text);
+        let d = ds
+            .iter()
+            .find(|d| d["code"] == code)
+            .unwrap_or_else(|| panic!("{code}: {ds:?}"));
+        let fixes = quick_fixes(&mut c, uri, d);
+        assert_eq!(fixes.len(), 1, "{fixes:?}");
+        assert_eq!(fixes[0]["kind"], "quickfix");
+        let fixed = apply(text, uri, &fixes[0]);
+        assert!(fixed.contains(replacement), "{fixed}");
+        let left = c.change(uri, 2, &fixed);
+        assert!(!left.iter().any(|d| d["code"] == code), "{code}: {left:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+#[test]
+fn formatting_a_gft_file_is_what_graftal_fmt_writes() {
+    let uri = "file:///tmp/graftal-lsp-test/plant.gft";
+    let messy = "axiom   F\nangle 90\n   F -> F+F-F\n";
+    let fmt = Command::new(env!("CARGO_BIN_EXE_graftal"))
+        .args(["fmt", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .and_then(|mut p| {
+            p.stdin.take().unwrap().write_all(messy.as_bytes())?;
+            p.wait_with_output()
+        })
+        .unwrap();
+    let expected = String::from_utf8(fmt.stdout).unwrap();
+    assert_ne!(expected, messy);
+    let mut c = Client::start();
+    c.open(uri, messy);
+    let params = json!({ "textDocument": { "uri": uri }, "options": { "tabSize": 4, "insertSpaces": true } });
+    let r = c.request("textDocument/formatting", params.clone());
+    let edits = r["result"].as_array().unwrap_or_else(|| panic!("{r}"));
+    assert_eq!(edits.len(), 1, "{r}");
+    assert_eq!(edits[0]["newText"], expected.as_str());
+    assert_eq!(
+        edits[0]["range"]["start"],
+        json!({ "line": 0, "character": 0 })
+    );
+    assert_eq!(
+        edits[0]["range"]["end"],
+        json!({ "line": 3, "character": 0 })
+    );
+    // Formatted already: no edit. Not readable: no edit, and no error.
+    c.change(uri, 2, &expected);
+    let r = c.request("textDocument/formatting", params.clone());
+    assert_eq!(r["result"], json!([]), "{r}");
+    c.change(uri, 3, "axiom F\nF -> F+F\nwidht 3\n");
+    let r = c.request("textDocument/formatting", params);
+    assert_eq!(r["result"], json!([]), "{r}");
+    c.stop();
+}
+
+/// A file half typed in each notation gives diagnostics, not an error.
+#[test]
+fn a_half_typed_file_of_each_notation_gives_diagnostics() {
+    let dir = cpfg_object("half", &[]);
+    let cpfg = format!("file://{}", dir.join("plant.l").display());
+    let cases = [
+        (URI.to_string(), "derivation length: 2\naxiom: F\nF -"),
+        (cpfg, "Lsystem: 1\nAxiom: F(1\nF(x) --> F(x"),
+        (
+            FRACTINT_URI.to_string(),
+            "Koch {\n  Angle 6\n  Axiom F\n  F=F+F--F+F\n\nDragon {\n  Ang",
+        ),
+        (
+            LINF_URI.to_string(),
+            "lines f\nangles t = (0, pi/\naxiom f\nrules f = f +",
+        ),
+        (STL_URI.to_string(), "ANGLE 30\nR1 = [I 4 [F\nSEED\nR"),
+        (
+            "file:///tmp/graftal-lsp-test/half.gft".to_string(),
+            "axiom F\nF -> F+(\nangle",
+        ),
+        (
+            "file:///tmp/graftal-lsp-test/half.smith".to_string(),
+            "angle: 3\naxiom: F\nrules:\n F ->",
+        ),
+    ];
+    let mut c = Client::start();
+    for (uri, text) in &cases {
+        let ds = c.open(uri, text);
+        assert!(!ds.is_empty(), "{uri}: no diagnostics");
+        for method in [
+            "textDocument/hover",
+            "textDocument/completion",
+            "textDocument/definition",
+        ] {
+            let r = c.at(method, uri, 1, 3);
+            assert!(r.get("result").is_some(), "{uri} {method}: {r}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
 }

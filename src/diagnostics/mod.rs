@@ -51,6 +51,16 @@ pub struct Diagnostic {
     /// a side file (a cpfg view, function or surface file), so that the
     /// diagnostic is shown, and listed in JSON, as that file's.
     pub side: Option<Arc<SideFile>>,
+    /// The replacement that fixes the problem, when it is known: the help
+    /// line says it, and an editor offers it as a quick fix.
+    pub fix: Option<Fix>,
+}
+
+/// A suggested edit: write `replacement` in place of `span`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fix {
+    pub span: Span,
+    pub replacement: String,
 }
 
 /// A file read beside the one being read, as diagnostics quote it.
@@ -122,6 +132,7 @@ impl Diagnostic {
             help: None,
             not_kept: None,
             side: None,
+            fix: None,
         }
     }
 
@@ -158,6 +169,24 @@ impl Diagnostic {
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(bounded(help.into()));
         self
+    }
+
+    /// "did you mean `replacement`?", and the fix that writes it over the
+    /// primary span (the name mistyped): one value for the help line and
+    /// the editor's quick fix.
+    pub fn suggesting(self, replacement: impl std::fmt::Display) -> Self {
+        let replacement = replacement.to_string();
+        let help = format!("did you mean `{replacement}`?");
+        match self.span.clone() {
+            Some(span) => self.with_fix(span, replacement, help),
+            None => self.with_help(help),
+        }
+    }
+
+    /// The fix that writes `replacement` over `span`, with `help` saying it.
+    pub fn with_fix(mut self, span: Span, replacement: String, help: String) -> Self {
+        self.fix = Some(Fix { span, replacement });
+        self.with_help(help)
     }
 
     /// The same diagnostic, its spans in `side` rather than in the file

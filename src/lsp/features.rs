@@ -2,20 +2,22 @@
 //! outline and completion, answered from what compiling it gave (its
 //! system, the places of its productions and symbols) without deriving.
 
+use super::names::{self, Names};
 use super::position::{offset, range};
 use super::publish::explanation;
-use super::{json, parse, Document};
+use super::{edits, json, parse, Document};
 use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use lsp_types::request::{
-    Completion, DocumentSymbolRequest, GotoDefinition, HoverRequest, References, Request as _,
+    CodeActionRequest, Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest,
+    References, Request as _,
 };
 use lsp_types::{
     CompletionItem, CompletionItemKind, Hover, HoverContents, MarkupContent, MarkupKind,
     SymbolKind, TextDocumentPositionParams,
 };
 use serde_json::Value;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// The answer to request `method` with `params`: `Ok(None)` for a method
 /// the server does not answer; JSON `null` when there is nothing to say.
@@ -56,6 +58,19 @@ pub fn answer(
             let doc = docs.get(p.text_document_position.text_document.uri.as_str());
             serde_json::to_string(&doc.map(completions).unwrap_or_default())
         }
+        CodeActionRequest::METHOD => {
+            let p: lsp_types::CodeActionParams = parse(params)?;
+            let doc = docs.get(p.text_document.uri.as_str());
+            serde_json::to_string(
+                &doc.map(|d| edits::quick_fixes(d, p.range))
+                    .unwrap_or_default(),
+            )
+        }
+        Formatting::METHOD => {
+            let p: lsp_types::DocumentFormattingParams = parse(params)?;
+            let doc = docs.get(p.text_document.uri.as_str());
+            serde_json::to_string(&doc.map(edits::formatted).unwrap_or_default())
+        }
         _ => return Ok(None),
     };
     value.map(Some).map_err(|e| e.to_string())
@@ -67,6 +82,13 @@ pub struct Occurrence {
     span: Span,
     symbol: SymbolId,
     defines: bool,
+}
+
+/// The names `doc` declares besides its symbols, found once per compile.
+fn names(doc: &Document) -> &Names {
+    let c = &doc.compiled;
+    doc.names
+        .get_or_init(|| names::find(c.front.name(), &c.file.text))
 }
 
 /// Every place a symbol of `doc`'s system is written, found once per
@@ -145,17 +167,42 @@ fn symbol_at(occ: &[Occurrence], at: usize) -> Option<SymbolId> {
         .map(|o| o.symbol)
 }
 
-/// The productions of the symbol at `at` (`definitions`), or every place it
-/// is written: `Location[]` as JSON.
+/// The productions of the symbol at `at` and the declaration of the name
+/// there (`definitions`), or every place either is written: `Location[]`
+/// as JSON.
 fn locations(doc: &Document, at: usize, definitions: bool) -> String {
     let occ = occurrences(doc);
     let symbol = symbol_at(occ, at);
-    let file = &doc.compiled.file;
-    let found = occ
+    let names = names(doc);
+    let decl = names.at(at);
+    let named: Vec<&Span> = match decl {
+        Some(i) if definitions => names.decls.get(i).map(|d| &d.span).into_iter().collect(),
+        Some(i) => names.places(i).collect(),
+        None => Vec::new(),
+    };
+    let mut spans: Vec<&Span> = occ
         .iter()
-        .filter(|o| Some(o.symbol) == symbol && (o.defines || !definitions))
-        .map(|o| range(file, &o.span));
-    json::locations(&doc.uri, found)
+        .filter(|o| symbol.is_some() && Some(o.symbol) == symbol && (o.defines || !definitions))
+        .map(|o| &o.span)
+        .collect();
+    // A LinF name is both declared (`lines F`) and a symbol: each place once.
+    spans.extend(named);
+    spans.sort_by_key(|s| (s.start, s.end));
+    spans.dedup();
+    let file = &doc.compiled.file;
+    json::locations(&doc.uri, spans.into_iter().map(|s| range(file, s)))
+}
+
+/// The word (letters, digits, `_`) around byte `at` of `text`.
+fn word_at(text: &str, at: usize) -> Option<&str> {
+    let at = at.min(text.len());
+    let is_word = |c: char| c.is_alphanumeric() || c == '_';
+    let start = text.get(..at)?.rfind(|c| !is_word(c)).map_or(0, |i| i + 1);
+    let end = text
+        .get(at..)?
+        .find(|c| !is_word(c))
+        .map_or(text.len(), |i| at + i);
+    (start < end).then(|| &text[start..end])
 }
 
 /// What hovering at `at` shows: the explanation of the diagnostics there,
@@ -171,6 +218,14 @@ fn hover(doc: &Document, at: usize) -> Option<Hover> {
         })
         .filter_map(|d| explanation(d.code.0))
         .collect();
+    // A code written in the text (a comment that names it, say).
+    let word = word_at(&c.file.text, at).filter(|w| !w.is_empty() && w.len() == 5);
+    let code = word.and_then(|w| explanation(w).filter(|e| !parts.contains(e)));
+    parts.extend(code);
+    let names = names(doc);
+    if let Some(i) = names.at(at) {
+        parts.extend(names.decls.get(i).map(|d| d.about.clone()));
+    }
     if let (Some(sys), Some(symbol)) = (&c.system, symbol_at(occurrences(doc), at)) {
         parts.push(symbol_text(doc, sys, symbol));
     }
@@ -269,12 +324,19 @@ fn angle_text(angle: Angle) -> String {
     }
 }
 
-/// The outline: each production under its predecessor's name, and a
-/// library's entries: `DocumentSymbol[]` as JSON.
+/// The outline: the settings, a library's entries, the names declared
+/// (rules, rotations, macros) and each production under its predecessor's
+/// name, in the order written: `DocumentSymbol[]` as JSON.
 fn outline(doc: &Document) -> String {
     let c = &doc.compiled;
     let file = &c.file;
-    let mut out = Vec::new();
+    let mut out = settings(doc);
+    for d in &names(doc).decls {
+        // A library's entries come from the library, whole.
+        if c.library.is_none() || d.kind != SymbolKind::MODULE {
+            out.push((d.name.clone(), d.kind, range(file, &d.span)));
+        }
+    }
     if let Some(lib) = &c.library {
         for e in &lib.entries {
             let name = if e.name.is_empty() {
@@ -299,7 +361,39 @@ fn outline(doc: &Document) -> String {
             out.push((name, SymbolKind::FUNCTION, range(file, span)));
         }
     }
+    out.sort_by_key(|o| (o.2.start.line, o.2.start.character));
     json::outline(out.into_iter())
+}
+
+/// The lines that start with one of the notation's keywords (`angle
+/// factor: 4`, `ANGLE 30`, `axiom F`), as outline entries.
+fn settings(doc: &Document) -> Vec<(String, SymbolKind, lsp_types::Range)> {
+    let file = &doc.compiled.file;
+    let keys: Vec<String> = (keywords(doc.compiled.front.name()).into_iter())
+        .map(|k| k.trim_end_matches(':').to_lowercase())
+        .collect();
+    let mut out = Vec::new();
+    let mut at = 0;
+    for line in file.text.split_inclusive('\n') {
+        let start = at + line.len() - line.trim_start().len();
+        at += line.len();
+        let written = line.trim();
+        let head = written.get(..written.len().min(24)).unwrap_or(written);
+        let head = head.to_lowercase();
+        let is_key = keys.iter().any(|k| {
+            head.starts_with(k.as_str())
+                && !(head[k.len()..].chars().next()).is_some_and(|c| c.is_alphanumeric())
+        });
+        if is_key {
+            let shown = crate::diagnostics::shortened(written, 60).into_owned();
+            out.push((
+                shown,
+                SymbolKind::PROPERTY,
+                range(file, &(start..start + written.len())),
+            ));
+        }
+    }
+    out
 }
 
 /// The turtle set of `doc`'s notation (the `.gft` default is no set).
@@ -319,6 +413,12 @@ fn keywords(notation: &str) -> Vec<&'static str> {
             .map(|(k, _)| *k)
             .collect(),
         "smith" => front::smith::lower::KEYS.to_vec(),
+        "linf" => (front::linf::lexer::BlockKind::ALL.iter())
+            .map(|k| k.keyword())
+            .collect(),
+        "cpfg" => (front::cpfg::lexer::Keyword::ALL.iter())
+            .map(|k| k.text())
+            .collect(),
         _ => Vec::new(),
     }
 }
@@ -357,10 +457,23 @@ fn completions(doc: &Document) -> Vec<CompletionItem> {
             ));
         }
     }
+    // Each label once: a file may declare ten thousand names.
+    let mut seen: HashSet<String> = out.iter().map(|i| i.label.clone()).collect();
+    for d in &names(doc).decls {
+        if seen.insert(d.name.clone()) {
+            let kind = match d.kind {
+                SymbolKind::FUNCTION => CompletionItemKind::FUNCTION,
+                SymbolKind::MODULE => CompletionItemKind::MODULE,
+                SymbolKind::CONSTANT => CompletionItemKind::CONSTANT,
+                _ => CompletionItemKind::VARIABLE,
+            };
+            let first_line = d.about.lines().next().unwrap_or("").to_string();
+            out.push(item(&d.name, kind, first_line));
+        }
+    }
     if let Some(sys) = &doc.compiled.system {
         for (id, info) in sys.symbols.iter() {
-            let known = out.iter().any(|i| i.label == info.name);
-            if !info.name.is_empty() && !known {
+            if !info.name.is_empty() && seen.insert(info.name.clone()) {
                 let does = sys.op(id).map_or("a symbol of this file".into(), |op| {
                     what_it_does(rotations, op)
                 });

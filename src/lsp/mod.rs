@@ -6,8 +6,10 @@
 //! system. Nothing is derived on a keystroke: `check`'s derivation limits
 //! (E0301, E0302) are left to `graftal check`.
 
+mod edits;
 mod features;
 mod json;
+mod names;
 mod position;
 mod publish;
 mod uri;
@@ -20,8 +22,9 @@ use lsp_types::notification::{
     PublishDiagnostics,
 };
 use lsp_types::{
-    CompletionOptions, HoverProviderCapability, OneOf, PublishDiagnosticsParams,
-    ServerCapabilities, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    CodeActionProviderCapability, CompletionOptions, HoverProviderCapability, OneOf,
+    PublishDiagnosticsParams, ServerCapabilities, TextDocumentSyncCapability, TextDocumentSyncKind,
+    Uri,
 };
 use serde_json::json;
 use std::cell::OnceCell;
@@ -37,6 +40,8 @@ pub struct Document {
     /// Where its symbols are written: found by the first request that
     /// needs them, once per compile.
     occurrences: OnceCell<Vec<features::Occurrence>>,
+    /// The names it declares besides symbols, found like `occurrences`.
+    names: OnceCell<names::Names>,
 }
 
 impl Document {
@@ -48,6 +53,7 @@ impl Document {
             uri,
             compiled: driver::compile(file),
             occurrences: OnceCell::new(),
+            names: OnceCell::new(),
         }
     }
 }
@@ -90,6 +96,8 @@ fn capabilities() -> ServerCapabilities {
         references_provider: Some(OneOf::Left(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
         completion_provider: Some(CompletionOptions::default()),
+        code_action_provider: Some(CodeActionProviderCapability::Simple(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
         ..Default::default()
     }
 }

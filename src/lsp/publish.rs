@@ -70,7 +70,7 @@ pub fn by_file(
 }
 
 /// One diagnostic, its spans in `file` (at `file_uri`).
-fn convert(d: &Diagnostic, file: &SourceFile, file_uri: &Uri) -> lsp_types::Diagnostic {
+pub fn convert(d: &Diagnostic, file: &SourceFile, file_uri: &Uri) -> lsp_types::Diagnostic {
     let mut out = convert_placeless(d);
     if let Some(span) = &d.span {
         out.range = range(file, span);

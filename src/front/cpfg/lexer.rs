@@ -46,6 +46,28 @@ pub enum Keyword {
 }
 
 impl Keyword {
+    /// Every keyword, in the order a file usually writes them.
+    pub const ALL: [Keyword; 18] = [
+        Keyword::Lsystem,
+        Keyword::Seed,
+        Keyword::DerivationLength,
+        Keyword::MaximumDepth,
+        Keyword::Consider,
+        Keyword::Ignore,
+        Keyword::Axiom,
+        Keyword::Define,
+        Keyword::Ring,
+        Keyword::Start,
+        Keyword::End,
+        Keyword::StartEach,
+        Keyword::EndEach,
+        Keyword::Homomorphism,
+        Keyword::Decomposition,
+        Keyword::NoWarnings,
+        Keyword::Warnings,
+        Keyword::EndLsystem,
+    ];
+
     pub fn text(self) -> &'static str {
         match self {
             Keyword::Lsystem => "lsystem:",

@@ -613,7 +613,7 @@ impl Lowerer<'_> {
 /// is near.
 fn with_nearest(d: Diagnostic, name: &str, candidates: &[&str]) -> Diagnostic {
     match nearest(name, candidates).first() {
-        Some(near) => d.with_help(format!("did you mean `{near}`?")),
+        Some(near) => d.suggesting(near),
         None => d,
     }
 }

@@ -653,7 +653,11 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
                     "malformed arrow `->`",
                 )
                 .with_label("cpfg writes the arrow as `-->`")
-                .with_help("replace `->` with `-->`"),
+                .with_fix(
+                    w[0].1.start..w[1].1.end,
+                    "-->".into(),
+                    "replace `->` with `-->`".into(),
+                ),
             );
             continue;
         }

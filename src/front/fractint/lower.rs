@@ -194,7 +194,7 @@ impl Cx<'_> {
             )
             .with_label("not `Angle`, `Axiom` or a rule");
             match nearest(word, &KEYWORDS).first() {
-                Some(k) => d.with_help(format!("did you mean `{}`?", capitalised(k))),
+                Some(k) => d.suggesting(capitalised(k)),
                 None => d.with_help("a line is `Angle n`, `Axiom STRING`, `x=STRING` or `}`"),
             }
         };

@@ -236,7 +236,7 @@ fn unknown_line(line: &[Tok<'_>], keyword: Option<(String, Span, usize)>, diags:
     // `width`, not `light`).
     let first = near.iter().find(|k| k.get(..1) == name.get(..1));
     d = match first.or(near.first()) {
-        Some(k) => d.with_help(format!("did you mean `{k}`?")),
+        Some(k) => d.suggesting(k),
         None => d.with_help("a production needs `->`: `F -> F+F`"),
     };
     push_lazily(diags, codes::GFT_UNKNOWN_KEYWORD, || d);

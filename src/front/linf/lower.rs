@@ -669,7 +669,7 @@ fn undeclared_name(cx: &mut Cx<'_>, text: &str, span: Span, whole: &str) -> Diag
         [] => d.with_help(format!(
             "declare it: `lines {text}` to draw it, `blanks {text}` to move without drawing, or give it a rule `{text} = …`"
         )),
-        [one] => d.with_help(format!("did you mean `{one}`?")),
+        [one] => d.suggesting(one),
         many => d.with_help(format!(
             "did you mean one of {}?",
             many.iter()
@@ -1075,7 +1075,7 @@ fn unknown_angle_diagnostic(cx: &mut Cx<'_>, run: &SignRun, text: &str, span: &S
     .with_label("not a declared angle")
     .with_secondary(run.span.clone(), "rotates by the angle named here");
     match (near.first(), cx.angle_names.is_empty()) {
-        (Some(n), _) => d.with_help(format!("did you mean `{n}`?")),
+        (Some(n), _) => d.suggesting(n),
         (None, true) => d.with_help(format!(
             "declare it in the angles block: `angles {text} = (0, pi/2)`"
         )),

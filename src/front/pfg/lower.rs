@@ -132,7 +132,7 @@ fn lower_headers(cx: &mut Ctx<'_>, headers: &[&Header]) -> [bool; 5] {
                 )
                 .with_label("not a pfg header");
                 match nearest(&h.key, &HEADERS).first() {
-                    Some(k) => d.with_help(format!("did you mean `{k}`?")),
+                    Some(k) => d.suggesting(k),
                     None => d.with_help(format!(
                         "pfg headers are: {}",
                         HEADERS.map(|k| format!("`{k}:`")).join(", ")

@@ -221,7 +221,7 @@ fn unknown_key(e: &Entry, suggest: &mut Suggester, diags: &mut Diagnostics) {
     )
     .with_label("ignored");
     d = match suggest.nearest(&e.key, &KEYS).first() {
-        Some(k) => d.with_help(format!("did you mean `{k}`?")),
+        Some(k) => d.suggesting(k),
         None => d.with_help(format!("the keys are {}", KEYS.join(", "))),
     };
     diags.push(d);

@@ -182,13 +182,13 @@ impl Ctx<'_> {
                         name_list(c.rules.iter().map(|r| r.name.as_str()), true)
                     )
                 };
-                Diagnostic::at(
+                let d = Diagnostic::at(
                     codes::STL_UNKNOWN_RULE,
                     span.start + i..span.start + j,
                     format!("unknown rule `{bad}`"),
                 )
-                .with_label("not a rule or a drawing component")
-                .with_help(c.did_you_mean(bad, otherwise))
+                .with_label("not a rule or a drawing component");
+                c.did_you_mean(d, bad, otherwise)
             });
             return None;
         }
@@ -205,17 +205,18 @@ impl Ctx<'_> {
         }
     }
 
-    /// Help for an unknown rule `name`: the nearest rule name, when one is
-    /// near and the file's budget for suggestions allows, or `otherwise`.
-    fn did_you_mean(&mut self, name: &str, otherwise: String) -> String {
+    /// `d` (an unknown rule `name`) with the nearest rule name as its fix,
+    /// when one is near and the file's budget for suggestions allows, or
+    /// `otherwise` as its help.
+    fn did_you_mean(&mut self, d: Diagnostic, name: &str, otherwise: String) -> Diagnostic {
         if !self
             .suggester
             .afford(name.len(), self.rules.len(), self.max_name)
         {
-            return otherwise;
+            return d.with_help(otherwise);
         }
         let names: Vec<&str> = self.rules.iter().map(|r| r.name.as_str()).collect();
-        did_you_mean(name, &names, otherwise)
+        did_you_mean(d, name, &names, otherwise)
     }
 
     fn room(&mut self, have: usize, add: usize, span: &Span) -> bool {
@@ -598,13 +599,13 @@ impl Ctx<'_> {
         }
         self.report(codes::STL_UNKNOWN_RULE, |c| {
             let otherwise = "an entry is a rule name, `~` (failed) or nothing".to_string();
-            Diagnostic::at(
+            let d = Diagnostic::at(
                 codes::STL_UNKNOWN_RULE,
                 span.clone(),
                 format!("unknown rule `{name}`"),
             )
-            .with_label("no rule of this name")
-            .with_help(c.did_you_mean(name, otherwise))
+            .with_label("no rule of this name");
+            c.did_you_mean(d, name, otherwise)
         });
         None
     }
@@ -760,12 +761,17 @@ fn nonneg(diags: &mut Diagnostics, n: &Num, what: &str) -> Option<f64> {
     Some(n.value)
 }
 
-/// Help for an unknown `name`: the nearest of `candidates`, or `otherwise`
-/// when none is near.
-fn did_you_mean(name: &str, candidates: &[&str], otherwise: impl Into<String>) -> String {
+/// `d` (an unknown `name`) with the nearest of `candidates` as its fix, or
+/// `otherwise` as its help when none is near.
+fn did_you_mean(
+    d: Diagnostic,
+    name: &str,
+    candidates: &[&str],
+    otherwise: impl Into<String>,
+) -> Diagnostic {
     match nearest(name, candidates).first() {
-        Some(near) => format!("did you mean `{near}`?"),
-        None => otherwise.into(),
+        Some(near) => d.suggesting(near),
+        None => d.with_help(otherwise.into()),
     }
 }
 
@@ -819,20 +825,18 @@ fn unknown_colour_name(diags: &mut Diagnostics, n: &str, span: &Span) {
         .iter()
         .map(|(n, _)| *n)
         .collect();
-    let help = did_you_mean(
+    let d = Diagnostic::at(
+        codes::STL_UNKNOWN_COLOUR,
+        span.clone(),
+        format!("unknown colour `{n}`"),
+    )
+    .with_label("not a Delphi colour name");
+    diags.push(did_you_mean(
+        d,
         n,
         &names,
         "use a Delphi colour name (clGreen, clOlive, …; `graftal explain E0506` lists them) or `$00BBGGRR`",
-    );
-    diags.push(
-        Diagnostic::at(
-            codes::STL_UNKNOWN_COLOUR,
-            span.clone(),
-            format!("unknown colour `{n}`"),
-        )
-        .with_label("not a Delphi colour name")
-        .with_help(help),
-    );
+    ));
 }
 
 /// The shape's kind, spelled as in [`SHAPE_KINDS`].
@@ -840,20 +844,18 @@ fn shape_kind(diags: &mut Diagnostics, s: &ShapeAst) -> Option<&'static str> {
     if let Some(kind) = SHAPE_KINDS.iter().find(|k| k.eq_ignore_ascii_case(&s.kind)) {
         return Some(kind);
     }
-    let help = did_you_mean(
+    let d = Diagnostic::at(
+        codes::STL_UNKNOWN_SHAPE,
+        s.kind_span.clone(),
+        format!("unknown shape `{}`", s.kind),
+    )
+    .with_label("not a layout shape");
+    diags.push(did_you_mean(
+        d,
         &s.kind,
         &SHAPE_KINDS,
         "the shapes are Rectangle, RoundRect, Ellipse and Polygon",
-    );
-    diags.push(
-        Diagnostic::at(
-            codes::STL_UNKNOWN_SHAPE,
-            s.kind_span.clone(),
-            format!("unknown shape `{}`", s.kind),
-        )
-        .with_label("not a layout shape")
-        .with_help(help),
-    );
+    ));
     None
 }
 
