@@ -1,5 +1,5 @@
 //! Smith (SIGGRAPH '84): the string examples of Figures KOCH and
-//! SIERPINSKI (`std:smith/koch`, `std:smith/sierpinski`), and the growth
+//! SIERPINSKI (`std:smith/koch-star`, `std:smith/arrowhead`), and the growth
 //! condition of item 4: the branches common to generations n and n+1 are
 //! drawn at the same positions.
 
@@ -50,7 +50,7 @@ fn vertices(segs: &[Segment]) -> Vec<[f64; 3]> {
 /// degrees apart, and 6 inner points on a circle sqrt(3) times smaller.
 #[test]
 fn koch_on_a_triangle_is_a_star_of_david_at_the_first_generation() {
-    let sys = std_system("smith/koch");
+    let sys = std_system("smith/koch-star");
     assert_eq!(word(&sys, 0), "F++F++F");
     assert_eq!(word(&sys, 1), "F-F++F-F++F-F++F-F++F-F++F-F");
     assert_eq!(segments(&sys, 0).len(), 3);
@@ -98,7 +98,7 @@ fn koch_on_a_triangle_is_a_star_of_david_at_the_first_generation() {
 /// arrowhead's triangle.
 #[test]
 fn sierpinski_arrowhead_swaps_sides_and_never_overlaps() {
-    let sys = std_system("smith/sierpinski");
+    let sys = std_system("smith/arrowhead");
     assert_eq!(word(&sys, 0), "L");
     assert_eq!(word(&sys, 1), "R+L+R");
     assert_eq!(word(&sys, 2), "L-R-L+R+L+R+L-R-L");
