@@ -101,7 +101,9 @@ pub static ENTRIES: &[Entry] = &[
     entry!("stl" / "fig09-outline-bfs" . "stl"),
     entry!("stl" / "fig10-outline-dfs" . "stl"),
     entry!("smith" / "cartoon-tree" . "smith"),
+    entry!("smith" / "koch-star" . "gft"),
     entry!("smith" / "senstree" . "smith"),
+    entry!("smith" / "arrowhead" . "gft"),
     entry!("smith" / "table1" . "smith"),
     entry!("smith" / "three-thistle" . "smith"),
     entry!("smith" / "white-sands" . "smith"),
@@ -325,6 +327,7 @@ mod tests {
             ("linf", ".linf"),
             ("stl", ".stl"),
             ("smith", ".smith"),
+            ("smith", ".gft"),
             ("gft", ".gft"),
         ] {
             let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {

@@ -336,3 +336,61 @@ fn flowers_are_coloured_apart_from_the_stems() {
     assert!(g.segments.iter().all(|s| s.colour == stem));
     assert!(g.discs.iter().all(|d| d.colour != stem));
 }
+
+/// Gene's sizes: a leaf disc of `leaf-size` and a flower of
+/// `flower-size` (pixels), the stems `width` wide whatever the leaves.
+#[test]
+fn leaf_and_flower_sizes_and_the_stem_width_as_gene_sets_them() {
+    let draw = |extra: &str| {
+        let src = format!("rules: 0.1[1].1.1.0.11.1.0\ngenerations: 10\n{extra}");
+        let sys = smith::read_ok(&src);
+        let (_, g) = driver::geometry(&sys, &RunOptions::default()).expect("draws");
+        let discs: Vec<f64> = g.discs.iter().map(|d| d.diameter).collect();
+        let widths: Vec<f64> = g.segments.iter().map(|s| s.width).collect();
+        assert_eq!(discs.len(), 5, "{extra}");
+        assert!(g.discs.iter().all(|d| d.pixels));
+        (discs, widths)
+    };
+    let all = |v: &[f64], x: f64| v.iter().all(|&y| (y - x).abs() < 1e-12);
+    let (discs, widths) = draw("");
+    assert!(all(&discs, 3.0) && all(&widths, 1.0));
+    let (discs, widths) = draw("leaf-size: 5\nwidth: 2\n");
+    assert!(all(&discs, 5.0) && all(&widths, 2.0));
+    let (discs, widths) = draw("leaf: flower\n");
+    assert!(all(&discs, 8.0) && all(&widths, 1.0));
+    let (discs, widths) = draw("leaf: flower\nflower-size: 12\nleaf-size: 2\n");
+    assert!(all(&discs, 12.0) && all(&widths, 1.0));
+}
+
+/// Gene's "finite set of angles": the j-th branch written (over the rule
+/// string's images, and in the axiom) turns by the j-th angle of the list,
+/// cyclically, and keeps it.
+#[test]
+fn an_angles_list_gives_each_branch_its_own_angle() {
+    let sys = smith::read_ok(
+        "rules: 0.1[1].1.1.0.1[0][1].1.0\nangles: 10, -20 30\naxiom: 1[1][1][1][1]\n",
+    );
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).expect("draws");
+    let heading = |k: usize| {
+        let s = &g.segments[k];
+        (s.b[1] - s.a[1]).atan2(s.b[0] - s.a[0]).to_degrees()
+    };
+    let turns: Vec<f64> = (1..5).map(|k| heading(k) - heading(0)).collect();
+    let magnitudes: Vec<i64> = turns.iter().map(|t| t.abs().round() as i64).collect();
+    assert_eq!(magnitudes, [10, 20, 30, 10]);
+    assert!(turns[0] * turns[1] < 0.0 && turns[0] * turns[2] > 0.0);
+    // In the images: 001 -> 1[1] has the list's first angle, the two
+    // branches of 101 -> 1[0][1] the second and third.
+    let names = |triple: usize| -> Vec<&str> {
+        let p = &sys.productions[triple];
+        let w = p.alternatives[0].successor.symbols();
+        w.iter()
+            .map(|&s| sys.symbols.name(s))
+            .filter(|n| n.starts_with('a'))
+            .collect()
+    };
+    // Symbol 0's productions come first, in the order of `order`: both
+    // neighbours 00, 01, 10, 11.
+    assert_eq!(names(1), ["a0"]);
+    assert_eq!(names(3), ["a1", "a2"]);
+}

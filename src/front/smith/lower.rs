@@ -29,19 +29,24 @@ use crate::ir::{
 };
 
 /// The keys a Smith file may give.
-pub const KEYS: [&str; 8] = [
+pub const KEYS: [&str; 12] = [
     "rules",
     "axiom",
     "generations",
     "angle",
     "alternate",
+    "angles",
     "roll",
     "length",
+    "width",
     "leaf",
+    "leaf-size",
+    "flower-size",
 ];
 
-/// The symbols added for drawing, which the context filter skips.
-pub const DRAWING_SYMBOLS: [&str; 5] = ["+", "-", "/", "@", "'"];
+/// The symbols added for drawing, which the context filter skips (and
+/// `a0`, `a1`, … for the turns of an `angles:` list).
+pub const DRAWING_SYMBOLS: [&str; 6] = ["+", "-", "/", "@", "'", "#"];
 
 /// What is drawn at a branch end.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,9 +61,18 @@ pub enum Leaf {
 pub struct Gene {
     pub angle: f64,
     pub alternate: bool,
+    /// Gene's "finite set of angles" (degrees): the j-th branch written in
+    /// the rule string turns by the j-th (cyclically); replaces `angle`
+    /// and `alternate` when given.
+    pub angles: Vec<f64>,
     pub roll: f64,
     pub length: f64,
+    /// The stem width (pixels).
+    pub width: f64,
     pub leaf: Leaf,
+    /// The diameters (pixels) of a leaf disc and of a flower.
+    pub leaf_size: f64,
+    pub flower_size: f64,
 }
 
 impl Default for Gene {
@@ -66,12 +80,19 @@ impl Default for Gene {
         Gene {
             angle: 22.5,
             alternate: true,
+            angles: Vec::new(),
             roll: 0.0,
             length: 1.0,
+            width: 1.0,
             leaf: Leaf::Disc,
+            leaf_size: 3.0,
+            flower_size: 8.0,
         }
     }
 }
+
+/// The most angles an `angles:` list may give.
+const MAX_ANGLES: usize = 64;
 
 /// One character of an image or the axiom: `0`, `1`, `[` or `]`.
 type Chars = Vec<(char, Span)>;
@@ -109,13 +130,19 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
     sys.settings.steps = steps;
     sys.settings.delta = gene.angle.to_radians();
     sys.settings.step = gene.length;
-    let (word, axiom_spans) = syms.word(&axiom, true);
+    let (word, axiom_spans) = syms.word(&axiom, true, 0);
     sys.axiom = word;
     spans.axiom = axiom_spans;
     if let Some(images) = images {
+        // With an `angles:` list, branches are numbered across the images.
+        let mut first = [0; 8];
+        for t in 1..8 {
+            let branches = images[t - 1].0.iter().filter(|c| c.0 == '[').count();
+            first[t] = first[t - 1] + branches * usize::from(!gene.angles.is_empty());
+        }
         for s in 0..2 {
             for (left, right, triple) in order(s) {
-                let (succ, succ_spans) = syms.word(&images[triple].0, false);
+                let (succ, succ_spans) = syms.word(&images[triple].0, false, first[triple]);
                 let ctx = |c: Option<usize>| c.map(|b| vec![syms.bit[b]]).unwrap_or_default();
                 sys.productions.push(Production::new(
                     ctx(left),
@@ -198,6 +225,24 @@ fn read_setting(
             Some(x) => gene.length = x,
             None => bad(diags, "a number"),
         },
+        "width" | "leaf-size" | "flower-size" => match number(&e.value).filter(|x| *x > 0.0) {
+            Some(x) if e.key == "width" => gene.width = x,
+            Some(x) if e.key == "leaf-size" => gene.leaf_size = x,
+            Some(x) => gene.flower_size = x,
+            None => bad(diags, "a number above 0"),
+        },
+        "angles" => {
+            let list: Option<Vec<f64>> = e
+                .value
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .filter(|v| !v.is_empty())
+                .map(number)
+                .collect();
+            match list.filter(|l| !l.is_empty() && l.len() <= MAX_ANGLES) {
+                Some(l) => gene.angles = l,
+                None => bad(diags, "a list of 1 to 64 numbers"),
+            }
+        }
         "alternate" => match e.value.to_ascii_lowercase().as_str() {
             "yes" | "true" | "on" => gene.alternate = true,
             "no" | "false" | "off" => gene.alternate = false,
@@ -362,11 +407,11 @@ fn read_axiom(e: &Entry, diags: &mut Diagnostics) -> Chars {
 /// The IR symbols of a Smith system and how its characters become words.
 struct Symbols {
     bit: [SymbolId; 2],
-    turn: [SymbolId; 2],
+    /// The turns of branches 0, 1, 2, … (cyclically).
+    turn: Vec<SymbolId>,
     roll: Option<SymbolId>,
-    leaf: Option<SymbolId>,
-    flower: Option<SymbolId>,
-    alternate: bool,
+    /// What is drawn at a branch end, in order (colour, size, disc).
+    leaf: Vec<SymbolId>,
 }
 
 impl Symbols {
@@ -375,63 +420,85 @@ impl Symbols {
         for b in bit {
             sys.set_interpretation(b, TurtleOp::Forward { draw: true });
         }
-        let turn = [sys.intern("+"), sys.intern("-")];
-        for (t, sign) in turn.into_iter().zip([1.0, -1.0]) {
-            let angle = Angle::Delta(sign);
-            sys.set_interpretation(
-                t,
-                TurtleOp::Rotate {
-                    axis: Axis::Up,
-                    angle,
-                },
-            );
-        }
+        let op = |sys: &mut System, name: &str, op: TurtleOp| {
+            let id = sys.intern(name);
+            sys.set_interpretation(id, op);
+            id
+        };
+        let turn_by = |angle| TurtleOp::Rotate {
+            axis: Axis::Up,
+            angle,
+        };
+        let turn = if gene.angles.is_empty() {
+            let both = [("+", 1.0), ("-", -1.0)];
+            let sides = if gene.alternate {
+                &both[..]
+            } else {
+                &both[..1]
+            };
+            sides
+                .iter()
+                .map(|&(name, sign)| op(sys, name, turn_by(Angle::Delta(sign))))
+                .collect()
+        } else {
+            (gene.angles.iter().enumerate())
+                .map(|(k, a)| {
+                    op(
+                        sys,
+                        &format!("a{k}"),
+                        turn_by(Angle::Radians(a.to_radians())),
+                    )
+                })
+                .collect::<Vec<_>>()
+        };
         let roll = (gene.roll != 0.0).then(|| {
-            let r = sys.intern("/");
             let angle = Angle::Radians(gene.roll.to_radians());
-            sys.set_interpretation(
-                r,
+            op(
+                sys,
+                "/",
                 TurtleOp::Rotate {
                     axis: Axis::Heading,
                     angle,
                 },
-            );
-            r
+            )
         });
-        let leaf = (gene.leaf != Leaf::None).then(|| {
-            let l = sys.intern("@");
-            sys.set_interpretation(l, TurtleOp::Sphere);
-            l
-        });
-        // A flower: a wider disc in the palette's next colour (the pfg
-        // palette, so that a translation to pfg stays exact).
-        let flower = (gene.leaf == Leaf::Flower).then(|| {
-            sys.settings.width = 4.0;
-            let f = sys.intern("'");
-            sys.set_interpretation(f, TurtleOp::NextColour);
-            f
-        });
-        let ignored = DRAWING_SYMBOLS
-            .iter()
-            .filter_map(|s| sys.symbols.get(s))
-            .collect();
+        sys.settings.width = gene.width;
+        // A leaf or flower: the stem width grown to its size (`#`, undone
+        // by the `]` that follows), then a disc; a flower in the palette's
+        // next colour (the pfg palette, so that a translation to pfg
+        // keeps its words).
+        let mut leaf = Vec::new();
+        let size = match gene.leaf {
+            Leaf::Disc => Some(gene.leaf_size),
+            Leaf::Flower => {
+                leaf.push(op(sys, "'", TurtleOp::NextColour));
+                Some(gene.flower_size)
+            }
+            Leaf::None => None,
+        };
+        if let Some(size) = size {
+            sys.settings.width_step = size - gene.width;
+            leaf.push(op(sys, "#", TurtleOp::LineWidth { up: true }));
+            leaf.push(op(sys, "@", TurtleOp::Sphere));
+        }
+        let mut ignored: Vec<SymbolId> = turn.clone();
+        ignored.extend(roll.iter().chain(&leaf));
         sys.context = ContextFilter::Ignore(ignored);
         Symbols {
             bit,
             turn,
             roll,
             leaf,
-            flower,
-            alternate: gene.alternate,
         }
     }
 
     /// The word of `chars` with the drawing symbols added (a leaf at the
     /// end when `axiom`), and a span per module.
-    fn word(&self, chars: &Chars, axiom: bool) -> (Word, Vec<Span>) {
+    /// Branches are numbered from `first` (for the turn each gets).
+    fn word(&self, chars: &Chars, axiom: bool, first: usize) -> (Word, Vec<Span>) {
         let mut ids = Vec::new();
         let mut spans = Vec::new();
-        let mut branch = 0;
+        let mut branch = first;
         let mut push = |id: SymbolId, span: &Span| {
             ids.push(id);
             spans.push(span.clone());
@@ -441,7 +508,7 @@ impl Symbols {
                 '0' | '1' => push(self.bit[(*c == '1') as usize], span),
                 '[' => {
                     push(SymbolId::OPEN, span);
-                    push(self.turn[usize::from(self.alternate) * (branch % 2)], span);
+                    push(self.turn[branch % self.turn.len()], span);
                     if let Some(r) = self.roll {
                         push(r, span);
                     }
@@ -461,7 +528,7 @@ impl Symbols {
 
     /// The leaf (or flower) at a branch end.
     fn leaf_at(&self, span: &Span, push: &mut impl FnMut(SymbolId, &Span)) {
-        for s in [self.flower, self.leaf].into_iter().flatten() {
+        for &s in &self.leaf {
             push(s, span);
         }
     }
