@@ -289,3 +289,35 @@ fn cpfg_refusals_have_codes_of_their_own() {
         assert!(info.explanation.len() > 100, "{code}");
     }
 }
+
+/// Each `.gft` code has a snapshot of its own (tests/diagnostics/gft-CODE-*.gft,
+/// the code being the only one the file raises) and its `graftal explain` text.
+#[test]
+fn each_gft_code_has_its_snapshot_and_explanation() {
+    let gft_codes = [
+        "E0900", "E0901", "E0902", "E0903", "E0904", "E0905", "E0906", "E0907", "W0900", "W0901",
+        "W0902", "W0903",
+    ];
+    for code in gft_codes {
+        let prefix = format!("gft-{}-", code.to_ascii_lowercase());
+        let file = inputs()
+            .into_iter()
+            .find(|p| {
+                p.file_name()
+                    .unwrap()
+                    .to_string_lossy()
+                    .starts_with(&prefix)
+            })
+            .unwrap_or_else(|| panic!("no snapshot for {code}"));
+        let name = file.file_name().unwrap().to_string_lossy().to_string();
+        assert_eq!(codes_of(&name), [code], "{name}");
+        let out = common::graftal(&["explain", code]);
+        assert_eq!(out.status, 0, "{code}");
+        let info = codes::lookup(code).unwrap();
+        assert!(
+            out.stdout.contains(info.explanation),
+            "{code}: {}",
+            out.stdout
+        );
+    }
+}

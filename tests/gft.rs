@@ -441,3 +441,26 @@ fn a_declared_name_of_several_tokens_is_found_in_a_spaced_word() {
         .collect();
     assert_eq!(names, ["X", "[", "+a", "X", "]", "+a", "X"]);
 }
+
+/// A misspelt turtle set, rotation or symbol name gets the nearest
+/// declared one as its help (a misspelt setting: the test above).
+#[test]
+fn misspelt_declared_names_suggest_the_nearest() {
+    let cases = [
+        ("turtle lnif\naxiom F\n", "E0902", "did you mean `linf`?"),
+        (
+            "turtle linf\nrotation leaf = (0, pi/18)\nX = frenet lef\naxiom FX\n",
+            "E0906",
+            "did you mean `leaf`?",
+        ),
+        ("symbol apex\naxiom apx\n", "W0903", "did you mean `apex`?"),
+    ];
+    for (text, code, help) in cases {
+        let c = compiled("t.gft", text);
+        let d: Vec<_> = c.diagnostics.iter().collect();
+        assert_eq!(d.len(), 1, "{text:?}: {d:#?}");
+        assert_eq!((d[0].code.0, d[0].help.as_deref()), (code, Some(help)));
+    }
+    // Letters no declared name is near, and a declared name, are no warning.
+    assert!(codes_of("symbol apex\naxiom FFF apex\n").is_empty());
+}

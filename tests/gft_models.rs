@@ -299,3 +299,27 @@ fn the_readme_shows_each_koch_island_file_as_it_is() {
         );
     }
 }
+
+/// `F-F-F-F`, `F -> F-F+F+FF-F-F+F` is ABOP's Fig. 1.6 (Prusinkiewicz &
+/// Hanan 1989, Fig. 2.2); ABOP's Fig. 1.7b is the quadratic snowflake.
+#[test]
+fn the_koch_island_is_labelled_with_its_figure() {
+    for file in [
+        "README.md",
+        "docs/gft.md",
+        "stdlib/gft/INDEX.md",
+        "stdlib/gft/koch-island.gft",
+        "tests/corpus/gft/koch-island.gft",
+    ] {
+        let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(path).unwrap();
+        let labels: Vec<&str> = (text.lines())
+            .filter(|l| l.to_lowercase().contains("koch island") && l.contains("Fig."))
+            .collect();
+        assert!(!labels.is_empty(), "{file}");
+        for line in labels {
+            let abop_ok = !line.contains("ABOP") || line.contains("ABOP Fig. 1.6");
+            assert!(abop_ok && !line.contains("1.7b"), "{file}: {line}");
+        }
+    }
+}

@@ -907,7 +907,10 @@ pub fn odd_angle(angles: &[(SymbolId, f64)]) -> Option<SymbolId> {
 /// none does, a problem at the first angle that breaks it, and 360.
 pub fn angle_factor(e: &mut Emitter<'_>, by_symbol: &[(SymbolId, f64)], target: &str) -> u64 {
     let angles: Vec<f64> = by_symbol.iter().map(|x| x.1).collect();
-    let prefer = e.origin.angle_divisions.map(|n| n.min(i64::MAX as u64));
+    // With no turn to fit, the system's own increment, so that δ is kept.
+    let own = || angles.is_empty().then(|| e.sys.settings.whole_divisions());
+    let prefer =
+        (e.origin.angle_divisions.map(|n| n.min(i64::MAX as u64))).or_else(|| own().flatten());
     if let Some(n) = increment(&angles, prefer) {
         return n;
     }

@@ -211,6 +211,7 @@
 
 pub mod colours;
 pub mod d0l;
+pub mod gft_words;
 pub mod growth;
 pub mod layout;
 pub mod look;
@@ -879,6 +880,17 @@ pub struct Settings {
     pub seed: Option<u64>,
     /// Tropisms bending every step (cpfg `tropism:`; none elsewhere).
     pub tropisms: Vec<look::Tropism>,
+}
+
+impl Settings {
+    /// The n for which δ is 2π/n, when δ divides the turn whole (n at
+    /// most 3600, within 1e-9).
+    pub fn whole_divisions(&self) -> Option<u64> {
+        let n = std::f64::consts::TAU / self.delta;
+        let whole = n.round();
+        (n.is_finite() && (1.0..=3600.0).contains(&whole) && (n - whole).abs() < 1e-9)
+            .then_some(whole as u64)
+    }
 }
 
 impl Default for Settings {

@@ -2,6 +2,7 @@
 
 use super::expr::{self, num, Names};
 use super::look::degrees_or_radians;
+use crate::ir::gft_words::is_keyword;
 use crate::ir::program::Expr;
 use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, ElasticityChange, QueryKind, SymbolId, System, TurtleOp, Word};
@@ -10,56 +11,6 @@ use std::fmt::Write;
 /// Characters a bare name may not contain (docs/gft.md §2; braces and
 /// commas too, since blocks, seeds and parameter lists use them).
 const RESERVED: &[char] = &['(', ')', ':', '<', '>', '=', '?', '`', '"', '{', '}', ','];
-
-/// The keywords of docs/gft.md: a line that starts with one (and has no
-/// `->`) is that item, so a symbol of that name starting a line is
-/// backquoted.
-const KEYWORDS: &[&str] = &[
-    "steps",
-    "angle",
-    "length",
-    "scale",
-    "width",
-    "width-factor",
-    "width-step",
-    "widths",
-    "colour",
-    "colour-step",
-    "view",
-    "seed",
-    "tropism",
-    "turtle",
-    "symbol",
-    "silent",
-    "choose",
-    "ignore",
-    "consider",
-    "ring",
-    "cut",
-    "decomposition",
-    "homomorphism",
-    "axiom",
-    "rotation",
-    "colours",
-    "globals",
-    "array",
-    "function",
-    "start",
-    "start-each",
-    "end-each",
-    "end",
-    "rule",
-    "stems",
-    "outline",
-    "growth",
-    "background",
-    "camera",
-    "lighting",
-    "light",
-    "material",
-    "surface",
-    "contour",
-];
 
 /// How each symbol is written, and whether words put a space between
 /// modules (they do as soon as one name is not a single character, so
@@ -287,7 +238,7 @@ impl Spelling {
                 let _ = writeln!(out, "silent {key} = {text}");
             } else if changed.contains(&s) {
                 let name = self.name(s);
-                if KEYWORDS.contains(&name) {
+                if is_keyword(name) {
                     let _ = writeln!(out, "`{name}` = {text}");
                 } else {
                     let _ = writeln!(out, "{name} = {text}");

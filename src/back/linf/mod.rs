@@ -455,11 +455,15 @@ fn text(e: &mut Emitter<'_>, sp: &Spellings, axiom: &str, rule_lines: &[String])
     if let Some((az, el)) = sys.settings.view {
         let _ = writeln!(out, "#: view {},{}", super::degrees(az), super::degrees(el));
     }
-    if !sp.lines.is_empty() {
-        let _ = writeln!(out, "lines {}", sp.lines.join(" "));
-    }
-    if !sp.blanks.is_empty() {
-        let _ = writeln!(out, "blanks {}", sp.blanks.join(" "));
+    // In name order: symbol ids follow the order a reader met the names,
+    // which says nothing of the system (a `.gft` file may meet them in
+    // another order), so the declarations do not follow them.
+    for (directive, names) in [("lines", &sp.lines), ("blanks", &sp.blanks)] {
+        if !names.is_empty() {
+            let mut names: Vec<&str> = names.iter().map(String::as_str).collect();
+            names.sort_unstable();
+            let _ = writeln!(out, "{directive} {}", names.join(" "));
+        }
     }
     let decls = &sp.rot.decls;
     if !decls.is_empty() {

@@ -88,4 +88,14 @@ as in cpfg, a local whose value is 0. It is often a misspelt name.
 
 Example:
     A(x) -> F(y)    <- `y` is 0: did you mean `x`?";
+
+    GFT_UNDECLARED_NAME = "W0903", "letters near a declared name",
+"A run of letters that no declared name matches is read one letter a
+module, as the books read `FF`. When the run is near a name the file
+declares (with `symbol` or `NAME = OPERATION`), it is often that name
+misspelt.
+
+Example:
+    symbol apex
+    axiom apx       <- did you mean `apex`? (read as `a p x`)";
 }

@@ -5,6 +5,7 @@
 
 use super::ast::{self, Arg, Block, Expr as AExpr, ExprKind, File, Item, Keyword, Piece};
 use crate::diagnostics::{codes, Code, Diagnostic, Diagnostics};
+use crate::front::repeats::push_lazily;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, BinOp, Expr, Place, Stmt, UnOp, Var, BUILTINS};
 use crate::ir::vocabulary::{self, TurtleSet};
@@ -27,6 +28,8 @@ struct Cx<'d> {
     settings: HashMap<String, Span>,
     globals: HashMap<String, u16>,
     arrays: HashMap<String, (u16, usize)>,
+    /// The file's budget for "did you mean …?".
+    suggester: Suggester,
 }
 
 /// Lowers a parsed file; the system is usable only when `diags` got no error.
@@ -40,6 +43,7 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         settings: HashMap::new(),
         globals: HashMap::new(),
         arrays: HashMap::new(),
+        suggester: Suggester::default(),
     };
     let keyword = |name: &'static str| {
         file.items.iter().filter_map(move |i| match i {
@@ -202,12 +206,18 @@ impl Cx<'_> {
             Some(set) => self.set = set,
             None => {
                 let span = k.args.first().map_or(k.span.clone(), |a| a.span().clone());
+                let sets: Vec<&str> = TurtleSet::ALL.iter().map(|s| s.name()).collect();
+                let help = match self.suggester.nearest(&name, &sets).first() {
+                    Some(n) => format!("did you mean `{n}`?"),
+                    None => "the sets are `pfg`, `linf`, `stl`, `cpfg`, `fractint` and `none`"
+                        .to_string(),
+                };
                 self.diags.push(err(
                     codes::GFT_UNKNOWN_OPERATION,
                     &span,
                     format!("unknown turtle set `{name}`"),
                     "not a turtle set",
-                    "the sets are `pfg`, `linf`, `stl`, `cpfg`, `fractint` and `none`",
+                    &help,
                 ));
             }
         }
@@ -360,7 +370,7 @@ impl Cx<'_> {
                     .map(|o| o.0)
                     .chain(PARAMETRISED_OPERATIONS.iter().copied())
                     .collect();
-                let near = Suggester::default().nearest(other, &names);
+                let near = self.suggester.nearest(other, &names);
                 let help = match near.first() {
                     Some(n) => format!("did you mean `{n}`?"),
                     None => "docs/gft.md §3 lists the operations".to_string(),
@@ -393,12 +403,20 @@ impl Cx<'_> {
                 negate,
             }),
             None => {
+                let declared: Vec<&str> = (self.sys.rotations.iter())
+                    .map(|r| r.name.as_str())
+                    .filter(|n| !n.is_empty())
+                    .collect();
+                let help = match self.suggester.nearest(name, &declared).first() {
+                    Some(n) => format!("did you mean `{n}`?"),
+                    None => "declare it: `rotation t = (0, pi/3)`".to_string(),
+                };
                 self.diags.push(err(
                     codes::GFT_UNKNOWN_NAME,
                     &s,
                     format!("no rotation `{name}`"),
                     "not declared with `rotation`",
-                    "declare it: `rotation t = (0, pi/3)`",
+                    &help,
                 ));
                 None
             }
@@ -808,6 +826,7 @@ impl Cx<'_> {
                     spans.push(span.clone());
                 }
                 Piece::Text(text, span) => {
+                    self.misspelt_name(text, span);
                     for (name, s) in self.split(text, span.start) {
                         let id = self.symbol(&name, &s, guard.take());
                         ids.push(id);
@@ -881,6 +900,40 @@ impl Cx<'_> {
             }
         }
         id
+    }
+
+    /// Warns (W0903) of a run of three or more letters that no declared
+    /// name matches, so that it is read one letter a module, when it is
+    /// near a name the file declares (`symbol apex`, then `apx`).
+    fn misspelt_name(&mut self, text: &str, span: &Span) {
+        if text.len() < 3 || !text.chars().all(|c| c.is_ascii_alphabetic()) {
+            return;
+        }
+        if self.names.iter().any(|n| text.starts_with(n.as_str())) {
+            return;
+        }
+        let own: Vec<&str> = (self.names.iter())
+            .map(String::as_str)
+            .filter(|n| !self.set.names().contains(n))
+            .collect();
+        if own.is_empty() {
+            return;
+        }
+        if let Some(near) = self.suggester.nearest(text, &own).first() {
+            let near = near.to_string();
+            push_lazily(self.diags, codes::GFT_UNDECLARED_NAME, || {
+                err(
+                    codes::GFT_UNDECLARED_NAME,
+                    span,
+                    format!(
+                        "`{text}` is no declared name: it is read as {} modules",
+                        text.len()
+                    ),
+                    "one module per letter",
+                    &format!("did you mean `{near}`?"),
+                )
+            });
+        }
     }
 
     /// Splits symbol text by the longest declared name (one character

@@ -13,7 +13,7 @@ pub use crate::ir::Lowered;
 
 use crate::diagnostics::Diagnostics;
 use crate::front::{block_comments, Front, Read};
-use crate::ir::Span;
+use crate::ir::{Span, System};
 use crate::source::SourceFile;
 
 /// The `.gft` notation in the registry.
@@ -34,6 +34,12 @@ impl Front for Gft {
     }
     fn comments(&self, src: &str) -> Vec<(Span, String)> {
         block_comments(src)
+    }
+    /// The turn the file's `angle` divides into, when it divides it
+    /// whole: what the file states, as pfg's `angle factor` does, so that
+    /// a translation keeps it even where no symbol turns.
+    fn angle_divisions(&self, sys: &System) -> Option<u64> {
+        sys.settings.whole_divisions()
     }
 }
 

@@ -10,60 +10,15 @@ use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::front::repeats::push_lazily;
 use crate::front::suggest::Suggester;
+/// The keywords, as the language server lists them.
+pub use crate::ir::gft_words::KEYWORDS;
+use crate::ir::gft_words::{is_keyword, takes_block};
 use crate::ir::{Span, MAX_NESTING};
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
 
 type Tok<'s> = (Token<'s>, Span);
 type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>>>;
-
-/// Every keyword, with whether it takes a `{ }` block.
-pub const KEYWORDS: &[(&str, bool)] = &[
-    ("turtle", false),
-    ("symbol", false),
-    ("silent", false),
-    ("steps", false),
-    ("angle", false),
-    ("length", false),
-    ("scale", false),
-    ("width", false),
-    ("width-factor", false),
-    ("width-step", false),
-    ("widths", false),
-    ("colour", false),
-    ("colour-step", false),
-    ("view", false),
-    ("seed", false),
-    ("choose", false),
-    ("ignore", false),
-    ("consider", false),
-    ("ring", false),
-    ("cut", false),
-    ("axiom", false),
-    ("rotation", false),
-    ("colours", false),
-    ("globals", false),
-    ("array", false),
-    ("decomposition", true),
-    ("homomorphism", true),
-    ("start", true),
-    ("start-each", true),
-    ("end-each", true),
-    ("end", true),
-    ("function", false),
-    ("tropism", false),
-    ("rule", false),
-    ("stems", false),
-    ("outline", true),
-    ("growth", false),
-    ("background", false),
-    ("camera", false),
-    ("lighting", false),
-    ("light", false),
-    ("material", false),
-    ("surface", true),
-    ("contour", true),
-];
 
 /// Block items whose block holds lines of values, not productions or
 /// statements.
@@ -84,10 +39,6 @@ const EXPRESSION_KEYWORDS: &[&str] = &[
 ];
 /// Keywords followed by a word.
 const WORD_KEYWORDS: &[&str] = &["axiom", "ignore", "consider", "cut"];
-
-fn takes_block(name: &str) -> bool {
-    KEYWORDS.iter().any(|(k, b)| *k == name && *b)
-}
 
 /// Parses `.gft` text. Never fails: problems go to `diags` and their
 /// lines are left out.
@@ -193,7 +144,7 @@ fn item(line: &[Tok<'_>], diags: &mut Diagnostics) -> Option<Item> {
         return production(line, diags).map(Item::Production);
     }
     if let Some((name, span, n)) = &keyword {
-        if KEYWORDS.iter().any(|(k, _)| k == name) {
+        if is_keyword(name) {
             return keyword_item(name, span, &line[*n..], line, diags).map(Item::Keyword);
         }
     }
