@@ -239,6 +239,12 @@ enum Command {
         #[arg(long)]
         check: bool,
     },
+    /// Draw every standard-library entry (PNG and SVG) into OUT_DIR with
+    /// an index (index.html, README.md) naming each entry's figure.
+    Gallery {
+        /// The folder to write, e.g. docs/gallery.
+        out_dir: String,
+    },
     /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
     Show {
         /// The entry, `std:NAME` or `NAME`.
@@ -322,6 +328,7 @@ where
         Command::Explain { code: None } => explain_all(io),
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
+        Command::Gallery { out_dir } => gallery(io, &out_dir),
         Command::Lsp => lsp(io),
         Command::Fmt { files, check } => files.iter().map(|f| fmt(io, f, check)).max().unwrap_or(0),
     }
@@ -579,6 +586,36 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
                 .and_then(crate::render::Palette::from_name),
         },
         ..RenderOptions::default()
+    }
+}
+
+/// `graftal gallery`: every stdlib entry's pictures and the index.
+fn gallery(io: &mut Io<'_>, dir: &str) -> i32 {
+    let bar = stage_bar(io, "gallery", "entries");
+    let mut progress = |k: u64, n: u64| {
+        if let Some(bar) = &bar {
+            bar.set_length(n);
+            bar.set_position(k);
+        }
+    };
+    let done = crate::gallery::write(std::path::Path::new(dir), &mut progress);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    match done {
+        Ok(items) => {
+            let drawn = items.iter().filter(|i| i.png.is_some()).count();
+            let _ = writeln!(
+                io.stdout,
+                "{drawn} of {} entries drawn into {dir}",
+                items.len()
+            );
+            0
+        }
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            2
+        }
     }
 }
 
