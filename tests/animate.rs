@@ -273,3 +273,44 @@ fn an_animation_needs_a_gif_or_png_output() {
     assert_eq!(o.status, 2);
     assert!(o.stderr.contains("GIF"), "{}", o.stderr);
 }
+
+/// The progress bars (derive, draw, frames) show on a terminal only: a
+/// run with stderr to a pipe writes nothing there, one in a
+/// pseudo-terminal (`script`) shows the frames counted.
+#[test]
+fn progress_shows_on_a_terminal_never_in_a_pipe() {
+    let out = temp("progress.gif");
+    let args = [
+        "render",
+        "std:hogeweg-hesper-a",
+        "--animate",
+        "--size",
+        "64x64",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let piped = std::process::Command::new(env!("CARGO_BIN_EXE_graftal"))
+        .args(args)
+        .env_remove("CI")
+        .output()
+        .unwrap();
+    assert!(piped.status.success());
+    assert!(
+        piped.stderr.is_empty(),
+        "{:?}",
+        String::from_utf8_lossy(&piped.stderr)
+    );
+    // util-linux's `script` runs the command in a pseudo-terminal.
+    let line = format!("{} {}", env!("CARGO_BIN_EXE_graftal"), args.join(" "));
+    let Ok(tty) = std::process::Command::new("script")
+        .args(["-q", "-e", "-c", &line, "/dev/null"])
+        .env_remove("CI")
+        .output()
+    else {
+        eprintln!("no `script` here: the terminal half is not checked");
+        return;
+    };
+    assert!(tty.status.success(), "{tty:?}");
+    let shown = String::from_utf8_lossy(&tty.stdout);
+    assert!(shown.contains("/31 frames"), "{shown}");
+}
