@@ -1252,6 +1252,82 @@ fn encode(
     }
 }
 
+/// An animation of a system's growth ([`render::animate`]): the still
+/// pictures of steps 0..=N (N from `opts`) as frames, all fitted as the
+/// last one is. Every frame is derived anew; the frames together move the
+/// turtle at most `opts.max_moves` times. `layout` adds an STL layout
+/// under each frame. Errors: a derivation's or the geometry limit's
+/// diagnostic, else (inner) a frame that cannot be made or encoded.
+pub fn animate(
+    sys: &System,
+    opts: &RunOptions,
+    mut ropts: RenderOptions,
+    mut anim: render::animate::Animation,
+    layout: bool,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Result<Vec<u8>, LoadError>, Diagnostic> {
+    let last = opts.derive_options(sys).steps;
+    anim.frames = last.saturating_add(1);
+    if let Some(why) = anim.refusal() {
+        return Ok(Err(LoadError(why)));
+    }
+    check_moves_up_front(sys, opts)?;
+    let mut budget = opts.max_moves;
+    let mut frame_geometry = |step: u64| -> Result<Geometry, Diagnostic> {
+        let at = RunOptions {
+            steps: Some(step),
+            max_moves: budget,
+            ..opts.clone()
+        };
+        let (word, values) = derive_values(sys, &at, |_, _| {})?;
+        let mut g = interpret(sys, &word, &values, &at, ropts.spline).map_err(|d| {
+            d.with_note(format!(
+                "an animation moves the turtle at most {} times in all its frames",
+                opts.max_moves
+            ))
+        })?;
+        budget -= g.segments.len().min(budget);
+        if layout {
+            add_layout(sys, &mut g);
+        }
+        Ok(g)
+    };
+    let mut final_g = Some(frame_geometry(last)?);
+    let mut looked = ropts;
+    apply_look(sys, &mut looked);
+    ropts.framing = final_g.as_ref().map(|g| render::framing(g, &looked));
+    // A derivation's diagnostic, kept while the encoder stops.
+    let mut failed: Option<Diagnostic> = None;
+    let mut frame = |step: u64| -> Result<render::animate::Frame, String> {
+        let at = RunOptions {
+            steps: Some(step),
+            ..opts.clone()
+        };
+        // Each frame drawn the way its still is, shared subtrees included.
+        let png = match render_shared(sys, &at, Format::Png, ropts) {
+            Some(png) => png,
+            None => {
+                let kept = if step == last { final_g.take() } else { None };
+                let g = match kept {
+                    Some(g) => g,
+                    None => frame_geometry(step).map_err(|d| {
+                        failed = Some(d);
+                        "stopped".to_string()
+                    })?,
+                };
+                render_bytes(sys, &g, Format::Png, ropts)
+            }
+        };
+        render::animate::Frame::from_png(&png.map_err(|e| e.0)?)
+    };
+    let mut bytes = Vec::new();
+    let done = render::animate::encode(&anim, &mut bytes, &mut frame, progress);
+    match failed {
+        Some(d) => Err(d),
+        None => Ok(done.map(|()| bytes).map_err(LoadError)),
+    }
+}
+
 /// What `graftal stats` reports.
 #[derive(Clone, Debug, Serialize)]
 pub struct Stats {

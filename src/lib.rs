@@ -18,6 +18,7 @@ pub mod driver;
 pub mod eval;
 pub mod format;
 pub mod front;
+pub mod gallery;
 pub mod ir;
 pub mod lsp;
 pub mod random;

@@ -159,6 +159,13 @@ struct RenderArgs {
     /// polygons, surfaces and spheres keep the system's colours.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::render::Palette::NAMES))]
     palette: Option<String>,
+    /// Draw steps 0..N as the frames of an animation, all framed as the
+    /// last: `-o OUT.gif`, or `-o OUT.png` for an animated PNG.
+    #[arg(long)]
+    animate: bool,
+    /// Frames per second of `--animate`.
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=100))]
+    fps: u32,
 }
 
 fn parse_stroke_width(s: &str) -> Result<f64, String> {
@@ -231,6 +238,12 @@ enum Command {
         /// if any would.
         #[arg(long)]
         check: bool,
+    },
+    /// Draw every standard-library entry (PNG and SVG) into OUT_DIR with
+    /// an index (index.html, README.md) naming each entry's figure.
+    Gallery {
+        /// The folder to write, e.g. docs/gallery.
+        out_dir: String,
     },
     /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
     Show {
@@ -315,6 +328,7 @@ where
         Command::Explain { code: None } => explain_all(io),
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
+        Command::Gallery { out_dir } => gallery(io, &out_dir),
         Command::Lsp => lsp(io),
         Command::Fmt { files, check } => files.iter().map(|f| fmt(io, f, check)).max().unwrap_or(0),
     }
@@ -441,6 +455,9 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
 /// driver can, else from the derived word.
 fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
     let output = Output::from_arg(Some(&a.output));
+    if a.animate {
+        return animate(io, a, &output);
+    }
     let to = a.to.as_deref().and_then(Format::from_name);
     let format = match driver::picture_format(&output, to, io.stdout_terminal) {
         Ok(f) => f,
@@ -496,6 +513,51 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
     })
 }
 
+/// `graftal render --animate`: steps 0..N as the frames of a GIF or APNG.
+fn animate(io: &mut Io<'_>, a: &RenderArgs, output: &Output) -> i32 {
+    use crate::render::animate::{Animation, Container};
+    let Some(container) = Container::choose(output.path(), a.to.as_deref()) else {
+        return usage_error(
+            io,
+            &UsageError {
+                message: "`--animate` writes a GIF or an animated PNG".into(),
+                help: "name the output `….gif` or `….png` (`--to png` with `-o -`)".into(),
+            },
+        );
+    };
+    if container == Container::Apng && *output == Output::Stdout && io.stdout_terminal {
+        let e = driver::picture_format(output, Some(Format::Png), true);
+        return usage_error(io, &e.expect_err("a PNG on a terminal is refused"));
+    }
+    with_system(io, &a.args, |io, c, sys, opts, _| {
+        let spline = a.spline || crate::stdlib::draws_as_spline(&c.file.name);
+        let ropts = RenderOptions {
+            spline,
+            ..render_options(a, sys)
+        };
+        let anim = Animation {
+            container,
+            width: a.size.0,
+            height: a.size.1,
+            fps: a.fps,
+            frames: 0,
+        };
+        let bar = stage_bar(io, "frames", "frames");
+        let mut progress = |k: u64, n: u64| {
+            if let Some(bar) = &bar {
+                bar.set_length(n);
+                bar.set_position(k);
+            }
+        };
+        let bytes = driver::animate(sys, opts, ropts, anim, !a.no_layout, &mut progress)
+            .map_err(|d| vec![d])?;
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        Ok(write_picture(io, output, bytes))
+    })
+}
+
 /// The picture `a` asks for; the view is `--view`, else the file's own.
 fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
     // `--view` is in degrees, the file's view in radians.
@@ -524,6 +586,36 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
                 .and_then(crate::render::Palette::from_name),
         },
         ..RenderOptions::default()
+    }
+}
+
+/// `graftal gallery`: every stdlib entry's pictures and the index.
+fn gallery(io: &mut Io<'_>, dir: &str) -> i32 {
+    let bar = stage_bar(io, "gallery", "entries");
+    let mut progress = |k: u64, n: u64| {
+        if let Some(bar) = &bar {
+            bar.set_length(n);
+            bar.set_position(k);
+        }
+    };
+    let done = crate::gallery::write(std::path::Path::new(dir), &mut progress);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    match done {
+        Ok(items) => {
+            let drawn = items.iter().filter(|i| i.png.is_some()).count();
+            let _ = writeln!(
+                io.stdout,
+                "{drawn} of {} entries drawn into {dir}",
+                items.len()
+            );
+            0
+        }
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: {e}");
+            2
+        }
     }
 }
 
@@ -939,14 +1031,19 @@ fn show_progress(io: &Io<'_>) -> bool {
 /// A progress bar over segments drawn, when [`show_progress`]; its length
 /// is set when drawing starts.
 fn draw_bar(io: &Io<'_>) -> Option<indicatif::ProgressBar> {
+    stage_bar(io, "drawing", "segments")
+}
+
+/// A progress bar for a long stage (`stage`: drawing, encoding, mesh,
+/// frames), counting `unit`s, when [`show_progress`]; its length is set
+/// when the stage starts. Never in pipes: `io.terminal` is false there.
+pub(crate) fn stage_bar(io: &Io<'_>, stage: &str, unit: &str) -> Option<indicatif::ProgressBar> {
     if !show_progress(io) {
         return None;
     }
     let bar = indicatif::ProgressBar::new(0);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("drawing {bar:30} {pos}/{len} segments")
-            .expect("valid template"),
-    );
+    let template = format!("{stage:9} {{bar:30}} {{pos}}/{{len}} {unit}");
+    bar.set_style(indicatif::ProgressStyle::with_template(&template).expect("valid template"));
     bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
     Some(bar)
 }

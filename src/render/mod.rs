@@ -3,6 +3,7 @@
 //! ([`png`], tiny-skia, flat colours in the painter's order, or [`raster`],
 //! a z-buffer with lights for systems whose look is lit) or SVG ([`svg`]).
 
+pub mod animate;
 pub mod camera;
 pub mod png;
 pub mod raster;
@@ -64,6 +65,32 @@ pub struct RenderOptions {
     pub base_width: f64,
     /// What the command line asks of the picture's style.
     pub style: Style,
+    /// A fixed framing instead of fitting what is drawn: the frames of an
+    /// animation all take the last frame's ([`framing`]).
+    pub framing: Option<Framing>,
+}
+
+/// Where a fit puts the picture plane, as [`layout`] found it for one
+/// geometry: the bounds of what is drawn (turned by the style's rotation)
+/// and the pad kept within a margin. Given in [`RenderOptions::framing`],
+/// it fits every picture the same way, whatever it draws.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Framing {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    pad: f64,
+}
+
+/// The framing [`layout`] gives `g` with `opts`.
+pub fn framing(g: &Geometry, opts: &RenderOptions) -> Framing {
+    let proj = Projector::new(opts);
+    let p = projected(g, opts, &proj);
+    let pad = half_widest(&p.segments, opts, g.world_widths);
+    let unframed = RenderOptions {
+        framing: None,
+        ..*opts
+    };
+    proj.fit_padded(&p.extent, &unframed, pad).framing
 }
 
 /// Style options every drawing tool has (`graftal render --background`,
@@ -208,6 +235,7 @@ impl Default for RenderOptions {
             background_alpha: 255,
             base_width: 1.0,
             style: Style::default(),
+            framing: None,
         }
     }
 }
@@ -583,6 +611,8 @@ pub(crate) struct Fit {
     turn: (f64, f64),
     /// `--stroke-width` per unit of the system's initial width.
     stroke_per_width: Option<f64>,
+    /// What the fit was made from.
+    framing: Framing,
 }
 
 impl Fit {
@@ -611,6 +641,11 @@ impl Fit {
                 min[k] = min[k].min(p[k]);
                 max[k] = max[k].max(p[k]);
             }
+        }
+        // An animation's frames keep one framing, whatever each draws.
+        let pad = opts.framing.map_or(pad, |f| f.pad);
+        if let Some(f) = opts.framing {
+            (min, max) = (f.lo, f.hi);
         }
         let (w, h) = (opts.width as f64, opts.height as f64);
         let share = opts.scale.clamp(1.0, 100.0) / 100.0;
@@ -644,6 +679,11 @@ impl Fit {
             line_unit: (w.min(h) / 600.0).max(1.0),
             turn,
             stroke_per_width: opts.style.stroke_width.map(|sw| sw / base.unwrap_or(1.0)),
+            framing: Framing {
+                lo: min,
+                hi: max,
+                pad,
+            },
         }
     }
 
