@@ -20,6 +20,7 @@ pub mod format;
 pub mod front;
 pub mod ir;
 pub mod lsp;
+pub mod mesh;
 pub mod random;
 pub mod render;
 pub mod source;
