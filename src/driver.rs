@@ -1238,6 +1238,58 @@ pub fn render_shared_with(
     Some(encode(&pic, format, &ropts, progress))
 }
 
+/// A mesh file's contents ([`render_mesh`]).
+pub struct MeshOutput {
+    pub bytes: Vec<u8>,
+    /// The OBJ's material library, to be written as the `mtllib` line
+    /// names it.
+    pub mtl: Option<String>,
+    pub stats: crate::mesh::MeshStats,
+}
+
+/// The mesh of the system in `format`: for glTF from its shared subtrees
+/// when [`Instanced`] can (one mesh per repeated subtree), else from the
+/// derived word's geometry (with an STL file's layout unless
+/// `no_layout`). `mtl_file` is the material library the OBJ names.
+pub fn render_mesh(
+    sys: &System,
+    opts: &RunOptions,
+    format: crate::mesh::MeshFormat,
+    mtl_file: &str,
+    no_layout: bool,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<MeshOutput, Diagnostic> {
+    use crate::mesh::{MeshFormat, Scene};
+    let steps = opts.derive_options(sys).steps;
+    let shared = (format == MeshFormat::Glb && steps <= MAX_TREE_DEPTH)
+        .then(|| Instanced::new(sys).filter(|i| i.fits(steps)))
+        .flatten()
+        .and_then(|mut inst| crate::mesh::instanced::scene(sys, &mut inst, steps));
+    let scene = match shared {
+        Some(s) => s,
+        None => {
+            check_moves_up_front(sys, opts)?;
+            let (word, values) = derive_values(sys, opts, |_, _| {})?;
+            let mut g = interpret(sys, &word, &values, opts, false)?;
+            if !no_layout {
+                add_layout(sys, &mut g);
+            }
+            Scene::single(crate::mesh::of_geometry(&g, progress))
+        }
+    };
+    let stats = scene.stats();
+    let (bytes, mtl) = match format {
+        MeshFormat::Glb => (crate::mesh::glb(&scene), None),
+        MeshFormat::Obj => {
+            let mesh = scene.flattened();
+            let mtl = crate::mesh::mtl(&mesh);
+            (crate::mesh::obj(&mesh, mtl_file).into_bytes(), Some(mtl))
+        }
+        MeshFormat::Ply => (crate::mesh::ply(&scene.flattened()).into_bytes(), None),
+    };
+    Ok(MeshOutput { bytes, mtl, stats })
+}
+
 /// A picture as bytes of `format`.
 fn encode(
     pic: &render::Picture,

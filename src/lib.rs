@@ -21,6 +21,7 @@ pub mod front;
 pub mod gallery;
 pub mod ir;
 pub mod lsp;
+pub mod mesh;
 pub mod random;
 pub mod render;
 pub mod source;

@@ -454,6 +454,9 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
 /// `graftal render`: the picture, drawn from shared subtrees when the
 /// driver can, else from the derived word.
 fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
+    if let Some(mesh) = crate::mesh::MeshFormat::from_path(&a.output).filter(|_| a.to.is_none()) {
+        return render_mesh(io, a, mesh);
+    }
     let output = Output::from_arg(Some(&a.output));
     if a.animate {
         return animate(io, a, &output);
@@ -555,6 +558,53 @@ fn animate(io: &mut Io<'_>, a: &RenderArgs, output: &Output) -> i32 {
             bar.finish_and_clear();
         }
         Ok(write_picture(io, output, bytes))
+    })
+}
+
+/// `graftal render -o OUT.obj|OUT.ply|OUT.glb`: the mesh (an OBJ's
+/// material library beside it), and what it holds on stdout.
+fn render_mesh(io: &mut Io<'_>, a: &RenderArgs, format: crate::mesh::MeshFormat) -> i32 {
+    let mtl_path = std::path::Path::new(&a.output).with_extension("mtl");
+    let mtl_file = mtl_path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("graftal.mtl");
+    with_system(io, &a.args, |io, _c, sys, opts, _| {
+        let bar = stage_bar(io, "meshing", "primitives");
+        let mut progress = |done: u64, total: u64| {
+            if let Some(bar) = &bar {
+                bar.set_length(total);
+                bar.set_position(done);
+            }
+        };
+        let out = driver::render_mesh(sys, opts, format, mtl_file, a.no_layout, &mut progress)
+            .map_err(|d| vec![d])?;
+        if let Some(bar) = &bar {
+            bar.finish_and_clear();
+        }
+        if let Some(mtl) = &out.mtl {
+            let status = write_output(
+                io,
+                &Output::File(mtl_path.display().to_string()),
+                mtl.as_bytes(),
+            );
+            if status != 0 {
+                return Ok(status);
+            }
+        }
+        let status = write_output(io, &Output::File(a.output.clone()), &out.bytes);
+        if status == 0 {
+            let s = &out.stats;
+            let _ = match a.args.format {
+                OutputFormat::Json => writeln!(io.stdout, "{}", serde_json::json!(s)),
+                OutputFormat::Human => writeln!(
+                    io.stdout,
+                    "{} vertices, {} triangles, {} materials, {} meshes placed {} times",
+                    s.vertices, s.triangles, s.materials, s.meshes, s.nodes
+                ),
+            };
+        }
+        Ok(status)
     })
 }
 

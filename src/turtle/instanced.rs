@@ -515,13 +515,38 @@ impl<'a> Instanced<'a> {
     /// (`pixels` per turtle unit) goes to `out` as one line from its start
     /// to its end, in turtle units; larger subtrees are walked into.
     pub fn lines(&mut self, steps: u64, pixels: f64, out: &mut dyn Lines) {
-        let mut t = Turtle {
+        self.walk(steps, &mut Within { pixels, out });
+    }
+
+    /// Walks the word after `steps` steps through the shared subtrees:
+    /// `walker` says which drawing subtrees to walk into, and receives the
+    /// others whole, where they are placed.
+    pub fn walk(&mut self, steps: u64, walker: &mut dyn Walker) {
+        let start = Turtle {
             pos: [0.0; 3],
             state: 0,
             scale: self.sys.settings.step,
         };
+        let axiom = self.tree.axiom();
+        self.walk_from(axiom, steps, start, walker);
+    }
+
+    /// Walks `subtree` alone from the origin, in the start frame (turns
+    /// swapped as it says) and with a unit step: what each of its
+    /// placements draws, before it is placed.
+    pub fn walk_subtree(&mut self, subtree: Subtree, walker: &mut dyn Walker) {
+        let start = Turtle {
+            pos: [0.0; 3],
+            state: u32::from(subtree.swapped),
+            scale: 1.0,
+        };
+        self.walk_from(&[subtree.symbol], subtree.depth, start, walker);
+    }
+
+    fn walk_from(&mut self, word: &[SymbolId], steps: u64, start: Turtle, out: &mut dyn Walker) {
+        let mut t = start;
         let mut branches: Vec<Turtle> = Vec::new();
-        let mut stack: Vec<(&[SymbolId], u64)> = vec![(self.tree.axiom(), steps)];
+        let mut stack: Vec<(&[SymbolId], u64)> = vec![(word, steps)];
         while let Some(top) = stack.last_mut() {
             let Some((&c, rest)) = top.0.split_first() else {
                 stack.pop();
@@ -545,11 +570,8 @@ impl<'a> Instanced<'a> {
                 _ => {}
             }
             let x = self.summary(c, d, t.state);
-            let extent = (0..2)
-                .map(|i| (x.hi[i] - x.lo[i]) * t.scale * pixels)
-                .fold(0.0, f64::max);
             if let Some(w) = rewritten {
-                if x.draws() && extent >= WITHIN {
+                if x.draws() && out.enter(&x, t.scale) {
                     stack.push((w, d - 1));
                     continue;
                 }
@@ -560,7 +582,17 @@ impl<'a> Instanced<'a> {
                 t.pos[2] + t.scale * x.end[2],
             ];
             if x.draws() {
-                out.line(t.pos, end);
+                let subtree = Subtree {
+                    symbol: c,
+                    depth: if rewritten.is_some() { d } else { 0 },
+                    swapped: t.state % 2 == 1,
+                };
+                let at = Placement {
+                    pos: t.pos,
+                    frame: self.frames[t.state as usize / 2],
+                    scale: t.scale,
+                };
+                out.whole(subtree, &at, end);
             } else if end != t.pos {
                 out.lift();
             }
@@ -568,6 +600,62 @@ impl<'a> Instanced<'a> {
             t.state = x.state;
             t.scale *= x.scale;
         }
+    }
+}
+
+/// A subtree of the derivation: `symbol` rewritten `depth` more times
+/// (0: the symbol itself), its turns swapped or not. Every occurrence
+/// draws the same, once placed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Subtree {
+    pub symbol: SymbolId,
+    pub depth: u64,
+    pub swapped: bool,
+}
+
+/// Where a subtree starts: position, frame (heading, left, up) and step
+/// length. What it draws there is what [`Instanced::walk_subtree`] draws,
+/// turned from the start frame to `frame`, scaled by `scale` and moved
+/// to `pos`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub pos: Vec3,
+    pub frame: [Vec3; 3],
+    pub scale: f64,
+}
+
+/// What [`Instanced::walk`] is walked for.
+pub trait Walker {
+    /// Whether to walk into the drawing subtree summarised by `x`, at
+    /// step length `scale`, rather than take it whole.
+    fn enter(&mut self, x: &Summary, scale: f64) -> bool;
+    /// A drawing subtree (or a single drawn step, `depth` 0) taken whole:
+    /// placed at `at`, ending at `end`.
+    fn whole(&mut self, subtree: Subtree, at: &Placement, end: Vec3);
+    /// The turtle moved without drawing: what follows starts anew.
+    fn lift(&mut self);
+}
+
+/// [`Instanced::lines`]' walker: subtrees within half a pixel are lines.
+struct Within<'o> {
+    pixels: f64,
+    out: &'o mut dyn Lines,
+}
+
+impl Walker for Within<'_> {
+    fn enter(&mut self, x: &Summary, scale: f64) -> bool {
+        let extent = (0..2)
+            .map(|i| (x.hi[i] - x.lo[i]) * scale * self.pixels)
+            .fold(0.0, f64::max);
+        extent >= WITHIN
+    }
+
+    fn whole(&mut self, _: Subtree, at: &Placement, end: Vec3) {
+        self.out.line(at.pos, end);
+    }
+
+    fn lift(&mut self) {
+        self.out.lift();
     }
 }
 

@@ -1,0 +1,210 @@
+//! Binary glTF 2.0 (`.glb`): a JSON chunk describing meshes, materials
+//! and nodes, and a binary chunk with the vertices and indices. Each mesh
+//! has one primitive per colour; each node places a mesh, so a mesh
+//! placed many times is stored once.
+
+use super::{Mesh, Part, Scene};
+use serde_json::{json, Value};
+
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_SHORT: u32 = 5123;
+const UNSIGNED_INT: u32 = 5125;
+
+/// The binary chunk and the views and accessors into it.
+#[derive(Default)]
+struct Buffers {
+    bin: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Buffers {
+    /// Appends `bytes` as a view (4-byte aligned); its index.
+    fn view(&mut self, bytes: &[u8], target: u32) -> usize {
+        while self.bin.len() % 4 != 0 {
+            self.bin.push(0);
+        }
+        self.views.push(json!({
+            "buffer": 0,
+            "byteOffset": self.bin.len(),
+            "byteLength": bytes.len(),
+            "target": target,
+        }));
+        self.bin.extend_from_slice(bytes);
+        self.views.len() - 1
+    }
+
+    /// A VEC3 float accessor over `v`, with its bounds; its index.
+    fn vec3(&mut self, v: &[[f64; 3]]) -> usize {
+        let f: Vec<[f32; 3]> = v.iter().map(|p| p.map(|x| x as f32)).collect();
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for p in &f {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let bytes: Vec<u8> = f.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+        let view = self.view(&bytes, ARRAY_BUFFER);
+        self.accessors.push(json!({
+            "bufferView": view,
+            "componentType": FLOAT,
+            "count": f.len(),
+            "type": "VEC3",
+            "min": lo,
+            "max": hi,
+        }));
+        self.accessors.len() - 1
+    }
+
+    /// A SCALAR index accessor over `triangles`, in 16 bits when
+    /// `vertices` allow; its index.
+    fn indices(&mut self, triangles: &[[u32; 3]], vertices: usize) -> usize {
+        let flat = triangles.iter().flatten();
+        let (bytes, kind): (Vec<u8>, u32) = if vertices <= usize::from(u16::MAX) {
+            let b = flat.flat_map(|&i| (i as u16).to_le_bytes()).collect();
+            (b, UNSIGNED_SHORT)
+        } else {
+            (flat.flat_map(|i| i.to_le_bytes()).collect(), UNSIGNED_INT)
+        };
+        let view = self.view(&bytes, ELEMENT_ARRAY_BUFFER);
+        let max = triangles.iter().flatten().max().copied().unwrap_or(0);
+        let min = triangles.iter().flatten().min().copied().unwrap_or(0);
+        self.accessors.push(json!({
+            "bufferView": view,
+            "componentType": kind,
+            "count": triangles.len() * 3,
+            "type": "SCALAR",
+            "min": [min],
+            "max": [max],
+        }));
+        self.accessors.len() - 1
+    }
+
+    /// The primitive of `part`, of material `material`.
+    fn primitive(&mut self, part: &Part, material: usize) -> Value {
+        let position = self.vec3(&part.positions);
+        let normal = self.vec3(&part.normals);
+        let indices = self.indices(&part.triangles, part.positions.len());
+        json!({
+            "attributes": { "POSITION": position, "NORMAL": normal },
+            "indices": indices,
+            "material": material,
+        })
+    }
+}
+
+/// An sRGB channel as glTF's linear colour factors take it.
+fn linear(c: u8) -> f64 {
+    let s = f64::from(c) / 255.0;
+    if s <= 0.04045 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// The `.glb` bytes of `scene`. Meshes without triangles, and the nodes
+/// placing them, are left out (glTF wants a primitive in every mesh).
+pub fn glb(scene: &Scene) -> Vec<u8> {
+    let colours = scene.materials();
+    let materials: Vec<Value> = colours
+        .iter()
+        .map(|&(r, g, b)| {
+            json!({
+                "name": super::obj::material_name((r, g, b)),
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": [linear(r), linear(g), linear(b), 1.0],
+                    "metallicFactor": 0.0,
+                    "roughnessFactor": 0.8,
+                },
+                "doubleSided": true,
+            })
+        })
+        .collect();
+    let mut buffers = Buffers::default();
+    let mut meshes: Vec<Value> = Vec::new();
+    // Index in the file of each scene mesh, when it has triangles.
+    let mut index: Vec<Option<usize>> = Vec::with_capacity(scene.meshes.len());
+    for m in &scene.meshes {
+        index.push(mesh(m, &colours, &mut buffers).map(|v| {
+            meshes.push(v);
+            meshes.len() - 1
+        }));
+    }
+    let nodes: Vec<Value> = scene
+        .nodes
+        .iter()
+        .filter_map(|n| {
+            let mesh = index[n.mesh]?;
+            let p = &n.place;
+            let mut node = json!({ "mesh": mesh });
+            if p.translation != [0.0; 3] {
+                node["translation"] = json!(p.translation);
+            }
+            if p.rotation != super::Transform::IDENTITY.rotation {
+                node["rotation"] = json!(p.quaternion());
+            }
+            if p.scale != 1.0 {
+                node["scale"] = json!([p.scale, p.scale, p.scale]);
+            }
+            Some(node)
+        })
+        .collect();
+    let mut doc = json!({
+        "asset": { "version": "2.0", "generator": concat!("graftal ", env!("CARGO_PKG_VERSION")) },
+        "scene": 0,
+        "scenes": [{ "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
+        "nodes": nodes,
+    });
+    if !meshes.is_empty() {
+        doc["meshes"] = json!(meshes);
+        doc["materials"] = json!(materials);
+        doc["accessors"] = json!(buffers.accessors);
+        doc["bufferViews"] = json!(buffers.views);
+        doc["buffers"] = json!([{ "byteLength": buffers.bin.len() }]);
+    }
+    container(&doc.to_string(), &buffers.bin)
+}
+
+/// The glTF mesh of `m`, its parts' material indices among `colours`;
+/// `None` when it has no triangles.
+fn mesh(m: &Mesh, colours: &[(u8, u8, u8)], buffers: &mut Buffers) -> Option<Value> {
+    let primitives: Vec<Value> = m
+        .parts
+        .iter()
+        .filter(|p| !p.triangles.is_empty())
+        .map(|p| {
+            let material = colours.iter().position(|&c| c == p.colour).unwrap_or(0);
+            buffers.primitive(p, material)
+        })
+        .collect();
+    (!primitives.is_empty()).then(|| json!({ "primitives": primitives }))
+}
+
+/// The GLB container: header, JSON chunk (padded with spaces), binary
+/// chunk (padded with zeros; left out when empty).
+fn container(json: &str, bin: &[u8]) -> Vec<u8> {
+    let pad = |n: usize| (4 - n % 4) % 4;
+    let json_len = json.len() + pad(json.len());
+    let bin_len = bin.len() + pad(bin.len());
+    let total = 12 + 8 + json_len + if bin.is_empty() { 0 } else { 8 + bin_len };
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json_len as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(json.as_bytes());
+    out.resize(out.len() + pad(json.len()), b' ');
+    if !bin.is_empty() {
+        out.extend_from_slice(&(bin_len as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(bin);
+        out.resize(out.len() + pad(bin.len()), 0);
+    }
+    out
+}

@@ -1,0 +1,682 @@
+//! 3D meshes of what the turtle drew, for Blender and game engines:
+//! Wavefront OBJ (with its `.mtl`), PLY and binary glTF (`.glb`).
+//!
+//! Segments become tubes as wide as the turtle's line ([`tube`]): a tube
+//! runs on through the consecutive segments of one branch (and through
+//! the pieces of a generalized cylinder's curve) instead of ending at each
+//! segment. Polygons and cpfg surfaces become triangles with the
+//! polygon's normal, cpfg spheres and circles (`@O`, `@o`: discs facing
+//! the viewer in a picture) become spheres, and colours become materials.
+//! A line width in pixels is a share of the model's size, as in a picture
+//! [`PIXELS_ACROSS`] pixels across.
+//!
+//! A context-free deterministic system that the shared-subtree turtle
+//! handles ([`crate::turtle::instanced`]) is exported to glTF with one
+//! mesh per distinct subtree, placed by nodes ([`instanced`]): a Koch
+//! curve of a million segments is a thousand-segment mesh placed a
+//! thousand times.
+
+mod gltf;
+pub mod instanced;
+mod obj;
+mod ply;
+pub mod tube;
+
+use crate::ir::Rgb;
+use crate::turtle::{cross, dot, Geometry, Vec3};
+use serde::Serialize;
+use std::collections::HashMap;
+
+pub use gltf::glb;
+pub use obj::{mtl, obj};
+pub use ply::ply;
+
+/// A line width in pixels is this share of the model's largest extent:
+/// the picture is this many pixels across.
+pub const PIXELS_ACROSS: f64 = 600.0;
+
+/// The mesh formats, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    Obj,
+    Ply,
+    Glb,
+}
+
+impl MeshFormat {
+    /// The format for an output path, by its extension (any case).
+    pub fn from_path(path: &str) -> Option<MeshFormat> {
+        let ext = std::path::Path::new(path).extension()?.to_str()?;
+        match ext.to_ascii_lowercase().as_str() {
+            "obj" => Some(MeshFormat::Obj),
+            "ply" => Some(MeshFormat::Ply),
+            "glb" => Some(MeshFormat::Glb),
+            _ => None,
+        }
+    }
+}
+
+/// Triangles of one material: vertices with their normals, and triangles
+/// as indices into them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Part {
+    pub colour: (u8, u8, u8),
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Part {
+    /// Adds a vertex; its index.
+    pub(crate) fn vertex(&mut self, p: Vec3, n: Vec3) -> u32 {
+        self.positions.push(p);
+        self.normals.push(n);
+        (self.positions.len() - 1) as u32
+    }
+}
+
+/// A mesh: one part per colour.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    pub parts: Vec<Part>,
+    by_colour: HashMap<(u8, u8, u8), usize>,
+}
+
+impl Mesh {
+    /// The part of colour `c`, made when new.
+    pub(crate) fn part(&mut self, c: Rgb) -> &mut Part {
+        let key = (c.0, c.1, c.2);
+        let parts = &mut self.parts;
+        let k = *self.by_colour.entry(key).or_insert_with(|| {
+            parts.push(Part {
+                colour: key,
+                ..Part::default()
+            });
+            parts.len() - 1
+        });
+        &mut self.parts[k]
+    }
+
+    pub fn vertices(&self) -> usize {
+        self.parts.iter().map(|p| p.positions.len()).sum()
+    }
+
+    pub fn triangles(&self) -> usize {
+        self.parts.iter().map(|p| p.triangles.len()).sum()
+    }
+
+    /// `[min, max]` of its vertices seen through `place`; `None` when it
+    /// has none.
+    fn bounds(&self, place: &Transform) -> Option<[Vec3; 2]> {
+        let mut b: Option<[Vec3; 2]> = None;
+        for p in self.parts.iter().flat_map(|p| &p.positions) {
+            let q = place.apply(*p);
+            let bb = b.get_or_insert([q, q]);
+            for k in 0..3 {
+                bb[0][k] = bb[0][k].min(q[k]);
+                bb[1][k] = bb[1][k].max(q[k]);
+            }
+        }
+        b
+    }
+}
+
+/// Where a mesh is placed: `pos + scale · rotation · p`, the rotation's
+/// columns the images of x, y and z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    pub rotation: [Vec3; 3],
+    pub translation: Vec3,
+    pub scale: f64,
+}
+
+impl Transform {
+    pub const IDENTITY: Transform = Transform {
+        rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        translation: [0.0; 3],
+        scale: 1.0,
+    };
+
+    pub fn apply(&self, p: Vec3) -> Vec3 {
+        let r = &self.rotation;
+        std::array::from_fn(|i| {
+            self.translation[i] + self.scale * (r[0][i] * p[0] + r[1][i] * p[1] + r[2][i] * p[2])
+        })
+    }
+
+    /// The rotation as a unit quaternion `[x, y, z, w]`.
+    pub fn quaternion(&self) -> [f64; 4] {
+        let [c0, c1, c2] = self.rotation;
+        // m[row][col]
+        let m = |r: usize, c: usize| [c0, c1, c2][c][r];
+        let trace = m(0, 0) + m(1, 1) + m(2, 2);
+        let q = if trace > 0.0 {
+            let s = (trace + 1.0).sqrt() * 2.0;
+            [
+                (m(2, 1) - m(1, 2)) / s,
+                (m(0, 2) - m(2, 0)) / s,
+                (m(1, 0) - m(0, 1)) / s,
+                s / 4.0,
+            ]
+        } else if m(0, 0) > m(1, 1) && m(0, 0) > m(2, 2) {
+            let s = (1.0 + m(0, 0) - m(1, 1) - m(2, 2)).sqrt() * 2.0;
+            [
+                s / 4.0,
+                (m(0, 1) + m(1, 0)) / s,
+                (m(0, 2) + m(2, 0)) / s,
+                (m(2, 1) - m(1, 2)) / s,
+            ]
+        } else if m(1, 1) > m(2, 2) {
+            let s = (1.0 + m(1, 1) - m(0, 0) - m(2, 2)).sqrt() * 2.0;
+            [
+                (m(0, 1) + m(1, 0)) / s,
+                s / 4.0,
+                (m(1, 2) + m(2, 1)) / s,
+                (m(0, 2) - m(2, 0)) / s,
+            ]
+        } else {
+            let s = (1.0 + m(2, 2) - m(0, 0) - m(1, 1)).sqrt() * 2.0;
+            [
+                (m(0, 2) + m(2, 0)) / s,
+                (m(1, 2) + m(2, 1)) / s,
+                s / 4.0,
+                (m(1, 0) - m(0, 1)) / s,
+            ]
+        };
+        let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+        q.map(|x| x / n)
+    }
+}
+
+/// A mesh placed in the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Node {
+    pub mesh: usize,
+    pub place: Transform,
+}
+
+/// Meshes and where they are placed: one node for a whole geometry, many
+/// for the shared subtrees of [`instanced`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    pub meshes: Vec<Mesh>,
+    pub nodes: Vec<Node>,
+}
+
+/// What a scene holds, counted as a reader that places every node sees
+/// it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MeshStats {
+    pub vertices: u64,
+    pub triangles: u64,
+    /// `[minx, miny, minz, maxx, maxy, maxz]` of the placed vertices.
+    pub bounds: Option<[f64; 6]>,
+    pub meshes: usize,
+    pub nodes: usize,
+    pub materials: usize,
+}
+
+impl Scene {
+    /// One mesh, placed once.
+    pub fn single(mesh: Mesh) -> Scene {
+        Scene {
+            meshes: vec![mesh],
+            nodes: vec![Node {
+                mesh: 0,
+                place: Transform::IDENTITY,
+            }],
+        }
+    }
+
+    /// The distinct colours, in order of first use.
+    pub fn materials(&self) -> Vec<(u8, u8, u8)> {
+        let mut seen = Vec::new();
+        for p in self.meshes.iter().flat_map(|m| &m.parts) {
+            if !seen.contains(&p.colour) {
+                seen.push(p.colour);
+            }
+        }
+        seen
+    }
+
+    /// Vertices, triangles and bounds over every placed node. Bounds are
+    /// exact: each mesh's box is found once per rotation it is placed
+    /// with, then scaled and moved.
+    pub fn stats(&self) -> MeshStats {
+        let (mut vertices, mut triangles) = (0u64, 0u64);
+        let mut boxes: HashMap<(usize, [u64; 9]), Option<[Vec3; 2]>> = HashMap::new();
+        let mut all: Option<[Vec3; 2]> = None;
+        for n in &self.nodes {
+            let m = &self.meshes[n.mesh];
+            vertices += m.vertices() as u64;
+            triangles += m.triangles() as u64;
+            let turn = Transform {
+                translation: [0.0; 3],
+                scale: 1.0,
+                ..n.place
+            };
+            let key = (n.mesh, bits(turn.rotation));
+            let Some([lo, hi]) = *boxes.entry(key).or_insert_with(|| m.bounds(&turn)) else {
+                continue;
+            };
+            let place = |v: Vec3| -> Vec3 {
+                std::array::from_fn(|i| n.place.translation[i] + n.place.scale * v[i])
+            };
+            let (lo, hi) = (place(lo), place(hi));
+            let b = all.get_or_insert([lo, hi]);
+            for k in 0..3 {
+                b[0][k] = b[0][k].min(lo[k]);
+                b[1][k] = b[1][k].max(hi[k]);
+            }
+        }
+        MeshStats {
+            vertices,
+            triangles,
+            bounds: all.map(|[lo, hi]| [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]),
+            meshes: self.meshes.len(),
+            nodes: self.nodes.len(),
+            materials: self.materials().len(),
+        }
+    }
+
+    /// Every node's mesh placed, as one mesh (what OBJ and PLY hold).
+    pub fn flattened(&self) -> Mesh {
+        let mut out = Mesh::default();
+        for n in &self.nodes {
+            for p in &self.meshes[n.mesh].parts {
+                let c = p.colour;
+                let part = out.part(Rgb(c.0, c.1, c.2));
+                let base = part.positions.len() as u32;
+                let turn = Transform {
+                    translation: [0.0; 3],
+                    scale: 1.0,
+                    ..n.place
+                };
+                for (v, nv) in p.positions.iter().zip(&p.normals) {
+                    part.vertex(n.place.apply(*v), turn.apply(*nv));
+                }
+                part.triangles
+                    .extend(p.triangles.iter().map(|t| t.map(|i| i + base)));
+            }
+        }
+        out
+    }
+}
+
+fn bits(r: [Vec3; 3]) -> [u64; 9] {
+    let mut k = [0u64; 9];
+    for (i, x) in r.iter().flatten().enumerate() {
+        k[i] = (x + 0.0).to_bits();
+    }
+    k
+}
+
+/// How wide the tubes and how large the spheres are: line widths in turtle
+/// units, or in pixels of a picture [`PIXELS_ACROSS`] wide.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sizing {
+    /// Turtle units per unit of width.
+    pub per_width: f64,
+}
+
+impl Sizing {
+    /// For a model whose box is `bbox`, widths in turtle units when
+    /// `world_widths`, else in pixels.
+    pub fn new(bbox: Option<[f64; 6]>, world_widths: bool) -> Sizing {
+        if world_widths {
+            return Sizing { per_width: 1.0 };
+        }
+        let extent = bbox
+            .map(|b| (0..3).map(|k| b[k + 3] - b[k]).fold(0.0, f64::max))
+            .filter(|e| e.is_finite() && *e > 0.0)
+            .unwrap_or(1.0);
+        Sizing {
+            per_width: extent / PIXELS_ACROSS,
+        }
+    }
+
+    /// The radius of a line or disc `width` wide.
+    pub fn radius(&self, width: f64) -> f64 {
+        (width.abs() * self.per_width / 2.0).max(0.0)
+    }
+}
+
+/// The mesh of everything `g` draws: tubes, polygons, spheres.
+pub fn of_geometry(g: &Geometry, progress: &mut dyn FnMut(u64, u64)) -> Mesh {
+    let sizing = Sizing::new(g.bbox(), g.world_widths);
+    let mut mesh = Mesh::default();
+    let total = (g.segments.len() + g.polygons.len() + g.discs.len()) as u64;
+    for chain in tube::chains(&g.segments) {
+        tube::tube(&mut mesh, &chain, &sizing);
+    }
+    progress(g.segments.len() as u64, total);
+    for p in &g.polygons {
+        polygon(&mut mesh, &p.points, p.colour);
+    }
+    for d in &g.discs {
+        let r = if d.pixels {
+            sizing.radius(d.diameter)
+        } else {
+            d.diameter.abs() / 2.0
+        };
+        sphere(&mut mesh, d.centre, r, d.colour);
+    }
+    progress(total, total);
+    mesh
+}
+
+fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `v` at unit length, or `None` when it is (nearly) zero.
+fn unit(v: Vec3) -> Option<Vec3> {
+    let n = dot(v, v).sqrt();
+    (n > 1e-12 && n.is_finite()).then(|| v.map(|x| x / n))
+}
+
+/// A unit vector at right angles to the unit vector `t`.
+fn perpendicular(t: Vec3) -> Vec3 {
+    let other = if t[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    unit(cross(t, other)).unwrap_or([0.0, 0.0, 1.0])
+}
+
+/// The corners of a polygon without repeats: consecutive equal points
+/// and a last point equal to the first are dropped.
+fn corners(points: &[Vec3]) -> Vec<Vec3> {
+    // Equal up to rounding: a turtle that goes round a square comes back
+    // within 1e-16 of where it started.
+    let same = |a: &Vec3, b: &Vec3| {
+        let size = a.iter().chain(b).fold(1.0f64, |m, x| m.max(x.abs()));
+        (0..3).all(|k| (a[k] - b[k]).abs() <= 1e-9 * size)
+    };
+    let mut out: Vec<Vec3> = Vec::with_capacity(points.len());
+    for p in points {
+        if !out.last().is_some_and(|q| same(p, q)) {
+            out.push(*p);
+        }
+    }
+    while out.len() > 1 && same(&out[0], &out[out.len() - 1]) {
+        out.pop();
+    }
+    out
+}
+
+/// A polygon as a fan of triangles with its (Newell) normal; polygons of
+/// fewer than three corners are left out.
+fn polygon(mesh: &mut Mesh, points: &[Vec3], colour: Rgb) {
+    let pts = corners(points);
+    if pts.len() < 3 {
+        return;
+    }
+    let mut n = [0.0; 3];
+    for (i, a) in pts.iter().enumerate() {
+        let b = pts[(i + 1) % pts.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let normal = unit(n).unwrap_or([0.0, 0.0, 1.0]);
+    let part = mesh.part(colour);
+    let base = part.positions.len() as u32;
+    for &p in &pts {
+        part.vertex(p, normal);
+    }
+    for k in 1..pts.len() as u32 - 1 {
+        part.triangles.push([base, base + k, base + k + 1]);
+    }
+}
+
+/// Sides of a sphere around its axis, and bands from pole to pole.
+pub const SPHERE_SIDES: usize = 8;
+pub const SPHERE_BANDS: usize = 6;
+
+/// A sphere of radius `r` around `c`: two poles and rings between them.
+fn sphere(mesh: &mut Mesh, c: Vec3, r: f64, colour: Rgb) {
+    let part = mesh.part(colour);
+    let at = |n: Vec3| [c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2]];
+    let south = part.vertex(at([0.0, -1.0, 0.0]), [0.0, -1.0, 0.0]);
+    let ring0 = south + 1;
+    for band in 1..SPHERE_BANDS {
+        let (sy, cy) = (std::f64::consts::PI * band as f64 / SPHERE_BANDS as f64).sin_cos();
+        for k in 0..SPHERE_SIDES {
+            let (s, co) = (std::f64::consts::TAU * k as f64 / SPHERE_SIDES as f64).sin_cos();
+            let n = [sy * co, -cy, sy * s];
+            part.vertex(at(n), n);
+        }
+    }
+    let north = part.vertex(at([0.0, 1.0, 0.0]), [0.0, 1.0, 0.0]);
+    let sides = SPHERE_SIDES as u32;
+    let ring = |band: u32, k: u32| ring0 + band * sides + k % sides;
+    for k in 0..sides {
+        part.triangles.push([south, ring(0, k), ring(0, k + 1)]);
+        let top = SPHERE_BANDS as u32 - 2;
+        part.triangles.push([north, ring(top, k + 1), ring(top, k)]);
+        for band in 0..top {
+            let (a, b) = (ring(band, k), ring(band, k + 1));
+            let (c2, d) = (ring(band + 1, k), ring(band + 1, k + 1));
+            part.triangles.push([a, d, b]);
+            part.triangles.push([a, c2, d]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::front::pfg::read_ok;
+    use crate::turtle::{interpret, Disc};
+
+    fn draw(src: &str) -> Geometry {
+        let sys = read_ok(src);
+        interpret(&sys, &sys.axiom, 0)
+    }
+
+    /// Normals of unit length, indices in range, one normal a vertex.
+    fn well_formed(m: &Mesh) {
+        for p in &m.parts {
+            assert_eq!(p.positions.len(), p.normals.len());
+            for n in &p.normals {
+                assert!((dot(*n, *n).sqrt() - 1.0).abs() < 1e-9, "{n:?}");
+            }
+            let len = p.positions.len() as u32;
+            assert!(p.triangles.iter().flatten().all(|&i| i < len));
+        }
+    }
+
+    #[test]
+    fn a_branch_is_a_tube_and_the_trunk_runs_on_through_it() {
+        // The trunk's three steps (one narrower) are one tube of 4 rings,
+        // the branch one of 2.
+        let m = of_geometry(&draw("angle factor: 4\naxiom: F[+F]F!F\n"), &mut |_, _| {});
+        well_formed(&m);
+        assert_eq!(m.vertices(), (4 + 2) * tube::SIDES);
+        assert_eq!(m.triangles(), 4 * 2 * tube::SIDES);
+    }
+
+    #[test]
+    fn polygons_are_fans_and_discs_spheres_with_a_part_per_colour() {
+        let mut g = draw("angle factor: 4\naxiom: {f+f+f+f}'F\n");
+        g.discs.push(Disc {
+            centre: [0.0, 5.0, 0.0],
+            diameter: 2.0,
+            pixels: false,
+            colour: Rgb(1, 2, 3),
+            index: 0,
+        });
+        let m = of_geometry(&g, &mut |_, _| {});
+        well_formed(&m);
+        let sphere_vertices = 2 + (SPHERE_BANDS - 1) * SPHERE_SIDES;
+        let sphere_triangles = 2 * SPHERE_SIDES * (SPHERE_BANDS - 1);
+        // The closed square: 4 corners, 2 triangles, facing +z or −z.
+        assert_eq!(m.vertices(), 4 + 2 * tube::SIDES + sphere_vertices);
+        assert_eq!(m.triangles(), 2 + 2 * tube::SIDES + sphere_triangles);
+        assert_eq!(m.parts.len(), 3);
+        let square = m.parts.iter().find(|p| p.colour == (0, 0, 0)).unwrap();
+        assert!(square
+            .normals
+            .iter()
+            .all(|n| (n[2].abs() - 1.0).abs() < 1e-12));
+        let sphere = m.parts.iter().find(|p| p.colour == (1, 2, 3)).unwrap();
+        let ys = sphere.positions.iter().map(|p| p[1]);
+        assert_eq!(ys.clone().fold(f64::MAX, f64::min), 4.0);
+        assert_eq!(ys.fold(f64::MIN, f64::max), 6.0);
+    }
+
+    #[test]
+    fn obj_and_ply_text_read_back_to_the_same_counts() {
+        let m = of_geometry(
+            &draw("angle factor: 4\naxiom: {f+f+f+f}F[-F]'F\n"),
+            &mut |_, _| {},
+        );
+        let text = obj(&m, "x.mtl");
+        let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+        assert_eq!(count("v "), m.vertices());
+        assert_eq!(count("vn "), m.vertices());
+        assert_eq!(count("f "), m.triangles());
+        for l in text.lines().filter(|l| l.starts_with("f ")) {
+            for v in l.split_whitespace().skip(1) {
+                let i: usize = v.split("//").next().unwrap().parse().unwrap();
+                assert!((1..=m.vertices()).contains(&i), "{l}");
+            }
+        }
+        let used: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("usemtl "))
+            .collect();
+        let lib = mtl(&m);
+        assert!(used.iter().all(|u| lib.contains(&format!("newmtl {u}\n"))));
+        assert_eq!(used.len(), m.parts.len());
+
+        let text = ply(&m);
+        let (head, body) = text.split_once("end_header\n").unwrap();
+        assert!(head.contains(&format!("element vertex {}\n", m.vertices())));
+        assert!(head.contains(&format!("element face {}\n", m.triangles())));
+        let lines: Vec<&str> = body.lines().collect();
+        assert_eq!(lines.len(), m.vertices() + m.triangles());
+        assert!(lines[..m.vertices()]
+            .iter()
+            .all(|l| l.split(' ').count() == 9));
+        for l in &lines[m.vertices()..] {
+            let f: Vec<usize> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            assert_eq!(f[0], 3);
+            assert!(f[1..].iter().all(|&i| i < m.vertices()));
+        }
+    }
+
+    /// The JSON chunk of a `.glb`, after checking the container.
+    fn glb_json(bytes: &[u8]) -> serde_json::Value {
+        let word = |k: usize| u32::from_le_bytes(bytes[k..k + 4].try_into().unwrap()) as usize;
+        assert_eq!(&bytes[0..4], b"glTF");
+        assert_eq!(word(4), 2);
+        assert_eq!(word(8), bytes.len());
+        assert_eq!(&bytes[16..20], b"JSON");
+        let json_len = word(12);
+        assert_eq!(json_len % 4, 0);
+        let bin = 20 + json_len;
+        assert_eq!(&bytes[bin + 4..bin + 8], b"BIN\0");
+        assert_eq!(bin + 8 + word(bin), bytes.len());
+        serde_json::from_slice(&bytes[20..bin]).unwrap()
+    }
+
+    #[test]
+    fn glb_accessors_carry_their_bounds_and_fit_the_buffer() {
+        let m = of_geometry(
+            &draw("angle factor: 4\naxiom: {f+f+f+f}F[-F]'F\n"),
+            &mut |_, _| {},
+        );
+        let scene = Scene::single(m);
+        let doc = glb_json(&glb(&scene));
+        let stats = scene.stats();
+        let b = stats.bounds.unwrap();
+        let views = doc["bufferViews"].as_array().unwrap();
+        let buffer = doc["buffers"][0]["byteLength"].as_u64().unwrap();
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for p in doc["meshes"][0]["primitives"].as_array().unwrap() {
+            let pos = &doc["accessors"][p["attributes"]["POSITION"].as_u64().unwrap() as usize];
+            for k in 0..3 {
+                lo[k] = lo[k].min(pos["min"][k].as_f64().unwrap());
+                hi[k] = hi[k].max(pos["max"][k].as_f64().unwrap());
+            }
+        }
+        for k in 0..3 {
+            assert!((lo[k] - b[k]).abs() < 1e-5 && (hi[k] - b[k + 3]).abs() < 1e-5);
+        }
+        for v in views {
+            let end = v["byteOffset"].as_u64().unwrap() + v["byteLength"].as_u64().unwrap();
+            assert!(end <= buffer && v["byteOffset"].as_u64().unwrap() % 4 == 0);
+        }
+        let vertices: u64 = doc["accessors"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|a| a["type"] == "VEC3")
+            .map(|a| a["count"].as_u64().unwrap())
+            .sum();
+        assert_eq!(vertices, 2 * stats.vertices);
+    }
+
+    #[test]
+    fn shared_subtrees_give_the_same_triangles_as_the_whole_word() {
+        // The quadratic Koch curve at 4 steps: 8^4 segments.
+        let src = "angle factor: 4\naxiom: F\nF --> F+F-F-FF+F+F-F\nderivation length: 4\n";
+        let sys = read_ok(src);
+        let mut inst = crate::turtle::instanced::Instanced::new(&sys).unwrap();
+        let scene = instanced::scene(&sys, &mut inst, 4).unwrap();
+        let word = crate::eval::derive(&sys, &crate::eval::DeriveOptions::new(4)).unwrap();
+        let whole = Scene::single(of_geometry(&interpret(&sys, &word, 0), &mut |_, _| {}));
+        let (a, b) = (scene.stats(), whole.stats());
+        assert_eq!(a.triangles, b.triangles);
+        assert_eq!(a.triangles, 8u64.pow(4) * 2 * tube::SIDES as u64);
+        assert!(a.nodes > 8 && a.meshes < a.nodes, "{a:?}");
+        // Tubes break where subtrees meet, so rings differ a little there.
+        let r = Sizing::new(
+            whole.meshes[0]
+                .bounds(&Transform::IDENTITY)
+                .map(|[l, h]| [l[0], l[1], l[2], h[0], h[1], h[2]]),
+            false,
+        )
+        .radius(1.0);
+        let (ba, bb) = (a.bounds.unwrap(), b.bounds.unwrap());
+        assert!(
+            (0..6).all(|k| (ba[k] - bb[k]).abs() <= 2.0 * r),
+            "{ba:?} {bb:?}"
+        );
+        // Placing every node gives the same mesh, point for point.
+        let flat = scene.flattened();
+        well_formed(&flat);
+        assert_eq!(flat.vertices() as u64, a.vertices);
+    }
+
+    #[test]
+    fn quaternions_turn_as_the_matrix_does() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let frames = [
+            [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            [[h, h, 0.0], [-h, h, 0.0], [0.0, 0.0, 1.0]],
+            [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+        ];
+        for rotation in frames {
+            let t = Transform {
+                rotation,
+                ..Transform::IDENTITY
+            };
+            let [x, y, z, w] = t.quaternion();
+            let v = [0.3, -1.2, 2.0];
+            // v + 2w (q × v) + 2 q × (q × v)
+            let q = [x, y, z];
+            let c = cross(q, v);
+            let c2 = cross(q, c);
+            let turned: Vec3 = std::array::from_fn(|i| v[i] + 2.0 * w * c[i] + 2.0 * c2[i]);
+            let m = t.apply(v);
+            assert!(
+                (0..3).all(|i| (turned[i] - m[i]).abs() < 1e-12),
+                "{turned:?} {m:?}"
+            );
+        }
+    }
+}
