@@ -4,6 +4,7 @@
 //! a z-buffer with lights for systems whose look is lit) or SVG ([`svg`]).
 
 pub mod camera;
+pub mod coverage;
 pub mod png;
 pub mod raster;
 mod shade;
