@@ -416,24 +416,16 @@ pub fn write_derived(
             |chunk| out.write_all(chunk),
         );
         progress(dopts.steps, len);
+    } else if by_name && !sys.rewrites_modules() {
+        // Plain symbols, kept as narrow as they were derived (a byte each
+        // for most alphabets) and written in chunks: no wider copy of the
+        // word, no text of it.
+        let w = Deriver::new(sys).derive_symbols(&dopts, progress)?;
+        write_names(&names, w.iter(), &mut out);
     } else {
         let w = derive_with_progress(sys, opts, progress)?;
         if by_name && !w.has_params() {
-            {
-                if names.iter().all(|n| n.len() == 1) {
-                    // One byte per symbol: a table look-up per symbol.
-                    let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
-                    let text: Vec<u8> = w.0.iter().map(|s| byte[s.index()]).collect();
-                    let _ = out.write_all(&text);
-                } else {
-                    // Name by name into the buffer: no text built in between.
-                    for s in &w.0 {
-                        if out.write_all(names[s.index()]).is_err() {
-                            break;
-                        }
-                    }
-                }
-            }
+            write_names(&names, w.0.iter().copied(), &mut out);
         } else {
             let _ = out.write_all(front.word_text(sys, &w).as_bytes());
         }
@@ -441,6 +433,37 @@ pub fn write_derived(
     let _ = out.write_all(b"\n");
     let _ = out.flush();
     Ok(())
+}
+
+/// Writes the symbols' names one after the other, stopping at the first
+/// write error (a closed pipe).
+fn write_names(
+    names: &[&[u8]],
+    word: impl Iterator<Item = crate::ir::SymbolId>,
+    out: &mut dyn std::io::Write,
+) {
+    if names.iter().all(|n| n.len() == 1) {
+        // One byte per symbol: a table look-up per symbol, a chunk at a time.
+        let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
+        let mut chunk = Vec::with_capacity(1 << 16);
+        for s in word {
+            chunk.push(byte[s.index()]);
+            if chunk.len() == chunk.capacity() {
+                if out.write_all(&chunk).is_err() {
+                    return;
+                }
+                chunk.clear();
+            }
+        }
+        let _ = out.write_all(&chunk);
+    } else {
+        // Name by name into the buffer: no text built in between.
+        for s in word {
+            if out.write_all(names[s.index()]).is_err() {
+                return;
+            }
+        }
+    }
 }
 
 /// How many symbols of `word` are written: STL's silent stem-level markers
@@ -1288,6 +1311,81 @@ pub fn render_mesh(
         MeshFormat::Ply => (crate::mesh::ply(&scene.flattened()).into_bytes(), None),
     };
     Ok(MeshOutput { bytes, mtl, stats })
+}
+
+/// Whether [`render_streamed`] may draw `sys` to `format` with `ropts`:
+/// a PNG of plain symbols (no modules, which draw through a
+/// homomorphism), unlit, without a camera, splines, an STL layout or a
+/// palette that needs the totals (by depth, along the path).
+pub fn streams(sys: &System, format: Format, ropts: &RenderOptions) -> bool {
+    let layout = sys
+        .structure
+        .as_ref()
+        .is_some_and(|st| !st.constraint.outline.is_empty());
+    format == Format::Png
+        && !sys.rewrites_modules()
+        && !ropts.spline
+        && !layout
+        && sys.look.lighting.is_none()
+        && sys.look.camera.is_none()
+        && matches!(ropts.style.palette, None | Some(render::Palette::Mono))
+}
+
+/// Derives the word of a system without modules, its symbols as narrow as
+/// the derivation held them (what [`render_streamed`] draws).
+pub fn derive_symbols(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<eval::Symbols, Diagnostic> {
+    Deriver::new(sys).derive_symbols(&opts.derive_options(sys), progress)
+}
+
+/// What [`render_streamed`] made: the PNG, or back the word when its
+/// drawing needs the stored way (or draws nearly nothing, which the stored
+/// way explains), with the values [`interpret`] reads.
+pub enum Streamed {
+    Picture(Result<Vec<u8>, LoadError>),
+    Word(Word, Globals),
+}
+
+/// Draws `word` to a PNG streamed ([`render::coverage`]): the turtle runs
+/// over the word twice, once for the bounds and once drawing each segment
+/// into the picture as it is made; no segment is stored. Call it where
+/// [`streams`] holds.
+pub fn render_streamed(
+    sys: &System,
+    opts: &RunOptions,
+    word: eval::Symbols,
+    mut ropts: RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Streamed {
+    apply_look(sys, &mut ropts);
+    let unstreamed =
+        |w: eval::Symbols| Streamed::Word(w.into_word(), Globals::initial(&sys.program));
+    let mut survey = render::coverage::Survey::new(&ropts);
+    turtle::interpret_into(sys, word.iter(), opts.seed, &mut survey);
+    if !survey.streams() {
+        return unstreamed(word);
+    }
+    let world_widths = sys.settings.world_widths;
+    let Some(mut painter) = render::coverage::Painter::new(&survey, &ropts, world_widths, progress)
+    else {
+        return Streamed::Picture(Err(LoadError(format!(
+            "cannot make a {}x{} PNG",
+            ropts.width, ropts.height
+        ))));
+    };
+    turtle::interpret_into(sys, word.iter(), opts.seed, &mut painter);
+    if painter.overflow || painter.spread_width() < NEARLY_NOTHING {
+        return unstreamed(word);
+    }
+    Streamed::Picture(painter.picture.png().ok_or_else(|| {
+        LoadError(format!(
+            "cannot make a {}x{} PNG",
+            ropts.width, ropts.height
+        ))
+    }))
 }
 
 /// A picture as bytes of `format`.

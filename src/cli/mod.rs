@@ -487,7 +487,21 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             return Ok(write_picture(io, &output, bytes));
         }
         driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
-        let (word, values) = derive_reporting(io, sys, opts).map_err(|d| vec![d])?;
+        let (word, values) = if driver::streams(sys, format, &ropts) {
+            let w = with_step_bar(io, sys, opts, |p| driver::derive_symbols(sys, opts, p))
+                .map_err(|d| vec![d])?;
+            match driver::render_streamed(sys, opts, w, ropts, &mut progress) {
+                driver::Streamed::Picture(bytes) => {
+                    if let Some(bar) = &bar {
+                        bar.finish_and_clear();
+                    }
+                    return Ok(write_picture(io, &output, bytes));
+                }
+                driver::Streamed::Word(w, values) => (w, values),
+            }
+        } else {
+            derive_reporting(io, sys, opts).map_err(|d| vec![d])?
+        };
         let mut g = driver::interpret(sys, &word, &values, opts, spline).map_err(|d| vec![d])?;
         if !a.no_layout {
             driver::add_layout(sys, &mut g);
@@ -1062,10 +1076,21 @@ fn derive_reporting(
     sys: &crate::ir::System,
     opts: &RunOptions,
 ) -> Result<(crate::ir::Word, driver::Globals), Diagnostic> {
+    with_step_bar(io, sys, opts, |p| driver::derive_values(sys, opts, p))
+}
+
+/// Runs the derivation `derive` with a bar over its steps, when
+/// [`show_progress`].
+fn with_step_bar<T>(
+    io: &Io<'_>,
+    sys: &crate::ir::System,
+    opts: &RunOptions,
+    derive: impl FnOnce(&mut dyn FnMut(u64, usize)) -> Result<T, Diagnostic>,
+) -> Result<T, Diagnostic> {
     let Some(bar) = step_bar(io, sys, opts) else {
-        return driver::derive_values(sys, opts, |_, _| {});
+        return derive(&mut |_, _| {});
     };
-    let r = driver::derive_values(sys, opts, |step, len| {
+    let r = derive(&mut |step, len| {
         bar.set_position(step);
         bar.set_message(format!("{len} symbols"));
     });

@@ -194,8 +194,19 @@ impl<'a> Deriver<'a> {
     pub fn derive(
         &self,
         opts: &DeriveOptions,
-        mut progress: impl FnMut(u64, usize),
+        progress: impl FnMut(u64, usize),
     ) -> Result<Word, Diagnostic> {
+        self.derive_symbols(opts, progress).map(Symbols::into_word)
+    }
+
+    /// [`Deriver::derive`], the word's symbols kept as narrow as the
+    /// derivation held them ([`Symbols`]): what streams to a pipe or the
+    /// turtle needs no wider copy.
+    pub fn derive_symbols(
+        &self,
+        opts: &DeriveOptions,
+        mut progress: impl FnMut(u64, usize),
+    ) -> Result<Symbols, Diagnostic> {
         if self.sys.axiom.len() > opts.max_symbols {
             return Err(too_many(0, opts));
         }
@@ -206,11 +217,11 @@ impl<'a> Deriver<'a> {
                 let len = self.tree_len(&t, opts)?;
                 let word = t.word(opts.steps, len);
                 progress(opts.steps, word.len());
-                return Ok(Word::from(word));
+                return Ok(Symbols::Wide(word));
             }
         }
         refuse_early(self.sys, opts)?;
-        self.derive_stepwise(opts, progress)
+        self.stepwise_symbols(opts, progress)
     }
 
     /// The length of the word `t` derives in `opts.steps` steps, or
@@ -232,14 +243,25 @@ impl<'a> Deriver<'a> {
         opts: &DeriveOptions,
         progress: impl FnMut(u64, usize),
     ) -> Result<Word, Diagnostic> {
+        self.stepwise_symbols(opts, progress)
+            .map(Symbols::into_word)
+    }
+
+    /// [`Deriver::derive_stepwise`] in the words it rewrote.
+    fn stepwise_symbols(
+        &self,
+        opts: &DeriveOptions,
+        progress: impl FnMut(u64, usize),
+    ) -> Result<Symbols, Diagnostic> {
         let n = self.sys.symbols.len();
-        let word = match &self.table {
-            Some(t) if n < 256 => widen(self.steps(&t.stepper::<u8>(), opts, progress)?),
-            Some(t) if n < 65536 => widen(self.steps(&t.stepper::<u16>(), opts, progress)?),
-            Some(t) => self.steps(&t.stepper::<SymbolId>(), opts, progress)?,
-            None => self.steps(&General(self), opts, progress)?,
-        };
-        Ok(Word::from(word))
+        Ok(match &self.table {
+            Some(t) if n < 256 => Symbols::Bytes(self.steps(&t.stepper::<u8>(), opts, progress)?),
+            Some(t) if n < 65536 => {
+                Symbols::Shorts(self.steps(&t.stepper::<u16>(), opts, progress)?)
+            }
+            Some(t) => Symbols::Wide(self.steps(&t.stepper::<SymbolId>(), opts, progress)?),
+            None => Symbols::Wide(self.steps(&General(self), opts, progress)?),
+        })
     }
 
     /// Rewrites `opts.steps` steps with `stepper`, stopping early at a fixed
@@ -433,8 +455,52 @@ impl Sym for u16 {
     }
 }
 
-fn widen<T: Sym>(w: Vec<T>) -> Vec<SymbolId> {
-    w.into_iter().map(|s| SymbolId(s.index() as u32)).collect()
+/// A derived word of plain symbols, each held in a byte or two when the
+/// alphabet allows (1 or 2 bytes a symbol instead of 4): what a word of
+/// tens of millions of symbols costs while it is written or drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Symbols {
+    Bytes(Vec<u8>),
+    Shorts(Vec<u16>),
+    Wide(Vec<SymbolId>),
+}
+
+impl Symbols {
+    pub fn len(&self) -> usize {
+        match self {
+            Symbols::Bytes(w) => w.len(),
+            Symbols::Shorts(w) => w.len(),
+            Symbols::Wide(w) => w.len(),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The symbols in word order.
+    pub fn iter(&self) -> impl Iterator<Item = SymbolId> + '_ {
+        let (bytes, shorts, wide): (&[u8], &[u16], &[SymbolId]) = match self {
+            Symbols::Bytes(w) => (w, &[], &[]),
+            Symbols::Shorts(w) => (&[], w, &[]),
+            Symbols::Wide(w) => (&[], &[], w),
+        };
+        // Two of the three are empty: chaining them costs nothing per symbol
+        // but the check of an exhausted iterator.
+        bytes
+            .iter()
+            .map(|&s| SymbolId(u32::from(s)))
+            .chain(shorts.iter().map(|&s| SymbolId(u32::from(s))))
+            .chain(wide.iter().copied())
+    }
+
+    /// The word, a [`SymbolId`] a symbol.
+    pub fn into_word(self) -> Word {
+        match self {
+            Symbols::Wide(w) => Word::from(w),
+            narrow => Word::from(narrow.iter().collect::<Vec<_>>()),
+        }
+    }
 }
 
 /// One parallel rewriting step over words of `Sym`.

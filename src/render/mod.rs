@@ -5,6 +5,7 @@
 
 pub mod animate;
 pub mod camera;
+pub mod coverage;
 pub mod png;
 pub mod raster;
 mod shade;

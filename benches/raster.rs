@@ -1,0 +1,140 @@
+//! Drawing a model that must be drawn segment by segment (issue 21, item
+//! 1): Fig. 3.11a (`std:hogeweg-hesper-a`, context-sensitive) at 60 steps,
+//! 3.36 M segments, to a 1024x1024 PNG, derivation included.
+//!
+//! * `raster/streamed`: [`driver::derive_symbols`] then
+//!   [`driver::render_streamed`]: the word kept a byte a symbol, the
+//!   turtle run twice over it (bounds, then drawing), each segment drawn
+//!   into the coverage buffer as it is made; no segment is stored.
+//! * the baseline, measured once in the same run (it takes seconds): the
+//!   stored way, [`driver::geometry`] + [`render::layout`] +
+//!   [`render::png::encode`], which keeps every segment (about 150 bytes
+//!   each with the layout). That way stays for what needs storage: a 3D
+//!   drawing seen from the side (the painter's order sorts every segment
+//!   by depth), polygons and discs (drawn under all the lines), splines
+//!   and palettes that need the totals; lit looks go through the z-buffer
+//!   ([`render::raster`]).
+//! * `derive-pipe`: the derived word written to a sink as `graftal derive
+//!   … | …` writes it, and the peak heap per symbol of the final word.
+//!
+//! Peak memory is the peak of live heap bytes (a counting allocator, as in
+//! `benches/throughput.rs`), printed as `peak memory: …` lines.
+
+use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
+use graftal::driver::{self, RunOptions, Streamed};
+use graftal::ir::System;
+use graftal::render::{self, RenderOptions};
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+#[path = "common/alloc.rs"]
+mod alloc;
+use alloc::{mib, peak_during};
+
+#[global_allocator]
+static ALLOC: alloc::Counting = alloc::Counting;
+
+const STEPS: u64 = 60;
+
+fn load(name: &str) -> System {
+    let file = driver::load(&format!("std:{name}")).expect("stdlib entry");
+    driver::compile(file)
+        .system
+        .unwrap_or_else(|| panic!("std:{name} does not compile"))
+}
+
+fn run_options() -> RunOptions {
+    RunOptions {
+        steps: Some(STEPS),
+        ..RunOptions::default()
+    }
+}
+
+fn render_options(sys: &System) -> RenderOptions {
+    RenderOptions {
+        scale: sys.settings.scale,
+        ..RenderOptions::default()
+    }
+}
+
+/// The streamed way, from the system to PNG bytes.
+fn streamed(sys: &System) -> Vec<u8> {
+    let opts = run_options();
+    let word = driver::derive_symbols(sys, &opts, |_, _| {}).expect("derives");
+    match driver::render_streamed(sys, &opts, word, render_options(sys), &mut |_, _| {}) {
+        Streamed::Picture(bytes) => bytes.expect("png"),
+        Streamed::Word(..) => panic!("Fig. 3.11a is drawn streamed"),
+    }
+}
+
+/// The stored way: every segment kept, laid out, then stroked.
+fn stored(sys: &System) -> (Vec<u8>, usize) {
+    let (_, g) = driver::geometry(sys, &run_options()).expect("derives");
+    let pic = render::layout(&g, &render_options(sys));
+    (render::png::encode(&pic).expect("png"), g.segments.len())
+}
+
+fn bench_raster(c: &mut Criterion) {
+    let sys = load("hogeweg-hesper-a");
+    let t = Instant::now();
+    let ((_, segments), stored_peak) = peak_during(|| stored(&sys));
+    let stored_time = t.elapsed();
+    let t = Instant::now();
+    let (_, streamed_peak) = peak_during(|| streamed(&sys));
+    let streamed_time = t.elapsed();
+    println!(
+        "peak memory: hogeweg-hesper-a n={STEPS} 1024x1024 PNG, {segments} segments: \
+         {} in {:.2} s (streamed) vs {} in {:.2} s (baseline: stored)",
+        mib(streamed_peak),
+        streamed_time.as_secs_f64(),
+        mib(stored_peak),
+        stored_time.as_secs_f64(),
+    );
+    let mut group = c.benchmark_group("raster");
+    group.sampling_mode(SamplingMode::Flat);
+    group.throughput(Throughput::Elements(segments as u64));
+    group.bench_function("streamed/hogeweg-hesper-a/60", |b| {
+        b.iter(|| streamed(black_box(&sys)))
+    });
+    group.finish();
+}
+
+fn bench_derive_pipe(c: &mut Criterion) {
+    let sys = load("hogeweg-hesper-a");
+    let file = driver::load("std:hogeweg-hesper-a").expect("stdlib entry");
+    let compiled = driver::compile(file);
+    let write = || {
+        let mut out = std::io::sink();
+        driver::write_derived(compiled.front, &sys, &run_options(), &mut out, |_, _| {})
+            .expect("derives");
+    };
+    let ((), peak) = peak_during(write);
+    let symbols = driver::derive_symbols(&sys, &run_options(), |_, _| {})
+        .expect("derives")
+        .len();
+    println!(
+        "peak memory: derive hogeweg-hesper-a n={STEPS} to a pipe: {}, {symbols} symbols, \
+         {:.2} bytes per symbol",
+        mib(peak),
+        peak as f64 / symbols as f64
+    );
+    let mut group = c.benchmark_group("derive-pipe");
+    group.sampling_mode(SamplingMode::Flat);
+    group.throughput(Throughput::Elements(symbols as u64));
+    group.bench_function("hogeweg-hesper-a/60", |b| b.iter(write));
+    group.finish();
+}
+
+fn config() -> Criterion {
+    Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(5))
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = bench_raster, bench_derive_pipe
+}
+criterion_main!(benches);
