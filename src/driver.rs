@@ -1396,7 +1396,7 @@ fn encode(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
     match format {
-        Format::Svg => Ok(render::svg::write(pic).into_bytes()),
+        Format::Svg => Ok(render::svg::write_with(pic, opts.detail).into_bytes()),
         Format::Png => render::png::encode_with(pic, progress)
             .ok_or_else(|| LoadError(format!("cannot make a {}x{} PNG", opts.width, opts.height))),
     }

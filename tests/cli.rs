@@ -217,6 +217,8 @@ fn kolams_are_drawn_as_splines_through_the_turtle_positions() {
             &format!("std:{name}"),
             "-o",
             plain.to_str().unwrap(),
+            "--detail",
+            "full",
         ]);
         // Only f moves: the stdlib marks the kolams `graftal: spline`, so
         // they are drawn as the book draws them without `--spline`.
@@ -229,6 +231,9 @@ fn kolams_are_drawn_as_splines_through_the_turtle_positions() {
             "-o",
             curved.to_str().unwrap(),
             "--spline",
+            // Every sample of the curve, each an `L`.
+            "--detail",
+            "full",
         ]);
         assert_eq!(o.status, 0, "{}", o.stderr);
         assert!(!o.stderr.contains("W0003"), "{}", o.stderr);

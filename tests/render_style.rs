@@ -18,6 +18,8 @@ fn draw(file: &str, args: &[&str]) -> (Pixmap, String) {
     let run = |to: &str| {
         let mut argv = vec!["render", file, "-o", "-", "--to", to, "--size", "200x200"];
         argv.extend_from_slice(args);
+        // Every point, absolute, as `svg_points` reads them.
+        argv.extend_from_slice(&["--detail", "full"]);
         let (status, out, err) = graftal_bytes(&argv, false);
         assert_eq!(status, 0, "{}", String::from_utf8_lossy(&err));
         out

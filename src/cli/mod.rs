@@ -159,6 +159,11 @@ struct RenderArgs {
     /// polygons, surfaces and spheres keep the system's colours.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::render::Palette::NAMES))]
     palette: Option<String>,
+    /// SVG detail: merged (lines that add nothing visible at the picture's
+    /// size left out, points within half a pixel of a straight line
+    /// merged, coordinates to a tenth of a pixel) or full (every segment).
+    #[arg(long, default_value = "merged", value_parser = clap::builder::PossibleValuesParser::new(crate::render::Detail::NAMES))]
+    detail: String,
     /// Draw steps 0..N as the frames of an animation, all framed as the
     /// last: `-o OUT.gif`, or `-o OUT.png` for an animated PNG.
     #[arg(long)]
@@ -649,6 +654,7 @@ fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
                 .as_deref()
                 .and_then(crate::render::Palette::from_name),
         },
+        detail: crate::render::Detail::from_name(&a.detail).unwrap_or_default(),
         ..RenderOptions::default()
     }
 }

@@ -10,6 +10,7 @@ pub mod png;
 pub mod raster;
 mod shade;
 pub mod shared;
+pub mod simplify;
 pub mod svg;
 
 use crate::ir::look::Camera;
@@ -69,6 +70,32 @@ pub struct RenderOptions {
     /// A fixed framing instead of fitting what is drawn: the frames of an
     /// animation all take the last frame's ([`framing`]).
     pub framing: Option<Framing>,
+    /// What an SVG keeps of detail finer than its pixels.
+    pub detail: Detail,
+}
+
+/// What an SVG keeps of detail finer than half a pixel at its size
+/// (`--detail`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// Lines that add nothing visible left out, nearly collinear points
+    /// merged ([`simplify`]).
+    #[default]
+    Merged,
+    /// Every segment as the turtle drew it.
+    Full,
+}
+
+impl Detail {
+    pub const NAMES: [&'static str; 2] = ["merged", "full"];
+
+    pub fn from_name(name: &str) -> Option<Detail> {
+        match name {
+            "merged" => Some(Detail::Merged),
+            "full" => Some(Detail::Full),
+            _ => None,
+        }
+    }
 }
 
 /// Where a fit puts the picture plane, as [`layout`] found it for one
@@ -237,6 +264,7 @@ impl Default for RenderOptions {
             base_width: 1.0,
             style: Style::default(),
             framing: None,
+            detail: Detail::Merged,
         }
     }
 }

@@ -4,7 +4,7 @@
 
 use super::camera::{cross, dot, sub, unit, Projector};
 use super::shade::{Colour, Kind, Paint, Shader};
-use super::{Palette, Picture, RenderOptions};
+use super::{Detail, Palette, Picture, RenderOptions, Run};
 use crate::ir::look::{Lighting, LineStyle, Shading};
 use crate::ir::Rgb;
 use crate::turtle::{Disc, Geometry, Polygon, Segment, Vec3};
@@ -56,8 +56,67 @@ fn polyline(d: &mut String, pts: &[[f64; 2]]) {
     }
 }
 
-/// The picture as an SVG document.
+/// `x` pixels in tenths, as written by [`tenths`].
+fn to_tenths(x: f64) -> i64 {
+    (x * 10.0).round() as i64
+}
+
+/// `t` tenths of a pixel, shortest: `12` is `1.2`, `-3` is `-.3`, `10` is `1`.
+fn tenths(t: i64) -> String {
+    let (sign, t) = if t < 0 { ("-", -t) } else { ("", t) };
+    match (t / 10, t % 10) {
+        (0, 0) => "0".to_string(),
+        (0, f) => format!("{sign}.{f}"),
+        (i, 0) => format!("{sign}{i}"),
+        (i, f) => format!("{sign}{i}.{f}"),
+    }
+}
+
+/// Appends numbers to a path's `d`, a space between them where a minus
+/// sign does not already part them.
+fn numbers(d: &mut String, ts: [i64; 2]) {
+    for t in ts {
+        let text = tenths(t);
+        if !(d.is_empty() || text.starts_with('-') || d.ends_with(['M', 'l'])) {
+            d.push(' ');
+        }
+        d.push_str(&text);
+    }
+}
+
+/// Appends `M x y l dx dy dx dy …` for the points, to a tenth of a pixel:
+/// each step is the difference of rounded points, so that rounding errors
+/// do not add up along the line.
+fn compact_polyline(d: &mut String, pts: &[[f64; 2]]) {
+    let mut at: Option<[i64; 2]> = None;
+    for p in pts {
+        let t = [to_tenths(p[0]), to_tenths(p[1])];
+        match at {
+            None => {
+                d.push('M');
+                numbers(d, t);
+                d.push('l');
+            }
+            Some(a) => numbers(d, [t[0] - a[0], t[1] - a[1]]),
+        }
+        at = Some(t);
+    }
+}
+
+/// The picture as an SVG document, its sub-pixel detail merged
+/// ([`Detail::Merged`]).
 pub fn write(pic: &Picture) -> String {
+    write_with(pic, Detail::Merged)
+}
+
+/// The picture as an SVG document with `detail`: every segment at three
+/// decimals, or where anything merges ([`super::simplify`]), what is
+/// visible at a tenth of a pixel.
+pub fn write_with(pic: &Picture, detail: Detail) -> String {
+    let merged = match detail {
+        Detail::Full => None,
+        Detail::Merged => super::simplify::merged_runs(pic),
+    };
     let mut out = String::new();
     let (w, h) = (pic.width, pic.height);
     let _ = writeln!(
@@ -75,10 +134,17 @@ pub fn write(pic: &Picture) -> String {
             hex(*colour)
         );
     }
-    for run in &pic.runs {
+    let runs: &[Run] = merged.as_deref().unwrap_or(&pic.runs);
+    for run in runs {
         let mut d = String::new();
-        for line in &run.lines {
-            polyline(&mut d, line);
+        for line in run.lines.iter().filter(|l| !l.is_empty()) {
+            match merged {
+                Some(_) => compact_polyline(&mut d, line),
+                None => polyline(&mut d, line),
+            }
+        }
+        if d.is_empty() {
+            continue;
         }
         let _ = writeln!(
             out,
@@ -306,5 +372,17 @@ mod tests {
         assert_eq!(num(-0.0001), "0");
         assert_eq!(num(2.5), "2.5");
         assert_eq!(num(1.23456), "1.235");
+    }
+
+    #[test]
+    fn compact_paths_step_between_rounded_points() {
+        assert_eq!(tenths(12), "1.2");
+        assert_eq!(tenths(-3), "-.3");
+        assert_eq!(tenths(-10), "-1");
+        assert_eq!(tenths(0), "0");
+        let mut d = String::new();
+        compact_polyline(&mut d, &[[10.04, 5.0], [10.46, 4.72], [10.88, 4.44]]);
+        // 10.5 - 10 = .5, then 10.9 - 10.5 = .4: the rounding does not drift.
+        assert_eq!(d, "M10 5l.5-.3 .4-.3");
     }
 }
