@@ -564,6 +564,40 @@ fn cpfg_side_files_are_read_from_disk_and_reported_on_them() {
     c.stop();
 }
 
+/// Problems inside an `#include`d file, whether the preprocessor's (an
+/// unknown directive) or the reader's (a production cut short), are
+/// published on that file's own URI, at their own line, with a note naming
+/// the `#include` line; the document itself has none.
+#[test]
+fn problems_of_an_included_file_are_reported_on_it() {
+    let dir = cpfg_object("include", &[("leaf.h", "B --> F(1\n#bogus\n")]);
+    let uri = |f: &str| format!("file://{}", dir.join(f).display());
+    let plant =
+        "Lsystem: 1\n#include \"leaf.h\"\nderivation length: 2\nAxiom: A\nA --> B\nendlsystem\n";
+    let mut c = Client::start();
+    let own = c.open(&uri("plant.l"), plant);
+    let inc = c.diagnostics(&uri("leaf.h"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(own, Vec::<Value>::new());
+    let found: Vec<_> = (inc.iter())
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap(),
+                d["range"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(found, [("E0805", 1), ("E0003", 0)], "{inc:?}");
+    for d in &inc {
+        let message = d["message"].as_str().unwrap();
+        assert!(
+            message.contains("`leaf.h` is included at line 2"),
+            "{message}"
+        );
+    }
+    c.stop();
+}
+
 /// The hover text at (`line`, `character`) of `uri`.
 fn hover_text(c: &mut Client, uri: &str, line: u32, character: u32) -> String {
     let h = c.at("textDocument/hover", uri, line, character);
