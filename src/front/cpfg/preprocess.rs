@@ -1233,7 +1233,7 @@ impl Pp<'_> {
             None
         };
         if let Some(n) = suggestion {
-            d = d.with_help(format!("did you mean `#{n}`?"));
+            d = d.suggesting(format!("#{n}"));
         } else {
             d = d.with_help(
                 "a line cannot start with `#` in cpfg (the preprocessor reads it as a directive); \
