@@ -652,3 +652,29 @@ fn check_says_what_it_read() {
     let o = graftal(&["check", "std:linf/fig06-plant"]);
     assert!(o.stdout.contains(": dialect: LinF, "), "{}", o.stdout);
 }
+
+/// `check` shows a mistake inside a cpfg `#include`d file in that file, at
+/// its own line (as rustc shows one inside a macro of another file), with
+/// a note naming the `#include` line.
+#[test]
+fn check_shows_a_mistake_of_an_included_file_in_that_file() {
+    let dir = std::env::temp_dir().join(format!("graftal-cli-include-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("leaf.h"), "B --> F(1\n#bogus\n").unwrap();
+    let plant =
+        "Lsystem: 1\n#include \"leaf.h\"\nderivation length: 2\nAxiom: A\nA --> B\nendlsystem\n";
+    std::fs::write(dir.join("plant.l"), plant).unwrap();
+    let out = binary_in(&dir, &["check", "plant.l"]);
+    let _ = std::fs::remove_dir_all(&dir);
+    let text =
+        String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("leaf.h:2:1") && text.contains("leaf.h:1:10"),
+        "{text}"
+    );
+    assert!(text.contains("#bogus"), "{text}");
+    assert!(
+        text.contains("`leaf.h` is included at line 2 of the L-system file"),
+        "{text}"
+    );
+}

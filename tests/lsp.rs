@@ -384,57 +384,80 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     for i in 0..10_000 {
         text.push_str(&format!("F --> F+F-F /* é {i} */\n"));
     }
-    let mut c = Client::start();
-    let t = Instant::now();
-    let ds = c.open(URI, &text);
-    let open = c.arrived - t;
-    assert_eq!(ds.len(), 1_001); // the first 1,000 and a count of the rest
-    let t = Instant::now();
-    c.change(URI, 2, &text.replacen("axiom: F", "axiom: F+F", 1));
-    let change = c.arrived - t;
-    let mut times = vec![("open", open), ("change", change)];
-    for (method, line, col) in [
-        ("textDocument/hover", 2, 7),
-        ("textDocument/definition", 2, 7),
-        ("textDocument/references", 2, 7),
-        ("textDocument/completion", 9_000, 0),
-    ] {
-        let t = Instant::now();
-        let r = c.at(method, URI, line, col);
-        times.push((method, c.arrived - t));
-        assert!(r.get("result").is_some(), "{r}");
-    }
-    let t = Instant::now();
-    c.request(
-        "textDocument/documentSymbol",
-        json!({ "textDocument": { "uri": URI } }),
-    );
-    times.push(("textDocument/documentSymbol", c.arrived - t));
-    let t = Instant::now();
-    let whole = json!({ "start": { "line": 0, "character": 0 }, "end": { "line": 10_003, "character": 0 } });
-    let r = c.request(
-        "textDocument/codeAction",
-        json!({ "textDocument": { "uri": URI }, "range": whole, "context": { "diagnostics": [] } }),
-    );
-    times.push(("textDocument/codeAction", c.arrived - t));
-    assert!(r["result"].is_array(), "{r}");
     // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s.
     let gft_uri = "file:///tmp/graftal-lsp-test/big.gft";
     let mut gft = String::from("axiom A0\nangle 90\n");
     for i in 0..9_998 {
         gft.push_str(&format!("A{i}  ->  F+A{}\n", i + 1));
     }
+    let mut c = Client::start();
+    // Each figure is the median of three runs: one run slowed by other
+    // work on a loaded machine says nothing of the server. Before each run
+    // of a request the document changes (untimed), so that each answer is
+    // the first after a compile, as after a keystroke.
+    let mut times = Vec::new();
+    let mut version = 10;
+    let mut time = |c: &mut Client, what: &'static str, run: &dyn Fn(&mut Client, usize)| {
+        let mut runs: Vec<Duration> = (0..3)
+            .map(|k| {
+                if what.starts_with("textDocument/") && what != "textDocument/formatting" {
+                    version += 1;
+                    c.change(URI, version, &text.replacen("axiom: F", "axiom: F+F", 1));
+                }
+                let t = Instant::now();
+                run(c, k);
+                c.arrived - t
+            })
+            .collect();
+        runs.sort();
+        times.push((what, runs[1]));
+    };
+    time(&mut c, "open", &|c, _| {
+        let ds = c.open(URI, &text);
+        assert_eq!(ds.len(), 1_001); // the first 1,000 and a count of the rest
+    });
+    time(&mut c, "change", &|c, k| {
+        let axiom = format!("axiom: F{}", "+F".repeat(k + 1));
+        c.change(URI, 2 + k as i64, &text.replacen("axiom: F", &axiom, 1));
+    });
+    for (method, line, col) in [
+        ("textDocument/hover", 2, 7),
+        ("textDocument/definition", 2, 7),
+        ("textDocument/references", 2, 7),
+        ("textDocument/completion", 9_000, 0),
+    ] {
+        time(&mut c, method, &|c, _| {
+            let r = c.at(method, URI, line, col);
+            assert!(r.get("result").is_some(), "{r}");
+        });
+    }
+    time(&mut c, "textDocument/documentSymbol", &|c, _| {
+        c.request(
+            "textDocument/documentSymbol",
+            json!({ "textDocument": { "uri": URI } }),
+        );
+    });
+    time(&mut c, "textDocument/codeAction", &|c, _| {
+        let whole = json!({ "start": { "line": 0, "character": 0 }, "end": { "line": 10_003, "character": 0 } });
+        let r = c.request(
+            "textDocument/codeAction",
+            json!({ "textDocument": { "uri": URI }, "range": whole, "context": { "diagnostics": [] } }),
+        );
+        assert!(r["result"].is_array(), "{r}");
+    });
     c.open(gft_uri, &gft);
-    let t = Instant::now();
-    let r = c.request(
-        "textDocument/formatting",
-        json!({ "textDocument": { "uri": gft_uri }, "options": { "tabSize": 4, "insertSpaces": true } }),
-    );
-    // Not yet within the bound: formatting reads the file, writes it and
-    // reads it back (about 300 ms on 10,000 lines in the debug build).
-    let formatting = c.arrived - t;
-    assert_eq!(r["result"].as_array().map(Vec::len), Some(1), "{r}");
-    eprintln!("answer times: {times:?}, formatting {formatting:?}");
+    time(&mut c, "textDocument/formatting", &|c, _| {
+        let r = c.request(
+            "textDocument/formatting",
+            json!({ "textDocument": { "uri": gft_uri }, "options": { "tabSize": 4, "insertSpaces": true } }),
+        );
+        assert_eq!(r["result"].as_array().map(Vec::len), Some(1), "{r}");
+    });
+    eprintln!("answer times (median of 3): {times:?}");
+    // Formatting (write, then read back and compare) is measured but not
+    // yet held to the bound: 190-280 ms here in the test profile.
+    let formatting = times.pop();
+    eprintln!("formatting, not asserted: {formatting:?}");
     let slowest = times.iter().map(|t| t.1).max().unwrap();
     assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
@@ -561,6 +584,40 @@ fn cpfg_side_files_are_read_from_disk_and_reported_on_them() {
     assert_eq!(func.len(), 1, "{func:?}");
     assert_eq!(func[0]["code"], "E0813");
     assert_eq!(func[0]["range"]["start"]["line"], 3);
+    c.stop();
+}
+
+/// Problems inside an `#include`d file, whether the preprocessor's (an
+/// unknown directive) or the reader's (a production cut short), are
+/// published on that file's own URI, at their own line, with a note naming
+/// the `#include` line; the document itself has none.
+#[test]
+fn problems_of_an_included_file_are_reported_on_it() {
+    let dir = cpfg_object("include", &[("leaf.h", "B --> F(1\n#bogus\n")]);
+    let uri = |f: &str| format!("file://{}", dir.join(f).display());
+    let plant =
+        "Lsystem: 1\n#include \"leaf.h\"\nderivation length: 2\nAxiom: A\nA --> B\nendlsystem\n";
+    let mut c = Client::start();
+    let own = c.open(&uri("plant.l"), plant);
+    let inc = c.diagnostics(&uri("leaf.h"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(own, Vec::<Value>::new());
+    let found: Vec<_> = (inc.iter())
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap(),
+                d["range"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(found, [("E0805", 1), ("E0003", 0)], "{inc:?}");
+    for d in &inc {
+        let message = d["message"].as_str().unwrap();
+        assert!(
+            message.contains("`leaf.h` is included at line 2"),
+            "{message}"
+        );
+    }
     c.stop();
 }
 
@@ -771,6 +828,53 @@ fn quick_fixes_make_the_suggested_replacement() {
         assert!(fixed.contains(replacement), "{fixed}");
         let left = c.change(uri, 2, &fixed);
         assert!(!left.iter().any(|d| d["code"] == code), "{code}: {left:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+/// The suggestions that were help text only now carry their replacement:
+/// cpfg's preprocessor directive, gft's turtle operation, and the cpfg
+/// view file's command (a fix asked for on the view file's own URI).
+#[test]
+fn directive_operation_and_view_suggestions_are_quick_fixes() {
+    let dir = cpfg_object("fixes2", &[("plant.v", "angel factor: 16\n")]);
+    let uri = |f: &str| format!("file://{}", dir.join(f).display());
+    let gft = "file:///tmp/graftal-lsp-test/op.gft";
+    let plant = "Lsystem: 1\n#defien N 2\nderivation length: 2\nAxiom: F\nF --> F+F\nendlsystem\n";
+    let mut c = Client::start();
+    let mut cases = vec![];
+    let ds = c.open(&uri("plant.l"), plant);
+    cases.push((
+        uri("plant.l"),
+        plant.to_string(),
+        ds,
+        "E0805",
+        "#define N 2",
+    ));
+    let view = c.diagnostics(&uri("plant.v"));
+    cases.push((
+        uri("plant.v"),
+        "angel factor: 16\n".into(),
+        view,
+        "W0804",
+        "angle factor: 16",
+    ));
+    let text = "axiom F\nF -> F+F\nG = forwrd\n";
+    let ds = c.open(gft, text);
+    cases.push((
+        gft.to_string(),
+        text.to_string(),
+        ds,
+        "E0902",
+        "G = forward",
+    ));
+    for (uri, text, ds, code, fixed) in cases {
+        let d = (ds.iter().find(|d| d["code"] == code)).unwrap_or_else(|| panic!("{code}: {ds:?}"));
+        let fixes = quick_fixes(&mut c, &uri, d);
+        assert_eq!(fixes.len(), 1, "{code}: {fixes:?}");
+        let out = apply(&text, &uri, &fixes[0]);
+        assert!(out.contains(fixed), "{code}: {out}");
     }
     let _ = std::fs::remove_dir_all(&dir);
     c.stop();

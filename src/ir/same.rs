@@ -77,7 +77,12 @@ fn word_text(sys: &System, w: &Word) -> String {
 
 /// Compares two values by their pretty `Debug` form; the first line that
 /// differs is reported under `path` and the fields that enclose it.
-fn debug<T: Debug>(path: &str, a: &T, b: &T) -> Result<(), String> {
+fn debug<T: Debug>(path: impl std::fmt::Display, a: &T, b: &T) -> Result<(), String> {
+    // The compact forms first: cheaper, and equal when the pretty ones
+    // are (`graftal fmt` compares ten thousand productions on a request).
+    if format!("{a:?}") == format!("{b:?}") {
+        return Ok(());
+    }
     let (x, y) = (format!("{a:#?}"), format!("{b:#?}"));
     if x == y {
         return Ok(());
@@ -123,6 +128,16 @@ fn named(line: Option<&str>) -> (Option<&str>, &str) {
 }
 
 impl Same<'_> {
+    /// `label(a, x) == label(b, y)`, without writing the labels of named
+    /// symbols (most are).
+    fn same_label(&self, x: SymbolId, y: SymbolId) -> bool {
+        let (n, m) = (self.a.symbols.name(x), self.b.symbols.name(y));
+        if !n.is_empty() || !m.is_empty() {
+            return n == m;
+        }
+        label(self.a, x) == label(self.b, y)
+    }
+
     /// The symbols that matter, by label: what each does to the turtle
     /// and, for a guarded one, its guard.
     fn symbols(&self) -> Result<(), String> {
@@ -143,7 +158,7 @@ impl Same<'_> {
             let ib = sb[l];
             let op = |s: &System, i: SymbolId| s.interpretation.get(i.index()).copied().flatten();
             debug(
-                &format!("interpretation[`{l}`]"),
+                format!("interpretation[`{l}`]"),
                 &op(self.a, ia),
                 &op(self.b, ib),
             )?;
@@ -151,7 +166,7 @@ impl Same<'_> {
                 (s.symbols.info(i).guard).map(|g| (g.probability, label(s, g.base)))
             };
             debug(
-                &format!("symbols[`{l}`].guard"),
+                format!("symbols[`{l}`].guard"),
                 &guard(self.a, ia),
                 &guard(self.b, ib),
             )?;
@@ -159,23 +174,27 @@ impl Same<'_> {
         Ok(())
     }
 
-    fn ids(&self, path: &str, a: &[SymbolId], b: &[SymbolId]) -> Result<(), String> {
-        let la: Vec<String> = a.iter().map(|&s| label(self.a, s)).collect();
-        let lb: Vec<String> = b.iter().map(|&s| label(self.b, s)).collect();
-        if la == lb {
+    fn ids(
+        &self,
+        path: impl std::fmt::Display,
+        a: &[SymbolId],
+        b: &[SymbolId],
+    ) -> Result<(), String> {
+        if a.len() == b.len() && a.iter().zip(b).all(|(&x, &y)| self.same_label(x, y)) {
             return Ok(());
         }
+        let la: Vec<String> = a.iter().map(|&s| label(self.a, s)).collect();
+        let lb: Vec<String> = b.iter().map(|&s| label(self.b, s)).collect();
         Err(format!("{path}: {la:?} vs {lb:?}"))
     }
 
-    fn word(&self, path: &str, a: &Word, b: &Word) -> Result<(), String> {
+    fn word(&self, path: impl std::fmt::Display, a: &Word, b: &Word) -> Result<(), String> {
         let same_args = (0..a.len()).all(|i| {
             let (x, y) = (a.args(i), b.args(i));
             x.len() == y.len() && x.iter().zip(y).all(|(p, q)| p.to_bits() == q.to_bits())
         });
-        let la = a.0.iter().map(|&s| label(self.a, s));
-        let lb = b.0.iter().map(|&s| label(self.b, s));
-        if a.len() == b.len() && la.eq(lb) && same_args {
+        let same_labels = (a.0.iter().zip(&b.0)).all(|(&x, &y)| self.same_label(x, y));
+        if a.len() == b.len() && same_labels && same_args {
             return Ok(());
         }
         Err(format!(
@@ -186,41 +205,45 @@ impl Same<'_> {
     }
 
     fn productions(&self, path: &str, a: &[Production], b: &[Production]) -> Result<(), String> {
-        debug(&format!("{path}.len()"), &a.len(), &b.len())?;
+        debug(format!("{path}.len()"), &a.len(), &b.len())?;
         for (i, (p, q)) in a.iter().zip(b).enumerate() {
-            let at = format!("{path}[{i}]");
-            self.ids(&format!("{at}.left"), &p.left, &q.left)?;
-            self.ids(&format!("{at}.predecessor"), &p.predecessor, &q.predecessor)?;
-            self.ids(&format!("{at}.right"), &p.right, &q.right)?;
+            // Paths are written only for a difference (`format_args!`).
+            let at = format_args!("{path}[{i}]");
+            self.ids(format_args!("{at}.left"), &p.left, &q.left)?;
+            self.ids(
+                format_args!("{at}.predecessor"),
+                &p.predecessor,
+                &q.predecessor,
+            )?;
+            self.ids(format_args!("{at}.right"), &p.right, &q.right)?;
             // The names are spelling, as spans are (`Formals::names`).
             let unnamed = |f: &super::Formals| super::Formals {
                 names: Vec::new(),
                 ..f.clone()
             };
             debug(
-                &format!("{at}.formals"),
+                format_args!("{at}.formals"),
                 &unnamed(&p.formals),
                 &unnamed(&q.formals),
             )?;
-            debug(&format!("{at}.before"), &p.before, &q.before)?;
-            debug(&format!("{at}.condition"), &p.condition, &q.condition)?;
-            debug(&format!("{at}.after"), &p.after, &q.after)?;
-            let alts = format!("{at}.alternatives");
+            debug(format_args!("{at}.before"), &p.before, &q.before)?;
+            debug(format_args!("{at}.condition"), &p.condition, &q.condition)?;
+            debug(format_args!("{at}.after"), &p.after, &q.after)?;
             debug(
-                &format!("{alts}.len()"),
+                format_args!("{path}[{i}].alternatives.len()"),
                 &p.alternatives.len(),
                 &q.alternatives.len(),
             )?;
             for (k, (x, y)) in p.alternatives.iter().zip(&q.alternatives).enumerate() {
-                let at = format!("{alts}[{k}]");
-                debug(&format!("{at}.weight"), &x.weight, &y.weight)?;
+                let at = format_args!("{path}[{i}].alternatives[{k}]");
+                debug(format_args!("{at}.weight"), &x.weight, &y.weight)?;
                 debug(
-                    &format!("{at}.computed_weight"),
+                    format_args!("{at}.computed_weight"),
                     &x.computed_weight,
                     &y.computed_weight,
                 )?;
-                self.word(&format!("{at}.successor"), &x.successor, &y.successor)?;
-                debug(&format!("{at}.args"), &x.args, &y.args)?;
+                self.word(format_args!("{at}.successor"), &x.successor, &y.successor)?;
+                debug(format_args!("{at}.args"), &x.args, &y.args)?;
             }
         }
         Ok(())
@@ -232,8 +255,8 @@ impl Same<'_> {
             &a.productions,
             &b.productions,
         )?;
-        debug(&format!("{path}.depth"), &a.depth, &b.depth)?;
-        debug(&format!("{path}.seed"), &a.seed, &b.seed)
+        debug(format!("{path}.depth"), &a.depth, &b.depth)?;
+        debug(format!("{path}.seed"), &a.seed, &b.seed)
     }
 
     /// The filter's kind and its symbols as a set (the order of a list of
@@ -255,7 +278,7 @@ impl Same<'_> {
 
     /// Seed items: words by their symbols' names, terms field by field.
     fn seed(&self, key: &str, a: &[SeedItem], b: &[SeedItem]) -> Result<(), String> {
-        debug(&format!("{key}.len()"), &a.len(), &b.len())?;
+        debug(format!("{key}.len()"), &a.len(), &b.len())?;
         for (i, (x, y)) in a.iter().zip(b).enumerate() {
             let at = format!("{key}[{i}]");
             match (x, y) {
@@ -281,14 +304,14 @@ impl Same<'_> {
         };
         debug("structure.rules.len()", &a.rules.len(), &b.rules.len())?;
         for (i, (x, y)) in a.rules.iter().zip(&b.rules).enumerate() {
-            debug(&format!("structure.rules[{i}].name"), &x.name, &y.name)?;
-            self.word(&format!("structure.rules[{i}].body"), &x.body, &y.body)?;
+            debug(format!("structure.rules[{i}].name"), &x.name, &y.name)?;
+            self.word(format!("structure.rules[{i}].body"), &x.body, &y.body)?;
             debug(
-                &format!("structure.rules[{i}].resemblance"),
+                format!("structure.rules[{i}].resemblance"),
                 &x.resemblance,
                 &y.resemblance,
             )?;
-            debug(&format!("structure.rules[{i}].unit"), &x.unit, &y.unit)?;
+            debug(format!("structure.rules[{i}].unit"), &x.unit, &y.unit)?;
         }
         self.seed("structure.seed", &a.seed, &b.seed)?;
         self.seed("structure.planted", &a.planted, &b.planted)?;

@@ -4,8 +4,9 @@
 
 use super::position::{position, range};
 use super::publish::convert;
-use super::Document;
+use super::{uri, Document};
 use crate::format::{outcome, Outcome};
+use crate::source::SourceFile;
 use lsp_types::{
     CodeAction, CodeActionKind, CodeActionOrCommand, Range, TextEdit, Uri, WorkspaceEdit,
 };
@@ -15,29 +16,62 @@ use std::collections::HashMap;
 /// file with thousands of mistakes would otherwise list thousands.
 const MAX_FIXES: usize = 100;
 
-/// The quick fixes of the diagnostics of `doc` that touch `asked` and
-/// know their fix: each writes the replacement over the span it names.
-pub fn quick_fixes(doc: &Document, asked: Range) -> Vec<CodeActionOrCommand> {
-    let c = &doc.compiled;
+/// The quick fixes for the file at `uri` that touch `asked`: of the
+/// diagnostics that know their fix, those of the open document at `uri`
+/// and those other open documents report on it (a cpfg view file, an
+/// `#include`d file). Each writes the replacement over the span it names.
+pub fn quick_fixes(
+    docs: &HashMap<String, Document>,
+    uri: &Uri,
+    asked: Range,
+) -> Vec<CodeActionOrCommand> {
     let touches = |r: &Range| r.start <= asked.end && asked.start <= r.end;
-    (c.diagnostics.iter())
-        .filter(|d| d.side.is_none())
-        .filter_map(|d| Some((d, d.fix.as_ref()?)))
-        .filter(|(_, fix)| touches(&range(&c.file, &fix.span)))
-        .take(MAX_FIXES)
-        .map(|(d, fix)| {
-            let edit = TextEdit::new(range(&c.file, &fix.span), fix.replacement.clone());
-            let was = c.file.text.get(fix.span.clone()).unwrap_or("");
-            CodeActionOrCommand::CodeAction(CodeAction {
+    // The document itself first, then the others in a stable order.
+    let mut order: Vec<&Document> = docs.values().collect();
+    order.sort_by_key(|d| (d.uri != *uri, d.uri.as_str().to_string()));
+    let mut out = Vec::new();
+    for doc in order {
+        let c = &doc.compiled;
+        let mut side_files: HashMap<&str, Option<SourceFile>> = HashMap::new();
+        for (d, fix) in c
+            .diagnostics
+            .iter()
+            .filter_map(|d| Some((d, d.fix.as_ref()?)))
+        {
+            let file = match &d.side {
+                None if doc.uri == *uri => &c.file,
+                None => continue,
+                Some(s) => {
+                    let found = side_files.entry(&s.name).or_insert_with(|| {
+                        let here = uri::from_path(&s.name).is_some_and(|u| u == *uri);
+                        here.then(|| SourceFile::new(s.name.clone(), s.text.clone()))
+                    });
+                    let Some(file) = found.as_ref() else { continue };
+                    file
+                }
+            };
+            let at = range(file, &fix.span);
+            if !touches(&at) {
+                continue;
+            }
+            let was = file.text.get(fix.span.clone()).unwrap_or("");
+            out.push(CodeActionOrCommand::CodeAction(CodeAction {
                 title: format!("Replace `{was}` with `{}`", fix.replacement),
                 kind: Some(CodeActionKind::QUICKFIX),
-                diagnostics: Some(vec![convert(d, &c.file, &doc.uri)]),
-                edit: Some(whole_edit(&doc.uri, vec![edit])),
+                diagnostics: Some(vec![convert(d, file, uri)]),
+                edit: Some(whole_edit(
+                    uri,
+                    vec![TextEdit::new(at, fix.replacement.clone())],
+                )),
                 is_preferred: Some(true),
                 ..Default::default()
-            })
-        })
-        .collect()
+            }));
+            if out.len() == MAX_FIXES {
+                return out;
+            }
+        }
+    }
+    out
 }
 
 /// `edits` of the document at `uri`, as a workspace edit.

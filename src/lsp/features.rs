@@ -60,11 +60,7 @@ pub fn answer(
         }
         CodeActionRequest::METHOD => {
             let p: lsp_types::CodeActionParams = parse(params)?;
-            let doc = docs.get(p.text_document.uri.as_str());
-            serde_json::to_string(
-                &doc.map(|d| edits::quick_fixes(d, p.range))
-                    .unwrap_or_default(),
-            )
+            serde_json::to_string(&edits::quick_fixes(docs, &p.text_document.uri, p.range))
         }
         Formatting::METHOD => {
             let p: lsp_types::DocumentFormattingParams = parse(params)?;

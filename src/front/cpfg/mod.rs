@@ -26,11 +26,13 @@ pub mod view;
 
 pub use crate::ir::Lowered;
 
-use crate::diagnostics::Diagnostics;
+use crate::diagnostics::{Diagnostic, Diagnostics, SideFile};
 use crate::front::{line_comments, strip_block_comments, Confidence, Front, Read};
 use crate::ir::{Span, System};
 use crate::source::SourceFile;
+use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The cpfg dialect of `.l` in the registry.
 pub struct Cpfg;
@@ -241,24 +243,29 @@ impl Beside<'_> {
     ) -> Lowered {
         let defines = &functions.defines;
         let pre = preprocess::preprocess_with_defines(text, defines, &mut |name| self.read(name));
-        diags.extend(pre.diagnostics);
+        let mut named = SidePaths::new(self.dir);
+        for d in pre.diagnostics.0 {
+            diags.push(match &d.side {
+                Some(side) => {
+                    let side = named.path_of(side);
+                    d.in_side_file(side)
+                }
+                None => d,
+            });
+        }
         let mut own = Diagnostics::default();
         let ast = parser::parse(&pre.text, &mut own);
         let mut lowered = lower::lower_with_curves(&ast, curves, &mut own);
         let (arrays, given) = (&lowered.system.program.arrays, functions.functions.len());
         calls::check(&ast, arrays, given, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
-        for mut d in own.0 {
+        for d in own.0 {
             // Where expansion stopped too deep the text is left as written:
             // the parser meets the same nesting again.
             if pre.stopped_too_deep && d.code == crate::diagnostics::codes::NESTED_TOO_DEEPLY {
                 continue;
             }
-            d.span = d.span.as_ref().map(map);
-            for l in &mut d.labels {
-                l.span = map(&l.span);
-            }
-            diags.push(d);
+            diags.push(named.located(d, &pre.map));
         }
         map_spans(&mut lowered.spans, map);
         lowered
@@ -431,19 +438,89 @@ fn read_lossy(path: &Path) -> Option<String> {
     file.oversize().is_none().then_some(file.text)
 }
 
+/// How diagnostics name a file of the object's folder.
+fn shown_name(path: &Path) -> String {
+    path.strip_prefix(".").unwrap_or(path).display().to_string()
+}
+
 /// Reports the diagnostics of a file beside the `.l` (view, function,
 /// surface) as that file's: their spans point into `text`, shown as `path`.
 fn push_side_file(diags: &mut Diagnostics, d: &Diagnostics, path: &Path, text: &str) {
     if d.is_empty() {
         return;
     }
-    let name = path.strip_prefix(".").unwrap_or(path).display().to_string();
     let side = std::sync::Arc::new(crate::diagnostics::SideFile {
-        name,
+        name: shown_name(path),
         text: text.to_string(),
     });
     for x in d.iter() {
         diags.push(x.clone().in_side_file(side.clone()));
+    }
+}
+
+/// The files `#include`d in the `.l`, named by their path in the object's
+/// folder (the preprocessor knows them by the name written), each once.
+struct SidePaths<'a> {
+    dir: Option<&'a Path>,
+    named: HashMap<String, Arc<SideFile>>,
+}
+
+impl<'a> SidePaths<'a> {
+    fn new(dir: Option<&'a Path>) -> Self {
+        SidePaths {
+            dir,
+            named: HashMap::new(),
+        }
+    }
+
+    /// `side`, named by its path.
+    fn path_of(&mut self, side: &Arc<SideFile>) -> Arc<SideFile> {
+        let dir = self.dir;
+        let named = self.named.entry(side.name.clone()).or_insert_with(|| {
+            let path = dir.map_or(Path::new(&side.name).to_path_buf(), |d| d.join(&side.name));
+            Arc::new(SideFile {
+                name: shown_name(&path),
+                text: side.text.clone(),
+            })
+        });
+        named.clone()
+    }
+
+    /// `d`, found in the preprocessed text, placed where its text was
+    /// written: in the `.l`, or in the file `#include`d there (with notes
+    /// naming the includes). A label in another file than the primary
+    /// span becomes a note.
+    fn located(&mut self, mut d: Diagnostic, map: &preprocess::SourceMap) -> Diagnostic {
+        let Some(span) = d.span.clone() else {
+            return d;
+        };
+        let (span, from) = map.locate(span);
+        d.span = Some(span);
+        let file = from.as_ref().map(|(f, _)| f.clone());
+        let same = |other: &Option<preprocess::IncludedFrom>| match (other, &file) {
+            (None, None) => true,
+            (Some((a, _)), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        for label in std::mem::take(&mut d.labels) {
+            let (span, there) = map.locate(label.span);
+            if same(&there) {
+                d.labels.push(crate::diagnostics::Label { span, ..label });
+            } else {
+                d.notes.push(label.message);
+            }
+        }
+        if let Some(fix) = d.fix.take() {
+            let (span, there) = map.locate(fix.span);
+            d.fix = same(&there).then_some(crate::diagnostics::Fix { span, ..fix });
+        }
+        match from {
+            Some((file, notes)) => {
+                d.notes.extend(notes);
+                d.in_side_file(self.path_of(&file))
+            }
+            None => d,
+        }
     }
 }
 

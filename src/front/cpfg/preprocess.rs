@@ -20,19 +20,21 @@
 //!   breaks are put back);
 //! - [`SourceMap`] sends any output range back to the original text: copied
 //!   bytes to themselves, bytes made by an expansion to the whole macro call
-//!   (name and arguments), bytes of an included file to the `#include` line.
+//!   (name and arguments), bytes of an included file to the `#include` line;
+//!   [`SourceMap::locate`] sends them into the included file itself.
 //!
 //! It never panics and always ends: output is capped at 8 MiB and expansion
 //! at 20 million steps ([`codes::CPFG_EXPANSION_LIMIT`]); macro calls in
 //! arguments and `#if` conditions nest at most [`MAX_NESTING`] deep (E0013,
 //! graftal's one depth limit), since both are followed by recursion.
 
-use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics, SideFile};
 use crate::front::depth::too_deep;
 use crate::ir::MAX_NESTING;
 use std::collections::{HashMap, VecDeque};
 use std::ops::Range;
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// Output larger than this is cut off.
 pub const MAX_OUTPUT: usize = 8 << 20;
@@ -52,12 +54,29 @@ pub struct Preprocessed {
 }
 
 /// Maps byte ranges of the preprocessed text to byte ranges of the original
-/// main file.
+/// main file, or of the file `#include`d there.
 #[derive(Clone, Debug, Default)]
 pub struct SourceMap {
     segs: Vec<Seg>,
     src_len: usize,
+    /// The included files' text in the output, each with its own map.
+    included: Vec<Included>,
 }
+
+/// An included file's place in the output (bytes `out`), how its own
+/// output maps into it, and the note that says where it was included.
+#[derive(Clone, Debug)]
+struct Included {
+    file: Arc<SideFile>,
+    out: Range<usize>,
+    map: SourceMap,
+    note: String,
+}
+
+/// Where output bytes come from when they come from an included file: that
+/// file (the innermost one), and the notes that say where each file on the
+/// way was included, innermost first.
+pub type IncludedFrom = (Arc<SideFile>, Vec<String>);
 
 #[derive(Clone, Debug, PartialEq)]
 struct Seg {
@@ -116,6 +135,23 @@ impl SourceMap {
         }
         lo..hi
     }
+
+    /// [`Self::to_source`], but output bytes that come from an included
+    /// file map into that file (a mistake is shown where it is written,
+    /// as rustc shows one inside a macro of another file).
+    pub fn locate(&self, out: Range<usize>) -> (Range<usize>, Option<IncludedFrom>) {
+        let inside = |i: &&Included| {
+            i.out.start <= out.start && out.end <= i.out.end && out.start < i.out.end
+        };
+        let Some(inc) = self.included.iter().find(inside) else {
+            return (self.to_source(out), None);
+        };
+        let shifted = out.start - inc.out.start..out.end - inc.out.start;
+        let (span, deeper) = inc.map.locate(shifted);
+        let (file, mut notes) = deeper.unwrap_or_else(|| (inc.file.clone(), Vec::new()));
+        notes.push(inc.note.clone());
+        (span, Some((file, notes)))
+    }
 }
 
 /// Runs the preprocessor over `text` (the main file). `include` is called
@@ -141,6 +177,7 @@ pub fn preprocess_with_defines(
         aborted: false,
         too_deep: false,
         stack: Vec::new(),
+        texts: vec![Rc::from(text)],
         diags: Diagnostics::default(),
     };
     for (name, body) in defines {
@@ -167,6 +204,7 @@ pub fn preprocess_with_defines(
         map: SourceMap {
             segs: out.segs,
             src_len: text.len(),
+            included: out.included,
         },
         diagnostics,
         stopped_too_deep: pp.too_deep,
@@ -431,6 +469,8 @@ struct Out {
     /// The furthest source byte accounted for.
     src_hi: usize,
     full: bool,
+    /// The included files whose text is in `text`.
+    included: Vec<Included>,
 }
 
 impl Out {
@@ -694,6 +734,9 @@ struct Pp<'a> {
     too_deep: bool,
     /// Names of the files being included (for recursion).
     stack: Vec<String>,
+    /// The text of the main file, then of each file in `stack`: where the
+    /// notes find the line of an `#include`.
+    texts: Vec<Rc<str>>,
     diags: Diagnostics,
 }
 
@@ -1190,7 +1233,7 @@ impl Pp<'_> {
             None
         };
         if let Some(n) = suggestion {
-            d = d.with_help(format!("did you mean `#{n}`?"));
+            d = d.suggesting(format!("#{n}"));
         } else {
             d = d.with_help(
                 "a line cannot start with `#` in cpfg (the preprocessor reads it as a directive); \
@@ -1375,28 +1418,27 @@ impl Pp<'_> {
             );
             return;
         };
-        self.stack.push(file.clone());
+        let note = self.included_note(&file, &line_span);
+        let side = Arc::new(SideFile {
+            name: file.clone(),
+            text: text.clone(),
+        });
+        self.stack.push(file);
+        self.texts.push(Rc::from(text.as_str()));
         let saved = std::mem::take(&mut self.diags);
         let mut sub = Out::default();
         self.run(&text, &mut sub, false);
         let inner = std::mem::replace(&mut self.diags, saved);
+        self.texts.pop();
         self.stack.pop();
-        // Diagnostics inside the included file point at the `#include`.
-        for mut d in inner.0 {
-            let line = d.span.as_ref().map(|s| {
-                1 + text.as_bytes()[..s.start.min(text.len())]
-                    .iter()
-                    .filter(|&&c| c == b'\n')
-                    .count()
-            });
-            let what = match line {
-                Some(l) => format!("in included file `{file}`, line {l}"),
-                None => format!("in included file `{file}`"),
+        // Diagnostics inside the included file are shown there, with a
+        // note at the `#include` (those of a file it includes already are).
+        for d in inner.0 {
+            let mut d = match d.side {
+                Some(_) => d,
+                None => d.in_side_file(side.clone()),
             };
-            d.span = Some(line_span.clone());
-            d.labels.clear();
-            d.label = Some(what.clone());
-            d.notes.insert(0, what);
+            d.notes.push(note.clone());
             self.diags.push(d);
         }
         // The included text (with its own line breaks) maps to the directive.
@@ -1404,8 +1446,32 @@ impl Pp<'_> {
         if !t.ends_with('\n') && !t.is_empty() {
             t.push('\n');
         }
+        let start = out.text.len();
         if !out.push_seg(&t, line_span, false) {
             out.full = true;
+            return;
+        }
+        out.included.push(Included {
+            file: side,
+            out: start..out.text.len(),
+            map: SourceMap {
+                segs: sub.segs,
+                src_len: text.len(),
+                included: sub.included,
+            },
+            note,
+        });
+    }
+
+    /// "`file` is included at line N of …": where the `#include` at `at`
+    /// of the file being read stands.
+    fn included_note(&self, file: &str, at: &Range<usize>) -> String {
+        let including = self.texts.last().map_or("", |t| t);
+        let before = including.get(..at.start).unwrap_or(including);
+        let line = 1 + before.bytes().filter(|&c| c == b'\n').count();
+        match self.stack.last() {
+            Some(parent) => format!("`{file}` is included at line {line} of `{parent}`"),
+            None => format!("`{file}` is included at line {line} of the L-system file"),
         }
     }
 

@@ -717,7 +717,8 @@ fn note_other(v: &mut View, c: &Command, d: &mut Diagnostics) {
     )
     .with_label("not a view command");
     if let Some(s) = nearest(name, &all).first() {
-        diag = diag.with_help(format!("did you mean `{s}:`?"));
+        let help = format!("did you mean `{s}:`?");
+        diag = diag.with_fix(c.name_span.clone(), s.to_string(), help);
     }
     d.push(diag);
 }

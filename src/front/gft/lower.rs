@@ -24,12 +24,38 @@ struct Cx<'d> {
     diags: &'d mut Diagnostics,
     set: TurtleSet,
     /// Names longer than one character that words may contain.
-    names: Vec<String>,
+    names: WordNames,
     settings: HashMap<String, Span>,
     globals: HashMap<String, u16>,
     arrays: HashMap<String, (u16, usize)>,
     /// The file's budget for "did you mean …?".
     suggester: Suggester,
+}
+
+/// The names words may contain, found by length: a file that declares
+/// ten thousand names splits its words without trying each name at each
+/// character.
+#[derive(Default)]
+struct WordNames {
+    names: std::collections::HashSet<String>,
+    /// The lengths (bytes) of `names`, longest first.
+    lengths: Vec<usize>,
+}
+
+impl WordNames {
+    fn add(&mut self, name: &str) {
+        if self.names.insert(name.to_string()) && !self.lengths.contains(&name.len()) {
+            self.lengths.push(name.len());
+            self.lengths.sort_unstable_by(|a, b| b.cmp(a));
+        }
+    }
+
+    /// The length of the longest name `text` starts with; 0 for none.
+    fn longest_prefix(&self, text: &str) -> usize {
+        (self.lengths.iter().copied())
+            .find(|&n| text.get(..n).is_some_and(|p| self.names.contains(p)))
+            .unwrap_or(0)
+    }
 }
 
 /// Lowers a parsed file; the system is usable only when `diags` got no error.
@@ -39,7 +65,7 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         spans: SpanTable::default(),
         diags,
         set: TurtleSet::Pfg,
-        names: Vec::new(),
+        names: WordNames::default(),
         settings: HashMap::new(),
         globals: HashMap::new(),
         arrays: HashMap::new(),
@@ -236,13 +262,13 @@ impl Cx<'_> {
                 let id = self.sys.intern(name);
                 self.sys.set_interpretation(id, op);
             }
-            self.names.push(name.to_string());
+            self.names.add(name);
         }
     }
 
     fn declare(&mut self, name: &str, span: &Span) -> SymbolId {
-        if name.chars().count() > 1 && !self.names.iter().any(|n| n == name) {
-            self.names.push(name.to_string());
+        if name.chars().count() > 1 {
+            self.names.add(name);
         }
         let id = self.sys.intern(name);
         self.spans.symbols.entry(id).or_insert_with(|| span.clone());
@@ -371,17 +397,16 @@ impl Cx<'_> {
                     .chain(PARAMETRISED_OPERATIONS.iter().copied())
                     .collect();
                 let near = self.suggester.nearest(other, &names);
-                let help = match near.first() {
-                    Some(n) => format!("did you mean `{n}`?"),
-                    None => "docs/gft.md §3 lists the operations".to_string(),
-                };
-                self.diags.push(err(
+                let d = Diagnostic::at(
                     codes::GFT_UNKNOWN_OPERATION,
-                    &g[0].1,
+                    g[0].1.clone(),
                     format!("unknown operation `{other}`"),
-                    "not a turtle operation",
-                    &help,
-                ));
+                )
+                .with_label("not a turtle operation");
+                self.diags.push(match near.first() {
+                    Some(n) => d.suggesting(n),
+                    None => d.with_help("docs/gft.md §3 lists the operations"),
+                });
                 None
             }
         };
@@ -909,10 +934,10 @@ impl Cx<'_> {
         if text.len() < 3 || !text.chars().all(|c| c.is_ascii_alphabetic()) {
             return;
         }
-        if self.names.iter().any(|n| text.starts_with(n.as_str())) {
+        if self.names.longest_prefix(text) > 0 {
             return;
         }
-        let own: Vec<&str> = (self.names.iter())
+        let own: Vec<&str> = (self.names.names.iter())
             .map(String::as_str)
             .filter(|n| !self.set.names().contains(n))
             .collect();
@@ -943,13 +968,7 @@ impl Cx<'_> {
         let mut i = 0;
         while i < text.len() {
             let rest = &text[i..];
-            let mut len = self
-                .names
-                .iter()
-                .filter(|n| rest.starts_with(n.as_str()))
-                .map(|n| n.len())
-                .max()
-                .unwrap_or(0);
+            let mut len = self.names.longest_prefix(rest);
             let c = rest.chars().next().expect("not empty");
             if len == 0 && self.set == TurtleSet::Fractint && vocabulary::fractint_takes_number(c) {
                 len = c.len_utf8()
