@@ -649,13 +649,11 @@ pub fn interpret(
     if sys.rewrites_modules() {
         let dopts = opts.derive_options(sys);
         let (drawn, _) = eval::parametric::homomorphism(sys, word, values, &dopts)?;
-        let moves = drawn
-            .0
-            .iter()
-            .filter(|&&s| matches!(sys.op(s), Some(TurtleOp::Forward { .. })))
-            .count();
-        if moves > opts.max_moves {
-            return Err(too_much_geometry(moves, opts.max_moves));
+        let moves = turtle::drawn_cost(sys, &drawn);
+        if moves > opts.max_moves as u64 {
+            return Err(too_much_geometry(moves, opts.max_moves).with_note(
+                "each triangle of a surface and face of a generalized cylinder counts as a move",
+            ));
         }
         return Ok(turtle::interpret_with(
             sys,
@@ -665,17 +663,8 @@ pub fn interpret(
             &mut |_, _, _| {},
         ));
     }
-    let moves = word
-        .0
-        .iter()
-        .filter(|&&s| {
-            matches!(
-                sys.op(s),
-                Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
-            )
-        })
-        .count();
-    if moves > opts.max_moves {
+    let moves = turtle::drawn_cost(sys, word);
+    if moves > opts.max_moves as u64 {
         return Err(too_much_geometry(moves, opts.max_moves)
             .with_note(format!("the derived word has {} symbols", word.len())));
     }

@@ -83,8 +83,10 @@ fn the_herb_lily_leaf_has_its_contour() {
     assert!(!said.iter().any(|d| d.contains("contour")), "{said:?}");
     assert_eq!(sys.contours.len(), 1);
     let g = draw(&sys);
+    // Its leaf.con says `samples: 8`: 8 faces a ring, one ring per
+    // `@Gc(1)` control point, as cpfg sweeps it.
     assert!(
-        g.segments.is_empty() && g.polygons.len() > 1000,
+        g.segments.is_empty() && g.polygons.len() >= 400,
         "{}",
         g.polygons.len()
     );

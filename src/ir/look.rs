@@ -230,9 +230,10 @@ pub struct Contour {
     /// role).
     pub id: u32,
     pub role: ContourRole,
-    /// The curve sampled at [`CONTOUR_SAMPLES`] equal steps of arc length:
-    /// `CONTOUR_SAMPLES + 1` points (x, y, z) in the contour's plane (z is
-    /// 0 for planar contours); a closed curve's last point is its first.
+    /// The curve sampled at equal steps of arc length, [`CONTOUR_SAMPLES`]
+    /// of them (a cross-section: as many as its file says, at most that):
+    /// one point more (x, y, z) in the contour's plane (z is 0 for planar
+    /// contours); a closed curve's last point is its first.
     pub points: Vec<[f64; 3]>,
     pub closed: bool,
     /// The curve's length (`curveGAL`).

@@ -12,6 +12,7 @@
 //! follows the book's definition (§2.3: `R_U(180°)`), which the listing
 //! meets for every even angle factor.
 
+mod cost;
 mod gencyl;
 pub mod instanced;
 mod tropism;
@@ -21,6 +22,8 @@ use crate::ir::{
 };
 use crate::random::{Rng, Stream};
 use serde::Serialize;
+
+pub use cost::drawn_cost;
 
 pub type Vec3 = [f64; 3];
 
@@ -881,13 +884,16 @@ impl Turtle<'_> {
 
     /// A control point of the current generalized cylinder at the turtle:
     /// the axis from the previous control point is drawn as a Hermite curve
-    /// of `pieces` segments (at least 4, so that curves look like curves).
+    /// of `pieces` segments (at least 4, so that curves look like curves),
+    /// or, with a cross-section, swept in `pieces` rings as cpfg's `@Gc(n)`
+    /// asks (a calyx of ten control points a step, as Lychnis's, would
+    /// otherwise make four times the quadrilaterals cpfg draws).
     fn cylinder_point(&mut self, pieces: usize, end: bool) {
         let Some(c) = self.state.cylinder else {
             return;
         };
         if c.contour != 0 || self.state.contour != 0 {
-            self.cylinder_mesh(&c, pieces.max(4));
+            self.cylinder_mesh(&c, pieces);
         } else {
             self.cylinder_segments(&c, pieces.max(4));
         }

@@ -33,6 +33,10 @@ const PER_SEGMENT: usize = 32;
 pub struct ContourFile {
     pub points: Vec<[f64; 3]>,
     pub closed: bool,
+    /// The points a cross-section has (`samples:` of `cver 1 3`): cpfg
+    /// sweeps the curve sampled at that many points, so a file saying 8
+    /// makes cylinders of 8 faces a ring, not [`crate::ir::look::CONTOUR_SAMPLES`].
+    pub samples: Option<usize>,
 }
 
 fn error(span: Range<usize>, msg: impl Into<String>, expected: &str) -> Diagnostics {
@@ -161,8 +165,13 @@ fn read_cver(
         }
     };
     k += 1;
+    let mut samples = None;
     if minor == 3 {
-        field(ls.get(k), "samples:", span.clone())?;
+        let s = field(ls.get(k), "samples:", span.clone())?;
+        samples = nums(s)
+            .and_then(|v| v.first().copied())
+            .filter(|n| *n >= 1.0)
+            .map(|n| n.min(1e6) as usize);
         k += 1;
         if ls.get(k).is_some_and(|l| l.0.starts_with('b')) {
             k += 2;
@@ -175,7 +184,11 @@ fn read_cver(
         }
     }
     let points = control_points(ls.get(k..).unwrap_or(&[]), n, 4, span)?;
-    Ok(ContourFile { points, closed })
+    Ok(ContourFile {
+        points,
+        closed,
+        samples,
+    })
 }
 
 /// `version: 1.4` files of the curve gallery: open B-splines.
@@ -206,6 +219,7 @@ fn read_gallery(
     Ok(ContourFile {
         points,
         closed: false,
+        samples: None,
     })
 }
 
@@ -248,6 +262,7 @@ fn read_oldest(
     Ok(ContourFile {
         points,
         closed: w[2] == "closed",
+        samples: None,
     })
 }
 

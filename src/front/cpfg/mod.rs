@@ -288,7 +288,13 @@ impl Beside<'_> {
             else {
                 continue;
             };
-            let (mut points, length) = file.sample(CONTOUR_SAMPLES);
+            // A cross-section has the points its file asks for (cpfg's
+            // sampling), never more than a curve's.
+            let samples = match role {
+                ContourRole::CrossSection => file.samples.unwrap_or(CONTOUR_SAMPLES),
+                ContourRole::Curve => CONTOUR_SAMPLES,
+            };
+            let (mut points, length) = file.sample(samples.clamp(2, CONTOUR_SAMPLES));
             if role == ContourRole::CrossSection && file.closed {
                 start_on_x_axis(&mut points);
             }

@@ -1,0 +1,49 @@
+//! What a word will draw, counted before the turtle draws it, so that the
+//! driver can refuse a word whose geometry would not fit in memory (E0303)
+//! instead of running out of it: cpfg surfaces and generalized cylinders
+//! make many primitives from one module, which counting moves misses.
+
+use super::pieces;
+use crate::ir::look::ContourRole;
+use crate::ir::{System, TurtleOp, Word};
+
+/// The primitives `word` makes: a segment per move, a point per polygon
+/// vertex, a surface's triangles, and per cylinder control point its pieces
+/// times the widest cross-section's points (the quadrilaterals of a swept
+/// contour, or the axis's segments without one).
+pub fn drawn_cost(sys: &System, word: &Word) -> u64 {
+    let ring = sys
+        .contours
+        .iter()
+        .filter(|c| c.role == ContourRole::CrossSection)
+        .map(|c| c.points.len() as u64)
+        .max();
+    // A cylinder draws at least 4 pieces of axis, or its pieces of mesh.
+    let cylinder = |n: f64| match ring {
+        Some(r) => pieces(n) as u64 * r,
+        None => pieces(n).max(4) as u64,
+    };
+    let params = word.has_params();
+    let first = |i: usize| {
+        if params {
+            word.args(i).first().copied()
+        } else {
+            None
+        }
+    };
+    let mut cost = 0u64;
+    for (i, &s) in word.0.iter().enumerate() {
+        cost += match sys.op(s) {
+            Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. }) => 1,
+            Some(TurtleOp::Surface(k)) => sys
+                .surfaces
+                .get(usize::from(k))
+                .map_or(0, |m| m.triangles.len() as u64),
+            Some(TurtleOp::CylinderPoint { .. }) => cylinder(first(i).unwrap_or(1.0)),
+            Some(TurtleOp::PolygonVertex) => first(i).map_or(1, cylinder),
+            Some(TurtleOp::PolygonEnd) if first(i).is_some() => cylinder(4.0),
+            _ => 0,
+        };
+    }
+    cost
+}
