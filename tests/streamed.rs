@@ -179,3 +179,54 @@ fn narrow_words_are_the_derived_words() {
         assert!(narrow.iter().eq(w.0.iter().copied()), "{spec}");
     }
 }
+
+/// The 8 × 8 blocks of a `size`-wide picture that have ink: the crown.
+fn crown(px: &[f64], size: usize) -> Vec<f64> {
+    blocks(px, size, 8)
+        .into_iter()
+        .filter(|&g| g < 254.0)
+        .collect()
+}
+
+/// A dense crown shows its density: Fig. 3.11a drawn so densely that its
+/// lines at their default width would cover it many times over is drawn
+/// with thinner lines, as hairlines whose coverage is their width, so its
+/// crown is grey (between 20 % and 80 % ink on average) and darker where
+/// more lines run, not a solid black mass; and the stored drawing of every
+/// segment agrees with the streamed one.
+#[test]
+fn a_dense_crown_shows_its_density() {
+    let sys = system("std:hogeweg-hesper-a");
+    let (run, size) = (opts(DENSE_STEPS), 256);
+    let a = greys(&streamed(&sys, &run, sized(size)).expect("streamed"));
+    let crown_a = crown(&a, size as usize);
+    let ink = 1.0 - mean(&crown_a) / 255.0;
+    assert!((0.2..=0.8).contains(&ink), "crown ink {ink:.2}");
+    let spread = crown_a
+        .iter()
+        .map(|g| (g - mean(&crown_a)).abs())
+        .sum::<f64>()
+        / crown_a.len() as f64;
+    assert!(
+        spread > 15.0,
+        "the crown is uniform: {spread:.1} grey levels"
+    );
+    let solid = crown_a.iter().filter(|&&g| g < 13.0).count();
+    assert!(
+        solid * 20 < crown_a.len(),
+        "{solid} of {} blocks black",
+        crown_a.len()
+    );
+    let b = greys(&stored(&sys, &run, sized(size)));
+    let (ink_a, ink_b) = (255.0 - mean(&a), 255.0 - mean(&b));
+    assert!(
+        (ink_a - ink_b).abs() < 0.12 * ink_b,
+        "ink {ink_a:.2} streamed vs {ink_b:.2} stored"
+    );
+    let (ba, bb) = (blocks(&a, size as usize, 8), blocks(&b, size as usize, 8));
+    let diff = ba.iter().zip(&bb).map(|(x, y)| (x - y).abs()).sum::<f64>() / ba.len() as f64;
+    assert!(diff < 4.0, "blocks differ by {diff:.2} grey levels");
+}
+
+/// Steps at which Fig. 3.11a's crown is dense at 256 pixels.
+const DENSE_STEPS: u64 = 40;

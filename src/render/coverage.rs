@@ -51,6 +51,10 @@ pub struct Coverage {
     paints: Vec<Rgb>,
     background: Rgb,
     background_alpha: u8,
+    /// Lines narrower than a pixel, per pixel: their colour laid over
+    /// each other (premultiplied, 0..1) and the share of what is under
+    /// them still showing; made at the first such line.
+    hairlines: Vec<[f32; 4]>,
 }
 
 /// The interval of `x` where `lo <= c * x + e <= hi` (everything or
@@ -65,6 +69,22 @@ fn solve(c: f64, e: f64, lo: f64, hi: f64) -> (f64, f64) {
     }
     let (a, b) = ((lo - e) / c, (hi - e) / c);
     (a.min(b), a.max(b))
+}
+
+/// The hairlines `h` of a pixel over its samples' sums `sum` (colour
+/// times opacity, and opacity, of `n` samples), as straight RGBA.
+fn over(h: &[f32; 4], sum: [u32; 4], n: u32) -> [u8; 4] {
+    let n = n as f32 * 255.0;
+    let alpha = (1.0 - h[3]) + h[3] * sum[3] as f32 / n;
+    let mut out = [0u8; 4];
+    for i in 0..3 {
+        let premultiplied = h[i] + h[3] * sum[i] as f32 / (n * 255.0);
+        out[i] = (255.0 * premultiplied / alpha.max(1e-6))
+            .round()
+            .clamp(0.0, 255.0) as u8;
+    }
+    out[3] = (255.0 * alpha).round().clamp(0.0, 255.0) as u8;
+    out
 }
 
 impl Coverage {
@@ -85,6 +105,7 @@ impl Coverage {
             paints: Vec::new(),
             background,
             background_alpha,
+            hairlines: Vec::new(),
         })
     }
 
@@ -101,13 +122,17 @@ impl Coverage {
     }
 
     /// A line from `a` to `b` (pixels, y down) `width` pixels wide, with
-    /// round ends, in paint `k`. A line thinner than a sample is drawn a
-    /// sample wide, so that it shows as a faint line rather than not at all.
+    /// round ends, in paint `k`. A line narrower than a pixel is a hairline
+    /// ([`Coverage::hairline`]) of its width's opacity, as tiny-skia strokes
+    /// it; 0 or NaN wide, an opaque hairline.
     pub fn line(&mut self, a: [f64; 2], b: [f64; 2], width: f64, k: u8) {
+        if width.is_nan() || width < 1.0 {
+            let alpha = if width > 0.0 { width } else { 1.0 };
+            return self.hairline(a, b, alpha as f32, k);
+        }
         let ss = f64::from(self.ss);
         let widest = 4.0 * f64::from(self.width + self.height);
-        let width = if width.is_nan() { 0.0 } else { width };
-        let r = (width.clamp(0.0, widest) * ss / 2.0).max(0.5);
+        let r = width.min(widest) * ss / 2.0;
         let (a, b) = ([a[0] * ss, a[1] * ss], [b[0] * ss, b[1] * ss]);
         if !(a.iter().chain(&b).all(|c| c.is_finite())) {
             return;
@@ -148,6 +173,63 @@ impl Coverage {
         }
     }
 
+    /// A line a pixel wide of opacity `alpha` from `a` to `b`, anti-aliased
+    /// as tiny-skia draws hairlines: along its longer axis, each pixel
+    /// column (or row) it crosses gets `alpha` times the share of the column
+    /// it spans, split between the two pixels nearest the line. Lines laid
+    /// over each other add up as paint over paint, so many fine lines in a
+    /// pixel darken it in proportion to their ink until it is covered.
+    fn hairline(&mut self, a: [f64; 2], b: [f64; 2], alpha: f32, k: u8) {
+        if !(a.iter().chain(&b).all(|c| c.is_finite())) {
+            return;
+        }
+        if self.hairlines.is_empty() {
+            let n = self.width as usize * self.height as usize;
+            self.hairlines = vec![[0.0, 0.0, 0.0, 1.0]; n];
+        }
+        let c = self.paints[usize::from(k) - 1];
+        let c = [c.0, c.1, c.2].map(|v| f32::from(v) / 255.0);
+        // Along x when the line is wider than high, else along y (swapped).
+        let steep = (b[1] - a[1]).abs() > (b[0] - a[0]).abs();
+        let (mut p, mut q) = match steep {
+            false => (a, b),
+            true => ([a[1], a[0]], [b[1], b[0]]),
+        };
+        if p[0] > q[0] {
+            std::mem::swap(&mut p, &mut q);
+        }
+        let (limit_u, limit_v) = match steep {
+            false => (self.width, self.height),
+            true => (self.height, self.width),
+        };
+        let (u0, u1) = (p[0].max(0.0), q[0].min(f64::from(limit_u)));
+        if u0 >= u1 {
+            return;
+        }
+        let slope = (q[1] - p[1]) / (q[0] - p[0]);
+        for col in u0.floor() as i64..u1.ceil() as i64 {
+            let (l, h) = ((col as f64).max(u0), ((col + 1) as f64).min(u1));
+            let v = p[1] + slope * ((l + h) / 2.0 - p[0]) - 0.5;
+            let (row, frac) = (v.floor(), v - v.floor());
+            let share = (alpha as f64 * (h - l)) as f32;
+            for (r, s) in [(row, 1.0 - frac), (row + 1.0, frac)] {
+                if r < 0.0 || r >= f64::from(limit_v) {
+                    continue;
+                }
+                let (x, y) = match steep {
+                    false => (col as usize, r as usize),
+                    true => (r as usize, col as usize),
+                };
+                let px = &mut self.hairlines[y * self.width as usize + x];
+                let a = share * s as f32;
+                for i in 0..3 {
+                    px[i] = a * c[i] + (1.0 - a) * px[i];
+                }
+                px[3] *= 1.0 - a;
+            }
+        }
+    }
+
     /// Rows `y0..y0 + rows` of the picture, RGBA, each pixel the mean of its
     /// samples weighed by their opacity (so that a transparent background
     /// does not tint the edges).
@@ -175,9 +257,14 @@ impl Coverage {
                         sum[3] += a;
                     }
                 }
-                let a = sum[3].max(1);
-                out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
-                out.push(((sum[3] + n / 2) / n) as u8);
+                match self.hairlines.get(y * self.width as usize + x) {
+                    None => {
+                        let a = sum[3].max(1);
+                        out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
+                        out.push(((sum[3] + n / 2) / n) as u8);
+                    }
+                    Some(h) => out.extend(over(h, sum, n)),
+                }
             }
         }
         out
@@ -221,6 +308,8 @@ pub struct Survey {
     depth: (f64, f64),
     pub segments: u64,
     widest: f64,
+    /// Length times width of every line ([`Fit::thinned`]).
+    ink: f64,
     colours: Vec<Rgb>,
     /// Something that needs storage: a polygon, a disc, too many colours.
     stored: bool,
@@ -240,6 +329,7 @@ impl Survey {
             depth: (f64::INFINITY, f64::NEG_INFINITY),
             segments: 0,
             widest: 0.0,
+            ink: 0.0,
             colours: Vec::new(),
             stored: false,
             origin: None,
@@ -274,7 +364,7 @@ impl Survey {
         let back = (self.turn.0, -self.turn.1);
         let corners = [self.lo, self.hi].map(|p| super::rotate(p, back));
         let pad = super::margin_pad(self.widest, opts, world_widths);
-        Fit::padded(corners.iter(), opts, pad)
+        Fit::padded(corners.iter(), opts, pad).thinned(self.ink, self.widest, world_widths)
     }
 
     /// The direction (cosine, sine) the drawing spreads most along, as
@@ -302,6 +392,10 @@ impl Sink for Survey {
         let z = -(za + zb) / 2.0;
         self.depth = (self.depth.0.min(z), self.depth.1.max(z));
         self.widest = self.widest.max(s.width.abs());
+        let ink = (b[0] - a[0]).hypot(b[1] - a[1]) * s.width.abs();
+        if ink.is_finite() {
+            self.ink += ink;
+        }
         let colour = Paint::own(s.colour, s.index).colour();
         if !self.colours.contains(&colour) {
             self.stored |= self.colours.len() >= 255;

@@ -521,7 +521,15 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         discs,
         extent,
     } = projected(g, opts, &proj);
-    let fit = proj.fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths));
+    let ink = segments
+        .iter()
+        .map(|s| (s.b[0] - s.a[0]).hypot(s.b[1] - s.a[1]) * s.width.abs())
+        .filter(|i| i.is_finite())
+        .sum();
+    let widest = segments.iter().map(|s| s.width.abs()).fold(0.0, f64::max);
+    let fit = proj
+        .fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths))
+        .thinned(ink, widest, g.world_widths);
     let runs = runs(&segments, &fit, g.world_widths);
     let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys
         .into_iter()
@@ -640,6 +648,9 @@ pub(crate) struct Fit {
     turn: (f64, f64),
     /// `--stroke-width` per unit of the system's initial width.
     stroke_per_width: Option<f64>,
+    /// The share of their width that lines in pixels are drawn at
+    /// ([`Fit::thinned`]): 1 unless the drawing is dense.
+    thin: f64,
     /// What the fit was made from.
     framing: Framing,
 }
@@ -708,6 +719,7 @@ impl Fit {
             line_unit: (w.min(h) / 600.0).max(1.0),
             turn,
             stroke_per_width: opts.style.stroke_width.map(|sw| sw / base.unwrap_or(1.0)),
+            thin: 1.0,
             framing: Framing {
                 lo: min,
                 hi: max,
@@ -725,8 +737,32 @@ impl Fit {
         } else if world_widths {
             (width * self.scale).max(0.5)
         } else {
-            self.line_unit * width
+            self.line_unit * width * self.thin
         }
+    }
+
+    /// The fit with lines in pixels thinned so that their ink (length
+    /// times width, `ink` in plane units times widths) is at most half the
+    /// area of the drawing's box (a plant fills about half its box): a dense crown of lines drawn at their
+    /// default width would cover its box many times over and show as a
+    /// solid mass; thinned, lines narrower than a pixel are drawn as
+    /// hairlines whose coverage is their width, so the picture's grey shows
+    /// how dense the drawing is. Widths the model gives in its own units or
+    /// asked for with `--stroke-width` are kept.
+    pub(crate) fn thinned(mut self, ink: f64, widest: f64, world_widths: bool) -> Self {
+        if world_widths || self.stroke_per_width.is_some() {
+            return self;
+        }
+        let Framing { lo, hi, .. } = self.framing;
+        let unit = self.line_unit * widest.abs();
+        // A box at least a line wide, so that a straight line keeps its width.
+        let area = ((hi[0] - lo[0]) * self.scale + unit) * ((hi[1] - lo[1]) * self.scale + unit);
+        let ink = ink * self.scale * self.line_unit;
+        let room = area / 2.0;
+        if ink > room && room > 0.0 && ink.is_finite() {
+            self.thin = room / ink;
+        }
+        self
     }
 
     /// `p` in pixels (y down).
