@@ -1574,7 +1574,7 @@ fn grown_geometry(sys: &System, opts: &RunOptions, layout: bool) -> Option<Grown
         geometry
             .origins
             .polygons
-            .splice(0..0, std::iter::repeat(usize::MAX).take(added));
+            .splice(0..0, std::iter::repeat_n(usize::MAX, added));
     }
     Some(Grown {
         geometry,
