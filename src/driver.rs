@@ -645,7 +645,10 @@ pub fn interpret(
     opts: &RunOptions,
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
-    let options = turtle::TurtleOptions { paths };
+    let options = turtle::TurtleOptions {
+        paths,
+        ..Default::default()
+    };
     if sys.rewrites_modules() {
         let dopts = opts.derive_options(sys);
         let (drawn, _) = eval::parametric::homomorphism(sys, word, values, &dopts)?;
@@ -1411,6 +1414,15 @@ pub fn animate(
         return Ok(Err(LoadError(why)));
     }
     check_moves_up_front(sys, opts)?;
+    let grown = (last == 0)
+        .then(|| grown_geometry(sys, opts, layout))
+        .flatten();
+    if let Some(grown) = &grown {
+        anim.frames = grown.frames;
+        if let Some(why) = anim.refusal() {
+            return Ok(Err(LoadError(why)));
+        }
+    }
     let mut budget = opts.max_moves;
     let mut frame_geometry = |step: u64| -> Result<Geometry, Diagnostic> {
         let at = RunOptions {
@@ -1432,18 +1444,32 @@ pub fn animate(
         Ok(g)
     };
     let mut final_g = Some(frame_geometry(last)?);
-    let mut looked = ropts;
-    apply_look(sys, &mut looked);
-    ropts.framing = final_g.as_ref().map(|g| render::framing(g, &looked));
+    ropts.framing = final_g.as_ref().map(|g| frame_framing(sys, g, ropts));
     // A derivation's diagnostic, kept while the encoder stops.
     let mut failed: Option<Diagnostic> = None;
-    let mut frame = |step: u64| -> Result<render::animate::Frame, String> {
+    let mut frame = |k: u64| -> Result<render::animate::Frame, String> {
+        // Growth replayed: the stems grown before frame k's share of them.
+        if let Some(grown) = grown.as_ref().filter(|g| k + 1 < g.frames) {
+            let before = (u64::from(grown.stems) * (k + 1) / grown.frames) as u32;
+            let part = render::animate::grown_part(&grown.geometry, &grown.appeared, before);
+            let png = render_bytes(sys, &part, Format::Png, ropts);
+            return render::animate::Frame::from_png(&png.map_err(|e| e.0)?);
+        }
+        let step = if grown.is_some() { last } else { k };
         let at = RunOptions {
             steps: Some(step),
             ..opts.clone()
         };
-        // Each frame drawn the way its still is, shared subtrees included.
-        let png = match render_shared(sys, &at, Format::Png, ropts) {
+        // Each frame drawn the way its still is: shared subtrees, streamed
+        // or stored.
+        let shared = match render_shared(sys, &at, Format::Png, ropts) {
+            Some(png) => Some(png),
+            None => streamed_frame(sys, &at, ropts).map_err(|d| {
+                failed = Some(d);
+                "stopped".to_string()
+            })?,
+        };
+        let png = match shared {
             Some(png) => png,
             None => {
                 let kept = if step == last { final_g.take() } else { None };
@@ -1465,6 +1491,86 @@ pub fn animate(
         Some(d) => Err(d),
         None => Ok(done.map(|()| bytes).map_err(LoadError)),
     }
+}
+
+/// A frame drawn streamed, as its still is ([`render_streamed`]); `None`
+/// where the still is drawn from stored geometry.
+fn streamed_frame(
+    sys: &System,
+    at: &RunOptions,
+    ropts: RenderOptions,
+) -> Result<Option<Result<Vec<u8>, LoadError>>, Diagnostic> {
+    if !streams(sys, Format::Png, &ropts) {
+        return Ok(None);
+    }
+    let w = derive_symbols(sys, at, |_, _| {})?;
+    Ok(match render_streamed(sys, at, w, ropts, &mut |_, _| {}) {
+        Streamed::Picture(png) => Some(png),
+        Streamed::Word(..) => None,
+    })
+}
+
+/// The framing of `g`'s still picture, from the renderer that draws it:
+/// streamed ([`render_streamed`]), lit (which fits cylinders and spheres)
+/// or flat ([`render_bytes`]).
+fn frame_framing(sys: &System, g: &Geometry, mut ropts: RenderOptions) -> render::Framing {
+    let streamed = streams(sys, Format::Png, &ropts) && g.polygons.is_empty() && g.discs.is_empty();
+    apply_look(sys, &mut ropts);
+    if streamed {
+        let mut survey = render::coverage::Survey::new(&ropts);
+        for s in &g.segments {
+            turtle::Sink::segment(&mut survey, s.clone());
+        }
+        if survey.streams() {
+            return survey.framing(&ropts, sys.settings.world_widths);
+        }
+    }
+    match &sys.look.lighting {
+        Some(lighting) => render::raster::framing(g, lighting, &ropts),
+        None => render::framing(g, &ropts),
+    }
+}
+
+/// A grown structure's picture with what drew each part, and when each
+/// symbol of its word appeared in growth ([`crate::ir::seed::growth_order`]).
+struct Grown {
+    geometry: Geometry,
+    appeared: Vec<u32>,
+    stems: u32,
+    frames: u64,
+}
+
+/// The frames of an outline's growth: one per stem, at most
+/// [`render::animate::GROWTH_FRAMES`]. `None` unless the system's word is
+/// its structure's grown seed and nothing rewrites it.
+fn grown_geometry(sys: &System, opts: &RunOptions, layout: bool) -> Option<Grown> {
+    let st = sys.structure.as_ref()?;
+    let order = crate::ir::seed::growth_order(&mut sys.clone(), st).ok()??;
+    if order.word != sys.axiom || sys.rewrites_modules() || order.stems == 0 {
+        return None;
+    }
+    let options = turtle::TurtleOptions {
+        origins: true,
+        ..Default::default()
+    };
+    let mut geometry =
+        turtle::interpret_with(sys, &sys.axiom, opts.seed, options, &mut |_, _, _| {});
+    if layout {
+        let before = geometry.polygons.len();
+        add_layout(sys, &mut geometry);
+        // The layout's shapes come first and show in every frame.
+        let added = geometry.polygons.len() - before;
+        geometry
+            .origins
+            .polygons
+            .splice(0..0, std::iter::repeat_n(usize::MAX, added));
+    }
+    Some(Grown {
+        geometry,
+        appeared: order.appeared,
+        stems: order.stems,
+        frames: u64::from(order.stems).min(render::animate::GROWTH_FRAMES),
+    })
 }
 
 /// What `graftal stats` reports.

@@ -314,3 +314,90 @@ fn progress_shows_on_a_terminal_never_in_a_pipe() {
     let shown = String::from_utf8_lossy(&tty.stdout);
     assert!(shown.contains("/31 frames"), "{shown}");
 }
+
+/// An outline's growth (STL, Yeh, Chien & Lee's Figs. 9 and 10) has no
+/// derivation steps: its frames replay the stems in the order growth made
+/// them, each frame keeping every stem of the one before, the last the
+/// still picture.
+#[test]
+fn an_outline_grows_stem_by_stem() {
+    for entry in ["std:stl/fig09-outline-bfs", "std:stl/fig10-outline-dfs"] {
+        let c = driver::compile(driver::load(entry).unwrap());
+        let sys = c.system.as_ref().unwrap();
+        let st = sys.structure.as_ref().unwrap();
+        let order = graftal::ir::seed::growth_order(&mut sys.clone(), st)
+            .unwrap()
+            .expect("an outline grows");
+        assert_eq!(order.word, sys.axiom, "{entry}");
+        let expected = u64::from(order.stems).min(graftal::render::animate::GROWTH_FRAMES);
+        assert!(expected > 20, "{entry}: {} stems", order.stems);
+        let (out, s) = (temp("grow.png"), temp("grow-still.png"));
+        let args = ["render", entry, "--size", "96x96", "-o"];
+        let mut animated = args.to_vec();
+        animated.extend([out.to_str().unwrap(), "--animate"]);
+        render(&animated);
+        let mut plain = args.to_vec();
+        plain.push(s.to_str().unwrap());
+        render(&plain);
+        let Apng { frames, count, .. } = apng_frames(&std::fs::read(&out).unwrap());
+        assert_eq!(
+            (frames.len() as u64, u64::from(count)),
+            (expected, expected)
+        );
+        assert!(frames.last().unwrap() == &still(&s), "{entry}");
+        let inked: Vec<Vec<bool>> = frames.iter().map(|f| ink(f)).collect();
+        for k in 1..inked.len() {
+            let lost = (inked[k - 1].iter().zip(&inked[k]))
+                .filter(|(b, a)| **b && !**a)
+                .count();
+            assert_eq!(lost, 0, "{entry}: frame {k} loses {lost} pixels of ink");
+        }
+        let count = |k: usize| inked[k].iter().filter(|i| **i).count();
+        assert!(
+            count(0) > 0 && count(0) * 4 < count(inked.len() - 1),
+            "{entry}"
+        );
+    }
+}
+
+/// A lit system is drawn by the z-buffer renderer, whose fit counts the
+/// cylinders' radii: the animation frames as that renderer does, so that
+/// its last frame is the still picture.
+#[test]
+fn the_last_frame_of_a_lit_system_is_its_still() {
+    use graftal::ir::look::{Lighting, LineStyle};
+    let c = driver::compile(driver::load("std:plant-e").unwrap());
+    let mut sys = c.system.unwrap();
+    sys.settings.width = 3.0;
+    sys.look.lighting = Some(Lighting {
+        line_style: LineStyle::Cylinder,
+        ..Lighting::default()
+    });
+    let opts = RunOptions {
+        steps: Some(2),
+        ..RunOptions::default()
+    };
+    let ropts = RenderOptions {
+        width: 64,
+        height: 48,
+        ..RenderOptions::default()
+    };
+    let anim = Animation {
+        container: Container::Apng,
+        width: 64,
+        height: 48,
+        fps: 10,
+        frames: 0,
+    };
+    let bytes = driver::animate(&sys, &opts, ropts, anim, false, &mut |_, _| {})
+        .unwrap()
+        .unwrap();
+    let Apng { frames, .. } = apng_frames(&bytes);
+    assert_eq!(frames.len(), 3);
+    let (_, g) = driver::geometry(&sys, &opts).unwrap();
+    let png = driver::render_bytes(&sys, &g, driver::Format::Png, ropts).unwrap();
+    let still = graftal::render::animate::Frame::from_png(&png)
+        .unwrap()
+        .rgba;
+    assert!(frames.last().unwrap() == &still);
+}

@@ -216,6 +216,13 @@ pub enum Grown {
 pub struct Node {
     pub rule: usize,
     pub entries: Vec<Grown>,
+    /// When the node's trunk appeared: how many stems were made before it
+    /// (`u32::MAX` until it is drawn), so that growth can be replayed in
+    /// order (an animation's frames).
+    pub trunk_at: u32,
+    /// Per entry, how many stems were made before its branch's stems
+    /// (`u32::MAX` for a branch that drew none).
+    pub entries_at: Vec<u32>,
 }
 
 /// The result of growth.
@@ -393,7 +400,8 @@ impl Grower<'_> {
     /// Applies the rule of growth point `p` to node `node`: draws the trunk
     /// and decides branch `k`; returns the child growth point when branch
     /// `k` succeeded and may grow on.
-    fn trunk(&mut self, p: &Point) {
+    fn trunk(&mut self, p: &Point, node: usize) {
+        self.out.nodes[node].trunk_at = self.appeared();
         let unit = &self.units[p.rule];
         let len = Self::level_value(&self.params.length, p.level);
         let half = Self::level_value(&self.params.broadness, p.level) / 2.0;
@@ -426,6 +434,7 @@ impl Grower<'_> {
             }
             own.push(s);
         }
+        self.out.nodes[node].entries_at[k] = self.appeared();
         for s in own {
             self.add(s);
         }
@@ -449,11 +458,18 @@ impl Grower<'_> {
         })
     }
 
+    /// How many stems were made so far: when what is made next appears.
+    fn appeared(&self) -> u32 {
+        u32::try_from(self.out.stems.len()).unwrap_or(u32::MAX)
+    }
+
     fn new_node(&mut self, rule: usize) -> usize {
         let n = self.units[rule].branches.len();
         self.out.nodes.push(Node {
             rule,
             entries: vec![Grown::Empty; n],
+            trunk_at: u32::MAX,
+            entries_at: vec![u32::MAX; n],
         });
         self.out.nodes.len() - 1
     }
@@ -491,7 +507,7 @@ pub fn grow(
     if params.depth_first {
         // Frames: (point, node, next branch).
         for (i, p) in points.iter().enumerate() {
-            g.trunk(p);
+            g.trunk(p, i);
             let mut stack = vec![(*p, i, 0usize)];
             while let Some(top) = stack.last_mut() {
                 let (p, node, k) = *top;
@@ -503,7 +519,7 @@ pub fn grow(
                 if let Some(child) = g.branch(&p, node, k) {
                     let c = g.new_node(child.rule);
                     g.out.nodes[node].entries[k] = Grown::Node(c);
-                    g.trunk(&child);
+                    g.trunk(&child, c);
                     stack.push((child, c, 0));
                 }
             }
@@ -523,7 +539,7 @@ pub fn grow(
             let mut slots: Vec<Vec<usize>> = vec![Vec::new(); n];
             for i in order {
                 let (p, node) = level[i];
-                g.trunk(&p);
+                g.trunk(&p, node);
                 for k in 0..units[p.rule].branches.len() {
                     if let Some(child) = g.branch(&p, node, k) {
                         let c = g.new_node(child.rule);

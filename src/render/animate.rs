@@ -6,6 +6,7 @@
 //! derives and draws each step as a still picture) and encoded here one by
 //! one, so that only one frame is held at a time.
 
+use crate::turtle::Geometry;
 use std::io::Write;
 
 /// The most frames an animation has: more is not an animation anyone
@@ -15,6 +16,31 @@ pub const MAX_FRAMES: u64 = 1000;
 /// The most pixels encoded in all: frames × width × height (about ten
 /// seconds of encoding).
 pub const MAX_PIXELS: u64 = 1 << 30;
+
+/// The most frames an outline's growth is replayed in (fewer when fewer
+/// stems grow).
+pub const GROWTH_FRAMES: u64 = 60;
+
+/// What of `g` appeared before `before` stems had grown: its parts whose
+/// module (`g.origins`) appeared earlier (`appeared`, per module of the
+/// word). Parts of no known module (a layout) are kept.
+pub fn grown_part(g: &Geometry, appeared: &[u32], before: u32) -> Geometry {
+    let shown = |origin: usize| appeared.get(origin).is_none_or(|&a| a < before);
+    fn keep<T: Clone>(items: &[T], origins: &[usize], shown: impl Fn(usize) -> bool) -> Vec<T> {
+        (items.iter().enumerate())
+            .filter(|(i, _)| shown(origins.get(*i).copied().unwrap_or(usize::MAX)))
+            .map(|(_, x)| x.clone())
+            .collect()
+    }
+    Geometry {
+        segments: keep(&g.segments, &g.origins.segments, shown),
+        polygons: keep(&g.polygons, &g.origins.polygons, shown),
+        discs: keep(&g.discs, &g.origins.discs, shown),
+        world_widths: g.world_widths,
+        max_depth: g.max_depth,
+        ..Geometry::default()
+    }
+}
 
 /// The container of an animation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -367,6 +367,11 @@ impl Survey {
         Fit::padded(corners.iter(), opts, pad).thinned(self.ink, self.widest, world_widths)
     }
 
+    /// The framing [`Survey::fit`] gives (what an animation keeps).
+    pub fn framing(&self, opts: &RenderOptions, world_widths: bool) -> super::Framing {
+        self.fit(opts, world_widths).framing
+    }
+
     /// The direction (cosine, sine) the drawing spreads most along, as
     /// [`super::spread`] finds it.
     fn principal(&self) -> (f64, f64) {

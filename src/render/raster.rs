@@ -258,6 +258,13 @@ pub fn png(
     Some(out)
 }
 
+/// The framing [`png`] gives `g` lit by `lighting` (its extent includes
+/// cylinders' and spheres' radii).
+pub fn framing(g: &Geometry, lighting: &Lighting, opts: &RenderOptions) -> super::Framing {
+    let proj = Projector::new(opts);
+    proj.fit(&extent(g, &proj, lighting), opts).framing
+}
+
 /// The band's pixels, RGBA, each the mean of its samples.
 fn downsample(t: &Target, w: u32, rows: u32, ss: u32) -> Vec<u8> {
     let (w, rows, ss) = (w as usize, rows as usize, ss as usize);

@@ -97,6 +97,19 @@ pub struct Geometry {
     pub paths: Vec<TurtlePath>,
     /// The deepest branch nesting reached.
     pub max_depth: usize,
+    /// Which module drew what, when asked for ([`TurtleOptions::origins`]).
+    #[serde(skip)]
+    pub origins: Origins,
+}
+
+/// Per segment, polygon and disc drawn, the index in the word of the
+/// module that drew it: what lets a growth animation show the parts of a
+/// word in the order they grew.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Origins {
+    pub segments: Vec<usize>,
+    pub polygons: Vec<usize>,
+    pub discs: Vec<usize>,
 }
 
 /// What [`interpret_with`] records besides segments and polygons.
@@ -104,6 +117,8 @@ pub struct Geometry {
 pub struct TurtleOptions {
     /// Record the turtle's positions per branch in [`Geometry::paths`].
     pub paths: bool,
+    /// Record which module drew what in [`Geometry::origins`].
+    pub origins: bool,
 }
 
 impl Geometry {
@@ -419,7 +434,31 @@ pub fn interpret_with(
     g.paths = info.paths;
     g.max_depth = info.max_depth;
     g.world_widths = info.world_widths;
+    g.origins = info.origins;
     g
+}
+
+/// A sink that notes, for everything drawn, the module being interpreted
+/// (`at`) before passing it on.
+struct Noting<'s> {
+    inner: &'s mut dyn Sink,
+    at: &'s std::cell::Cell<usize>,
+    origins: Origins,
+}
+
+impl Sink for Noting<'_> {
+    fn segment(&mut self, s: Segment) {
+        self.origins.segments.push(self.at.get());
+        self.inner.segment(s);
+    }
+    fn polygon(&mut self, p: Polygon) {
+        self.origins.polygons.push(self.at.get());
+        self.inner.polygon(p);
+    }
+    fn disc(&mut self, d: Disc) {
+        self.origins.discs.push(self.at.get());
+        self.inner.disc(d);
+    }
 }
 
 /// Interprets the symbols of `word` one by one, giving what is drawn to
@@ -451,6 +490,41 @@ fn run(
     query: &mut dyn FnMut(usize, QueryKind, Vec3),
     sink: &mut dyn Sink,
 ) -> Geometry {
+    if !options.origins {
+        return run_into(sys, word, params, seed, options, query, sink, None);
+    }
+    let at = std::cell::Cell::new(0);
+    let mut noting = Noting {
+        inner: sink,
+        at: &at,
+        origins: Origins::default(),
+    };
+    let mut info = run_into(
+        sys,
+        word,
+        params,
+        seed,
+        options,
+        query,
+        &mut noting,
+        Some(&at),
+    );
+    info.origins = noting.origins;
+    info
+}
+
+/// [`run`], telling `at` which module is being interpreted.
+#[allow(clippy::too_many_arguments)]
+fn run_into(
+    sys: &System,
+    word: impl Iterator<Item = SymbolId>,
+    params: Option<&Word>,
+    seed: u64,
+    options: TurtleOptions,
+    query: &mut dyn FnMut(usize, QueryKind, Vec3),
+    sink: &mut dyn Sink,
+    at: Option<&std::cell::Cell<usize>>,
+) -> Geometry {
     let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
         .map(|i| sys.op(SymbolId(i as u32)))
         .collect();
@@ -463,6 +537,9 @@ fn run(
             Some(w) => w.args(i),
             None => &[],
         });
+        if let Some(at) = at {
+            at.set(i);
+        }
         turtle.apply(i, op, args);
     }
     turtle.finish()
@@ -1235,7 +1312,10 @@ mod tests {
             &sys,
             &sys.axiom,
             0,
-            TurtleOptions { paths: true },
+            TurtleOptions {
+                paths: true,
+                ..TurtleOptions::default()
+            },
             &mut |_, _, _| {},
         );
         assert_eq!(g.paths.len(), 2);
