@@ -1111,6 +1111,7 @@ pub fn render_bytes_with(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, LoadError> {
     apply_look(sys, &mut opts);
+    opts.thin_dense = format == Format::Png;
     let lighting = sys.look.lighting.as_ref();
     match (format, lighting) {
         (Format::Png, Some(lighting)) => {

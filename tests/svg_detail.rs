@@ -15,8 +15,10 @@ fn fig_3_11a(steps: u64) -> (Picture, usize) {
         ..RunOptions::default()
     };
     let (_, g) = geometry(&sys, &opts).unwrap();
+    // Laid out as `render` lays out an SVG: widths kept.
     let ropts = RenderOptions {
         scale: sys.settings.scale,
+        thin_dense: false,
         ..RenderOptions::default()
     };
     (render::layout(&g, &ropts), g.segments.len())

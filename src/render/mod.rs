@@ -72,6 +72,11 @@ pub struct RenderOptions {
     pub framing: Option<Framing>,
     /// What an SVG keeps of detail finer than its pixels.
     pub detail: Detail,
+    /// Whether a dense drawing's lines are thinned to show its density
+    /// ([`Fit::thinned`]): for pixels (PNG). An SVG keeps its widths: it is
+    /// drawn at any zoom, and merging (`detail`) drops the overlapping
+    /// strokes whose sum would show density.
+    pub thin_dense: bool,
 }
 
 /// What an SVG keeps of detail finer than half a pixel at its size
@@ -265,6 +270,7 @@ impl Default for RenderOptions {
             style: Style::default(),
             framing: None,
             detail: Detail::Merged,
+            thin_dense: true,
         }
     }
 }
@@ -529,7 +535,7 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
     let widest = segments.iter().map(|s| s.width.abs()).fold(0.0, f64::max);
     let fit = proj
         .fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths))
-        .thinned(ink, widest, g.world_widths);
+        .thinned(ink, widest, g.world_widths || !opts.thin_dense);
     let runs = runs(&segments, &fit, g.world_widths);
     let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys
         .into_iter()
@@ -749,8 +755,8 @@ impl Fit {
     /// hairlines whose coverage is their width, so the picture's grey shows
     /// how dense the drawing is. Widths the model gives in its own units or
     /// asked for with `--stroke-width` are kept.
-    pub(crate) fn thinned(mut self, ink: f64, widest: f64, world_widths: bool) -> Self {
-        if world_widths || self.stroke_per_width.is_some() {
+    pub(crate) fn thinned(mut self, ink: f64, widest: f64, keep_widths: bool) -> Self {
+        if keep_widths || self.stroke_per_width.is_some() {
             return self;
         }
         let Framing { lo, hi, .. } = self.framing;
