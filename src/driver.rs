@@ -649,6 +649,26 @@ pub fn interpret(
         paths,
         ..Default::default()
     };
+    let drawn = drawn_word(sys, word, values, opts)?;
+    Ok(turtle::interpret_with(
+        sys,
+        &drawn,
+        opts.seed,
+        options,
+        &mut |_, _, _| {},
+    ))
+}
+
+/// The word the turtle draws for `word`: itself, or what the system's
+/// homomorphism makes of it (reading the program's globals and arrays as
+/// `values` holds them); refused when its geometry would not fit in
+/// memory ([`MAX_MOVES`]).
+fn drawn_word<'w>(
+    sys: &System,
+    word: &'w Word,
+    values: &Globals,
+    opts: &RunOptions,
+) -> Result<std::borrow::Cow<'w, Word>, Diagnostic> {
     if sys.rewrites_modules() {
         let dopts = opts.derive_options(sys);
         let (drawn, _) = eval::parametric::homomorphism(sys, word, values, &dopts)?;
@@ -658,26 +678,62 @@ pub fn interpret(
                 "each triangle of a surface and face of a generalized cylinder counts as a move",
             ));
         }
-        return Ok(turtle::interpret_with(
-            sys,
-            &drawn,
-            opts.seed,
-            options,
-            &mut |_, _, _| {},
-        ));
+        return Ok(std::borrow::Cow::Owned(drawn));
     }
     let moves = turtle::drawn_cost(sys, word);
     if moves > opts.max_moves as u64 {
         return Err(too_much_geometry(moves, opts.max_moves)
             .with_note(format!("the derived word has {} symbols", word.len())));
     }
-    Ok(turtle::interpret_with(
-        sys,
-        word,
-        opts.seed,
-        options,
-        &mut |_, _, _| {},
-    ))
+    Ok(std::borrow::Cow::Borrowed(word))
+}
+
+/// Whether [`render_lit`] may draw `sys` to `format` with `ropts`: a PNG
+/// of a lit look, without splines or an STL layout (`layout`: one would be
+/// added).
+pub fn streams_lit(sys: &System, format: Format, ropts: &RenderOptions, layout: bool) -> bool {
+    let outline = sys
+        .structure
+        .as_ref()
+        .is_some_and(|st| !st.constraint.outline.is_empty());
+    format == Format::Png && sys.look.lighting.is_some() && !ropts.spline && !(layout && outline)
+}
+
+/// Draws a lit system's word to a PNG straight from the turtle
+/// ([`render::raster::png_surveyed`]): the turtle runs once for the framing and
+/// once per band of rows, and nothing drawn is stored, so a plant of
+/// millions of polygons draws in the memory of its picture. The picture is
+/// the one [`render_bytes`] draws from the stored geometry. `Ok(None)` when
+/// nearly nothing is drawn, which the stored way explains. Call it where
+/// [`streams_lit`] holds.
+pub fn render_lit(
+    sys: &System,
+    word: &Word,
+    values: &Globals,
+    opts: &RunOptions,
+    mut ropts: RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Option<Result<Vec<u8>, LoadError>>, Diagnostic> {
+    let drawn = drawn_word(sys, word, values, opts)?;
+    apply_look(sys, &mut ropts);
+    ropts.thin_dense = true;
+    let Some(lighting) = sys.look.lighting.as_ref() else {
+        return Ok(None);
+    };
+    let replay = |sink: &mut dyn turtle::Sink| turtle::draw_into(sys, &drawn, opts.seed, sink);
+    let drawing = render::raster::Drawing::replayed(&replay, sys.settings.world_widths);
+    let survey = render::raster::survey(&drawing, lighting, &ropts);
+    if survey.pixels_across(&ropts) < NEARLY_NOTHING {
+        return Ok(None);
+    }
+    let png =
+        render::raster::png_surveyed(&drawing, &survey, lighting, palette(sys), &ropts, progress);
+    Ok(Some(png.ok_or_else(|| {
+        LoadError(format!(
+            "cannot make a {}x{} PNG",
+            ropts.width, ropts.height
+        ))
+    })))
 }
 
 /// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
@@ -1640,13 +1696,7 @@ impl Counter {
     }
 
     fn point(&mut self, p: turtle::Vec3) {
-        let b = self
-            .bbox
-            .get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
-        for k in 0..3 {
-            b[k] = b[k].min(p[k]);
-            b[k + 3] = b[k + 3].max(p[k]);
-        }
+        turtle::grow_box(&mut self.bbox, p);
     }
 }
 

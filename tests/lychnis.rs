@@ -1,11 +1,24 @@
 //! The cpfg Lychnis (`tests/corpus/cpfg/10-GettingStarted-01-Lychnis`,
 //! issue 21): what it draws at a step count the test profile affords, and
-//! the bound that stops a model drawing more than fits in memory.
+//! the bound that stops a model drawing more than fits in memory, and its
+//! picture drawn straight from the turtle in the memory of the picture.
+//!
+//! Peak memory is measured with a counting allocator (this test binary's
+//! global allocator).
 
-use graftal::driver::{self, RunOptions};
+use graftal::driver::{self, Format, RunOptions};
 use graftal::ir::System;
+use graftal::render::RenderOptions;
 use graftal::source::SourceFile;
 use std::path::PathBuf;
+
+#[path = "../benches/common/alloc.rs"]
+mod alloc;
+
+#[global_allocator]
+static ALLOC: alloc::Counting = alloc::Counting;
+
+use alloc::alone;
 
 fn lychnis() -> System {
     let path = PathBuf::from(concat!(
@@ -32,6 +45,7 @@ fn at(steps: u64) -> RunOptions {
 /// the contour at 64 points and each piece in 4 rings made 26,832 polygons.
 #[test]
 fn lychnis_at_50_steps_draws_what_cpfg_draws() {
+    let _alone = alone();
     let sys = lychnis();
     let (_, g) = driver::geometry(&sys, &at(50)).unwrap();
     assert_eq!(g.segments.len(), 60);
@@ -52,6 +66,7 @@ fn lychnis_at_50_steps_draws_what_cpfg_draws() {
 /// the turtle far fewer times than the limit.
 #[test]
 fn surfaces_and_cylinders_count_against_the_move_limit() {
+    let _alone = alone();
     let sys = lychnis();
     let opts = RunOptions {
         max_moves: 2_000,
@@ -66,4 +81,45 @@ fn surfaces_and_cylinders_count_against_the_move_limit() {
     // Under the limit of moves alone: 120 segments at 100 steps.
     let (_, g) = driver::geometry(&sys, &at(100)).unwrap();
     assert!(g.segments.len() < 2_000 && g.polygons.len() > 2_000);
+}
+
+/// A lit plant drawn straight from the turtle (`render` of a lit look: the
+/// turtle runs once for the framing and once per band, nothing drawn is
+/// stored) is the picture drawn from its stored geometry, byte for byte,
+/// and takes the memory of its picture rather than of its polygons.
+#[test]
+fn a_lit_plant_draws_from_the_turtle_as_from_its_stored_geometry_in_little_memory() {
+    let _alone = alone();
+    let sys = lychnis();
+    let opts = at(430);
+    let ropts = RenderOptions {
+        width: 300,
+        height: 300,
+        ..RenderOptions::default()
+    };
+    let (word, values) = driver::derive_values(&sys, &opts, |_, _| {}).unwrap();
+    let (stored, stored_peak) = alloc::peak_during(|| {
+        let g = driver::interpret(&sys, &word, &values, &opts, false).unwrap();
+        let polygons = g.polygons.len();
+        (
+            driver::render_bytes(&sys, &g, Format::Png, ropts).unwrap(),
+            polygons,
+        )
+    });
+    let (streamed, streamed_peak) = alloc::peak_during(|| {
+        driver::render_lit(&sys, &word, &values, &opts, ropts, &mut |_, _| {})
+            .unwrap()
+            .expect("a lit picture is drawn from the turtle")
+            .unwrap()
+    });
+    let (stored, polygons) = stored;
+    assert!(polygons > 100_000, "{polygons} polygons");
+    assert!(streamed == stored, "the streamed picture differs");
+    // The stored way holds every polygon; the streamed one a band of
+    // 900x900 samples (colour and depth: 6.5 MB) a thread, and the word.
+    let band_bytes = 900 * 900 * 8;
+    assert!(
+        streamed_peak < 3 * band_bytes && streamed_peak * 4 < stored_peak,
+        "streamed {streamed_peak} bytes, stored {stored_peak} bytes"
+    );
 }

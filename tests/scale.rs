@@ -15,7 +15,6 @@ use graftal::render::RenderOptions;
 use graftal::source::SourceFile;
 use graftal::turtle;
 use std::path::Path;
-use std::sync::Mutex;
 use std::time::Instant;
 
 #[path = "../benches/common/alloc.rs"]
@@ -24,18 +23,11 @@ mod alloc;
 #[global_allocator]
 static ALLOC: alloc::Counting = alloc::Counting;
 
-/// The tests of this file run one at a time: the allocator's peak counts
-/// every thread's allocations, so a test drawing pictures beside one that
-/// measures would be measured too.
-static ALONE: Mutex<()> = Mutex::new(());
-
-/// Holds [`ALONE`] (also after another test failed while holding it).
-fn alone() -> std::sync::MutexGuard<'static, ()> {
-    ALONE.lock().unwrap_or_else(|e| e.into_inner())
-}
+/// The tests of this file run one at a time ([`alloc::alone`]).
+use alloc::alone;
 
 /// The most heap `f` had live at once (other tests' threads included, so
-/// tests that measure hold [`ALONE`]).
+/// tests that measure hold [`alone`]).
 fn peak<T>(f: impl FnOnce() -> T) -> (T, usize) {
     alloc::peak_during(f)
 }

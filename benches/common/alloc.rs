@@ -81,3 +81,12 @@ pub fn mib(bytes: usize) -> String {
         format!("{:.1} KiB", bytes as f64 / 1024.0)
     }
 }
+
+/// Held by each test of a binary that measures peaks: the peak counts
+/// every thread's allocations, so a test drawing pictures beside one that
+/// measures would be measured too. (Held also after another test failed
+/// while holding it.)
+pub fn alone() -> std::sync::MutexGuard<'static, ()> {
+    static ALONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    ALONE.lock().unwrap_or_else(|e| e.into_inner())
+}

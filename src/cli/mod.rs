@@ -507,6 +507,15 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
         } else {
             derive_reporting(io, sys, opts).map_err(|d| vec![d])?
         };
+        if driver::streams_lit(sys, format, &ropts, !a.no_layout) {
+            let lit = driver::render_lit(sys, &word, &values, opts, ropts, &mut progress);
+            if let Some(bytes) = lit.map_err(|d| vec![d])? {
+                if let Some(bar) = &bar {
+                    bar.finish_and_clear();
+                }
+                return Ok(write_picture(io, &output, bytes));
+            }
+        }
         let mut g = driver::interpret(sys, &word, &values, opts, spline).map_err(|d| vec![d])?;
         if !a.no_layout {
             driver::add_layout(sys, &mut g);

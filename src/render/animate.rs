@@ -6,7 +6,7 @@
 //! derives and draws each step as a still picture) and encoded here one by
 //! one, so that only one frame is held at a time.
 
-use crate::turtle::Geometry;
+use crate::turtle::{Disc, Geometry, Origins, Polygon, Segment, Sink};
 use std::io::Write;
 
 /// The most frames an animation has: more is not an animation anyone
@@ -25,20 +25,58 @@ pub const GROWTH_FRAMES: u64 = 60;
 /// module (`g.origins`) appeared earlier (`appeared`, per module of the
 /// word). Parts of no known module (a layout) are kept.
 pub fn grown_part(g: &Geometry, appeared: &[u32], before: u32) -> Geometry {
-    let shown = |origin: usize| appeared.get(origin).is_none_or(|&a| a < before);
-    fn keep<T: Clone>(items: &[T], origins: &[usize], shown: impl Fn(usize) -> bool) -> Vec<T> {
-        (items.iter().enumerate())
-            .filter(|(i, _)| shown(origins.get(*i).copied().unwrap_or(usize::MAX)))
-            .map(|(_, x)| x.clone())
-            .collect()
+    let mut part = Part {
+        kept: Geometry {
+            world_widths: g.world_widths,
+            max_depth: g.max_depth,
+            ..Geometry::default()
+        },
+        origins: &g.origins,
+        seen: [0; 3],
+        shown: &|origin| appeared.get(origin).is_none_or(|&a| a < before),
+    };
+    // Replayed, so that the part keeps the order the whole was drawn in.
+    g.replay(&mut part);
+    part.kept
+}
+
+/// What [`grown_part`] keeps of a replayed drawing.
+struct Part<'a> {
+    kept: Geometry,
+    origins: &'a Origins,
+    /// Segments, polygons and discs seen so far.
+    seen: [usize; 3],
+    shown: &'a dyn Fn(usize) -> bool,
+}
+
+impl Part<'_> {
+    /// Whether the next thing of `kind` (0 segment, 1 polygon, 2 disc) with
+    /// origins `of` is kept.
+    fn keeps(&mut self, kind: usize, of: &[usize]) -> bool {
+        let i = self.seen[kind];
+        self.seen[kind] += 1;
+        (self.shown)(of.get(i).copied().unwrap_or(usize::MAX))
     }
-    Geometry {
-        segments: keep(&g.segments, &g.origins.segments, shown),
-        polygons: keep(&g.polygons, &g.origins.polygons, shown),
-        discs: keep(&g.discs, &g.origins.discs, shown),
-        world_widths: g.world_widths,
-        max_depth: g.max_depth,
-        ..Geometry::default()
+}
+
+impl Sink for Part<'_> {
+    fn segment(&mut self, s: Segment) {
+        let origins = self.origins;
+        if self.keeps(0, &origins.segments) {
+            self.kept.segment(s);
+        }
+    }
+    fn polygon(&mut self, p: Polygon) {
+        let origins = self.origins;
+        if self.keeps(1, &origins.polygons) {
+            self.kept.polygon(p);
+        }
+    }
+    fn disc(&mut self, d: Disc) {
+        let origins = self.origins;
+        if self.keeps(2, &origins.discs) {
+            self.kept.disc(d);
+        }
     }
 }
 

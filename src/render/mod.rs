@@ -15,7 +15,7 @@ pub mod svg;
 
 use crate::ir::look::Camera;
 use crate::ir::Rgb;
-use crate::turtle::{Geometry, Vec3};
+use crate::turtle::{Geometry, Segment, Vec3};
 use camera::Projector;
 
 /// The background of a picture whose look names none.
@@ -216,9 +216,20 @@ impl Palette {
     /// What segment `i` of `g` is painted with: its own colour without a
     /// palette. Polygons and discs keep theirs in every path.
     pub(crate) fn segment_paint(palette: Option<Palette>, g: &Geometry, i: usize) -> shade::Paint {
-        let s = &g.segments[i];
+        Palette::paint_of(palette, &g.segments[i], i, g.segments.len(), g.max_depth)
+    }
+
+    /// The paint of `s`, segment `i` of `n` of a drawing nested at most
+    /// `max_depth` deep: its own, or the style's.
+    pub(crate) fn paint_of(
+        palette: Option<Palette>,
+        s: &Segment,
+        i: usize,
+        n: usize,
+        max_depth: usize,
+    ) -> shade::Paint {
         match palette {
-            Some(p) => shade::Paint::Style(p.colour(i, g.segments.len(), s.depth, g.max_depth)),
+            Some(p) => shade::Paint::Style(p.colour(i, n, s.depth, max_depth)),
             None => shade::Paint::own(s.colour, s.index),
         }
     }

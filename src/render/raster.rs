@@ -18,8 +18,11 @@ use super::shade::{to_colour, Colour, Kind, Paint, Shader};
 use super::{Fit, Palette, RenderOptions};
 use crate::ir::look::{Lighting, LineStyle, Shading};
 use crate::ir::Rgb;
-use crate::turtle::{Disc, Geometry, Polygon, Segment, Vec3};
-use std::collections::BTreeMap;
+use crate::turtle::{Disc, Geometry, Polygon, Segment, Sink, Vec3};
+use std::collections::{BTreeMap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc;
 
 /// Samples (colour and depth, 8 bytes each) held at once: 64 MB.
 const MAX_BAND_SAMPLES: usize = 8 << 20;
@@ -193,31 +196,74 @@ fn span(v: &[SVert; 3], yc: f64) -> Option<(f64, f64)> {
     (lo <= hi).then_some((lo, hi))
 }
 
-/// What a lit geometry is drawn from: the projection, the fit, the shading.
+/// What a lit picture is drawn from: everything drawn, given to a sink in
+/// the same order each time it is replayed (once to find the framing, then
+/// once per band of rows, bands on several threads). A stored [`Geometry`]
+/// replays itself; the driver replays the turtle, so that nothing drawn is
+/// stored.
+pub struct Drawing<'d> {
+    source: Source<'d>,
+    /// Whether segment widths are in turtle units ([`Geometry::world_widths`]).
+    world_widths: bool,
+}
+
+enum Source<'d> {
+    Stored(&'d Geometry),
+    /// Gives everything to the sink; returns the deepest branch nesting.
+    Replayed(&'d (dyn Fn(&mut dyn Sink) -> usize + Sync)),
+}
+
+impl<'d> Drawing<'d> {
+    pub fn stored(g: &'d Geometry) -> Self {
+        Drawing {
+            source: Source::Stored(g),
+            world_widths: g.world_widths,
+        }
+    }
+
+    /// The drawing `replay` gives each time it is called (the same each
+    /// time), its widths in turtle units when `world_widths`.
+    pub fn replayed(
+        replay: &'d (dyn Fn(&mut dyn Sink) -> usize + Sync),
+        world_widths: bool,
+    ) -> Self {
+        Drawing {
+            source: Source::Replayed(replay),
+            world_widths,
+        }
+    }
+
+    /// Gives everything drawn to `sink`; the deepest branch nesting.
+    fn replay(&self, sink: &mut dyn Sink) -> usize {
+        match self.source {
+            Source::Stored(g) => {
+                g.replay(sink);
+                g.max_depth
+            }
+            Source::Replayed(f) => f(sink),
+        }
+    }
+}
+
+/// What a lit picture is drawn with: the projection, the fit, the shading.
 struct Scene<'a> {
-    g: &'a Geometry,
     lighting: &'a Lighting,
     shader: Shader<'a>,
     proj: Projector,
     fit: Fit,
     /// Samples per pixel each way.
     ss: f64,
-    /// Triangles of each polygon (corner indices) and, when shading is
-    /// smooth, the normal at each corner.
-    polygons: Vec<Tessellated>,
     /// The style's line colours (`--palette`), instead of the system's.
     palette: Option<Palette>,
-}
-
-struct Tessellated {
-    triangles: Vec<[usize; 3]>,
-    normal: Vec3,
-    corner_normals: Option<Vec<Vec3>>,
+    world_widths: bool,
+    /// Segments in the drawing and its deepest nesting (for `--palette`).
+    segments: usize,
+    max_depth: usize,
 }
 
 /// Draws `g` as its look `lighting` says, `palette` its colour map (never
 /// empty), into PNG bytes; `None` for a picture of no pixels or when the
-/// encoder fails. `progress(done, total)` is told as bands are done.
+/// encoder fails. `progress(done, total)` is told as things are drawn.
 pub fn png(
     g: &Geometry,
     lighting: &Lighting,
@@ -225,44 +271,167 @@ pub fn png(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Option<Vec<u8>> {
-    let (w, h) = (opts.width, opts.height);
-    if w == 0 || h == 0 || palette.is_empty() {
+    let drawing = Drawing::stored(g);
+    let survey = survey(&drawing, lighting, opts);
+    png_surveyed(&drawing, &survey, lighting, palette, opts, progress)
+}
+
+/// The first pass over `drawing` ([`Survey`]).
+pub fn survey(drawing: &Drawing<'_>, lighting: &Lighting, opts: &RenderOptions) -> Survey {
+    Survey::of(drawing, lighting, opts)
+}
+
+/// [`png`] of a drawing replayed ([`Drawing`]), its first pass done
+/// (`survey`, which found its framing): drawn into each band of rows as it
+/// comes; only the bands and a run of polygons ([`MAX_RUN`]) are held.
+pub fn png_surveyed(
+    drawing: &Drawing<'_>,
+    survey: &Survey,
+    lighting: &Lighting,
+    palette: &[Rgb],
+    opts: &RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Option<Vec<u8>> {
+    if palette.is_empty() {
         return None;
     }
-    let scene = Scene::new(g, lighting, palette, opts);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().clamp(1, MAX_THREADS));
+    let scene = Scene::new(survey, drawing.world_widths, lighting, palette, opts);
+    png_in_bands(drawing, &scene, survey.drawn, opts, threads, progress)
+}
+
+/// Draws `scene` (`drawn` things, replayed from `drawing`) in bands on
+/// `threads` threads, into PNG bytes.
+fn png_in_bands(
+    drawing: &Drawing<'_>,
+    scene: &Scene<'_>,
+    drawn_each: u64,
+    opts: &RenderOptions,
+    threads: usize,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Option<Vec<u8>> {
+    let (w, h) = (opts.width, opts.height);
+    if w == 0 || h == 0 {
+        return None;
+    }
     let ss = samples_per_pixel(w, h);
-    let row_samples = w as usize * (ss * ss) as usize;
-    let band_rows = (MAX_BAND_SAMPLES / row_samples).clamp(1, h as usize) as u32;
+    let bands = Bands::new(w, h, ss, threads);
+    let total = drawn_each.saturating_mul(bands.count() as u64);
     let mut out = Vec::new();
     let mut encoder = ::png::Encoder::new(&mut out, w, h);
     encoder.set_color(::png::ColorType::Rgba);
     encoder.set_depth(::png::BitDepth::Eight);
     let mut writer = encoder.write_header().ok()?;
     let mut stream = writer.stream_writer().ok()?;
-    let mut row = 0u32;
-    while row < h {
-        let rows = band_rows.min(h - row);
-        let mut t = Target::new(
+    let mut write = |rows: &[u8]| std::io::Write::write_all(&mut stream, rows).is_ok();
+    let drawn = AtomicU64::new(0);
+    let draw_band = |i: usize| {
+        let (row, rows) = bands.band(i);
+        let target = Target::new(
             i64::from(row * ss),
             i64::from(rows * ss),
             i64::from(w * ss),
             (opts.background, opts.background_alpha),
         );
-        scene.draw(&mut t);
-        std::io::Write::write_all(&mut stream, &downsample(&t, w, rows, ss)).ok()?;
-        row += rows;
-        progress(u64::from(row), u64::from(h));
+        let mut painter = Painter::new(scene, target, &drawn);
+        drawing.replay(&mut painter);
+        downsample(&painter.finish(), w, rows, ss)
+    };
+    let written = in_order(bands.count(), threads, &draw_band, &mut write, &mut || {
+        progress(drawn.load(Ordering::Relaxed), total)
+    });
+    progress(total, total);
+    if !written {
+        return None;
     }
     stream.finish().ok()?;
     drop(writer);
     Some(out)
 }
 
+/// Threads drawing bands at once, at most (each holds a band).
+const MAX_THREADS: usize = 8;
+
+/// The bands of rows a picture is drawn in: together at most
+/// [`MAX_BAND_SAMPLES`] samples for `threads` threads, and at least one band
+/// per thread where there are rows enough. A sample's colour does not
+/// depend on which band holds it, so neither do the picture's bytes.
+struct Bands {
+    h: u32,
+    rows: u32,
+}
+
+impl Bands {
+    fn new(w: u32, h: u32, ss: u32, threads: usize) -> Self {
+        let row_samples = w as usize * (ss * ss) as usize;
+        let rows = (MAX_BAND_SAMPLES / threads / row_samples).clamp(1, h as usize) as u32;
+        let rows = rows.min(h.div_ceil(threads as u32)).max(1);
+        Bands { h, rows }
+    }
+
+    fn count(&self) -> usize {
+        self.h.div_ceil(self.rows) as usize
+    }
+
+    /// Band `i`'s first row and its number of rows.
+    fn band(&self, i: usize) -> (u32, u32) {
+        let row = i as u32 * self.rows;
+        (row, self.rows.min(self.h - row))
+    }
+}
+
+/// Makes parts `0..count` with `make` on up to `threads` threads and gives
+/// them to `write` in order (those made early wait), calling `tick` now
+/// and then while it waits; `false` when `write` fails.
+fn in_order(
+    count: usize,
+    threads: usize,
+    make: &(dyn Fn(usize) -> Vec<u8> + Sync),
+    write: &mut dyn FnMut(&[u8]) -> bool,
+    tick: &mut dyn FnMut(),
+) -> bool {
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        let (tx, rx) = mpsc::channel::<(usize, Vec<u8>)>();
+        for _ in 0..threads.min(count) {
+            let (tx, next) = (tx.clone(), &next);
+            scope.spawn(move || loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= count || tx.send((i, make(i))).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(tx);
+        let mut early = BTreeMap::new();
+        let mut wanted = 0;
+        while wanted < count {
+            match rx.recv_timeout(std::time::Duration::from_millis(100)) {
+                Ok((i, part)) => {
+                    early.insert(i, part);
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => tick(),
+                Err(mpsc::RecvTimeoutError::Disconnected) => return false,
+            }
+            while let Some(part) = early.remove(&wanted) {
+                if !write(&part) {
+                    // Dropping the receiver stops the threads at their
+                    // next part.
+                    return false;
+                }
+                wanted += 1;
+            }
+        }
+        true
+    })
+}
+
 /// The framing [`png`] gives `g` lit by `lighting` (its extent includes
 /// cylinders' and spheres' radii).
 pub fn framing(g: &Geometry, lighting: &Lighting, opts: &RenderOptions) -> super::Framing {
-    let proj = Projector::new(opts);
-    proj.fit(&extent(g, &proj, lighting), opts).framing
+    Survey::of(&Drawing::stored(g), lighting, opts)
+        .fit(opts)
+        .framing
 }
 
 /// The band's pixels, RGBA, each the mean of its samples.
@@ -293,40 +462,261 @@ fn downsample(t: &Target, w: u32, rows: u32, ss: u32) -> Vec<u8> {
     out
 }
 
-impl<'a> Scene<'a> {
-    fn new(
-        g: &'a Geometry,
-        lighting: &'a Lighting,
-        palette: &'a [Rgb],
-        opts: &RenderOptions,
-    ) -> Scene<'a> {
-        let proj = Projector::new(opts);
-        let centre = g.bbox().map_or([0.0; 3], |b| {
+/// The first pass over a lit drawing: the points of the picture plane
+/// that bound it (every corner, and the reach of world-wide lines and
+/// spheres), its box in space, and how much it draws.
+pub struct Survey {
+    proj: Projector,
+    world_lines: bool,
+    /// The style's rotation, as [`Fit::padded`] turns points.
+    turn: (f64, f64),
+    /// The points that are furthest each way, turned (least and most x and
+    /// y) and unturned (largest |x| and |y|): a fit of these is the fit of
+    /// every point.
+    extremes: [([f64; 2], f64); 6],
+    bbox: Option<[f64; 6]>,
+    segments: usize,
+    /// Everything drawn (for progress).
+    drawn: u64,
+    max_depth: usize,
+}
+
+impl Survey {
+    pub(super) fn of(drawing: &Drawing<'_>, lighting: &Lighting, opts: &RenderOptions) -> Self {
+        let turn = opts.style.rotate.to_radians().sin_cos();
+        let mut survey = Survey {
+            proj: Projector::new(opts),
+            world_lines: lighting.line_style != LineStyle::Pixel,
+            turn: (turn.1, turn.0),
+            extremes: [([0.0; 2], f64::NEG_INFINITY); 6],
+            bbox: None,
+            segments: 0,
+            drawn: 0,
+            max_depth: 0,
+        };
+        survey.max_depth = drawing.replay(&mut survey);
+        survey
+    }
+
+    /// The fit of everything surveyed into the picture of `opts`.
+    pub(super) fn fit(&self, opts: &RenderOptions) -> Fit {
+        let pts: Vec<[f64; 2]> = (self.extremes.iter())
+            .filter(|e| e.1 > f64::NEG_INFINITY)
+            .map(|e| e.0)
+            .collect();
+        self.proj.fit(&pts, opts)
+    }
+
+    /// How many pixels the drawing spans in the picture of `opts`, the
+    /// lesser of its width and height (0 when nothing is drawn).
+    pub fn pixels_across(&self, opts: &RenderOptions) -> f64 {
+        if self.drawn == 0 {
+            return 0.0;
+        }
+        let fit = self.fit(opts);
+        let e = &self.extremes;
+        let across = (e[1].1 + e[0].1).min(e[3].1 + e[2].1) * fit.scale;
+        if across.is_finite() {
+            across
+        } else {
+            0.0
+        }
+    }
+
+    /// The middle of the drawing's box in space (where the shader looks
+    /// from, for a perspective).
+    pub(super) fn centre(&self) -> Vec3 {
+        self.bbox.map_or([0.0; 3], |b| {
             [
                 (b[0] + b[3]) / 2.0,
                 (b[1] + b[4]) / 2.0,
                 (b[2] + b[5]) / 2.0,
             ]
-        });
-        let shader = Shader::new(lighting, palette, proj.towards_viewer(centre));
-        let fit = proj.fit(&extent(g, &proj, lighting), opts);
-        let smooth = lighting.shading == Shading::Smooth;
-        let shared = smooth.then(|| shared_normals(&g.polygons));
-        let polygons = g
-            .polygons
-            .iter()
-            .map(|p| tessellate(p, shared.as_ref()))
-            .collect();
-        Scene {
-            g,
-            lighting,
-            shader,
-            proj,
-            fit,
-            ss: f64::from(samples_per_pixel(opts.width, opts.height)),
-            polygons,
-            palette: opts.style.palette,
+        })
+    }
+
+    /// `p` and the reach `r` (world units) around it.
+    fn reach(&mut self, p: Vec3, r: f64) {
+        crate::turtle::grow_box(&mut self.bbox, p);
+        let Some((xy, z)) = self.proj.project(p) else {
+            return;
+        };
+        let r = if self.proj.perspective() { r / z } else { r };
+        let r = if r.is_finite() { r.abs() } else { 0.0 };
+        for q in [[xy[0] - r, xy[1] - r], [xy[0] + r, xy[1] + r]] {
+            let t = super::rotate(q, self.turn);
+            let keys = [-t[0], t[0], -t[1], t[1], q[0].abs(), q[1].abs()];
+            for (e, key) in self.extremes.iter_mut().zip(keys) {
+                // NaN never wins, as in the fit's min and max.
+                if key > e.1 {
+                    *e = (q, key);
+                }
+            }
         }
+    }
+}
+
+impl Sink for Survey {
+    fn segment(&mut self, s: Segment) {
+        let r = if self.world_lines { s.width / 2.0 } else { 0.0 };
+        self.reach(s.a, r);
+        self.reach(s.b, r);
+        self.segments += 1;
+        self.drawn += 1;
+    }
+    fn polygon(&mut self, p: Polygon) {
+        for &q in &p.points {
+            self.reach(q, 0.0);
+        }
+        self.drawn += 1;
+    }
+    fn disc(&mut self, d: Disc) {
+        self.reach(d.centre, if d.pixels { 0.0 } else { d.diameter / 2.0 });
+        self.drawn += 1;
+    }
+}
+
+/// A polygon's triangles (corner indices), its normal and, when shading is
+/// smooth, the normal at each corner.
+struct Tessellated {
+    triangles: Vec<[usize; 3]>,
+    normal: Vec3,
+    corner_normals: Option<Vec<Vec3>>,
+}
+
+/// Polygons whose smooth normals are shared, at most: a surface's or a
+/// cylinder's triangles come one after another, and are smoothed together.
+const MAX_RUN: usize = 1 << 14;
+
+/// The second pass: everything drawn into a band as it comes. Polygons
+/// that come one after another (a run) are held until the run ends, so
+/// that their shared corners get one normal; a segment is held until the
+/// next, whose width a tapered look ends it with.
+struct Painter<'s, 'p> {
+    scene: &'s Scene<'s>,
+    target: Target,
+    run: Vec<Polygon>,
+    held: Option<Segment>,
+    /// Segments drawn so far (their index, for `--palette`).
+    segments: usize,
+    /// Drawn and not yet counted in `drawn`, which all bands count in.
+    uncounted: u64,
+    drawn: &'p AtomicU64,
+}
+
+impl<'s, 'p> Painter<'s, 'p> {
+    fn new(scene: &'s Scene<'s>, target: Target, drawn: &'p AtomicU64) -> Self {
+        Painter {
+            scene,
+            target,
+            run: Vec::new(),
+            held: None,
+            segments: 0,
+            uncounted: 0,
+            drawn,
+        }
+    }
+
+    fn tick(&mut self) {
+        self.uncounted += 1;
+        if self.uncounted == 1 << 14 {
+            self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
+            self.uncounted = 0;
+        }
+    }
+
+    /// Draws the run of polygons held.
+    fn flush_run(&mut self) {
+        if self.run.is_empty() {
+            return;
+        }
+        let scene = self.scene;
+        let shown: Vec<(usize, Vec<[f64; 3]>)> = (self.run.iter().enumerate())
+            .filter_map(|(i, p)| Some((i, scene.corners_shown(&self.target, p)?)))
+            .collect();
+        // Most polygons of a dense plant fall between samples: those cost
+        // no normals, no tessellation and no shading.
+        if !shown.is_empty() {
+            let smooth = scene.lighting.shading == Shading::Smooth;
+            let shared = smooth.then(|| shared_normals(&self.run));
+            for (i, corners) in shown {
+                let p = &self.run[i];
+                let tess = tessellate(p, shared.as_ref());
+                scene.polygon(&mut self.target, p, &tess, &corners);
+            }
+        }
+        self.run.clear();
+    }
+
+    /// Draws the segment held, ending with `end_width` when the look tapers.
+    fn draw_held(&mut self, next: Option<&Segment>) {
+        let Some(s) = self.held.take() else {
+            return;
+        };
+        let end_width = match next {
+            Some(next) if self.scene.lighting.tapered && next.a == s.b => next.width,
+            _ => s.width,
+        };
+        let paint = self.scene.segment_paint(&s, self.segments);
+        self.segments += 1;
+        self.scene.segment(&mut self.target, &s, paint, end_width);
+    }
+
+    /// The band, with everything drawn.
+    fn finish(mut self) -> Target {
+        self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
+        self.flush_run();
+        self.draw_held(None);
+        self.target
+    }
+}
+
+impl Sink for Painter<'_, '_> {
+    fn segment(&mut self, s: Segment) {
+        self.flush_run();
+        self.draw_held(Some(&s));
+        self.held = Some(s);
+        self.tick();
+    }
+    fn polygon(&mut self, p: Polygon) {
+        self.run.push(p);
+        if self.run.len() >= MAX_RUN {
+            self.flush_run();
+        }
+        self.tick();
+    }
+    fn disc(&mut self, d: Disc) {
+        self.flush_run();
+        self.scene.disc(&mut self.target, &d);
+        self.tick();
+    }
+}
+
+impl<'a> Scene<'a> {
+    fn new(
+        survey: &Survey,
+        world_widths: bool,
+        lighting: &'a Lighting,
+        palette: &'a [Rgb],
+        opts: &RenderOptions,
+    ) -> Scene<'a> {
+        let proj = Projector::new(opts);
+        Scene {
+            lighting,
+            shader: Shader::new(lighting, palette, proj.towards_viewer(survey.centre())),
+            proj,
+            fit: survey.fit(opts),
+            ss: f64::from(samples_per_pixel(opts.width, opts.height)),
+            palette: opts.style.palette,
+            world_widths,
+            segments: survey.segments,
+            max_depth: survey.max_depth,
+        }
+    }
+
+    /// The paint of segment `s`, the `i`th drawn: its own, or the style's.
+    fn segment_paint(&self, s: &Segment, i: usize) -> Paint {
+        Palette::paint_of(self.palette, s, i, self.segments, self.max_depth)
     }
 
     /// `p` in samples, with its depth; `None` behind a perspective's eye.
@@ -346,23 +736,6 @@ impl<'a> Scene<'a> {
     fn samples_per_unit(&self, p: Vec3) -> f64 {
         let z = self.proj.project(p).map_or(1.0, |r| r.1);
         self.proj.pixels_per_unit(&self.fit, z) * self.ss
-    }
-
-    fn draw(&self, t: &mut Target) {
-        for (p, tess) in self.g.polygons.iter().zip(&self.polygons) {
-            self.polygon(t, p, tess);
-        }
-        for (i, s) in self.g.segments.iter().enumerate() {
-            let end_width = match self.g.segments.get(i + 1) {
-                Some(next) if self.lighting.tapered && next.a == s.b => next.width,
-                _ => s.width,
-            };
-            let paint = Palette::segment_paint(self.palette, self.g, i);
-            self.segment(t, s, paint, end_width);
-        }
-        for d in &self.g.discs {
-            self.disc(t, d);
-        }
     }
 
     /// A colour for a primitive lit with normal `n` at `p`, by the look's
@@ -389,35 +762,6 @@ impl<'a> Scene<'a> {
     }
 }
 
-/// The picture-plane points the fit must hold: every corner, and the
-/// reach of world-wide lines and discs.
-pub(super) fn extent(g: &Geometry, proj: &Projector, lighting: &Lighting) -> Vec<[f64; 2]> {
-    let world_lines = lighting.line_style != LineStyle::Pixel;
-    let mut pts = Vec::with_capacity(2 * g.segments.len());
-    let mut reach = |p: Vec3, r: f64| {
-        if let Some((xy, z)) = proj.project(p) {
-            let r = if proj.perspective() { r / z } else { r };
-            let r = if r.is_finite() { r.abs() } else { 0.0 };
-            pts.push([xy[0] - r, xy[1] - r]);
-            pts.push([xy[0] + r, xy[1] + r]);
-        }
-    };
-    for s in &g.segments {
-        let r = if world_lines { s.width / 2.0 } else { 0.0 };
-        reach(s.a, r);
-        reach(s.b, r);
-    }
-    for p in &g.polygons {
-        for &q in &p.points {
-            reach(q, 0.0);
-        }
-    }
-    for d in &g.discs {
-        reach(d.centre, if d.pixels { 0.0 } else { d.diameter / 2.0 });
-    }
-    pts
-}
-
 /// Newell's normal of a polygon (length: twice its area); zero for a
 /// degenerate one.
 pub(super) fn newell(points: &[Vec3]) -> Vec3 {
@@ -431,6 +775,33 @@ pub(super) fn newell(points: &[Vec3]) -> Vec3 {
     n
 }
 
+/// Summed normals by corner position ([`key`]).
+type Normals = HashMap<[u64; 3], Vec3, BuildHasherDefault<PointHasher>>;
+
+/// A multiplicative hash of a corner's bits: a run's corners are looked up
+/// a dozen times per polygon, where a keyed hash (SipHash) or a tree would
+/// cost more than drawing. Lookups only; nothing iterates the map, so its
+/// order cannot reach the picture.
+#[derive(Default)]
+struct PointHasher(u64);
+
+impl Hasher for PointHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        // A key's three words come here as one slice of bytes.
+        for word in bytes.chunks(8) {
+            let mut b = [0u8; 8];
+            b[..word.len()].copy_from_slice(word);
+            self.write_u64(u64::from_le_bytes(b));
+        }
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 fn key(p: Vec3) -> [u64; 3] {
     p.map(f64::to_bits)
 }
@@ -438,8 +809,8 @@ fn key(p: Vec3) -> [u64; 3] {
 /// Each polygon corner's summed face normals over the polygons that share
 /// it (same position), each face turned to agree with the sum so far: the
 /// smooth normals of a surface given as separate triangles.
-fn shared_normals(polygons: &[Polygon]) -> BTreeMap<[u64; 3], Vec3> {
-    let mut sums: BTreeMap<[u64; 3], Vec3> = BTreeMap::new();
+fn shared_normals(polygons: &[Polygon]) -> Normals {
+    let mut sums = Normals::default();
     for p in polygons {
         let Some(n) = unit(newell(&p.points)) else {
             continue;
@@ -456,7 +827,7 @@ fn shared_normals(polygons: &[Polygon]) -> BTreeMap<[u64; 3], Vec3> {
 }
 
 /// A polygon's triangles and normals.
-fn tessellate(p: &Polygon, shared: Option<&BTreeMap<[u64; 3], Vec3>>) -> Tessellated {
+fn tessellate(p: &Polygon, shared: Option<&Normals>) -> Tessellated {
     let finite = p.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
     let normal = if finite {
         unit(newell(&p.points))
@@ -549,7 +920,33 @@ fn ear_clip(pts: &[Vec3], n: Vec3) -> Vec<[usize; 3]> {
 
 /// Polygons, lines and discs.
 impl Scene<'_> {
-    fn polygon(&self, t: &mut Target, p: &Polygon, tess: &Tessellated) {
+    /// Where `p`'s corners fall in samples, when it can show in the band
+    /// `t`: every corner in front of the eye, and some sample's centre
+    /// within its box (a triangle is drawn at the centres it covers, so one
+    /// between centres draws nothing). A wireframe's outlines are lines of
+    /// a pixel or more: every polygon shows (with no corners given).
+    fn corners_shown(&self, t: &Target, p: &Polygon) -> Option<Vec<[f64; 3]>> {
+        if self.lighting.shading == Shading::Wireframe {
+            return Some(Vec::new());
+        }
+        let corners = (p.points.iter())
+            .map(|&q| self.to_samples(q))
+            .collect::<Option<Vec<_>>>()?;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for c in &corners {
+            for k in 0..2 {
+                lo[k] = lo[k].min(c[k]);
+                hi[k] = hi[k].max(c[k]);
+            }
+        }
+        let first_x = ((lo[0] - 0.5).ceil() as i64).max(0);
+        let last_x = ((hi[0] - 0.5).floor() as i64).min(t.width - 1);
+        let rows = t.rows_between(lo[1], hi[1]);
+        (first_x <= last_x && rows.start < rows.end).then_some(corners)
+    }
+
+    /// Draws `p`, its corners in samples `corners` ([`Scene::corners_shown`]).
+    fn polygon(&self, t: &mut Target, p: &Polygon, tess: &Tessellated, corners: &[[f64; 3]]) {
         if tess.triangles.is_empty() {
             return;
         }
@@ -560,21 +957,6 @@ impl Scene<'_> {
             for (i, &a) in pts.iter().enumerate() {
                 self.pixel_line(t, a, pts[(i + 1) % pts.len()], width, c);
             }
-            return;
-        }
-        let Some(corners) = pts
-            .iter()
-            .map(|&q| self.to_samples(q))
-            .collect::<Option<Vec<_>>>()
-        else {
-            return;
-        };
-        let lo = corners.iter().map(|c| c[1]).fold(f64::INFINITY, f64::min);
-        let hi = corners
-            .iter()
-            .map(|c| c[1])
-            .fold(f64::NEG_INFINITY, f64::max);
-        if !t.meets(lo, hi) {
             return;
         }
         // Two-sided: the face's normal turned towards the viewer.
@@ -615,7 +997,7 @@ impl Scene<'_> {
         match self.lighting.line_style {
             LineStyle::Pixel => {
                 let c = self.shader.flat(paint);
-                let width = self.fit.line_width(s.width, self.g.world_widths);
+                let width = self.fit.line_width(s.width, self.world_widths);
                 self.pixel_line(t, s.a, s.b, width, c);
             }
             LineStyle::Polygon => self.ribbon(t, s, paint, end_width),
@@ -1099,6 +1481,87 @@ mod tests {
         let twice = png(&g, &l, &palette, &small(70), &mut |_, _| {});
         assert!(once.is_some());
         assert_eq!(once, twice);
+    }
+
+    /// A helix of tapered cylinders through a smooth surface of quads and
+    /// spheres, drawn in any number of bands on any number of threads:
+    /// the same bytes, since a sample's colour does not depend on its band.
+    #[test]
+    fn bands_and_threads_do_not_change_the_picture() {
+        let mut g = Geometry::default();
+        for i in 0..40 {
+            let t = f64::from(i) * 0.3;
+            g.segment(Segment {
+                a: [t.cos(), t / 3.0, t.sin()],
+                b: [(t + 0.3).cos(), (t + 0.3) / 3.0, (t + 0.3).sin()],
+                width: 0.3 - f64::from(i) * 0.005,
+                colour: Rgb(90, 90, 90),
+                index: 90,
+                depth: 0,
+            });
+            if i % 10 == 0 {
+                for k in 0..6 {
+                    let (a, b) = (f64::from(k) * 0.2, f64::from(k + 1) * 0.2);
+                    g.polygon(Polygon {
+                        points: vec![
+                            [a, t / 3.0, a * a],
+                            [b, t / 3.0, b * b],
+                            [b, t / 3.0 + 0.4, b * b],
+                            [a, t / 3.0 + 0.4, a * a],
+                        ],
+                        colour: Rgb(40, 160, 40),
+                        index: 40,
+                        surface: true,
+                    });
+                }
+                g.disc(Disc {
+                    centre: [0.0, t / 3.0, 0.0],
+                    diameter: 0.5,
+                    colour: Rgb(200, 30, 30),
+                    pixels: false,
+                    index: 200,
+                });
+            }
+        }
+        let l = Lighting {
+            tapered: true,
+            ..lighting(Shading::Smooth, LineStyle::Cylinder)
+        };
+        let palette = [Rgb(1, 2, 3), Rgb(200, 100, 50)];
+        let opts = RenderOptions {
+            width: 60,
+            height: 301,
+            ..small(60)
+        };
+        let drawing = Drawing::stored(&g);
+        let survey = survey(&drawing, &l, &opts);
+        let scene = Scene::new(&survey, false, &l, &palette, &opts);
+        let draw = |threads| {
+            png_in_bands(
+                &drawing,
+                &scene,
+                survey.drawn,
+                &opts,
+                threads,
+                &mut |_, _| {},
+            )
+            .expect("a picture")
+        };
+        let one = draw(1);
+        assert_eq!(Bands::new(60, 301, 3, 7).count(), 7);
+        for threads in [2, 3, 7] {
+            assert!(
+                draw(threads) == one,
+                "{threads} threads draw another picture"
+            );
+        }
+        // And the picture is not blank: a band drawn twice or not at all
+        // would show.
+        let pm = tiny_skia::Pixmap::decode_png(&one).unwrap();
+        let lit = (0..301)
+            .filter(|&y| (0..60).any(|x| rgb(&pm, x, y) != [0, 0, 0]))
+            .count();
+        assert!(lit > 60, "{lit} rows drawn");
     }
 
     #[test]

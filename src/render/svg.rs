@@ -282,17 +282,11 @@ pub fn write_scene(
     let proj = Projector::new(opts);
     let default_lighting = Lighting::default();
     let look = lighting.unwrap_or(&default_lighting);
-    let centre = g.bbox().map_or([0.0; 3], |b| {
-        [
-            (b[0] + b[3]) / 2.0,
-            (b[1] + b[4]) / 2.0,
-            (b[2] + b[5]) / 2.0,
-        ]
-    });
+    let survey = super::raster::survey(&super::raster::Drawing::stored(g), look, opts);
     let scene = Scene {
         proj,
-        fit: proj.fit(&super::raster::extent(g, &proj, look), opts),
-        shader: Shader::new(look, palette, proj.towards_viewer(centre)),
+        fit: survey.fit(opts),
+        shader: Shader::new(look, palette, proj.towards_viewer(survey.centre())),
         lighting,
         world_lines: lighting.is_some_and(|l| l.line_style != LineStyle::Pixel),
     };

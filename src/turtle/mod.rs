@@ -100,6 +100,29 @@ pub struct Geometry {
     /// Which module drew what, when asked for ([`TurtleOptions::origins`]).
     #[serde(skip)]
     pub origins: Origins,
+    /// The order the turtle drew in, as runs of one kind, so that a stored
+    /// drawing replays as it was drawn ([`Geometry::replay`]): a lit
+    /// picture drawn from it and one drawn straight from the turtle agree.
+    #[serde(skip)]
+    pub order: Vec<(Drawn, u32)>,
+}
+
+/// Grows the box `b` (`[minx, miny, minz, maxx, maxy, maxz]`, `None` when
+/// empty) to hold `p`.
+pub fn grow_box(b: &mut Option<[f64; 6]>, p: Vec3) {
+    let b = b.get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
+    for k in 0..3 {
+        b[k] = b[k].min(p[k]);
+        b[k + 3] = b[k + 3].max(p[k]);
+    }
+}
+
+/// A kind of thing the turtle draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Drawn {
+    Segment,
+    Polygon,
+    Disc,
 }
 
 /// Per segment, polygon and disc drawn, the index in the word of the
@@ -133,11 +156,7 @@ impl Geometry {
             .chain(self.discs.iter().map(|d| d.centre));
         let mut b: Option<[f64; 6]> = None;
         for p in pts {
-            let bb = b.get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
-            for k in 0..3 {
-                bb[k] = bb[k].min(p[k]);
-                bb[k + 3] = bb[k + 3].max(p[k]);
-            }
+            grow_box(&mut b, p);
         }
         b
     }
@@ -399,13 +418,51 @@ pub trait Sink {
 
 impl Sink for Geometry {
     fn segment(&mut self, s: Segment) {
+        self.note(Drawn::Segment);
         self.segments.push(s);
     }
     fn polygon(&mut self, p: Polygon) {
+        self.note(Drawn::Polygon);
         self.polygons.push(p);
     }
     fn disc(&mut self, d: Disc) {
+        self.note(Drawn::Disc);
         self.discs.push(d);
+    }
+}
+
+impl Geometry {
+    fn note(&mut self, kind: Drawn) {
+        match self.order.last_mut() {
+            Some((k, n)) if *k == kind && *n < u32::MAX => *n += 1,
+            _ => self.order.push((kind, 1)),
+        }
+    }
+
+    /// Gives everything drawn to `sink` in the order it was drawn; what
+    /// was added without a note of its order (a layout, a geometry built by
+    /// hand) follows: polygons, then segments, then discs.
+    pub fn replay(&self, sink: &mut dyn Sink) {
+        let mut next = [0usize; 3];
+        let mut give = |kind: Drawn, n: usize, sink: &mut dyn Sink| {
+            let k = kind as usize;
+            let len = [self.segments.len(), self.polygons.len(), self.discs.len()][k];
+            let end = next[k].saturating_add(n).min(len);
+            for i in next[k]..end {
+                match kind {
+                    Drawn::Segment => sink.segment(self.segments[i].clone()),
+                    Drawn::Polygon => sink.polygon(self.polygons[i].clone()),
+                    Drawn::Disc => sink.disc(self.discs[i].clone()),
+                }
+            }
+            next[k] = end;
+        };
+        for &(kind, n) in &self.order {
+            give(kind, n as usize, sink);
+        }
+        for kind in [Drawn::Polygon, Drawn::Segment, Drawn::Disc] {
+            give(kind, usize::MAX, sink);
+        }
     }
 }
 
@@ -473,6 +530,22 @@ pub fn interpret_into(
         sys,
         word,
         None,
+        seed,
+        TurtleOptions::default(),
+        &mut |_, _, _| {},
+        sink,
+    )
+    .max_depth
+}
+
+/// [`interpret_into`] for a whole word, its modules' parameters read:
+/// what a picture drawn straight from the turtle replays, once per pass.
+pub fn draw_into(sys: &System, word: &Word, seed: u64, sink: &mut dyn Sink) -> usize {
+    let params = word.has_params().then_some(word);
+    run(
+        sys,
+        word.0.iter().copied(),
+        params,
         seed,
         TurtleOptions::default(),
         &mut |_, _, _| {},
@@ -1256,6 +1329,52 @@ mod tests {
 
     fn close(a: Vec3, b: Vec3) -> bool {
         (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
+    }
+
+    /// Records the kinds given to it, in order.
+    #[derive(Default)]
+    struct Kinds(Vec<Drawn>);
+
+    impl Sink for Kinds {
+        fn segment(&mut self, _: Segment) {
+            self.0.push(Drawn::Segment);
+        }
+        fn polygon(&mut self, _: Polygon) {
+            self.0.push(Drawn::Polygon);
+        }
+        fn disc(&mut self, _: Disc) {
+            self.0.push(Drawn::Disc);
+        }
+    }
+
+    #[test]
+    fn a_stored_drawing_replays_in_the_order_it_was_drawn() {
+        let square = || Polygon {
+            points: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+            colour: Rgb(0, 0, 0),
+            index: 0,
+            surface: false,
+        };
+        let line = || Segment {
+            a: [0.0; 3],
+            b: [0.0, 1.0, 0.0],
+            width: 1.0,
+            colour: Rgb(0, 0, 0),
+            index: 0,
+            depth: 0,
+        };
+        let mut g = Geometry::default();
+        g.segment(line());
+        g.polygon(square());
+        g.polygon(square());
+        g.segment(line());
+        // Added without a note of its order: after the rest.
+        g.polygons.push(square());
+        let mut kinds = Kinds::default();
+        g.replay(&mut kinds);
+        use Drawn::{Polygon as P, Segment as S};
+        assert_eq!(kinds.0, [S, P, P, S, P]);
+        assert_eq!(g.order, [(S, 1), (P, 2), (S, 1)]);
     }
 
     #[test]
