@@ -384,11 +384,12 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     for i in 0..10_000 {
         text.push_str(&format!("F --> F+F-F /* é {i} */\n"));
     }
-    // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s.
+    // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s, a
+    // comment on each line (each put back where it was written).
     let gft_uri = "file:///tmp/graftal-lsp-test/big.gft";
     let mut gft = String::from("axiom A0\nangle 90\n");
     for i in 0..9_998 {
-        gft.push_str(&format!("A{i}  ->  F+A{}\n", i + 1));
+        gft.push_str(&format!("A{i}  ->  F+A{}  /* é {i} */\n", i + 1));
     }
     let mut c = Client::start();
     // Each figure is the median of three runs: one run slowed by other
@@ -452,12 +453,10 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
             json!({ "textDocument": { "uri": gft_uri }, "options": { "tabSize": 4, "insertSpaces": true } }),
         );
         assert_eq!(r["result"].as_array().map(Vec::len), Some(1), "{r}");
+        let formatted = r["result"][0]["newText"].as_str().unwrap_or("");
+        assert!(formatted.ends_with("A9997 -> F+A9998 /* é 9997 */\n"));
     });
     eprintln!("answer times (median of 3): {times:?}");
-    // Formatting (write, then read back and compare) is measured but not
-    // yet held to the bound: 190-280 ms here in the test profile.
-    let formatting = times.pop();
-    eprintln!("formatting, not asserted: {formatting:?}");
     let slowest = times.iter().map(|t| t.1).max().unwrap();
     assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
