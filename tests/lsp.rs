@@ -659,6 +659,55 @@ fn stl_rules_hover_define_and_are_referenced() {
     c.stop();
 }
 
+/// Where the `Location[]` `r` answered starts and ends: (line, from, to).
+fn places_of(r: &Value) -> Vec<(u64, u64, u64)> {
+    let found = r["result"].as_array().unwrap_or_else(|| panic!("{r}"));
+    let at = |l: &Value, end: &str, k: &str| l["range"][end][k].as_u64().unwrap();
+    (found.iter())
+        .map(|l| {
+            (
+                at(l, "start", "line"),
+                at(l, "start", "character"),
+                at(l, "end", "character"),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn stl_rules_glued_to_other_letters_are_used_and_names_in_comments_are_not() {
+    let uri = "file:///tmp/graftal-lsp-test/glued.stl";
+    let text = "ANGLE 30\n# R1 draws; R1 here is no use\nR1 = [F][+F]\nR2 = FR1LFR1\nSEED\nFR2 # R2\nENDSEED\n";
+    let mut c = Client::start();
+    assert_eq!(c.open(uri, text), Vec::<Value>::new());
+    // R1 in `FR1LFR1`: after F, and after L F.
+    let r = c.at("textDocument/references", uri, 2, 0);
+    assert_eq!(places_of(&r), [(2, 0, 2), (3, 6, 8), (3, 10, 12)], "{r}");
+    let d = c.at("textDocument/definition", uri, 3, 11);
+    assert_eq!(places_of(&d), [(2, 0, 2)], "{d}");
+    let r = c.at("textDocument/references", uri, 5, 2);
+    assert_eq!(places_of(&r), [(3, 0, 2), (5, 1, 3)], "{r}");
+    c.stop();
+}
+
+#[test]
+fn names_in_comments_are_not_references() {
+    let mut c = Client::start();
+    let uri = "file:///tmp/graftal-lsp-test/commented.linf";
+    c.open(
+        uri,
+        "# t turns\nlines f\nangles t = (0, pi/3)\naxiom f\nrules f = f +t f # f again\n",
+    );
+    let r = c.at("textDocument/references", uri, 2, 7);
+    assert_eq!(places_of(&r), [(2, 7, 8), (4, 13, 14)], "{r}");
+    let uri = "file:///tmp/graftal-lsp-test/commented.l";
+    let cpfg = "/* N and\n   N */\n#define N 5 // N\nLsystem: 1\nderivation length: 1\nAxiom: F(N)\nendlsystem\n";
+    c.open(uri, cpfg);
+    let r = c.at("textDocument/references", uri, 2, 8);
+    assert_eq!(places_of(&r), [(2, 8, 9), (5, 9, 10)], "{r}");
+    c.stop();
+}
+
 const LINF_URI: &str = "file:///tmp/graftal-lsp-test/curve.linf";
 const LINF_CURVE: &str = "lines f\nangles t = (0, pi/3)\naxiom f\nrules f = f +t f\n";
 
