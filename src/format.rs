@@ -67,12 +67,16 @@ pub fn outcome(compiled: &Compiled) -> Outcome {
 
 /// Whether `a` and `b` lex without errors to the same tokens, each
 /// touching the one before it or not alike (comments, blanks and runs of
-/// line breaks aside). The parser sees nothing else of a text, so `b` then
+/// line breaks aside). The parser sees nothing else of a text (it asks
+/// whether pieces of a word touch; a line break is none), so `b` then
 /// reads as the same system as `a`.
 fn same_tokens(a: &str, b: &str) -> bool {
+    use lexer::Token::Newline;
     let mut diags = Diagnostics::default();
     let (ta, tb) = (lexer::lex(a, &mut diags), lexer::lex(b, &mut diags));
-    let glued = |ts: &[(lexer::Token, Span)], i: usize| i > 0 && ts[i - 1].1.end == ts[i].1.start;
+    let glued = |ts: &[(lexer::Token, Span)], i: usize| {
+        i > 0 && ts[i - 1].1.end == ts[i].1.start && ts[i - 1].0 != Newline && ts[i].0 != Newline
+    };
     diags.is_empty()
         && ta.len() == tb.len()
         && (0..ta.len()).all(|i| ta[i].0 == tb[i].0 && glued(&ta, i) == glued(&tb, i))

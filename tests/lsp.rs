@@ -1011,3 +1011,59 @@ fn a_half_typed_file_of_each_notation_gives_diagnostics() {
     let _ = std::fs::remove_dir_all(&dir);
     c.stop();
 }
+
+/// The README's block fenced as ```LANG that holds `marker`.
+fn readme_block(lang: &str, marker: &str) -> String {
+    let readme = include_str!("../README.md");
+    let fence = format!("```{lang}\n");
+    (readme.split(fence.as_str()).skip(1))
+        .filter_map(|b| b.split("```").next())
+        .find(|b| b.contains(marker))
+        .unwrap_or_else(|| panic!("no ```{lang} block with `{marker}` in the README"))
+        .to_string()
+}
+
+/// The notations' extensions an editor must hand to `graftal lsp`.
+const EXTENSIONS: [&str; 4] = ["l", "linf", "stl", "gft"];
+
+#[test]
+fn the_readme_configures_helix_and_vs_code_as_they_read_it() {
+    let helix: toml::Table = toml::from_str(&readme_block("toml", "[language-server.graftal]"))
+        .unwrap_or_else(|e| panic!("the Helix block is not TOML: {e}"));
+    let server = &helix["language-server"]["graftal"];
+    assert_eq!(server["command"].as_str(), Some("graftal"));
+    assert_eq!(server["args"], toml::Value::Array(vec!["lsp".into()]));
+    let languages = helix["language"].as_array().expect("[[language]]");
+    let uses_graftal = |l: &&toml::Value| {
+        (l.get("language-servers").and_then(|s| s.as_array()))
+            .is_some_and(|s| s.contains(&"graftal".into()))
+    };
+    let language = languages
+        .iter()
+        .find(uses_graftal)
+        .expect("a language served by graftal");
+    for key in ["name", "scope"] {
+        assert!(
+            language.get(key).and_then(|v| v.as_str()).is_some(),
+            "Helix needs `{key}`"
+        );
+    }
+    let types = language["file-types"].as_array().expect("file-types");
+    for ext in EXTENSIONS {
+        assert!(types.contains(&ext.into()), "Helix file-types lack {ext}");
+    }
+    let vscode: Value = serde_json::from_str(&readme_block("json", "glspc"))
+        .unwrap_or_else(|e| panic!("the VS Code block is not JSON: {e}"));
+    assert_eq!(vscode["glspc.server.command"], "graftal");
+    assert_eq!(vscode["glspc.server.commandArguments"], json!(["lsp"]));
+    let served = vscode["glspc.server.languageId"]
+        .as_array()
+        .expect("languageId");
+    for ext in EXTENSIONS {
+        let id = &vscode["files.associations"][format!("*.{ext}")];
+        assert!(
+            served.contains(id),
+            "VS Code does not hand *.{ext} ({id}) to graftal"
+        );
+    }
+}
