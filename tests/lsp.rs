@@ -1067,3 +1067,72 @@ fn the_readme_configures_helix_and_vs_code_as_they_read_it() {
         );
     }
 }
+
+/// A copy of the cpfg object `tests/corpus/cpfg/NAME` in a folder of its own.
+fn corpus_object(name: &str) -> std::path::PathBuf {
+    let from = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/corpus/cpfg")
+        .join(name);
+    let dir = cpfg_object(name, &[]);
+    for entry in std::fs::read_dir(&from).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
+    }
+    dir
+}
+
+/// Where `needle` is written in `text`, as (line, character) of its start.
+fn line_and_column(text: &str, needle: &str) -> (u32, u32) {
+    let at = text.find(needle).unwrap_or_else(|| panic!("no {needle}"));
+    let line = text[..at].matches('\n').count();
+    let column = at - text[..at].rfind('\n').map_or(0, |i| i + 1);
+    (line as u32, column as u32)
+}
+
+#[test]
+fn cpfg_user_functions_are_defined_in_their_files_and_hover_with_their_points() {
+    // `func(BR_ANGLE, …)`: a function of the set the view file names.
+    let dir = corpus_object("10-GettingStarted-01-Lychnis");
+    let text = std::fs::read_to_string(dir.join("plant.l")).unwrap();
+    let uri = format!("file://{}", dir.join("plant.l").display());
+    let mut c = Client::start();
+    c.open(&uri, &text);
+    let (line, column) = line_and_column(&text, "func(BR_ANGLE");
+    let d = c.at("textDocument/definition", &uri, line, column + 7);
+    let fset = format!("file://{}", dir.join("functions.fset").display());
+    assert_eq!(d["result"][0]["uri"], fset.as_str(), "{d}");
+    let set = std::fs::read_to_string(dir.join("functions.fset")).unwrap();
+    let (name_line, name_column) = line_and_column(&set, "BR_ANGLE");
+    assert_eq!(
+        places_of(&d),
+        [(name_line as u64, name_column as u64, name_column as u64 + 8)]
+    );
+    let value = hover_text(&mut c, &uri, line, column + 7);
+    assert!(value.contains("cpfg user function `BR_ANGLE`"), "{value}");
+    assert!(
+        value.contains("samples: 100; 4 points: (0, -0.659485)"),
+        "{value}"
+    );
+    // Not the definition of a name in another call.
+    let (line, column) = line_and_column(&text, "t/LENBR");
+    let d = c.at("textDocument/definition", &uri, line, column + 3);
+    assert!(!d.to_string().contains(".fset"), "{d}");
+    let _ = std::fs::remove_dir_all(&dir);
+    // `func(2, …)`: the view file's second `function:` file.
+    let dir = corpus_object("02-Mod-vis-3D-05-monopodial");
+    let text = std::fs::read_to_string(dir.join("leaf.l")).unwrap();
+    let uri = format!("file://{}", dir.join("leaf.l").display());
+    c.open(&uri, &text);
+    let (line, column) = line_and_column(&text, "func(2,");
+    let d = c.at("textDocument/definition", &uri, line, column + 5);
+    let file = format!("file://{}", dir.join("leaf-length.func").display());
+    assert_eq!(d["result"][0]["uri"], file.as_str(), "{d}");
+    assert_eq!(d["result"][0]["range"]["start"]["line"], 1, "{d}");
+    let value = hover_text(&mut c, &uri, line, column + 5);
+    assert!(
+        value.contains("(function 2 of `leaf-length.func`)"),
+        "{value}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}

@@ -76,7 +76,7 @@ pub fn find(notation: &str, text: &str) -> Names {
 
 /// The spans of `text`'s comments, in order, as `notation`'s lexer finds
 /// them.
-fn comment_spans(notation: &str, text: &str) -> Vec<Span> {
+pub fn comment_spans(notation: &str, text: &str) -> Vec<Span> {
     match notation {
         "cpfg" => front::cpfg::lexer::comment_spans(text),
         "fractint" => front::fractint::lexer::comment_spans(text),
