@@ -384,11 +384,12 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
     for i in 0..10_000 {
         text.push_str(&format!("F --> F+F-F /* é {i} */\n"));
     }
-    // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s.
+    // A `.gft` file of 10,000 lines, its layout not `graftal fmt`'s, a
+    // comment on each line (each put back where it was written).
     let gft_uri = "file:///tmp/graftal-lsp-test/big.gft";
     let mut gft = String::from("axiom A0\nangle 90\n");
     for i in 0..9_998 {
-        gft.push_str(&format!("A{i}  ->  F+A{}\n", i + 1));
+        gft.push_str(&format!("A{i}  ->  F+A{}  /* é {i} */\n", i + 1));
     }
     let mut c = Client::start();
     // Each figure is the median of three runs: one run slowed by other
@@ -452,12 +453,10 @@ fn a_ten_thousand_line_file_answers_every_request_quickly() {
             json!({ "textDocument": { "uri": gft_uri }, "options": { "tabSize": 4, "insertSpaces": true } }),
         );
         assert_eq!(r["result"].as_array().map(Vec::len), Some(1), "{r}");
+        let formatted = r["result"][0]["newText"].as_str().unwrap_or("");
+        assert!(formatted.ends_with("A9997 -> F+A9998 /* é 9997 */\n"));
     });
     eprintln!("answer times (median of 3): {times:?}");
-    // Formatting (write, then read back and compare) is measured but not
-    // yet held to the bound: 190-280 ms here in the test profile.
-    let formatting = times.pop();
-    eprintln!("formatting, not asserted: {formatting:?}");
     let slowest = times.iter().map(|t| t.1).max().unwrap();
     assert!(slowest < BOUND, "an answer took {slowest:?}: {times:?}");
     c.stop();
@@ -657,6 +656,55 @@ fn stl_rules_hover_define_and_are_referenced() {
     // `R2`: declared on line 4, used in R1's body and the seed.
     let r = c.at("textDocument/references", STL_URI, 5, 0);
     assert_eq!(lines_of(&r), [2, 3, 5], "{r}");
+    c.stop();
+}
+
+/// Where the `Location[]` `r` answered starts and ends: (line, from, to).
+fn places_of(r: &Value) -> Vec<(u64, u64, u64)> {
+    let found = r["result"].as_array().unwrap_or_else(|| panic!("{r}"));
+    let at = |l: &Value, end: &str, k: &str| l["range"][end][k].as_u64().unwrap();
+    (found.iter())
+        .map(|l| {
+            (
+                at(l, "start", "line"),
+                at(l, "start", "character"),
+                at(l, "end", "character"),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn stl_rules_glued_to_other_letters_are_used_and_names_in_comments_are_not() {
+    let uri = "file:///tmp/graftal-lsp-test/glued.stl";
+    let text = "ANGLE 30\n# R1 draws; R1 here is no use\nR1 = [F][+F]\nR2 = FR1LFR1\nSEED\nFR2 # R2\nENDSEED\n";
+    let mut c = Client::start();
+    assert_eq!(c.open(uri, text), Vec::<Value>::new());
+    // R1 in `FR1LFR1`: after F, and after L F.
+    let r = c.at("textDocument/references", uri, 2, 0);
+    assert_eq!(places_of(&r), [(2, 0, 2), (3, 6, 8), (3, 10, 12)], "{r}");
+    let d = c.at("textDocument/definition", uri, 3, 11);
+    assert_eq!(places_of(&d), [(2, 0, 2)], "{d}");
+    let r = c.at("textDocument/references", uri, 5, 2);
+    assert_eq!(places_of(&r), [(3, 0, 2), (5, 1, 3)], "{r}");
+    c.stop();
+}
+
+#[test]
+fn names_in_comments_are_not_references() {
+    let mut c = Client::start();
+    let uri = "file:///tmp/graftal-lsp-test/commented.linf";
+    c.open(
+        uri,
+        "# t turns\nlines f\nangles t = (0, pi/3)\naxiom f\nrules f = f +t f # f again\n",
+    );
+    let r = c.at("textDocument/references", uri, 2, 7);
+    assert_eq!(places_of(&r), [(2, 7, 8), (4, 13, 14)], "{r}");
+    let uri = "file:///tmp/graftal-lsp-test/commented.l";
+    let cpfg = "/* N and\n   N */\n#define N 5 // N\nLsystem: 1\nderivation length: 1\nAxiom: F(N)\nendlsystem\n";
+    c.open(uri, cpfg);
+    let r = c.at("textDocument/references", uri, 2, 8);
+    assert_eq!(places_of(&r), [(2, 8, 9), (5, 9, 10)], "{r}");
     c.stop();
 }
 
@@ -960,6 +1008,131 @@ fn a_half_typed_file_of_each_notation_gives_diagnostics() {
             assert!(r.get("result").is_some(), "{uri} {method}: {r}");
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+/// The README's block fenced as ```LANG that holds `marker`.
+fn readme_block(lang: &str, marker: &str) -> String {
+    let readme = include_str!("../README.md");
+    let fence = format!("```{lang}\n");
+    (readme.split(fence.as_str()).skip(1))
+        .filter_map(|b| b.split("```").next())
+        .find(|b| b.contains(marker))
+        .unwrap_or_else(|| panic!("no ```{lang} block with `{marker}` in the README"))
+        .to_string()
+}
+
+/// The notations' extensions an editor must hand to `graftal lsp`.
+const EXTENSIONS: [&str; 4] = ["l", "linf", "stl", "gft"];
+
+#[test]
+fn the_readme_configures_helix_and_vs_code_as_they_read_it() {
+    let helix: toml::Table = toml::from_str(&readme_block("toml", "[language-server.graftal]"))
+        .unwrap_or_else(|e| panic!("the Helix block is not TOML: {e}"));
+    let server = &helix["language-server"]["graftal"];
+    assert_eq!(server["command"].as_str(), Some("graftal"));
+    assert_eq!(server["args"], toml::Value::Array(vec!["lsp".into()]));
+    let languages = helix["language"].as_array().expect("[[language]]");
+    let uses_graftal = |l: &&toml::Value| {
+        (l.get("language-servers").and_then(|s| s.as_array()))
+            .is_some_and(|s| s.contains(&"graftal".into()))
+    };
+    let language = languages
+        .iter()
+        .find(uses_graftal)
+        .expect("a language served by graftal");
+    for key in ["name", "scope"] {
+        assert!(
+            language.get(key).and_then(|v| v.as_str()).is_some(),
+            "Helix needs `{key}`"
+        );
+    }
+    let types = language["file-types"].as_array().expect("file-types");
+    for ext in EXTENSIONS {
+        assert!(types.contains(&ext.into()), "Helix file-types lack {ext}");
+    }
+    let vscode: Value = serde_json::from_str(&readme_block("json", "glspc"))
+        .unwrap_or_else(|e| panic!("the VS Code block is not JSON: {e}"));
+    assert_eq!(vscode["glspc.server.command"], "graftal");
+    assert_eq!(vscode["glspc.server.commandArguments"], json!(["lsp"]));
+    let served = vscode["glspc.server.languageId"]
+        .as_array()
+        .expect("languageId");
+    for ext in EXTENSIONS {
+        let id = &vscode["files.associations"][format!("*.{ext}")];
+        assert!(
+            served.contains(id),
+            "VS Code does not hand *.{ext} ({id}) to graftal"
+        );
+    }
+}
+
+/// A copy of the cpfg object `tests/corpus/cpfg/NAME` in a folder of its own.
+fn corpus_object(name: &str) -> std::path::PathBuf {
+    let from = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/corpus/cpfg")
+        .join(name);
+    let dir = cpfg_object(name, &[]);
+    for entry in std::fs::read_dir(&from).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
+    }
+    dir
+}
+
+/// Where `needle` is written in `text`, as (line, character) of its start.
+fn line_and_column(text: &str, needle: &str) -> (u32, u32) {
+    let at = text.find(needle).unwrap_or_else(|| panic!("no {needle}"));
+    let line = text[..at].matches('\n').count();
+    let column = at - text[..at].rfind('\n').map_or(0, |i| i + 1);
+    (line as u32, column as u32)
+}
+
+#[test]
+fn cpfg_user_functions_are_defined_in_their_files_and_hover_with_their_points() {
+    // `func(BR_ANGLE, …)`: a function of the set the view file names.
+    let dir = corpus_object("10-GettingStarted-01-Lychnis");
+    let text = std::fs::read_to_string(dir.join("plant.l")).unwrap();
+    let uri = format!("file://{}", dir.join("plant.l").display());
+    let mut c = Client::start();
+    c.open(&uri, &text);
+    let (line, column) = line_and_column(&text, "func(BR_ANGLE");
+    let d = c.at("textDocument/definition", &uri, line, column + 7);
+    let fset = format!("file://{}", dir.join("functions.fset").display());
+    assert_eq!(d["result"][0]["uri"], fset.as_str(), "{d}");
+    let set = std::fs::read_to_string(dir.join("functions.fset")).unwrap();
+    let (name_line, name_column) = line_and_column(&set, "BR_ANGLE");
+    assert_eq!(
+        places_of(&d),
+        [(name_line as u64, name_column as u64, name_column as u64 + 8)]
+    );
+    let value = hover_text(&mut c, &uri, line, column + 7);
+    assert!(value.contains("cpfg user function `BR_ANGLE`"), "{value}");
+    assert!(
+        value.contains("samples: 100; 4 points: (0, -0.659485)"),
+        "{value}"
+    );
+    // Not the definition of a name in another call.
+    let (line, column) = line_and_column(&text, "t/LENBR");
+    let d = c.at("textDocument/definition", &uri, line, column + 3);
+    assert!(!d.to_string().contains(".fset"), "{d}");
+    let _ = std::fs::remove_dir_all(&dir);
+    // `func(2, …)`: the view file's second `function:` file.
+    let dir = corpus_object("02-Mod-vis-3D-05-monopodial");
+    let text = std::fs::read_to_string(dir.join("leaf.l")).unwrap();
+    let uri = format!("file://{}", dir.join("leaf.l").display());
+    c.open(&uri, &text);
+    let (line, column) = line_and_column(&text, "func(2,");
+    let d = c.at("textDocument/definition", &uri, line, column + 5);
+    let file = format!("file://{}", dir.join("leaf-length.func").display());
+    assert_eq!(d["result"][0]["uri"], file.as_str(), "{d}");
+    assert_eq!(d["result"][0]["range"]["start"]["line"], 1, "{d}");
+    let value = hover_text(&mut c, &uri, line, column + 5);
+    assert!(
+        value.contains("(function 2 of `leaf-length.func`)"),
+        "{value}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
     c.stop();
 }

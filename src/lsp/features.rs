@@ -5,9 +5,11 @@
 use super::names::{self, Names};
 use super::position::{offset, range};
 use super::publish::explanation;
-use super::{edits, json, parse, Document};
+use super::{edits, json, parse, uri, Document};
+use crate::front::cpfg::FunctionSite;
 use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
+use crate::source::SourceFile;
 use lsp_types::request::{
     CodeActionRequest, Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest,
     References, Request as _,
@@ -163,10 +165,84 @@ fn symbol_at(occ: &[Occurrence], at: usize) -> Option<SymbolId> {
         .map(|o| o.symbol)
 }
 
+/// The user function a cpfg `func(NAME, x)` or `func(k, x)` calls, when
+/// `at` is on its `NAME` or `k` (outside comments).
+fn user_function_at(doc: &Document, at: usize) -> Option<&FunctionSite> {
+    let c = &doc.compiled;
+    if c.front.name() != "cpfg" {
+        return None;
+    }
+    let text = &c.file.text;
+    let word = word_at(text, at)?;
+    let start = text
+        .get(..at)?
+        .rfind(|ch: char| !(ch.is_alphanumeric() || ch == '_'));
+    let start = start.map_or(0, |i| i + 1);
+    let before = text[..start].trim_end().strip_suffix('(')?.trim_end();
+    let called = before.strip_suffix("func")?;
+    if called.ends_with(|ch: char| ch.is_alphanumeric() || ch == '_') {
+        return None; // `myfunc(`
+    }
+    let comments = names::comment_spans("cpfg", text);
+    if comments.iter().any(|s| s.start <= start && start < s.end) {
+        return None;
+    }
+    let path = std::path::Path::new(&c.file.name);
+    let sites = doc
+        .functions
+        .get_or_init(|| crate::front::cpfg::function_sites(path));
+    match word.parse::<usize>() {
+        Ok(k) => sites.iter().find(|s| s.number == k),
+        Err(_) => sites.iter().find(|s| s.name.as_deref() == Some(word)),
+    }
+}
+
+/// Where user function `f` is declared: `Location[]` as JSON.
+fn function_location(f: &FunctionSite) -> String {
+    let Some(uri) = uri::from_path(&f.path.to_string_lossy()) else {
+        return "[]".into();
+    };
+    let file = SourceFile::new(f.path.to_string_lossy().into_owned(), f.text.clone());
+    json::locations(&uri, std::iter::once(range(&file, &f.span)))
+}
+
+/// The most control points a hover lists.
+const HOVER_POINTS: usize = 12;
+
+/// A user function's hover: its name, number, file, samples and points.
+fn function_text(f: &FunctionSite) -> String {
+    let name = f.name.as_deref().unwrap_or("(unnamed)");
+    let file = f
+        .path
+        .file_name()
+        .map_or("?".into(), |n| n.to_string_lossy());
+    let points = &f.function.points;
+    let shown: Vec<String> = (points.iter().take(HOVER_POINTS))
+        // Read as single precision, as cpfg reads them: shown so, as written.
+        .map(|[x, y]| format!("({}, {})", *x as f32, *y as f32))
+        .collect();
+    let more = points.len().saturating_sub(HOVER_POINTS);
+    let more = if more > 0 {
+        format!(", … and {more} more")
+    } else {
+        String::new()
+    };
+    format!(
+        "cpfg user function `{name}` (function {} of `{file}`)\n\nsamples: {}; {} points: {}{more}",
+        f.number,
+        f.function.samples,
+        points.len(),
+        shown.join(", ")
+    )
+}
+
 /// The productions of the symbol at `at` and the declaration of the name
 /// there (`definitions`), or every place either is written: `Location[]`
 /// as JSON.
 fn locations(doc: &Document, at: usize, definitions: bool) -> String {
+    if let Some(f) = user_function_at(doc, at).filter(|_| definitions) {
+        return function_location(f);
+    }
     let occ = occurrences(doc);
     let symbol = symbol_at(occ, at);
     let names = names(doc);
@@ -222,6 +298,7 @@ fn hover(doc: &Document, at: usize) -> Option<Hover> {
     if let Some(i) = names.at(at) {
         parts.extend(names.decls.get(i).map(|d| d.about.clone()));
     }
+    parts.extend(user_function_at(doc, at).map(function_text));
     if let (Some(sys), Some(symbol)) = (&c.system, symbol_at(occurrences(doc), at)) {
         parts.push(symbol_text(doc, sys, symbol));
     }

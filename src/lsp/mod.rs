@@ -42,6 +42,8 @@ pub struct Document {
     occurrences: OnceCell<Vec<features::Occurrence>>,
     /// The names it declares besides symbols, found like `occurrences`.
     names: OnceCell<names::Names>,
+    /// A cpfg object's user functions, read from disk like `occurrences`.
+    functions: OnceCell<Vec<crate::front::cpfg::FunctionSite>>,
 }
 
 impl Document {
@@ -54,6 +56,7 @@ impl Document {
             compiled: driver::compile(file),
             occurrences: OnceCell::new(),
             names: OnceCell::new(),
+            functions: OnceCell::new(),
         }
     }
 }

@@ -53,8 +53,45 @@ pub fn find(notation: &str, text: &str) -> Names {
         "fractint" => fractint_entries(text),
         _ => Vec::new(),
     };
-    let uses = uses(text, &decls);
+    // Names in comments are neither declared nor used.
+    let comments = comment_spans(notation, text);
+    let in_comment = |s: &Span| {
+        let k = comments.partition_point(|c| c.end <= s.start);
+        comments.get(k).is_some_and(|c| c.start <= s.start)
+    };
+    let decls: Vec<Decl> = decls.into_iter().filter(|d| !in_comment(&d.span)).collect();
+    let uses = match notation {
+        // Read from the syntax tree, split as lowering splits `FR1`.
+        "stl" => {
+            let file = front::stl::parser::parse(text, &mut Diagnostics::default());
+            let by_name = first_by_name(&decls);
+            (front::stl::lower::rule_uses(&file).into_iter())
+                .filter_map(|(name, span)| Some((*by_name.get(name.as_str())?, span)))
+                .collect()
+        }
+        _ => uses(text, &decls, &in_comment),
+    };
     Names { decls, uses }
+}
+
+/// The spans of `text`'s comments, in order, as `notation`'s lexer finds
+/// them.
+pub fn comment_spans(notation: &str, text: &str) -> Vec<Span> {
+    match notation {
+        "cpfg" => front::cpfg::lexer::comment_spans(text),
+        "fractint" => front::fractint::lexer::comment_spans(text),
+        _ => (front::by_name(notation).into_iter())
+            .flat_map(|f| f.comments(text))
+            .map(|(span, _)| span)
+            .collect(),
+    }
+}
+
+/// Each name's first declaration, by index.
+fn first_by_name(decls: &[Decl]) -> HashMap<&str, usize> {
+    (decls.iter().enumerate().rev())
+        .map(|(i, d)| (d.name.as_str(), i))
+        .collect()
 }
 
 /// `text[span]`, cut to a line's worth for a hover.
@@ -213,12 +250,11 @@ fn is_name_char(c: char) -> bool {
     c.is_alphanumeric() || c == '_'
 }
 
-/// Every word of `text` (a run of letters, digits and `_`) that is a
-/// declared name, other than the declarations themselves.
-fn uses(text: &str, decls: &[Decl]) -> Vec<(usize, Span)> {
-    let by_name: HashMap<&str, usize> = (decls.iter().enumerate().rev())
-        .map(|(i, d)| (d.name.as_str(), i))
-        .collect();
+/// Every word of `text` (a run of letters, digits and `_`) outside
+/// comments that is a declared name, other than the declarations
+/// themselves.
+fn uses(text: &str, decls: &[Decl], in_comment: &dyn Fn(&Span) -> bool) -> Vec<(usize, Span)> {
+    let by_name = first_by_name(decls);
     if by_name.is_empty() {
         return Vec::new();
     }
@@ -230,7 +266,7 @@ fn uses(text: &str, decls: &[Decl]) -> Vec<(usize, Span)> {
             (false, Some(s)) => {
                 word_start = None;
                 if let Some(&d) = by_name.get(&text[s..i]) {
-                    if decls[d].span.start != s {
+                    if decls[d].span.start != s && !in_comment(&(s..i)) {
                         out.push((d, s..i));
                     }
                 }

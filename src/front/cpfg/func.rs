@@ -337,6 +337,22 @@ fn read_one(lines: &mut Lines) -> Result<Function, Diagnostics> {
     Ok(f)
 }
 
+/// Where the names of the functions of a `.func` or `.fset` text are
+/// written (the values of its `name:` lines), in order.
+pub fn name_spans(text: &str) -> Vec<Range<usize>> {
+    let mut out = Vec::new();
+    let mut at = 0;
+    for line in text.split_inclusive('\n') {
+        let start = at + line.len() - line.trim_start().len();
+        at += line.len();
+        if let Some(value) = line.trim_start().strip_prefix("name:") {
+            let from = start + "name:".len() + value.len() - value.trim_start().len();
+            out.push(from..from + value.trim().len());
+        }
+    }
+    out
+}
+
 /// Reads a `.func` file.
 pub fn read_func(text: &str) -> Result<Function, Diagnostics> {
     read_one(&mut Lines { text, at: 0 })

@@ -204,6 +204,33 @@ impl fmt::Display for Token {
     }
 }
 
+/// cpfg's comments, as the modes' tokens skip them; an unclosed `/*`
+/// runs to the end.
+#[derive(Logos, Clone, Copy, Debug, PartialEq)]
+enum CommentTok {
+    #[regex(r"/\*([^*]|\*+[^*/])*\*+/")]
+    #[regex(r"//[^\n]*", allow_greedy = true)]
+    Closed,
+    #[token("/*")]
+    Open,
+}
+
+/// The spans of `src`'s comments.
+pub fn comment_spans(src: &str) -> Vec<Span> {
+    let mut out = Vec::new();
+    for (tok, span) in CommentTok::lexer(src).spanned() {
+        match tok {
+            Ok(CommentTok::Closed) => out.push(span),
+            Ok(CommentTok::Open) => {
+                out.push(span.start..src.len());
+                break;
+            }
+            Err(()) => {}
+        }
+    }
+    out
+}
+
 /// A token enum for one mode: the tokens shared by both modes (blanks, line
 /// breaks, comments, keywords), then the mode's own.
 macro_rules! mode_tokens {

@@ -138,6 +138,59 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     lowered
 }
 
+/// A user function where the object's files declare it: what `func(k, x)`
+/// and `func(NAME, x)` call.
+pub struct FunctionSite {
+    /// k, from 1, in the order cpfg numbers them.
+    pub number: usize,
+    /// `NAME`: its name in capitals, as the macro cpfg defines for it.
+    pub name: Option<String>,
+    /// The `.func` or `.fset` file that declares it, and its text.
+    pub path: std::path::PathBuf,
+    pub text: String,
+    /// Where its name is written there (its file's start when unnamed).
+    pub span: Span,
+    pub function: func::Function,
+}
+
+/// The user functions of the cpfg object whose `.l` file is at `path`, as
+/// [`read_file`] numbers them: the view file's `function:` files, then its
+/// `function set:` files; those that do not read are left out, as there.
+pub fn function_sites(path: &Path) -> Vec<FunctionSite> {
+    let beside = Beside {
+        dir: folder_of(path),
+    };
+    let Some(dir) = beside.dir else {
+        return Vec::new();
+    };
+    let view = beside.view(path, &mut Diagnostics::default());
+    let mut out: Vec<FunctionSite> = Vec::new();
+    let files = (view.functions.iter().map(|f| (f, false)))
+        .chain(view.function_sets.iter().map(|f| (f, true)));
+    for (fname, is_set) in files {
+        let (Some(path), Some(text)) = (inside(dir, fname), beside.read(fname)) else {
+            continue;
+        };
+        let functions = if is_set {
+            func::read_fset(&text).map(|set| set.into_iter().map(|(_, f)| f).collect())
+        } else {
+            func::read_func(&text).map(|f| vec![f])
+        };
+        let names = func::name_spans(&text);
+        for (k, function) in functions.unwrap_or_default().into_iter().enumerate() {
+            out.push(FunctionSite {
+                number: out.len() + 1,
+                name: function.name.as_ref().map(|n| n.to_uppercase()),
+                path: path.clone(),
+                text: text.clone(),
+                span: names.get(k).cloned().unwrap_or(0..0),
+                function,
+            });
+        }
+    }
+    out
+}
+
 /// The folder of the `.l` file at `path`: its parent, or the current
 /// folder for a bare name (`plant.l` given from its own folder has the
 /// empty parent, which is no folder) when the file is there on disk; none

@@ -59,6 +59,14 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
     out
 }
 
+/// The spans of `src`'s `;` comments, as [`Token`] finds them.
+pub fn comment_spans(src: &str) -> Vec<Span> {
+    (Token::lexer(src).spanned())
+        .filter(|(t, _)| *t == Ok(Token::Comment))
+        .map(|(_, span)| span)
+        .collect()
+}
+
 /// One command of a body.
 #[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Command<'src> {

@@ -132,46 +132,152 @@ enum Piece {
     Rule(usize, Span),
 }
 
+/// A piece of an identifier run (`FR1`): a drawing component, a rule (by
+/// its index in `by_name`), or neither.
+enum RunPiece {
+    Comp(Comp),
+    Rule(usize),
+    Unknown,
+}
+
+/// Splits identifier run `text` into the longest rule names of `by_name`
+/// (`index` indexes them) and drawing components, each with its byte range
+/// in `text`; an unknown piece (up to the next capital) ends it.
+fn split_run(
+    text: &str,
+    by_name: &HashMap<String, usize>,
+    index: &LongestNames,
+) -> Vec<(RunPiece, std::ops::Range<usize>)> {
+    let longest_at = index.longest_at(text);
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < text.len() {
+        let n = longest_at[i];
+        let longest = (n > 0)
+            .then(|| by_name.get(&text[i..i + n]).map(|&r| (r, n)))
+            .flatten();
+        if let Some((r, n)) = longest {
+            out.push((RunPiece::Rule(r), i..i + n));
+            i += n;
+            continue;
+        }
+        let next_digit = bytes
+            .get(i + 1)
+            .is_some_and(|b| b.is_ascii_digit() || *b == b'_');
+        let comp = match bytes[i] {
+            b'F' if !next_digit => Some(Comp::F),
+            b'L' if !next_digit => Some(Comp::L),
+            b'R' if !next_digit => Some(Comp::R),
+            _ => None,
+        };
+        if let Some(c) = comp {
+            out.push((RunPiece::Comp(c), i..i + 1));
+            i += 1;
+            continue;
+        }
+        let mut j = i + 1;
+        while j < text.len() && !bytes[j].is_ascii_uppercase() {
+            j += 1;
+        }
+        out.push((RunPiece::Unknown, i..j));
+        break;
+    }
+    out
+}
+
+/// Where `file` uses its rules, by name and span, as lowering reads them:
+/// the names in the rules' bodies and the seed, split from runs such as
+/// `FR1` by the longest rule name, and the names of branching terms.
+pub fn rule_uses(file: &File) -> Vec<(String, Span)> {
+    type Uses = Vec<(String, Span)>;
+    fn entries(es: &Entries, out: &mut Uses) {
+        for e in &es.list {
+            if let Entry::Term {
+                name,
+                name_span,
+                entries: inner,
+            } = e
+            {
+                out.push((name.clone(), name_span.clone()));
+                inner.iter().for_each(|i| entries(i, out));
+            }
+        }
+    }
+    fn walk(s: &Str, split: &dyn Fn(&str, &Span, &mut Uses), out: &mut Uses) {
+        for e in &s.elems {
+            match e {
+                Elem::Name {
+                    text,
+                    span,
+                    entries: es,
+                } => {
+                    split(text, span, out);
+                    es.iter().for_each(|es| entries(es, out));
+                }
+                Elem::Branch { body, .. } | Elem::Resemble { body, .. } => walk(body, split, out),
+                Elem::Turn { .. } => {}
+            }
+        }
+    }
+    let mut by_name = HashMap::new();
+    for item in &file.items {
+        if let Item::Rule { name, .. } = item {
+            if RESERVED.contains(&name.as_str()) || name == "DFS" {
+                continue;
+            }
+            let next = by_name.len();
+            by_name.entry(name.clone()).or_insert(next);
+        }
+    }
+    let index = LongestNames::new(by_name.keys().map(String::as_str));
+    let split = |text: &str, span: &Span, out: &mut Uses| {
+        for (piece, at) in split_run(text, &by_name, &index) {
+            if let RunPiece::Rule(_) = piece {
+                out.push((
+                    text[at.clone()].to_string(),
+                    span.start + at.start..span.start + at.end,
+                ));
+            }
+        }
+    };
+    let mut out = Vec::new();
+    for item in &file.items {
+        if let Item::Rule { body, .. } | Item::Seed { body, .. } = item {
+            walk(body, &split, &mut out);
+        }
+    }
+    out
+}
+
 impl Ctx<'_> {
     /// Splits an identifier run into components and rule names.
     fn split(&mut self, text: &str, span: &Span) -> Option<Vec<Piece>> {
         let index = self
             .name_index
             .get_or_insert_with(|| LongestNames::new(self.by_name.keys().map(String::as_str)));
-        let longest_at = index.longest_at(text);
         let mut out = Vec::new();
-        let bytes = text.as_bytes();
-        let mut i = 0;
-        while i < text.len() {
-            let n = longest_at[i];
-            let longest = (n > 0)
-                .then(|| self.by_name.get(&text[i..i + n]).map(|&r| (r, n)))
-                .flatten();
-            if let Some((r, n)) = longest {
-                out.push(Piece::Rule(r, span.start + i..span.start + i + n));
-                i += n;
-                continue;
+        for (piece, at) in split_run(text, &self.by_name, index) {
+            match piece {
+                RunPiece::Comp(c) => out.push(Piece::C(c)),
+                RunPiece::Rule(r) => {
+                    out.push(Piece::Rule(r, span.start + at.start..span.start + at.end))
+                }
+                RunPiece::Unknown => {
+                    self.unknown_in_run(
+                        &text[at.clone()],
+                        span.start + at.start..span.start + at.end,
+                    );
+                    return None;
+                }
             }
-            let next_digit = bytes
-                .get(i + 1)
-                .is_some_and(|b| b.is_ascii_digit() || *b == b'_');
-            let comp = match bytes[i] {
-                b'F' if !next_digit => Some(Comp::F),
-                b'L' if !next_digit => Some(Comp::L),
-                b'R' if !next_digit => Some(Comp::R),
-                _ => None,
-            };
-            if let Some(c) = comp {
-                out.push(Piece::C(c));
-                i += 1;
-                continue;
-            }
-            let mut j = i + 1;
-            while j < text.len() && !bytes[j].is_ascii_uppercase() {
-                j += 1;
-            }
-            let bad = &text[i..j];
-            self.report(codes::STL_UNKNOWN_RULE, |c| {
+        }
+        Some(out)
+    }
+
+    /// Reports `bad`, a piece of a run that is no rule and no component.
+    fn unknown_in_run(&mut self, bad: &str, at: Span) {
+        self.report(codes::STL_UNKNOWN_RULE, |c| {
                 let otherwise = if c.rules.is_empty() {
                     format!(
                         "define it as a rule, e.g. `{bad} = [F][+F]`; drawing components are F, L, R, +, -"
@@ -184,15 +290,12 @@ impl Ctx<'_> {
                 };
                 let d = Diagnostic::at(
                     codes::STL_UNKNOWN_RULE,
-                    span.start + i..span.start + j,
+                    at.clone(),
                     format!("unknown rule `{bad}`"),
                 )
                 .with_label("not a rule or a drawing component");
                 c.did_you_mean(d, bad, otherwise)
             });
-            return None;
-        }
-        Some(out)
     }
 
     /// Reports what `build` makes, a diagnostic of `code` found in the
