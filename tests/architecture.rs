@@ -10,6 +10,11 @@
 //! * an emitter (`src/back/`) imports no front end;
 //! * `ir` imports nothing above it (only `ir` itself);
 //! * the turtle imports neither render nor eval (nor anything above them);
+//! * the outputs of the turtle's geometry, render (pictures, animations)
+//!   and mesh (OBJ, PLY, glTF), stand on `ir` and the turtle: they import
+//!   no front end, emitter, eval, driver, cli, language server or gallery;
+//! * the gallery draws through the driver, as a command would: it imports
+//!   no front end, emitter, cli or language server, and only cli calls it;
 //! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
 //!   `chumsky` and `logos` only in front ends;
 //! * a front end walks no turtle of its own;
@@ -313,6 +318,8 @@ fn external<'a>(code: &str, names: &[&'a str]) -> Vec<&'a str> {
 const FRONT_ENDS_ARE: &str = "front";
 const NOT_FOR_FRONT_ENDS: &[&str] = &["back", "turtle", "render", "eval", "driver", "cli"];
 const ABOVE_THE_TURTLE: &[&str] = &["render", "eval", "front", "back", "driver", "cli"];
+const NOT_FOR_OUTPUTS: &[&str] = &["front", "back", "eval", "driver", "cli", "lsp", "gallery"];
+const NOT_FOR_THE_GALLERY: &[&str] = &["front", "back", "cli", "lsp"];
 
 /// The front ends: the folders under `src/front/`.
 fn notations() -> BTreeSet<String> {
@@ -348,8 +355,10 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "back" => target == "front",
                 "ir" => target != "ir",
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),
+                "render" | "mesh" => NOT_FOR_OUTPUTS.contains(&target),
+                "gallery" => NOT_FOR_THE_GALLERY.contains(&target),
                 _ => false,
-            };
+            } || (target == "gallery" && !matches!(top.as_str(), "gallery" | "cli"));
             if broken {
                 out.push(format!("{}: imports crate::{}", f.path, path.join("::")));
             }
@@ -522,6 +531,31 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ),
         ("diagnostics/render.rs", "use ariadne::Report;", false),
         ("render/mod.rs", "use logos::Logos;", true),
+        ("mesh/obj.rs", "use crate::eval::derive;", true),
+        (
+            "mesh/mod.rs",
+            "let s = crate::front::pfg::read_ok(t);",
+            true,
+        ),
+        ("mesh/gltf.rs", "use crate::back::gft::emit;", true),
+        ("mesh/mod.rs", "use crate::cli::main;", true),
+        ("mesh/mod.rs", "use crate::driver::RunOptions;", true),
+        (
+            "mesh/instanced.rs",
+            "use crate::turtle::{instanced, Segment};",
+            false,
+        ),
+        ("mesh/tube.rs", "use crate::ir::Rgb;", false),
+        ("render/animate.rs", "use crate::driver::derive;", true),
+        ("render/animate.rs", "use crate::mesh::Scene;", false),
+        ("render/animate.rs", "use crate::turtle::Geometry;", false),
+        ("gallery.rs", "use crate::cli::main;", true),
+        ("gallery.rs", "use crate::front::pfg;", true),
+        ("gallery.rs", "use crate::lsp::serve;", true),
+        ("gallery.rs", "use crate::driver::{self, Format};", false),
+        ("gallery.rs", "use crate::render::View;", false),
+        ("driver.rs", "use crate::gallery::write;", true),
+        ("cli/mod.rs", "use crate::gallery::write;", false),
         // Comments, strings and the test module are not imports.
         (
             "ir/mod.rs",

@@ -338,3 +338,39 @@ fn derive_prints_the_word_of_step_by_step_rewriting() {
         assert_eq!(o.stdout, format!("{want}\n"), "{file}");
     }
 }
+
+/// A sink that counts the bytes written to it: a pipe that keeps nothing.
+struct CountingSink(usize);
+
+impl std::io::Write for CountingSink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0 += buf.len();
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn a_context_sensitive_derivation_to_a_pipe_holds_at_most_two_bytes_a_symbol() {
+    let _one = alone();
+    // Fig. 3.11a: one-symbol contexts, brackets, 7 symbols; 4.5 M symbols
+    // at 57 steps. A step holds the word it rewrites and the word it
+    // writes (1.27 times as long): 1.8 bytes a symbol of the final word,
+    // where a right-neighbour array beside them made 2.6, and a doubling
+    // output vector up to 3.3.
+    let c = compile(driver::load("std:hogeweg-hesper-a").unwrap());
+    let sys = c.system.as_ref().unwrap();
+    let mut sink = CountingSink(0);
+    let (done, bytes) =
+        peak(|| driver::write_derived(c.front, sys, &steps(57), &mut sink, |_, _| {}).is_ok());
+    assert!(done);
+    let symbols = sink.0 - 1;
+    assert!(symbols > 4_000_000, "{symbols} symbols");
+    let per_symbol = bytes as f64 / symbols as f64;
+    assert!(
+        per_symbol <= 2.0,
+        "{bytes} bytes at peak for {symbols} symbols: {per_symbol:.2} a symbol"
+    );
+}

@@ -424,11 +424,19 @@ impl<'a> Deriver<'a> {
 /// A symbol as words hold it while they are rewritten: a [`SymbolId`], or
 /// a narrower integer when the alphabet is small (less memory to move).
 pub(crate) trait Sym: Copy + Eq + Send + Sync {
+    /// How many bits a value holds.
+    const BITS: u32;
     fn from_id(s: SymbolId) -> Self;
     fn index(self) -> usize;
+    /// The value `i` (which must fit in [`Sym::BITS`]).
+    fn from_index(i: usize) -> Self;
 }
 
 impl Sym for SymbolId {
+    const BITS: u32 = 32;
+    fn from_index(i: usize) -> Self {
+        SymbolId(i as u32)
+    }
     fn from_id(s: SymbolId) -> Self {
         s
     }
@@ -438,6 +446,10 @@ impl Sym for SymbolId {
 }
 
 impl Sym for u8 {
+    const BITS: u32 = 8;
+    fn from_index(i: usize) -> Self {
+        i as u8
+    }
     fn from_id(s: SymbolId) -> Self {
         s.0 as u8
     }
@@ -447,6 +459,10 @@ impl Sym for u8 {
 }
 
 impl Sym for u16 {
+    const BITS: u32 = 16;
+    fn from_index(i: usize) -> Self {
+        i as u16
+    }
     fn from_id(s: SymbolId) -> Self {
         s.0 as u16
     }
@@ -509,10 +525,11 @@ trait Stepper {
     /// What a step keeps from one step to the next.
     type Scratch: Default;
     /// `out` becomes the rewriting of `cur`; `Err(())` when it would grow
-    /// past `max` symbols.
+    /// past `max` symbols. `cur` is mutable so that a step may keep its
+    /// scratch in the word's spare bits; it holds the same word after.
     fn step(
         &self,
-        cur: &[Self::Sym],
+        cur: &mut [Self::Sym],
         scratch: &mut Self::Scratch,
         out: &mut Vec<Self::Sym>,
         rng: &mut Rng,
@@ -529,7 +546,7 @@ impl Stepper for General<'_, '_> {
 
     fn step(
         &self,
-        cur: &[SymbolId],
+        cur: &mut [SymbolId],
         index: &mut ContextIndex,
         out: &mut Vec<SymbolId>,
         rng: &mut Rng,
@@ -567,7 +584,7 @@ fn advance<S: Stepper>(
     run.next.clear();
     stepper
         .step(
-            &run.cur,
+            &mut run.cur,
             &mut run.scratch,
             &mut run.next,
             &mut run.rng,

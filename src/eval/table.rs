@@ -39,26 +39,39 @@ const RESERVE: usize = 1 << 20;
 pub(super) struct Table<'a> {
     sys: &'a System,
     /// Per symbol: where its cells start, and a mask saying whether context
-    /// decides (all ones: a block of `(n + 1)²` cells indexed by
-    /// `l · (n + 1) + r`, `n` meaning "no visible symbol") or not (zero: one
-    /// cell).
+    /// decides (all ones: a block of `(n + 1) · k` cells indexed by
+    /// `l · k + right[r]`, `n` meaning "no visible symbol") or not (zero:
+    /// one cell).
     entry: Vec<(u32, usize)>,
     /// The rule for each cell.
     cells: Vec<u32>,
-    /// `n + 1`: the stride of `l` in a block.
+    /// `n + 1`: the symbols and "none".
     side: usize,
     class: Vec<u8>,
+    /// Per symbol and "none", its class as a right context: 1.. for each
+    /// symbol some production names as its right context, 0 for all the
+    /// others (no production tells them apart). Few classes, so that a
+    /// right neighbour fits in a symbol's spare bits.
+    right: Vec<u8>,
+    /// `k`: how many right-context classes, the stride of `l` in a block.
+    rights: usize,
 }
 
-/// Scratch space kept from step to step: the nearest visible symbol right
-/// of every position (a symbol index, `n` for none).
+/// Scratch space kept from step to step: the right-context class of the
+/// nearest visible symbol right of every position when the word's
+/// symbols have no spare bits to hold it, and how much the last step grew
+/// the word (to size the next output in one allocation).
 pub(super) struct Neighbours<T> {
     right: Vec<T>,
+    growth: f64,
 }
 
 impl<T> Default for Neighbours<T> {
     fn default() -> Self {
-        Neighbours { right: Vec::new() }
+        Neighbours {
+            right: Vec::new(),
+            growth: 1.0,
+        }
     }
 }
 
@@ -117,6 +130,19 @@ impl<'a> Table<'a> {
             return None;
         }
         let side = n + 1;
+        let mut right = vec![0u8; side];
+        let mut rights = 1;
+        for p in &sys.productions {
+            if let Some(c) = p.right.first() {
+                if right[c.index()] == 0 {
+                    if rights > u8::MAX as usize {
+                        return None;
+                    }
+                    right[c.index()] = rights as u8;
+                    rights += 1;
+                }
+            }
+        }
         let rules = sys.productions.len();
         let mut entry = Vec::with_capacity(n);
         let mut cells: Vec<u32> = Vec::new();
@@ -134,11 +160,11 @@ impl<'a> Table<'a> {
                 cells.push(mine().next().map_or(identity, |(pi, _)| pi as u32));
                 continue;
             }
-            if cells.len() + side * side > MAX_CELLS {
+            if cells.len() + side * rights > MAX_CELLS {
                 return None;
             }
             let at = cells.len();
-            cells.resize(at + side * side, identity);
+            cells.resize(at + side * rights, identity);
             let block = &mut cells[at..];
             // Later productions first, so the first in file order wins.
             let mut list: Vec<_> = mine().collect();
@@ -149,12 +175,12 @@ impl<'a> Table<'a> {
                     None => (0..side).collect(),
                 };
                 let rs: Vec<usize> = match p.right.first() {
-                    Some(c) => vec![c.index()],
-                    None => (0..side).collect(),
+                    Some(c) => vec![right[c.index()] as usize],
+                    None => (0..rights).collect(),
                 };
                 for &l in &ls {
                     for &r in &rs {
-                        block[l * side + r] = pi as u32;
+                        block[l * rights + r] = pi as u32;
                     }
                 }
             }
@@ -173,6 +199,8 @@ impl<'a> Table<'a> {
             cells,
             side,
             class,
+            right,
+            rights,
         })
     }
 
@@ -222,6 +250,11 @@ impl<'a> Table<'a> {
                 .max()
                 .unwrap_or(0),
             none: T::from_id(SymbolId((self.side - 1) as u32)),
+            packed_shift: {
+                let bits = |max: usize| usize::BITS - max.leading_zeros();
+                let (symbol, class) = (bits(self.side - 2), bits(self.rights - 1));
+                (symbol + class <= T::BITS).then_some(symbol)
+            },
         }
     }
 }
@@ -246,6 +279,12 @@ pub(super) struct TableStepper<'t, 'a, T> {
     /// The longest successor.
     longest: usize,
     none: T,
+    /// When a symbol index and a right-context class fit in a `T` together
+    /// (in bytes: 32 symbols and 3 classes, 64 and 1, 16 and 7…), each
+    /// position's right neighbour's class is kept in the high bits of the
+    /// word's own symbols, shifted by this, instead of in an array as long
+    /// as the word: a step then holds just the word and its rewriting.
+    packed_shift: Option<u32>,
 }
 
 impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
@@ -254,48 +293,97 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
 
     fn step(
         &self,
-        cur: &[T],
+        cur: &mut [T],
         nb: &mut Neighbours<T>,
         out: &mut Vec<T>,
         rng: &mut Rng,
         max: usize,
     ) -> Result<(), ()> {
         out.clear();
-        self.right_neighbours(cur, &mut nb.right);
-        self.rewrite(cur, Left::new(self.none), &nb.right, out, rng, max)
+        // One allocation of about the output's size (growing by a sixteenth
+        // when the guess falls short), not a doubling Vec: the output is
+        // most of what a step holds.
+        let slack = CHUNK * self.longest.max(COPY) + COPY;
+        let guess = (cur.len() as f64 * nb.growth * 1.02) as usize;
+        out.reserve_exact(guess.min(max).saturating_add(slack));
+        let done = match self.packed_shift {
+            Some(shift) => {
+                self.pack_right_neighbours(cur, shift);
+                let done = self.rewrite::<true>(cur, &[], out, rng, max);
+                let low = (1 << shift) - 1;
+                for s in cur.iter_mut() {
+                    *s = T::from_index(s.index() & low);
+                }
+                done
+            }
+            None => {
+                self.right_neighbours(cur, &mut nb.right);
+                self.rewrite::<false>(cur, &nb.right, out, rng, max)
+            }
+        };
+        if !cur.is_empty() {
+            nb.growth = out.len() as f64 / cur.len() as f64;
+        }
+        out.shrink_to_fit();
+        done
     }
 }
 
 impl<T: Sym> TableStepper<'_, '_, T> {
-    /// `right[i]`: the nearest visible symbol at or after `i`, a whole
-    /// branch skipped, `]` ending the search (the listing's `rcondiff`).
-    fn right_neighbours(&self, w: &[T], right: &mut Vec<T>) {
-        let none = self.none;
-        right.clear();
-        right.resize(w.len() + 1, none);
-        let mut next = none;
-        let mut stack: Vec<T> = Vec::new();
-        for (r, &s) in right.iter_mut().zip(w).rev() {
-            let class = self.table.class[s.index()];
-            next = if class == VISIBLE { s } else { next };
-            if class >= OPEN {
-                if class == CLOSE {
-                    stack.push(next);
-                    next = none;
-                } else {
-                    next = stack.pop().unwrap_or(none);
-                }
+    /// Moves the right-context state (`next`: the nearest visible symbol
+    /// so far, `stack`: its value outside each branch entered) leftwards
+    /// past symbol `s`.
+    #[inline]
+    fn pass_leftwards(&self, s: T, next: &mut T, stack: &mut Vec<T>) {
+        let class = self.table.class[s.index()];
+        *next = if class == VISIBLE { s } else { *next };
+        if class >= OPEN {
+            if class == CLOSE {
+                stack.push(*next);
+                *next = self.none;
+            } else {
+                *next = stack.pop().unwrap_or(self.none);
             }
-            *r = next;
         }
     }
 
-    /// Rewrites `cur` onto the end of `out`; `left` is the left-context
-    /// state at its start.
-    fn rewrite(
+    /// `right[i]`: the right-context class of the nearest visible symbol
+    /// at or after `i`, a whole branch skipped, `]` ending the search (the
+    /// listing's `rcondiff`).
+    fn right_neighbours(&self, w: &[T], right: &mut Vec<T>) {
+        let class = &self.table.right;
+        right.clear();
+        right.resize(
+            w.len() + 1,
+            T::from_index(class[self.none.index()] as usize),
+        );
+        let mut next = self.none;
+        let mut stack: Vec<T> = Vec::new();
+        for (r, &s) in right.iter_mut().zip(w).rev() {
+            self.pass_leftwards(s, &mut next, &mut stack);
+            *r = T::from_index(class[next.index()] as usize);
+        }
+    }
+
+    /// [`Self::right_neighbours`] of `i + 1` put in the high bits of
+    /// `w[i]`, shifted by `shift`.
+    fn pack_right_neighbours(&self, w: &mut [T], shift: u32) {
+        let mut next = self.none;
+        let mut stack: Vec<T> = Vec::new();
+        for x in w.iter_mut().rev() {
+            let s = *x;
+            let after = self.table.right[next.index()] as usize;
+            self.pass_leftwards(s, &mut next, &mut stack);
+            *x = T::from_index(s.index() | after << shift);
+        }
+    }
+
+    /// Rewrites `cur` onto the end of `out`. `PACKED`: each symbol of
+    /// `cur` holds its right neighbour in its high bits
+    /// ([`Self::pack_right_neighbours`]); else `right` holds them.
+    fn rewrite<const PACKED: bool>(
         &self,
         cur: &[T],
-        mut left: Left<T>,
         right: &[T],
         out: &mut Vec<T>,
         rng: &mut Rng,
@@ -303,10 +391,13 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     ) -> Result<(), ()> {
         let t = self.table;
         let none = self.none;
+        let mut left = Left::new(none);
+        let shift = self.packed_shift.unwrap_or(0);
+        let low = (1 << shift) - 1;
         let longest = self.longest.max(COPY);
         // Everything the loop reads, as local slices: the output's writes
         // could otherwise alias their lengths and force reloads.
-        let (entry, class, cells, side) = (&t.entry[..], &t.class[..], &t.cells[..], t.side);
+        let (entry, class, cells, rights) = (&t.entry[..], &t.class[..], &t.cells[..], t.rights);
         let (arena, spans) = (&self.arena[..], &self.spans[..]);
         // Written by index into `out` grown ahead a chunk at a time, so the
         // length stays in a register (pushing reloads it every symbol).
@@ -319,14 +410,23 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         for chunk in cur.chunks(chunk_len) {
             let need = w + chunk.len() * longest + COPY;
             if out.len() < need {
+                if out.capacity() < need {
+                    let more = need.max(out.capacity() + out.capacity() / 16);
+                    out.reserve_exact(more - out.len());
+                }
                 out.resize(need, none);
             }
             let dst = &mut out[..];
             for &s in chunk {
-                let si = s.index();
+                let (s, si, r) = if PACKED {
+                    let si = s.index() & low;
+                    (T::from_index(si), si, s.index() >> shift)
+                } else {
+                    (s, s.index(), right[at + 1].index())
+                };
                 // Context-free symbols have one cell: the mask is zero.
                 let (base, mask) = entry[si];
-                let cell = (left.last.index() * side + right[at + 1].index()) & mask;
+                let cell = (left.last.index() * rights + r) & mask;
                 let rule = cells[base as usize + cell] as usize;
                 at += 1;
                 left.pass(s, class[si], none);
@@ -353,5 +453,38 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         }
         out.truncate(w);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{DeriveOptions, Deriver, Symbols};
+    use crate::front::pfg::read_ok as sys;
+
+    /// Right neighbours kept in the symbols' spare bits and in an array of
+    /// their own give the same words, in bytes and in wider symbols.
+    #[test]
+    fn packed_and_separate_right_neighbours_give_the_same_words() {
+        for (name, n) in [("hogeweg-hesper-a", 45), ("hogeweg-hesper-b", 40)] {
+            let s = sys(crate::stdlib::get(name).unwrap().text);
+            let d = Deriver::new(&s);
+            let t = d.table.as_ref().unwrap();
+            let opts = DeriveOptions::new(n);
+            let packed = t.stepper::<u8>();
+            assert!(packed.packed_shift.is_some(), "{name}");
+            let separate = super::TableStepper {
+                packed_shift: None,
+                ..t.stepper::<u8>()
+            };
+            let want = d.steps(&packed, &opts, |_, _| {}).unwrap();
+            assert!(want.len() > 200_000, "{name}: {}", want.len());
+            assert_eq!(d.steps(&separate, &opts, |_, _| {}).unwrap(), want);
+            let wide = d.steps(&t.stepper::<crate::ir::SymbolId>(), &opts, |_, _| {});
+            let wide: Vec<u8> = Symbols::Wide(wide.unwrap())
+                .iter()
+                .map(|s| s.0 as u8)
+                .collect();
+            assert_eq!(wide, want, "{name}");
+        }
     }
 }
