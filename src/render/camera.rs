@@ -6,7 +6,7 @@
 //! the angle off the view axis for a perspective one) and a distance away
 //! from the viewer, which the z-buffer compares.
 
-use super::{depth, project, Fit, RenderOptions, View};
+use super::{depth, project, Fit, RenderOptions, Turn};
 use crate::ir::look::Camera;
 use crate::turtle::Vec3;
 
@@ -15,7 +15,7 @@ use crate::turtle::Vec3;
 pub enum Projector {
     /// The azimuth/elevation view: parallel, exactly today's formulas
     /// ([`super::project`]), so pictures without a camera stay the same.
-    View(View),
+    View(Turn),
     /// A camera's frame.
     Camera(Frame),
 }
@@ -88,7 +88,7 @@ impl Projector {
     pub fn new(opts: &RenderOptions) -> Projector {
         match &opts.camera {
             Some(cam) => Projector::Camera(Frame::new(cam)),
-            None => Projector::View(opts.view),
+            None => Projector::View(Turn::of(opts.view)),
         }
     }
 
@@ -101,7 +101,7 @@ impl Projector {
     /// (larger is farther); `None` behind the near plane of a perspective.
     pub fn project(&self, p: Vec3) -> Option<([f64; 2], f64)> {
         match self {
-            Projector::View(v) => Some((project(p, *v), -depth(p, *v))),
+            Projector::View(t) => Some((project(p, *t), -depth(p, *t))),
             Projector::Camera(f) => {
                 let d = sub(p, f.eye);
                 let (x, y, z) = (dot(d, f.right), dot(d, f.up), dot(d, f.forward));
@@ -125,11 +125,7 @@ impl Projector {
     /// The unit vector from `p` towards the viewer.
     pub fn towards_viewer(&self, p: Vec3) -> Vec3 {
         match self {
-            Projector::View(v) => {
-                let (sa, ca) = v.azimuth.sin_cos();
-                let (se, ce) = v.elevation.sin_cos();
-                [-sa * ce, se, ca * ce]
-            }
+            Projector::View(t) => [-t.sa * t.ce, t.se, t.ca * t.ce],
             Projector::Camera(f) if f.perspective => {
                 unit(sub(f.eye, p)).unwrap_or([-f.forward[0], -f.forward[1], -f.forward[2]])
             }
@@ -142,11 +138,7 @@ impl Projector {
     pub fn screen_axes(&self, p: Vec3) -> (Vec3, Vec3) {
         let back = self.towards_viewer(p);
         let up = match self {
-            Projector::View(v) => {
-                let (sa, ca) = v.azimuth.sin_cos();
-                let (se, ce) = v.elevation.sin_cos();
-                [sa * se, ce, -ca * se]
-            }
+            Projector::View(t) => [t.sa * t.se, t.ce, -t.ca * t.se],
             Projector::Camera(f) => f.up,
         };
         let right = unit(cross(up, back)).unwrap_or([1.0, 0.0, 0.0]);
@@ -180,6 +172,7 @@ impl Projector {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::View;
 
     fn camera(eye: Vec3, target: Vec3, perspective: Option<f64>) -> RenderOptions {
         RenderOptions {
@@ -202,11 +195,12 @@ mod tests {
             ..RenderOptions::default()
         };
         let (xy, z) = Projector::new(&opts).project(p).unwrap();
-        assert_eq!(xy, project(p, view));
-        assert_eq!(z, -depth(p, view));
+        assert_eq!(xy, project(p, Turn::of(view)));
+        assert_eq!(z, -depth(p, Turn::of(view)));
         // The direction towards the viewer is the one depth grows along.
         let v = Projector::new(&opts).towards_viewer(p);
-        let d = depth([p[0] + v[0], p[1] + v[1], p[2] + v[2]], view) - depth(p, view);
+        let t = Turn::of(view);
+        let d = depth([p[0] + v[0], p[1] + v[1], p[2] + v[2]], t) - depth(p, t);
         assert!((d - 1.0).abs() < 1e-12);
     }
 

@@ -310,11 +310,27 @@ pub struct Picture {
 
 /// How near `p` is to the viewer (larger is nearer): the coordinate along
 /// the view direction, towards the eye.
-fn depth(p: Vec3, view: View) -> f64 {
-    let (sa, ca) = view.azimuth.sin_cos();
-    let (se, ce) = view.elevation.sin_cos();
-    let z = -p[0] * sa + p[2] * ca;
-    p[1] * se + z * ce
+fn depth(p: Vec3, t: Turn) -> f64 {
+    let z = -p[0] * t.sa + p[2] * t.ca;
+    p[1] * t.se + z * t.ce
+}
+
+/// A view's sines and cosines (azimuth, elevation), found once rather than
+/// for every point projected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turn {
+    sa: f64,
+    ca: f64,
+    se: f64,
+    ce: f64,
+}
+
+impl Turn {
+    pub fn of(view: View) -> Turn {
+        let (sa, ca) = view.azimuth.sin_cos();
+        let (se, ce) = view.elevation.sin_cos();
+        Turn { sa, ca, se, ce }
+    }
 }
 
 /// The order in which to draw `g`'s segments: farther first, so that nearer
@@ -346,12 +362,10 @@ fn depth_order(g: &Geometry, proj: &Projector) -> Option<Vec<usize>> {
     Some(order)
 }
 
-fn project(p: Vec3, view: View) -> [f64; 2] {
-    let (sa, ca) = view.azimuth.sin_cos();
-    let (se, ce) = view.elevation.sin_cos();
-    let x = p[0] * ca + p[2] * sa;
-    let z = -p[0] * sa + p[2] * ca;
-    let y = p[1] * ce - z * se;
+fn project(p: Vec3, t: Turn) -> [f64; 2] {
+    let x = p[0] * t.ca + p[2] * t.sa;
+    let z = -p[0] * t.sa + p[2] * t.ca;
+    let y = p[1] * t.ce - z * t.se;
     [x, y]
 }
 
