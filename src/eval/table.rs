@@ -303,7 +303,7 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
         // One allocation of about the output's size (growing by a sixteenth
         // when the guess falls short), not a doubling Vec: the output is
         // most of what a step holds.
-        let slack = CHUNK * self.longest.max(COPY) + COPY;
+        let slack = self.chunk_len() * self.longest.max(COPY) + COPY;
         let guess = (cur.len() as f64 * nb.growth * 1.02) as usize;
         out.reserve_exact(guess.min(max).saturating_add(slack));
         let done = match self.packed_shift {
@@ -378,6 +378,14 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         }
     }
 
+    /// Symbols rewritten between checks of the limit: a chunk may grow the
+    /// output by at most `RESERVE` symbols before the limit is checked, so
+    /// a very long successor shortens the chunk instead of sizing one
+    /// allocation from the input.
+    fn chunk_len(&self) -> usize {
+        (RESERVE / self.longest.max(COPY)).clamp(1, CHUNK)
+    }
+
     /// Rewrites `cur` onto the end of `out`. `PACKED`: each symbol of
     /// `cur` holds its right neighbour in its high bits
     /// ([`Self::pack_right_neighbours`]); else `right` holds them.
@@ -403,10 +411,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         // length stays in a register (pushing reloads it every symbol).
         let mut w = out.len();
         let mut at = 0;
-        // A chunk may grow the output by at most `RESERVE` symbols before the
-        // limit is checked, so a very long successor shortens the chunk
-        // instead of sizing one allocation from the input.
-        let chunk_len = (RESERVE / longest).clamp(1, CHUNK);
+        let chunk_len = self.chunk_len();
         for chunk in cur.chunks(chunk_len) {
             let need = w + chunk.len() * longest + COPY;
             if out.len() < need {
