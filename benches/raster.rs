@@ -14,6 +14,14 @@
 //!   by depth), polygons and discs (drawn under all the lines), splines
 //!   and palettes that need the totals; lit looks go through the z-buffer
 //!   ([`render::raster`]).
+//! * `lit/lychnis/600`: the cpfg Lychnis (tests/corpus/cpfg/
+//!   10-GettingStarted-01-Lychnis) at 600 steps, 3.05 M polygons lit and
+//!   z-buffered, to a 1024x1024 PNG, derivation included:
+//!   [`driver::render_lit`], the turtle run once for the framing and once
+//!   per thread's share of the picture, nothing drawn stored; against the
+//!   stored way ([`driver::interpret`] + [`driver::render_bytes`]), which
+//!   keeps every polygon, measured once in the same run. A z-buffer needs
+//!   no order, so nothing of a lit picture needs storing.
 //! * `derive-pipe`: the derived word written to a sink as `graftal derive
 //!   … | …` writes it, and the peak heap per symbol of the final word.
 //!
@@ -99,6 +107,78 @@ fn bench_raster(c: &mut Criterion) {
     group.finish();
 }
 
+fn lychnis() -> System {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/corpus/cpfg/10-GettingStarted-01-Lychnis/plant.l"
+    );
+    let file = graftal::source::SourceFile::read(std::path::Path::new(path)).expect("Lychnis");
+    driver::compile(file).system.expect("Lychnis compiles")
+}
+
+const LYCHNIS_STEPS: u64 = 600;
+
+/// The Lychnis's word and the values its homomorphism reads.
+fn lychnis_word(sys: &System) -> (graftal::ir::Word, driver::Globals, RunOptions) {
+    let opts = RunOptions {
+        steps: Some(LYCHNIS_STEPS),
+        ..RunOptions::default()
+    };
+    let (word, values) = driver::derive_values(sys, &opts, |_, _| {}).expect("derives");
+    (word, values, opts)
+}
+
+/// Derived and drawn straight from the turtle.
+fn lit_streamed(sys: &System) -> Vec<u8> {
+    let (word, values, opts) = lychnis_word(sys);
+    driver::render_lit(
+        sys,
+        &word,
+        &values,
+        &opts,
+        RenderOptions::default(),
+        &mut |_, _| {},
+    )
+    .expect("draws")
+    .expect("drawn from the turtle")
+    .expect("png")
+}
+
+/// Derived, every polygon stored, then drawn.
+fn lit_stored(sys: &System) -> (Vec<u8>, usize) {
+    let (word, values, opts) = lychnis_word(sys);
+    let g = driver::interpret(sys, &word, &values, &opts, false).expect("draws");
+    let png = driver::render_bytes(sys, &g, driver::Format::Png, RenderOptions::default());
+    (png.expect("png"), g.polygons.len())
+}
+
+fn bench_lit(c: &mut Criterion) {
+    let sys = lychnis();
+    let t = Instant::now();
+    let ((stored_png, polygons), stored_peak) = peak_during(|| lit_stored(&sys));
+    let stored_time = t.elapsed();
+    let t = Instant::now();
+    let (streamed_png, streamed_peak) = peak_during(|| lit_streamed(&sys));
+    let streamed_time = t.elapsed();
+    assert!(
+        streamed_png == stored_png,
+        "the two ways draw the same picture"
+    );
+    println!(
+        "peak memory: lychnis n={LYCHNIS_STEPS} 1024x1024 PNG, {polygons} polygons: \
+         {} in {:.2} s (from the turtle) vs {} in {:.2} s (baseline: stored)",
+        mib(streamed_peak),
+        streamed_time.as_secs_f64(),
+        mib(stored_peak),
+        stored_time.as_secs_f64(),
+    );
+    let mut group = c.benchmark_group("lit");
+    group.sampling_mode(SamplingMode::Flat);
+    group.throughput(Throughput::Elements(polygons as u64));
+    group.bench_function("lychnis/600", |b| b.iter(|| lit_streamed(black_box(&sys))));
+    group.finish();
+}
+
 fn bench_derive_pipe(c: &mut Criterion) {
     let sys = load("hogeweg-hesper-a");
     let file = driver::load("std:hogeweg-hesper-a").expect("stdlib entry");
@@ -135,6 +215,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = bench_raster, bench_derive_pipe
+    targets = bench_raster, bench_lit, bench_derive_pipe
 }
 criterion_main!(benches);
