@@ -8,10 +8,14 @@
 //! look's line style: screen-space lines of a pixel width, flat ribbons
 //! facing the viewer, or cylinders; spheres (`@O`) are lit per sample.
 //!
-//! The buffers cover a band of rows at a time, so that memory stays
-//! bounded at any picture size ([`MAX_BAND_SAMPLES`]); each band's rows go
-//! to the PNG encoder as they are done. One thread, a fixed order: the same
-//! input gives the same bytes.
+//! Nothing drawn needs storing: a z-buffer needs no order. What is drawn
+//! comes from a [`Drawing`], replayed: once to survey its framing, then
+//! once per thread for each band of rows, each thread drawing every other
+//! stripe of rows into its own buffers. The buffers cover a band at a time,
+//! so that memory stays bounded at any picture size ([`MAX_BAND_SAMPLES`]);
+//! each band's rows go to the PNG encoder as they are done. Every sample is
+//! drawn from the same things in the same order whichever band, stripe or
+//! thread holds it: the same input gives the same bytes on any machine.
 
 use super::camera::{cross, dot, sub, unit, Projector};
 use super::shade::{to_colour, Colour, Kind, Paint, Shader};
