@@ -59,7 +59,12 @@ fn to_mesh(sys: &System, opts: &RunOptions, format: MeshFormat) -> MeshOutput {
 /// The glTF without instancing: every segment's tube in one mesh.
 fn flat_glb(sys: &System, opts: &RunOptions) -> Vec<u8> {
     let (_, g) = driver::geometry(sys, opts).expect("derives");
-    mesh::glb(&Scene::single(mesh::of_geometry(&g, &mut |_, _| {})))
+    let lighting = sys.look.lighting.as_ref();
+    mesh::glb(&Scene::single(mesh::of_geometry(
+        &g,
+        lighting,
+        &mut |_, _| {},
+    )))
 }
 
 /// Runs `f` once, timed, with its peak heap.

@@ -1346,7 +1346,8 @@ pub fn render_mesh(
             if !no_layout {
                 add_layout(sys, &mut g);
             }
-            Scene::single(crate::mesh::of_geometry(&g, progress))
+            let lighting = sys.look.lighting.as_ref();
+            Scene::single(crate::mesh::of_geometry(&g, lighting, progress))
         }
     };
     let stats = scene.stats();

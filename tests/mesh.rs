@@ -200,3 +200,153 @@ fn render_to_an_obj_prints_its_counts_and_writes_its_material_library() {
     assert!(r.stdout.contains("vertices"), "{}", r.stdout);
     assert!(out.with_extension("mtl").exists());
 }
+
+/// A lit cpfg object whose material file has specular highlights, an
+/// emission and a transparent material.
+const LILAC: &str = "tests/corpus/cpfg/11-CPFG-Lilac/plant.l";
+
+/// The records of a cpfg `.mat` file by colour index, read here on their
+/// own: transparency, ambient, diffuse, emission and specular RGB, each
+/// byte / 255, then the shininess byte / 255 × 128.
+fn cpfg_materials(path: &str) -> std::collections::HashMap<u8, Vec<f64>> {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(bytes.len() % 15, 0);
+    bytes
+        .chunks(15)
+        .map(|r| {
+            let mut v: Vec<f64> = r[1..].iter().map(|&b| f64::from(b) / 255.0).collect();
+            v[13] *= 128.0;
+            (r[0], v)
+        })
+        .collect()
+}
+
+/// The materials of an `.mtl` text: name → keyword → numbers.
+fn mtl_materials(text: &str) -> Vec<(String, std::collections::HashMap<String, Vec<f64>>)> {
+    let mut out: Vec<(String, std::collections::HashMap<String, Vec<f64>>)> = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match (words.next(), out.last_mut()) {
+            (Some("newmtl"), _) => out.push((words.next().unwrap().into(), Default::default())),
+            (Some(k), Some((_, m))) if !k.starts_with('#') => {
+                m.insert(k.into(), words.map(|w| w.parse().unwrap()).collect());
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-4
+}
+
+#[test]
+fn a_lit_objects_obj_carries_its_cpfg_materials() {
+    let mat = cpfg_materials("tests/corpus/cpfg/11-CPFG-Lilac/materials.mat");
+    let out = temp("lilac.obj");
+    let ours = render(LILAC, &out, &[]);
+    let mtl = mtl_materials(&std::fs::read_to_string(out.with_extension("mtl")).unwrap());
+    assert_eq!(mtl.len() as u64, ours["materials"].as_u64().unwrap());
+    let (mut emits, mut transparent, mut shiny) = (false, false, false);
+    for (name, m) in &mtl {
+        let index: u8 = name.strip_prefix('m').unwrap().parse().unwrap();
+        let r = &mat[&index];
+        let rgb = |k: &str| m[k].clone();
+        for (key, at) in [("Ka", 1), ("Kd", 4), ("Ke", 7), ("Ks", 10)] {
+            let want = &r[at..at + 3];
+            assert!((0..3).all(|i| near(rgb(key)[i], want[i])), "{name} {key}");
+        }
+        assert!(near(m["Ns"][0], r[13]), "{name} Ns");
+        assert!(near(m["d"][0], 1.0 - r[0]), "{name} d");
+        let specular = r[10..13].iter().any(|&x| x > 0.0);
+        assert_eq!(m["illum"][0], if specular { 2.0 } else { 1.0 }, "{name}");
+        emits |= r[7..10].iter().any(|&x| x > 0.0);
+        transparent |= r[0] > 0.0;
+        shiny |= specular;
+    }
+    assert!(emits && transparent && shiny, "{mtl:?}");
+
+    // trimesh reads each material under its name, with the same colours.
+    let script = r#"
+import sys, json, trimesh
+s = trimesh.load(sys.argv[1], process=False, force='scene')
+print(json.dumps({g.visual.material.name: {
+    "Ka": g.visual.material.ambient[:3].tolist(),
+    "Kd": g.visual.material.diffuse[:3].tolist(),
+    "Ks": g.visual.material.specular[:3].tolist(),
+    "Ns": float(g.visual.material.glossiness)} for g in s.geometry.values()}))
+"#;
+    if trimesh(&out).is_none() {
+        return;
+    }
+    let theirs = json_of(Command::new("python3").args(["-c", script]).arg(&out));
+    assert_eq!(theirs.as_object().unwrap().len(), mtl.len(), "{theirs}");
+    for (name, m) in &mtl {
+        let t = &theirs[name.as_str()];
+        for key in ["Ka", "Kd", "Ks"] {
+            for i in 0..3 {
+                let byte = t[key][i].as_f64().unwrap();
+                assert!(
+                    (byte - (m[key][i] * 255.0).round()).abs() <= 1.0,
+                    "{name} {t}"
+                );
+            }
+        }
+        assert!(near(t["Ns"].as_f64().unwrap(), m["Ns"][0]), "{name} {t}");
+    }
+}
+
+/// The JSON chunk of a `.glb` file.
+fn glb_json(path: &Path) -> Value {
+    let bytes = std::fs::read(path).unwrap();
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+/// An sRGB component as a linear one.
+fn linear(s: f64) -> f64 {
+    if s <= 0.04045 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[test]
+fn a_lit_objects_glb_carries_emission_roughness_and_transparency() {
+    let mat = cpfg_materials("tests/corpus/cpfg/11-CPFG-Lilac/materials.mat");
+    let out = temp("lilac.glb");
+    render(LILAC, &out, &[]);
+    let doc = glb_json(&out);
+    let materials = doc["materials"].as_array().unwrap();
+    assert!(materials.len() >= 2, "{doc}");
+    for m in materials {
+        let name = m["name"].as_str().unwrap();
+        let r = &mat[&name.strip_prefix('m').unwrap().parse::<u8>().unwrap()];
+        let pbr = &m["pbrMetallicRoughness"];
+        let base = pbr["baseColorFactor"].as_array().unwrap();
+        for i in 0..3 {
+            assert!(near(base[i].as_f64().unwrap(), linear(r[4 + i])), "{m}");
+        }
+        assert!(near(base[3].as_f64().unwrap(), 1.0 - r[0]), "{m}");
+        let blended = m["alphaMode"] == "BLEND";
+        assert_eq!(blended, r[0] > 0.0, "{m}");
+        let roughness = (2.0 / (r[13] + 2.0)).sqrt();
+        assert!(
+            near(pbr["roughnessFactor"].as_f64().unwrap(), roughness),
+            "{m}"
+        );
+        assert_eq!(pbr["metallicFactor"], 0.0);
+        let emission: Vec<f64> = (7..10).map(|k| linear(r[k])).collect();
+        let e = &m["emissiveFactor"];
+        for (i, want) in emission.iter().enumerate() {
+            // glTF's default emission is black.
+            assert!(near(e[i].as_f64().unwrap_or(0.0), *want), "{m}");
+        }
+    }
+    assert!(materials.iter().any(|m| m["emissiveFactor"].is_array()));
+    if let Some(issues) = validate(&out) {
+        assert_eq!(issues["numErrors"], 0, "{issues}");
+    }
+}

@@ -70,6 +70,22 @@ pub struct Lighting {
     pub surface_diffuse: f64,
 }
 
+impl Lighting {
+    /// The material colour index `index` is lit with, as the renderer
+    /// picks it: in material mode the index's material, or cpfg's default
+    /// ([`Material::CPFG_DEFAULT`]) for an index the file leaves out;
+    /// `None` in colour-map mode (no materials).
+    pub fn material(&self, index: u16) -> Option<&Material> {
+        if self.materials.is_empty() {
+            return None;
+        }
+        match self.materials.get(usize::from(index)) {
+            Some(Some(m)) => Some(m),
+            _ => Some(&Material::CPFG_DEFAULT),
+        }
+    }
+}
+
 impl Default for Lighting {
     fn default() -> Self {
         Lighting {
@@ -121,6 +137,19 @@ pub struct Material {
     pub shininess: f32,
     /// 0 opaque .. 1 invisible.
     pub transparency: f32,
+}
+
+impl Material {
+    /// cpfg's material for an index the material file leaves out: diffuse
+    /// white, no ambient, specular or emission.
+    pub const CPFG_DEFAULT: Material = Material {
+        ambient: [0.0; 3],
+        diffuse: [1.0; 3],
+        specular: [0.0; 3],
+        emission: [0.0; 3],
+        shininess: 0.0,
+        transparency: 0.0,
+    };
 }
 
 /// A camera (cpfg `viewpoint:`, `view reference point:`, `twist:`,

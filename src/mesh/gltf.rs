@@ -3,7 +3,7 @@
 //! has one primitive per colour; each node places a mesh, so a mesh
 //! placed many times is stored once.
 
-use super::{Mesh, Part, Scene};
+use super::{Finish, Mesh, Part, Scene};
 use serde_json::{json, Value};
 
 const ARRAY_BUFFER: u32 = 34962;
@@ -97,9 +97,14 @@ impl Buffers {
     }
 }
 
-/// An sRGB channel as glTF's linear colour factors take it.
+/// An sRGB channel (0..=255) as glTF's linear colour factors take it.
 fn linear(c: u8) -> f64 {
-    let s = f64::from(c) / 255.0;
+    linear_of(f64::from(c) / 255.0)
+}
+
+/// An sRGB channel (0..=1) as glTF's linear colour factors take it.
+fn linear_of(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
     if s <= 0.04045 {
         s / 12.92
     } else {
@@ -107,30 +112,61 @@ fn linear(c: u8) -> f64 {
     }
 }
 
+/// The glTF material of a finish. A plain colour is a rough diffuse
+/// surface. A cpfg material keeps its diffuse colour (with alpha 1 −
+/// transparency, blended when below 1) and its emission; its shininess
+/// (a Phong exponent `Ns`, 0..=128) becomes roughness by the usual
+/// Blinn-Phong-to-GGX match, roughness = √(2 / (Ns + 2)): 0 gives 1,
+/// 128 gives 0.12. glTF's metallic-roughness model has no place for
+/// ambient or a specular colour; dielectric (metallic 0) keeps its
+/// highlight white.
+fn material(f: &Finish) -> Value {
+    let name = f.name();
+    let Some((_, m)) = f.material else {
+        let (r, g, b) = f.colour;
+        return json!({
+            "name": name,
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [linear(r), linear(g), linear(b), 1.0],
+                "metallicFactor": 0.0,
+                "roughnessFactor": 0.8,
+            },
+            "doubleSided": true,
+        });
+    };
+    let rgb = |c: [f32; 3]| c.map(|x| linear_of(f64::from(x)));
+    let [r, g, b] = rgb(m.diffuse);
+    let alpha = 1.0 - f64::from(m.transparency).clamp(0.0, 1.0);
+    let shininess = f64::from(m.shininess).clamp(0.0, 128.0);
+    let mut v = json!({
+        "name": name,
+        "pbrMetallicRoughness": {
+            "baseColorFactor": [r, g, b, alpha],
+            "metallicFactor": 0.0,
+            "roughnessFactor": (2.0 / (shininess + 2.0)).sqrt(),
+        },
+        "doubleSided": true,
+    });
+    if m.emission.iter().any(|&x| x > 0.0) {
+        v["emissiveFactor"] = json!(rgb(m.emission));
+    }
+    if alpha < 1.0 {
+        v["alphaMode"] = json!("BLEND");
+    }
+    v
+}
+
 /// The `.glb` bytes of `scene`. Meshes without triangles, and the nodes
 /// placing them, are left out (glTF wants a primitive in every mesh).
 pub fn glb(scene: &Scene) -> Vec<u8> {
-    let colours = scene.materials();
-    let materials: Vec<Value> = colours
-        .iter()
-        .map(|&(r, g, b)| {
-            json!({
-                "name": super::obj::material_name((r, g, b)),
-                "pbrMetallicRoughness": {
-                    "baseColorFactor": [linear(r), linear(g), linear(b), 1.0],
-                    "metallicFactor": 0.0,
-                    "roughnessFactor": 0.8,
-                },
-                "doubleSided": true,
-            })
-        })
-        .collect();
+    let finishes = scene.materials();
+    let materials: Vec<Value> = finishes.iter().map(material).collect();
     let mut buffers = Buffers::default();
     let mut meshes: Vec<Value> = Vec::new();
     // Index in the file of each scene mesh, when it has triangles.
     let mut index: Vec<Option<usize>> = Vec::with_capacity(scene.meshes.len());
     for m in &scene.meshes {
-        index.push(mesh(m, &colours, &mut buffers).map(|v| {
+        index.push(mesh(m, &finishes, &mut buffers).map(|v| {
             meshes.push(v);
             meshes.len() - 1
         }));
@@ -170,15 +206,18 @@ pub fn glb(scene: &Scene) -> Vec<u8> {
     container(&doc.to_string(), &buffers.bin)
 }
 
-/// The glTF mesh of `m`, its parts' material indices among `colours`;
+/// The glTF mesh of `m`, its parts' material indices among `finishes`;
 /// `None` when it has no triangles.
-fn mesh(m: &Mesh, colours: &[(u8, u8, u8)], buffers: &mut Buffers) -> Option<Value> {
+fn mesh(m: &Mesh, finishes: &[Finish], buffers: &mut Buffers) -> Option<Value> {
     let primitives: Vec<Value> = m
         .parts
         .iter()
         .filter(|p| !p.triangles.is_empty())
         .map(|p| {
-            let material = colours.iter().position(|&c| c == p.colour).unwrap_or(0);
+            let material = finishes
+                .iter()
+                .position(|f| f.key() == p.finish.key())
+                .unwrap_or(0);
             buffers.primitive(p, material)
         })
         .collect();

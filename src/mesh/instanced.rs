@@ -9,7 +9,7 @@
 //! segments is about a thousand meshes' segments and a thousand nodes.
 
 use super::tube::{tube, Chainer};
-use super::{Mesh, Node, Scene, Sizing, Transform};
+use super::{Finish, Mesh, Node, Scene, Sizing, Transform};
 use crate::ir::System;
 use crate::turtle::instanced::{Instanced, Placement, Subtree, Summary, Walker};
 use crate::turtle::{Vec3, DEFAULT_PALETTE};
@@ -41,7 +41,10 @@ pub fn scene(sys: &System, inst: &mut Instanced<'_>, steps: u64) -> Option<Scene
     } else {
         sys.colours.clone()
     };
-    let colour = palette[sys.settings.colour.min(palette.len() - 1)];
+    // The turtle starts at this colour index, and keeps it throughout.
+    let start = sys.settings.colour.min(palette.len() - 1);
+    let index = crate::turtle::index_of(start);
+    let colour = Finish::new(palette[start], index, sys.look.lighting.as_ref());
     let width = sys.settings.width;
     let largest = ((whole.segments as f64).sqrt() as u128).clamp(MIN_SUBTREE, MAX_SUBTREE);
     if whole.segments / largest > MAX_NODES {

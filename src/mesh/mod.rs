@@ -6,7 +6,10 @@
 //! the pieces of a generalized cylinder's curve) instead of ending at each
 //! segment. Polygons and cpfg surfaces become triangles with the
 //! polygon's normal, cpfg spheres and circles (`@O`, `@o`: discs facing
-//! the viewer in a picture) become spheres, and colours become materials.
+//! the viewer in a picture) become spheres, and colours become materials:
+//! a lit cpfg look's own materials (ambient, diffuse, specular, emission,
+//! shininess, transparency) where it has them ([`Finish`]), else one
+//! diffuse material per colour.
 //! A line width in pixels is a share of the model's size, as in a picture
 //! [`PIXELS_ACROSS`] pixels across.
 //!
@@ -22,6 +25,7 @@ mod obj;
 mod ply;
 pub mod tube;
 
+use crate::ir::look::{Lighting, Material};
 use crate::ir::Rgb;
 use crate::turtle::{cross, dot, Geometry, Vec3};
 use serde::Serialize;
@@ -56,11 +60,78 @@ impl MeshFormat {
     }
 }
 
+/// What a part is drawn with: the turtle's colour, and in a lit look's
+/// material mode the material of the colour index, picked as the renderer
+/// picks it ([`Lighting::material`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Finish {
+    /// The colour, or the material's diffuse colour (what PLY's vertex
+    /// colours hold).
+    pub colour: (u8, u8, u8),
+    /// The material and the colour index that names it.
+    pub material: Option<(u16, Material)>,
+}
+
+/// Parts are shared by equal finishes: the colour, and the material's
+/// components bit for bit.
+type FinishKey = ((u8, u8, u8), Option<[u32; 14]>);
+
+impl Finish {
+    /// A plain colour, as unlit systems (and colour-map mode) have it.
+    pub fn plain(c: Rgb) -> Finish {
+        Finish {
+            colour: (c.0, c.1, c.2),
+            material: None,
+        }
+    }
+
+    /// The finish of something drawn in `colour` with colour index
+    /// `index` under `lighting`.
+    pub fn new(colour: Rgb, index: u16, lighting: Option<&Lighting>) -> Finish {
+        match lighting.and_then(|l| l.material(index)) {
+            Some(m) => {
+                let [r, g, b] = m.diffuse.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+                Finish {
+                    colour: (r, g, b),
+                    material: Some((index, *m)),
+                }
+            }
+            None => Finish::plain(colour),
+        }
+    }
+
+    pub(crate) fn key(&self) -> FinishKey {
+        let bits = self.material.map(|(_, m)| {
+            let mut k = [0u32; 14];
+            let all = [m.ambient, m.diffuse, m.specular, m.emission];
+            for (i, x) in all.iter().flatten().enumerate() {
+                k[i] = x.to_bits();
+            }
+            k[12] = m.shininess.to_bits();
+            k[13] = m.transparency.to_bits();
+            k
+        });
+        (self.colour, bits)
+    }
+
+    /// The material's name in the files: `c` and the colour in hex, or
+    /// `m` and the colour index.
+    pub fn name(&self) -> String {
+        match self.material {
+            Some((index, _)) => format!("m{index}"),
+            None => {
+                let c = self.colour;
+                format!("c{:02x}{:02x}{:02x}", c.0, c.1, c.2)
+            }
+        }
+    }
+}
+
 /// Triangles of one material: vertices with their normals, and triangles
 /// as indices into them.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Part {
-    pub colour: (u8, u8, u8),
+    pub finish: Finish,
     pub positions: Vec<Vec3>,
     pub normals: Vec<Vec3>,
     pub triangles: Vec<[u32; 3]>,
@@ -75,22 +146,23 @@ impl Part {
     }
 }
 
-/// A mesh: one part per colour.
+/// A mesh: one part per finish.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     pub parts: Vec<Part>,
-    by_colour: HashMap<(u8, u8, u8), usize>,
+    by_finish: HashMap<FinishKey, usize>,
 }
 
 impl Mesh {
-    /// The part of colour `c`, made when new.
-    pub(crate) fn part(&mut self, c: Rgb) -> &mut Part {
-        let key = (c.0, c.1, c.2);
+    /// The part of finish `f`, made when new.
+    pub(crate) fn part(&mut self, f: Finish) -> &mut Part {
         let parts = &mut self.parts;
-        let k = *self.by_colour.entry(key).or_insert_with(|| {
+        let k = *self.by_finish.entry(f.key()).or_insert_with(|| {
             parts.push(Part {
-                colour: key,
-                ..Part::default()
+                finish: f,
+                positions: Vec::new(),
+                normals: Vec::new(),
+                triangles: Vec::new(),
             });
             parts.len() - 1
         });
@@ -228,12 +300,12 @@ impl Scene {
         }
     }
 
-    /// The distinct colours, in order of first use.
-    pub fn materials(&self) -> Vec<(u8, u8, u8)> {
-        let mut seen = Vec::new();
+    /// The distinct finishes, in order of first use.
+    pub fn materials(&self) -> Vec<Finish> {
+        let mut seen: Vec<Finish> = Vec::new();
         for p in self.meshes.iter().flat_map(|m| &m.parts) {
-            if !seen.contains(&p.colour) {
-                seen.push(p.colour);
+            if !seen.iter().any(|f| f.key() == p.finish.key()) {
+                seen.push(p.finish);
             }
         }
         seen
@@ -284,8 +356,7 @@ impl Scene {
         let mut out = Mesh::default();
         for n in &self.nodes {
             for p in &self.meshes[n.mesh].parts {
-                let c = p.colour;
-                let part = out.part(Rgb(c.0, c.1, c.2));
+                let part = out.part(p.finish);
                 let base = part.positions.len() as u32;
                 let turn = Transform {
                     translation: [0.0; 3],
@@ -341,17 +412,26 @@ impl Sizing {
     }
 }
 
-/// The mesh of everything `g` draws: tubes, polygons, spheres.
-pub fn of_geometry(g: &Geometry, progress: &mut dyn FnMut(u64, u64)) -> Mesh {
+/// The mesh of everything `g` draws: tubes, polygons, spheres, with the
+/// materials of `lighting` where it has them.
+pub fn of_geometry(
+    g: &Geometry,
+    lighting: Option<&Lighting>,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Mesh {
     let sizing = Sizing::new(g.bbox(), g.world_widths);
     let mut mesh = Mesh::default();
     let total = (g.segments.len() + g.polygons.len() + g.discs.len()) as u64;
-    for chain in tube::chains(&g.segments) {
+    for chain in tube::chains(&g.segments, lighting) {
         tube::tube(&mut mesh, &chain, &sizing);
     }
     progress(g.segments.len() as u64, total);
     for p in &g.polygons {
-        polygon(&mut mesh, &p.points, p.colour);
+        polygon(
+            &mut mesh,
+            &p.points,
+            Finish::new(p.colour, p.index, lighting),
+        );
     }
     for d in &g.discs {
         let r = if d.pixels {
@@ -359,7 +439,12 @@ pub fn of_geometry(g: &Geometry, progress: &mut dyn FnMut(u64, u64)) -> Mesh {
         } else {
             d.diameter.abs() / 2.0
         };
-        sphere(&mut mesh, d.centre, r, d.colour);
+        sphere(
+            &mut mesh,
+            d.centre,
+            r,
+            Finish::new(d.colour, d.index, lighting),
+        );
     }
     progress(total, total);
     mesh
@@ -408,7 +493,7 @@ fn corners(points: &[Vec3]) -> Vec<Vec3> {
 
 /// A polygon as a fan of triangles with its (Newell) normal; polygons of
 /// fewer than three corners are left out.
-fn polygon(mesh: &mut Mesh, points: &[Vec3], colour: Rgb) {
+fn polygon(mesh: &mut Mesh, points: &[Vec3], finish: Finish) {
     let pts = corners(points);
     if pts.len() < 3 {
         return;
@@ -421,7 +506,7 @@ fn polygon(mesh: &mut Mesh, points: &[Vec3], colour: Rgb) {
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
     let normal = unit(n).unwrap_or([0.0, 0.0, 1.0]);
-    let part = mesh.part(colour);
+    let part = mesh.part(finish);
     let base = part.positions.len() as u32;
     for &p in &pts {
         part.vertex(p, normal);
@@ -436,8 +521,8 @@ pub const SPHERE_SIDES: usize = 8;
 pub const SPHERE_BANDS: usize = 6;
 
 /// A sphere of radius `r` around `c`: two poles and rings between them.
-fn sphere(mesh: &mut Mesh, c: Vec3, r: f64, colour: Rgb) {
-    let part = mesh.part(colour);
+fn sphere(mesh: &mut Mesh, c: Vec3, r: f64, finish: Finish) {
+    let part = mesh.part(finish);
     let at = |n: Vec3| [c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2]];
     let south = part.vertex(at([0.0, -1.0, 0.0]), [0.0, -1.0, 0.0]);
     let ring0 = south + 1;
@@ -492,7 +577,11 @@ mod tests {
     fn a_branch_is_a_tube_and_the_trunk_runs_on_through_it() {
         // The trunk's three steps (one narrower) are one tube of 4 rings,
         // the branch one of 2.
-        let m = of_geometry(&draw("angle factor: 4\naxiom: F[+F]F!F\n"), &mut |_, _| {});
+        let m = of_geometry(
+            &draw("angle factor: 4\naxiom: F[+F]F!F\n"),
+            None,
+            &mut |_, _| {},
+        );
         well_formed(&m);
         assert_eq!(m.vertices(), (4 + 2) * tube::SIDES);
         assert_eq!(m.triangles(), 4 * 2 * tube::SIDES);
@@ -508,7 +597,7 @@ mod tests {
             colour: Rgb(1, 2, 3),
             index: 0,
         });
-        let m = of_geometry(&g, &mut |_, _| {});
+        let m = of_geometry(&g, None, &mut |_, _| {});
         well_formed(&m);
         let sphere_vertices = 2 + (SPHERE_BANDS - 1) * SPHERE_SIDES;
         let sphere_triangles = 2 * SPHERE_SIDES * (SPHERE_BANDS - 1);
@@ -516,12 +605,20 @@ mod tests {
         assert_eq!(m.vertices(), 4 + 2 * tube::SIDES + sphere_vertices);
         assert_eq!(m.triangles(), 2 + 2 * tube::SIDES + sphere_triangles);
         assert_eq!(m.parts.len(), 3);
-        let square = m.parts.iter().find(|p| p.colour == (0, 0, 0)).unwrap();
+        let square = m
+            .parts
+            .iter()
+            .find(|p| p.finish.colour == (0, 0, 0))
+            .unwrap();
         assert!(square
             .normals
             .iter()
             .all(|n| (n[2].abs() - 1.0).abs() < 1e-12));
-        let sphere = m.parts.iter().find(|p| p.colour == (1, 2, 3)).unwrap();
+        let sphere = m
+            .parts
+            .iter()
+            .find(|p| p.finish.colour == (1, 2, 3))
+            .unwrap();
         let ys = sphere.positions.iter().map(|p| p[1]);
         assert_eq!(ys.clone().fold(f64::MAX, f64::min), 4.0);
         assert_eq!(ys.fold(f64::MIN, f64::max), 6.0);
@@ -531,6 +628,7 @@ mod tests {
     fn obj_and_ply_text_read_back_to_the_same_counts() {
         let m = of_geometry(
             &draw("angle factor: 4\naxiom: {f+f+f+f}F[-F]'F\n"),
+            None,
             &mut |_, _| {},
         );
         let text = obj(&m, "x.mtl");
@@ -587,6 +685,7 @@ mod tests {
     fn glb_accessors_carry_their_bounds_and_fit_the_buffer() {
         let m = of_geometry(
             &draw("angle factor: 4\naxiom: {f+f+f+f}F[-F]'F\n"),
+            None,
             &mut |_, _| {},
         );
         let scene = Scene::single(m);
@@ -628,7 +727,11 @@ mod tests {
         let mut inst = crate::turtle::instanced::Instanced::new(&sys).unwrap();
         let scene = instanced::scene(&sys, &mut inst, 4).unwrap();
         let word = crate::eval::derive(&sys, &crate::eval::DeriveOptions::new(4)).unwrap();
-        let whole = Scene::single(of_geometry(&interpret(&sys, &word, 0), &mut |_, _| {}));
+        let whole = Scene::single(of_geometry(
+            &interpret(&sys, &word, 0),
+            None,
+            &mut |_, _| {},
+        ));
         let (a, b) = (scene.stats(), whole.stats());
         assert_eq!(a.triangles, b.triangles);
         assert_eq!(a.triangles, 8u64.pow(4) * 2 * tube::SIDES as u64);
@@ -650,6 +753,43 @@ mod tests {
         let flat = scene.flattened();
         well_formed(&flat);
         assert_eq!(flat.vertices() as u64, a.vertices);
+    }
+
+    #[test]
+    fn a_lit_look_gives_parts_the_materials_of_their_colour_indices() {
+        let shiny = Material {
+            specular: [0.5; 3],
+            shininess: 64.0,
+            ..Material::CPFG_DEFAULT
+        };
+        let lighting = Lighting {
+            materials: vec![None, Some(shiny)],
+            ..Lighting::default()
+        };
+        // Indices 0, 1 and 2: 0 has no material and 2 is past the file,
+        // so both take cpfg's default and share a part.
+        let g = draw("angle factor: 4\naxiom: F'F'F\n");
+        let m = of_geometry(&g, Some(&lighting), &mut |_, _| {});
+        let finishes: Vec<_> = m.parts.iter().map(|p| p.finish.material).collect();
+        assert_eq!(
+            finishes,
+            [Some((0, Material::CPFG_DEFAULT)), Some((1, shiny))]
+        );
+        assert_eq!(m.parts[0].finish.colour, (255, 255, 255));
+        // Colour-map mode (no materials) keeps the colours.
+        let map = Lighting::default();
+        let plain = of_geometry(&g, Some(&map), &mut |_, _| {});
+        assert_eq!(plain, of_geometry(&g, None, &mut |_, _| {}));
+
+        // Shared subtrees draw at the system's starting colour index.
+        let mut sys = read_ok("angle factor: 4\naxiom: F\nF --> F+F-F-FF+F+F-F\n");
+        sys.settings.colour = 1;
+        sys.look.lighting = Some(lighting);
+        let mut inst = crate::turtle::instanced::Instanced::new(&sys).unwrap();
+        let scene = instanced::scene(&sys, &mut inst, 3).unwrap();
+        let materials = scene.materials();
+        assert_eq!(materials.len(), 1);
+        assert_eq!(materials[0].material, Some((1, shiny)));
     }
 
     #[test]

@@ -1,13 +1,9 @@
-//! Wavefront OBJ and its material library: one group per colour, each
+//! Wavefront OBJ and its material library: one group per material, each
 //! vertex with its normal (the same index for both).
 
-use super::Mesh;
+use super::{Finish, Mesh};
+use crate::ir::look::Material;
 use std::fmt::Write;
-
-/// The material name of a colour.
-pub(crate) fn material_name(c: (u8, u8, u8)) -> String {
-    format!("c{:02x}{:02x}{:02x}", c.0, c.1, c.2)
-}
 
 /// The OBJ text of `mesh`, naming `mtl_file` (beside it) as its material
 /// library.
@@ -27,7 +23,7 @@ pub fn obj(mesh: &Mesh, mtl_file: &str) -> String {
     // OBJ indices count from 1 over the whole file.
     let mut base = 1u64;
     for p in &mesh.parts {
-        let _ = writeln!(s, "usemtl {}", material_name(p.colour));
+        let _ = writeln!(s, "usemtl {}", p.finish.name());
         for t in &p.triangles {
             let [a, b, c] = t.map(|i| u64::from(i) + base);
             let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
@@ -37,20 +33,50 @@ pub fn obj(mesh: &Mesh, mtl_file: &str) -> String {
     s
 }
 
-/// The material library of `mesh`: a diffuse colour per part.
+/// The material library of `mesh`: a lit look's materials as they are,
+/// else a diffuse colour per part.
 pub fn mtl(mesh: &Mesh) -> String {
     let mut s = String::from("# graftal\n");
     for p in &mesh.parts {
-        let (r, g, b) = p.colour;
-        let f = |x: u8| f64::from(x) / 255.0;
-        let _ = writeln!(
-            s,
-            "newmtl {}\nKa 0 0 0\nKd {:.4} {:.4} {:.4}\nKs 0 0 0\nd 1\nillum 1\n",
-            material_name(p.colour),
-            f(r),
-            f(g),
-            f(b)
-        );
+        match p.finish.material {
+            Some((_, m)) => lit(&mut s, &p.finish, &m),
+            None => plain(&mut s, &p.finish),
+        }
     }
     s
+}
+
+fn plain(s: &mut String, f: &Finish) {
+    let (r, g, b) = f.colour;
+    let c = |x: u8| f64::from(x) / 255.0;
+    let _ = writeln!(
+        s,
+        "newmtl {}\nKa 0 0 0\nKd {:.4} {:.4} {:.4}\nKs 0 0 0\nd 1\nillum 1\n",
+        f.name(),
+        c(r),
+        c(g),
+        c(b)
+    );
+}
+
+/// A cpfg material: OpenGL's ambient, diffuse, specular and emission as
+/// `Ka`, `Kd`, `Ks`, `Ke`. Its shininess (`GL_SHININESS`, 0..=128) is the
+/// exponent of the same Phong highlight that `Ns` (0..=1000) is, so `Ns`
+/// takes it unchanged. `d` is the opacity, 1 − transparency; `illum 2`
+/// (highlights on) when the material has a specular colour.
+fn lit(s: &mut String, f: &Finish, m: &Material) {
+    let rgb = |c: [f32; 3]| format!("{:.4} {:.4} {:.4}", c[0], c[1], c[2]);
+    let shiny = m.specular.iter().any(|&x| x > 0.0);
+    let _ = writeln!(
+        s,
+        "newmtl {}\nKa {}\nKd {}\nKs {}\nKe {}\nNs {:.4}\nd {:.4}\nillum {}\n",
+        f.name(),
+        rgb(m.ambient),
+        rgb(m.diffuse),
+        rgb(m.specular),
+        rgb(m.emission),
+        m.shininess.clamp(0.0, 128.0),
+        1.0 - m.transparency.clamp(0.0, 1.0),
+        if shiny { 2 } else { 1 }
+    );
 }

@@ -3,7 +3,8 @@
 use super::Mesh;
 use std::fmt::Write;
 
-/// The PLY text of `mesh`; each vertex carries its part's colour.
+/// The PLY text of `mesh`; each vertex carries its part's colour (a
+/// material's diffuse colour).
 pub fn ply(mesh: &Mesh) -> String {
     let mut s = String::new();
     let _ = write!(
@@ -17,7 +18,7 @@ pub fn ply(mesh: &Mesh) -> String {
         mesh.triangles()
     );
     for p in &mesh.parts {
-        let (r, g, b) = p.colour;
+        let (r, g, b) = p.finish.colour;
         for (v, n) in p.positions.iter().zip(&p.normals) {
             let _ = writeln!(
                 s,

@@ -3,8 +3,8 @@
 //! transport (no twist) and set at right angles to the bisector of the
 //! segments meeting there.
 
-use super::{cross, dot, perpendicular, sub, unit, Mesh, Sizing};
-use crate::ir::Rgb;
+use super::{cross, dot, perpendicular, sub, unit, Finish, FinishKey, Mesh, Sizing};
+use crate::ir::look::Lighting;
 use crate::turtle::{Segment, Vec3};
 use std::collections::HashMap;
 
@@ -16,7 +16,7 @@ pub const SIDES: usize = 6;
 pub struct Chain {
     pub points: Vec<Vec3>,
     pub widths: Vec<f64>,
-    pub colour: Rgb,
+    pub finish: Finish,
 }
 
 /// The key of a point: its exact coordinates (`-0` as `0`).
@@ -24,21 +24,23 @@ fn key(p: Vec3) -> [u64; 3] {
     p.map(|x| (x + 0.0).to_bits())
 }
 
-/// Where a chain ends: the point, the branch depth and the colour.
-type End = ([u64; 3], u16, (u8, u8, u8));
+/// Where a chain ends: the point, the branch depth and the finish.
+type End = ([u64; 3], u16, FinishKey);
 
 /// The segments as chains, in drawing order: a segment continues the
 /// chain that ends where it starts, in the same branch (depth) and
-/// colour; a branch starts a chain of its own, and the branch it grew
-/// from continues after it. Segments of no length are left out.
-pub fn chains(segments: &[Segment]) -> Vec<Chain> {
+/// finish (colour, or material under `lighting`); a branch starts a chain
+/// of its own, and the branch it grew from continues after it. Segments
+/// of no length are left out.
+pub fn chains(segments: &[Segment], lighting: Option<&Lighting>) -> Vec<Chain> {
     let mut out: Vec<Chain> = Vec::new();
     let mut open: HashMap<End, usize> = HashMap::new();
     for s in segments {
         if s.a == s.b || !s.a.iter().chain(&s.b).all(|x| x.is_finite()) {
             continue;
         }
-        let colour = (s.colour.0, s.colour.1, s.colour.2);
+        let finish = Finish::new(s.colour, s.index, lighting);
+        let colour = finish.key();
         match open.remove(&(key(s.a), s.depth, colour)) {
             Some(k) => {
                 let c = &mut out[k];
@@ -52,7 +54,7 @@ pub fn chains(segments: &[Segment]) -> Vec<Chain> {
                 out.push(Chain {
                     points: vec![s.a, s.b],
                     widths: vec![s.width, s.width],
-                    colour: s.colour,
+                    finish,
                 });
                 open.insert((key(s.b), s.depth, colour), out.len() - 1);
             }
@@ -67,16 +69,16 @@ pub fn chains(segments: &[Segment]) -> Vec<Chain> {
 pub struct Chainer {
     pub chains: Vec<Chain>,
     width: f64,
-    colour: Rgb,
+    finish: Finish,
     joined: bool,
 }
 
 impl Chainer {
-    pub fn new(width: f64, colour: Rgb) -> Self {
+    pub fn new(width: f64, finish: Finish) -> Self {
         Chainer {
             chains: Vec::new(),
             width,
-            colour,
+            finish,
             joined: false,
         }
     }
@@ -93,7 +95,7 @@ impl Chainer {
             _ => self.chains.push(Chain {
                 points: vec![a, b],
                 widths: vec![self.width; 2],
-                colour: self.colour,
+                finish: self.finish,
             }),
         }
         self.joined = true;
@@ -134,7 +136,7 @@ pub fn tube(mesh: &mut Mesh, chain: &Chain, sizing: &Sizing) {
         return;
     }
     let dirs = ring_directions(&chain.points);
-    let part = mesh.part(chain.colour);
+    let part = mesh.part(chain.finish);
     let base = part.positions.len() as u32;
     let mut normal = perpendicular(dirs[0]);
     for (i, (&p, &t)) in chain.points.iter().zip(&dirs).enumerate() {
@@ -166,6 +168,7 @@ pub fn tube(mesh: &mut Mesh, chain: &Chain, sizing: &Sizing) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ir::Rgb;
 
     fn seg(a: Vec3, b: Vec3, depth: u16) -> Segment {
         Segment {
@@ -186,7 +189,7 @@ mod tests {
             seg([0.0, 1.0, 0.0], [1.0, 1.0, 0.0], 1),
             seg([0.0, 1.0, 0.0], [0.0, 2.0, 0.0], 0),
         ];
-        let c = chains(&s);
+        let c = chains(&s, None);
         assert_eq!(c.len(), 2);
         assert_eq!(c[0].points.len(), 3);
         assert_eq!(c[1].points.len(), 2);

@@ -309,7 +309,7 @@ fn rotate(a: Vec3, b: Vec3, c: f64, s: f64) -> (Vec3, Vec3) {
 const RENORMALISE_EVERY: u32 = 32;
 
 /// A colour index as primitives keep it.
-fn index_of(colour: usize) -> u16 {
+pub(crate) fn index_of(colour: usize) -> u16 {
     colour.min(u16::MAX as usize) as u16
 }
 
