@@ -27,16 +27,6 @@ pub type Colour = [f32; 3];
 /// OpenGL's default `GL_LIGHT_MODEL_AMBIENT`.
 const GLOBAL_AMBIENT: f32 = 0.2;
 
-/// cpfg's material for an index the material file leaves out.
-const DEFAULT_MATERIAL: Material = Material {
-    ambient: [0.0; 3],
-    diffuse: [1.0; 3],
-    specular: [0.0; 3],
-    emission: [0.0; 3],
-    shininess: 0.0,
-    transparency: 0.0,
-};
-
 /// What is being lit: the colour-map formulas differ.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
@@ -123,17 +113,6 @@ impl<'a> Shader<'a> {
         }
     }
 
-    fn materials(&self) -> bool {
-        !self.lighting.materials.is_empty()
-    }
-
-    fn material(&self, index: u16) -> &Material {
-        match self.lighting.materials.get(index as usize) {
-            Some(Some(m)) => m,
-            _ => &DEFAULT_MATERIAL,
-        }
-    }
-
     fn palette_at(&self, index: i64) -> Colour {
         let last = self.palette.len() as i64 - 1;
         to_colour(self.palette[index.clamp(0, last.max(0)) as usize])
@@ -142,10 +121,9 @@ impl<'a> Shader<'a> {
     /// The unlit colour (cpfg `filled`): the material's diffuse colour, else
     /// the palette colour.
     pub fn unlit(&self, colour: Rgb, index: u16) -> Colour {
-        if self.materials() {
-            self.material(index).diffuse
-        } else {
-            to_colour(colour)
+        match self.lighting.material(index) {
+            Some(m) => m.diffuse,
+            None => to_colour(colour),
         }
     }
 
@@ -174,8 +152,8 @@ impl<'a> Shader<'a> {
     /// The lit colour at `p` with unit normal `n` (facing the viewer for a
     /// two-sided primitive), seen along `v` (unit, towards the viewer).
     pub fn lit(&self, kind: Kind, index: u16, p: Vec3, n: Vec3, v: Vec3) -> Colour {
-        if self.materials() {
-            return self.material_colour(self.material(index), p, n, v);
+        if let Some(m) = self.lighting.material(index) {
+            return self.material_colour(m, p, n, v);
         }
         let ndl = dot(n, self.first_light);
         let index = i64::from(index);
