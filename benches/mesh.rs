@@ -22,10 +22,12 @@ use graftal::driver::{self, MeshOutput, RunOptions};
 use graftal::ir::System;
 use graftal::mesh::{self, MeshFormat, Scene};
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 #[path = "common/alloc.rs"]
 mod alloc;
+#[path = "common/config.rs"]
+mod config;
 use alloc::{mib, peak_during};
 
 #[global_allocator]
@@ -129,16 +131,9 @@ fn bench_obj(c: &mut Criterion) {
     group.finish();
 }
 
-fn config() -> Criterion {
-    Criterion::default()
-        .sample_size(10)
-        .warm_up_time(Duration::from_millis(300))
-        .measurement_time(Duration::from_secs(5))
-}
-
 criterion_group! {
     name = benches;
-    config = config();
+    config = config::seconds_long();
     targets = bench_glb, bench_obj
 }
 criterion_main!(benches);

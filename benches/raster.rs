@@ -33,10 +33,12 @@ use graftal::driver::{self, RunOptions, Streamed};
 use graftal::ir::System;
 use graftal::render::{self, RenderOptions};
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 #[path = "common/alloc.rs"]
 mod alloc;
+#[path = "common/config.rs"]
+mod config;
 use alloc::{mib, peak_during};
 
 #[global_allocator]
@@ -205,16 +207,9 @@ fn bench_derive_pipe(c: &mut Criterion) {
     group.finish();
 }
 
-fn config() -> Criterion {
-    Criterion::default()
-        .sample_size(10)
-        .warm_up_time(Duration::from_millis(300))
-        .measurement_time(Duration::from_secs(5))
-}
-
 criterion_group! {
     name = benches;
-    config = config();
+    config = config::seconds_long();
     targets = bench_raster, bench_lit, bench_derive_pipe
 }
 criterion_main!(benches);

@@ -688,15 +688,21 @@ fn drawn_word<'w>(
     Ok(std::borrow::Cow::Borrowed(word))
 }
 
+/// Whether an STL layout would draw an outline under the system's picture.
+fn has_outline(sys: &System) -> bool {
+    sys.structure
+        .as_ref()
+        .is_some_and(|st| !st.constraint.outline.is_empty())
+}
+
 /// Whether [`render_lit`] may draw `sys` to `format` with `ropts`: a PNG
 /// of a lit look, without splines or an STL layout (`layout`: one would be
 /// added).
 pub fn streams_lit(sys: &System, format: Format, ropts: &RenderOptions, layout: bool) -> bool {
-    let outline = sys
-        .structure
-        .as_ref()
-        .is_some_and(|st| !st.constraint.outline.is_empty());
-    format == Format::Png && sys.look.lighting.is_some() && !ropts.spline && !(layout && outline)
+    format == Format::Png
+        && sys.look.lighting.is_some()
+        && !ropts.spline
+        && !(layout && has_outline(sys))
 }
 
 /// Draws a lit system's word to a PNG straight from the turtle
@@ -1368,14 +1374,10 @@ pub fn render_mesh(
 /// homomorphism), unlit, without a camera, splines, an STL layout or a
 /// palette that needs the totals (by depth, along the path).
 pub fn streams(sys: &System, format: Format, ropts: &RenderOptions) -> bool {
-    let layout = sys
-        .structure
-        .as_ref()
-        .is_some_and(|st| !st.constraint.outline.is_empty());
     format == Format::Png
         && !sys.rewrites_modules()
         && !ropts.spline
-        && !layout
+        && !has_outline(sys)
         && sys.look.lighting.is_none()
         && sys.look.camera.is_none()
         && matches!(ropts.style.palette, None | Some(render::Palette::Mono))

@@ -1375,14 +1375,7 @@ mod tests {
             ambient: [0.0; 3],
             ..Light::default()
         }];
-        l.materials = vec![Some(Material {
-            ambient: [0.0; 3],
-            diffuse: [1.0; 3],
-            specular: [0.0; 3],
-            emission: [0.0; 3],
-            shininess: 0.0,
-            transparency: 0.0,
-        })];
+        l.materials = vec![Some(Material::CPFG_DEFAULT)];
         let g = Geometry {
             discs: vec![Disc {
                 centre: [0.0; 3],
