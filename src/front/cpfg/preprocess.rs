@@ -1976,8 +1976,31 @@ mod tests {
             }
             for d in p.diagnostics.iter() {
                 let s = d.span.clone().unwrap_or(0..0);
-                prop_assert!(s.start <= s.end && s.end <= src.len());
+                prop_assert!(s.start <= s.end && s.end <= shown_in(d, &src).len());
             }
+        }
+    }
+
+    /// The text a diagnostic's span points into: the included file it is
+    /// reported on, else the main file.
+    fn shown_in<'a>(d: &'a crate::diagnostics::Diagnostic, main: &'a str) -> &'a str {
+        d.side.as_ref().map_or(main, |f| f.text.as_str())
+    }
+
+    /// A file that includes itself is reported on that file, at the name
+    /// in its own `#include` (the case the property above first found).
+    #[test]
+    fn a_file_including_itself_is_reported_where_it_does() {
+        let inner = "A\n#include \"a\"\n";
+        let src = "#include \"a\"\n";
+        let p = preprocess(src, &mut |n| (n == "a").then(|| inner.to_string()));
+        let on_a: Vec<_> = (p.diagnostics.iter())
+            .filter(|d| d.side.as_ref().is_some_and(|f| f.name == "a"))
+            .collect();
+        assert!(!on_a.is_empty(), "{:?}", p.diagnostics);
+        for d in on_a {
+            let s = d.span.clone().expect("a place");
+            assert_eq!(&shown_in(d, src)[s], "\"a\"");
         }
     }
 }
