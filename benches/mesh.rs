@@ -2,7 +2,7 @@
 //! costs, with throughput in triangles per second and peak heap.
 //!
 //! * `glb/instanced`: a context-free tree (`std:plant-e` at 9 steps, 460 k
-//!   triangles once placed) through [`driver::render_mesh`]: one mesh per
+//!   triangles once placed) through [`picture::draw_system`]: one mesh per
 //!   repeated subtree of the shared derivation tree, placed by glTF nodes.
 //!   Baseline, measured once in the same run: the same glTF without
 //!   instancing — derive the word, interpret it, one tube per segment
@@ -18,7 +18,8 @@
 //! `benches/raster.rs`), printed as `peak memory: …` lines.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
-use graftal::driver::{self, MeshOutput, RunOptions};
+use graftal::driver::picture::{self, Picture, Quiet, Request, Target};
+use graftal::driver::{self, RunOptions};
 use graftal::ir::System;
 use graftal::mesh::{self, MeshFormat, Scene};
 use std::hint::black_box;
@@ -54,8 +55,13 @@ fn steps(n: Option<u64>) -> RunOptions {
 }
 
 /// graftal's own way to a mesh file, as the CLI writes it.
-fn to_mesh(sys: &System, opts: &RunOptions, format: MeshFormat) -> MeshOutput {
-    driver::render_mesh(sys, opts, format, "plant.mtl", false, &mut |_, _| {}).expect("meshes")
+fn to_mesh(sys: &System, opts: &RunOptions, format: MeshFormat) -> Picture {
+    let req = Request {
+        run: opts.clone(),
+        material_library: "plant.mtl".into(),
+        ..Request::new(Target::Mesh(format))
+    };
+    picture::draw_system(sys, &req, &mut Quiet).expect("meshes")
 }
 
 /// The glTF without instancing: every segment's tube in one mesh.
@@ -81,7 +87,7 @@ fn bench_glb(c: &mut Criterion) {
     let opts = steps(Some(TREE_STEPS));
     let (flat, flat_peak, flat_time) = once(|| flat_glb(&sys, &opts));
     let (ours, peak, time) = once(|| to_mesh(&sys, &opts, MeshFormat::Glb));
-    let s = &ours.stats;
+    let s = ours.mesh.as_ref().expect("a mesh");
     assert!(s.nodes > 1, "plant-e is instanced");
     println!(
         "peak memory: plant-e n={TREE_STEPS} to glTF, {} triangles placed: {} in {time:.3} s, \
@@ -110,7 +116,7 @@ fn bench_obj(c: &mut Criterion) {
     let (_, geometry_peak, geometry_time) =
         once(|| driver::geometry(&sys, &opts).expect("derives"));
     let (ours, peak, time) = once(|| to_mesh(&sys, &opts, MeshFormat::Obj));
-    let s = &ours.stats;
+    let s = ours.mesh.as_ref().expect("a mesh");
     println!(
         "peak memory: cpfg Lychnis to OBJ, {} vertices, {} triangles, {} materials: {} in \
          {time:.3} s, {} bytes (OBJ) vs {} in {geometry_time:.3} s (baseline: derive and \

@@ -3,7 +3,7 @@
 //! 3.36 M segments, to a 1024x1024 PNG, derivation included.
 //!
 //! * `raster/streamed`: [`driver::derive_symbols`] then
-//!   [`driver::render_streamed`]: the word kept a byte a symbol, the
+//!   `driver::picture`'s streamed way: the word kept a byte a symbol, the
 //!   turtle run twice over it (bounds, then drawing), each segment drawn
 //!   into the coverage buffer as it is made; no segment is stored.
 //! * the baseline, measured once in the same run (it takes seconds): the
@@ -17,7 +17,7 @@
 //! * `lit/lychnis/600`: the cpfg Lychnis (tests/corpus/cpfg/
 //!   10-GettingStarted-01-Lychnis) at 600 steps, 3.05 M polygons lit and
 //!   z-buffered, to a 1024x1024 PNG, derivation included:
-//!   [`driver::render_lit`], the turtle run once for the framing and once
+//!   `driver::picture`'s lit way, the turtle run once for the framing and once
 //!   per thread's share of the picture, nothing drawn stored; against the
 //!   stored way ([`driver::interpret`] + [`driver::render_bytes`]), which
 //!   keeps every polygon, measured once in the same run. A z-buffer needs
@@ -29,7 +29,8 @@
 //! `benches/throughput.rs`), printed as `peak memory: …` lines.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
-use graftal::driver::{self, RunOptions, Streamed};
+use graftal::driver::picture::{self, Format, Method, Quiet, Request, Target};
+use graftal::driver::{self, RunOptions};
 use graftal::ir::System;
 use graftal::render::{self, RenderOptions};
 use std::hint::black_box;
@@ -69,12 +70,13 @@ fn render_options(sys: &System) -> RenderOptions {
 
 /// The streamed way, from the system to PNG bytes.
 fn streamed(sys: &System) -> Vec<u8> {
-    let opts = run_options();
-    let word = driver::derive_symbols(sys, &opts, |_, _| {}).expect("derives");
-    match driver::render_streamed(sys, &opts, word, render_options(sys), &mut |_, _| {}) {
-        Streamed::Picture(bytes) => bytes.expect("png"),
-        Streamed::Word(..) => panic!("Fig. 3.11a is drawn streamed"),
-    }
+    let req = Request {
+        run: run_options(),
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let p = picture::draw_system(sys, &req, &mut Quiet).expect("draws");
+    assert_eq!(p.method, Method::Streamed, "Fig. 3.11a is drawn streamed");
+    p.bytes
 }
 
 /// The stored way: every segment kept, laid out, then stroked.
@@ -132,18 +134,16 @@ fn lychnis_word(sys: &System) -> (graftal::ir::Word, driver::Globals, RunOptions
 
 /// Derived and drawn straight from the turtle.
 fn lit_streamed(sys: &System) -> Vec<u8> {
-    let (word, values, opts) = lychnis_word(sys);
-    driver::render_lit(
-        sys,
-        &word,
-        &values,
-        &opts,
-        RenderOptions::default(),
-        &mut |_, _| {},
-    )
-    .expect("draws")
-    .expect("drawn from the turtle")
-    .expect("png")
+    let req = Request {
+        run: RunOptions {
+            steps: Some(LYCHNIS_STEPS),
+            ..RunOptions::default()
+        },
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let p = picture::draw_system(sys, &req, &mut Quiet).expect("draws");
+    assert_eq!(p.method, Method::Lit, "drawn from the turtle");
+    p.bytes
 }
 
 /// Derived, every polygon stored, then drawn.

@@ -34,6 +34,7 @@ static ALLOC: alloc::Counting = alloc::Counting;
 use criterion::{
     criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
+use graftal::driver::picture::{self, Method, Quiet, Request, Target};
 use graftal::driver::{self, Format, RunOptions};
 use graftal::ir::System;
 use graftal::render::RenderOptions;
@@ -238,9 +239,13 @@ fn bench_render(c: &mut Criterion) {
     group.sampling_mode(SamplingMode::Flat);
     for n in [6u64, 7, 8] {
         let shared = || {
-            driver::render_shared(&sys, &steps(n), Format::Png, ropts)
-                .expect("drawn from shared subtrees")
-                .unwrap()
+            let req = Request {
+                run: steps(n),
+                ..Request::new(Target::Still(Format::Png))
+            };
+            let p = picture::draw_system(&sys, &req, &mut Quiet).unwrap();
+            assert_eq!(p.method, Method::SharedSubtrees);
+            p.bytes
         };
         let every = || {
             let (_, g) = driver::geometry(&sys, &steps(n)).unwrap();

@@ -5,9 +5,9 @@
 //! the output is deterministic, so a test can redraw a few entries and
 //! compare bytes to show the committed gallery is current.
 
-use crate::driver::{self, Format, RunOptions};
-use crate::render::RenderOptions;
-use crate::stdlib::{self, Entry, Kind};
+use crate::diagnostics::codes;
+use crate::driver::picture::{self, Format};
+use crate::stdlib::{self, Entry};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -46,40 +46,24 @@ pub fn file_name(entry: &Entry, ext: &str) -> String {
     format!("{}.{ext}", entry.name.replace('/', "-"))
 }
 
-/// Draws `entry` at its defaults in `format` (as `graftal render` does,
-/// with shared subtrees where they serve); `Ok(None)` when it draws
-/// nothing.
+/// Draws `entry` at its defaults in `format`, by the one call
+/// `graftal render` draws through ([`picture::make`]); `Ok(None)` when it
+/// draws nothing.
 fn draw(entry: &Entry, format: Format) -> Result<Option<Vec<u8>>, String> {
-    let c = driver::compile(driver::load(&format!("std:{}", entry.name)).map_err(|e| e.0)?);
-    let sys = c.system.as_ref().ok_or("the entry does not compile")?;
-    let opts = RunOptions::default();
-    let ropts = RenderOptions {
+    let source = picture::Source::Spec(format!("std:{}", entry.name));
+    let req = picture::Request {
         width: SIZE,
         height: SIZE,
-        spline: entry.kind() == Kind::Spline,
-        view: sys
-            .settings
-            .view
-            .map_or_else(Default::default, |(az, el)| crate::render::View {
-                azimuth: az,
-                elevation: el,
-            }),
-        ..RenderOptions::default()
+        ..picture::Request::new(picture::Target::Still(format))
     };
-    if let Some(bytes) = driver::render_shared(sys, &opts, format, ropts) {
-        return bytes.map(Some).map_err(|e| e.0);
-    }
-    let fail = |d: crate::diagnostics::Diagnostic| d.message;
-    driver::check_moves_up_front(sys, &opts).map_err(fail)?;
-    let (word, values) = driver::derive_values(sys, &opts, |_, _| {}).map_err(fail)?;
-    let mut g = driver::interpret(sys, &word, &values, &opts, ropts.spline).map_err(fail)?;
-    driver::add_layout(sys, &mut g);
-    if g.is_empty() {
-        return Ok(None);
-    }
-    driver::render_bytes(sys, &g, format, ropts)
-        .map(Some)
-        .map_err(|e| e.0)
+    let made = picture::make(&source, None, None, &req, &mut picture::Quiet);
+    let p = match made.picture {
+        Ok(p) => p,
+        Err(picture::DrawError::NotCompiled) => return Err("the entry does not compile".into()),
+        Err(e) => return Err(e.to_string()),
+    };
+    let empty = p.warnings.iter().any(|d| d.code == codes::NOTHING_DRAWN);
+    Ok((!empty).then_some(p.bytes))
 }
 
 /// The pictures of `entry` ([`SIZE`], an SVG only up to [`MAX_SVG`]).

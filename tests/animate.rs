@@ -4,8 +4,9 @@
 
 mod common;
 use common::{graftal, temp};
+use graftal::driver::picture::{self, DrawError, Quiet, Request, Target};
 use graftal::driver::{self, RunOptions};
-use graftal::render::animate::{Animation, Container};
+use graftal::render::animate::Container;
 use graftal::render::RenderOptions;
 
 /// The frames of a GIF: size, delay (hundredths of a second) and RGBA
@@ -246,20 +247,15 @@ fn an_animation_is_bounded_in_frames_and_moves() {
         max_moves: last + 1,
         ..at(20)
     };
-    let anim = Animation {
-        container: Container::Gif,
+    let req = Request {
+        run: opts,
         width: 32,
         height: 32,
-        fps: 10,
-        frames: 0,
+        ..Request::new(Target::Animation(Container::Gif))
     };
-    let ropts = RenderOptions {
-        width: 32,
-        height: 32,
-        ..RenderOptions::default()
+    let Err(DrawError::Stopped(d)) = picture::draw_system(sys, &req, &mut Quiet) else {
+        panic!("over the limit in all");
     };
-    let d = driver::animate(sys, &opts, ropts, anim, true, &mut |_, _| {})
-        .expect_err("over the limit in all");
     assert_eq!(d.code, graftal::diagnostics::codes::TOO_MUCH_GEOMETRY);
     assert!(
         d.notes.iter().any(|n| n.contains("in all its frames")),
@@ -382,16 +378,14 @@ fn the_last_frame_of_a_lit_system_is_its_still() {
         height: 48,
         ..RenderOptions::default()
     };
-    let anim = Animation {
-        container: Container::Apng,
+    let req = Request {
+        run: opts.clone(),
         width: 64,
         height: 48,
-        fps: 10,
-        frames: 0,
+        layout: false,
+        ..Request::new(Target::Animation(Container::Apng))
     };
-    let bytes = driver::animate(&sys, &opts, ropts, anim, false, &mut |_, _| {})
-        .unwrap()
-        .unwrap();
+    let bytes = picture::draw_system(&sys, &req, &mut Quiet).unwrap().bytes;
     let Apng { frames, .. } = apng_frames(&bytes);
     assert_eq!(frames.len(), 3);
     let (_, g) = driver::geometry(&sys, &opts).unwrap();

@@ -15,6 +15,11 @@
 //!   no front end, emitter, eval, driver, cli, language server or gallery;
 //! * the gallery draws through the driver, as a command would: it imports
 //!   no front end, emitter, cli or language server, and only cli calls it;
+//! * the faces (cli, the language server, the gallery) reach the layers
+//!   under the library's calls only for plain data of a request (a view, a
+//!   style, a mesh or animation format): never a way of drawing (the
+//!   raster, the streamed painter, shared subtrees, encoders, mesh
+//!   writers), the turtle or eval, which `driver::picture` chooses between;
 //! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
 //!   `chumsky` and `logos` only in front ends;
 //! * a front end walks no turtle of its own;
@@ -320,6 +325,30 @@ const NOT_FOR_FRONT_ENDS: &[&str] = &["back", "turtle", "render", "eval", "drive
 const ABOVE_THE_TURTLE: &[&str] = &["render", "eval", "front", "back", "driver", "cli"];
 const NOT_FOR_OUTPUTS: &[&str] = &["front", "back", "eval", "driver", "cli", "lsp", "gallery"];
 const NOT_FOR_THE_GALLERY: &[&str] = &["front", "back", "cli", "lsp"];
+const THE_FACES: &[&str] = &["cli", "lsp", "gallery"];
+/// The layers under the library's calls, which a face reaches only for
+/// [`A_FACE_MAY_NAME`].
+const BENEATH_THE_FACES: &[&str] = &["render", "mesh", "turtle", "eval"];
+/// Plain data a face puts in a request: a view, a style, a format.
+const A_FACE_MAY_NAME: &[&[&str]] = &[
+    &["render", "View"],
+    &["render", "Style"],
+    &["render", "Palette"],
+    &["render", "Detail"],
+    &["render", "Margin"],
+    &["render", "animate", "Container"],
+    &["mesh", "MeshFormat"],
+    &["mesh", "MeshStats"],
+];
+
+/// Whether a face names `path`, a part of a layer under the library's
+/// calls that is not plain data: a way of drawing, the turtle, eval.
+fn a_face_reaches_past_the_library(path: &[String]) -> bool {
+    BENEATH_THE_FACES.contains(&path[0].as_str())
+        && !A_FACE_MAY_NAME
+            .iter()
+            .any(|a| path.len() >= a.len() && a.iter().zip(path).all(|(x, y)| x == y))
+}
 
 /// The front ends: the folders under `src/front/`.
 fn notations() -> BTreeSet<String> {
@@ -358,7 +387,8 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "render" | "mesh" => NOT_FOR_OUTPUTS.contains(&target),
                 "gallery" => NOT_FOR_THE_GALLERY.contains(&target),
                 _ => false,
-            } || (target == "gallery" && !matches!(top.as_str(), "gallery" | "cli"));
+            } || (target == "gallery" && !matches!(top.as_str(), "gallery" | "cli"))
+                || (THE_FACES.contains(&top.as_str()) && a_face_reaches_past_the_library(&path));
             if broken {
                 out.push(format!("{}: imports crate::{}", f.path, path.join("::")));
             }
@@ -552,10 +582,36 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ("gallery.rs", "use crate::cli::main;", true),
         ("gallery.rs", "use crate::front::pfg;", true),
         ("gallery.rs", "use crate::lsp::serve;", true),
-        ("gallery.rs", "use crate::driver::{self, Format};", false),
+        (
+            "gallery.rs",
+            "use crate::driver::picture::{self, Format};",
+            false,
+        ),
         ("gallery.rs", "use crate::render::View;", false),
-        ("driver.rs", "use crate::gallery::write;", true),
+        ("driver/mod.rs", "use crate::gallery::write;", true),
         ("cli/mod.rs", "use crate::gallery::write;", false),
+        // A face draws through `driver::picture`, never by a way of its own.
+        ("cli/mod.rs", "let b = crate::render::raster::png(g);", true),
+        ("cli/mod.rs", "use crate::render::{coverage, View};", true),
+        ("gallery.rs", "use crate::turtle::interpret;", true),
+        ("lsp/mod.rs", "use crate::mesh::obj;", true),
+        ("cli/mod.rs", "use crate::eval::Deriver;", true),
+        ("cli/mod.rs", "use crate::render::{Style, View};", false),
+        (
+            "cli/mod.rs",
+            "let c = crate::render::animate::Container::Gif;",
+            false,
+        ),
+        (
+            "cli/mod.rs",
+            "let m = crate::mesh::MeshFormat::from_path(p);",
+            false,
+        ),
+        (
+            "cli/mod.rs",
+            "use crate::driver::picture::{draw, Request};",
+            false,
+        ),
         // Comments, strings and the test module are not imports.
         (
             "ir/mod.rs",

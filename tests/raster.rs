@@ -2,6 +2,7 @@
 //! look's background, through their camera unless a view is asked for;
 //! the others as before.
 
+use graftal::driver::picture::{self, Method, Quiet, Request, Target};
 use graftal::driver::{self, Format, RunOptions};
 use graftal::ir::look::{Camera, Lighting};
 use graftal::ir::{Rgb, System};
@@ -47,8 +48,13 @@ fn a_lit_look_draws_on_its_background() {
     assert_eq!(px[64 * 64 - 1], [0, 0, 40]);
     assert!(px.iter().any(|p| *p != [0, 0, 40]));
     // The shared-subtree path is not taken for it.
-    let shared = driver::render_shared(&sys, &RunOptions::default(), Format::Png, small());
-    assert!(shared.is_none());
+    let req = Request {
+        width: 64,
+        height: 64,
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let drawn = picture::draw_system(&sys, &req, &mut Quiet).unwrap();
+    assert_ne!(drawn.method, Method::SharedSubtrees);
     // SVG: the same background.
     let svg = String::from_utf8(render(&sys, Format::Svg, small())).unwrap();
     assert!(svg.contains(r##"fill="#000028""##), "{svg:.300}");

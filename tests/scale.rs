@@ -9,6 +9,7 @@
 mod common;
 use common::{graftal, temp};
 
+use graftal::driver::picture::{self, Method, Quiet, Request, Target};
 use graftal::driver::{self, compile, compile_entry, Format, RunOptions};
 use graftal::ir::System;
 use graftal::render::RenderOptions;
@@ -207,9 +208,15 @@ fn render_both(name: &str, n: u64, size: u32) -> (Vec<u8>, Vec<u8>) {
         height: size,
         ..RenderOptions::default()
     };
-    let shared = driver::render_shared(&sys, &steps(n), Format::Png, ropts)
-        .expect("drawn from shared subtrees")
-        .unwrap();
+    let req = Request {
+        run: steps(n),
+        width: size,
+        height: size,
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let drawn = picture::draw_system(&sys, &req, &mut Quiet).unwrap();
+    assert_eq!(drawn.method, Method::SharedSubtrees, "{name}");
+    let shared = drawn.bytes;
     let (_, g) = driver::geometry(&sys, &steps(n)).unwrap();
     let full = driver::render_bytes(&sys, &g, Format::Png, ropts).unwrap();
     (shared, full)

@@ -1,10 +1,11 @@
 //! Drawings streamed from the turtle into a coverage buffer
-//! ([`driver::render_streamed`]) against the same drawings with every
+//! (`driver::picture`'s streamed way) against the same drawings with every
 //! segment stored and stroked ([`driver::render_bytes`]), pixel by pixel as
 //! the shared-subtree path is tested; and the narrow words that the
 //! streamed path and `derive` to a pipe hold.
 
-use graftal::driver::{self, Format, RunOptions, Streamed};
+use graftal::driver::picture::{self, Method, Quiet, Request, Target};
+use graftal::driver::{self, Format, RunOptions};
 use graftal::ir::System;
 use graftal::render::coverage::Coverage;
 use graftal::render::{Palette, RenderOptions, Style};
@@ -41,12 +42,19 @@ fn sized(size: u32) -> RenderOptions {
     }
 }
 
+/// The PNG `ropts` asks for, when the one call for a picture draws it
+/// streamed.
 fn streamed(sys: &System, run: &RunOptions, ropts: RenderOptions) -> Option<Vec<u8>> {
-    let word = driver::derive_symbols(sys, run, |_, _| {}).unwrap();
-    match driver::render_streamed(sys, run, word, ropts, &mut |_, _| {}) {
-        Streamed::Picture(bytes) => Some(bytes.unwrap()),
-        Streamed::Word(..) => None,
-    }
+    let req = Request {
+        run: run.clone(),
+        width: ropts.width,
+        height: ropts.height,
+        view: Some(ropts.view),
+        style: ropts.style,
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let p = picture::draw_system(sys, &req, &mut Quiet).unwrap();
+    (p.method == Method::Streamed).then_some(p.bytes)
 }
 
 fn stored(sys: &System, run: &RunOptions, ropts: RenderOptions) -> Vec<u8> {

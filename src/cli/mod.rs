@@ -5,11 +5,15 @@
 //! Exit status: 0 success (warnings allowed), 1 the input has errors, 2 a
 //! usage or I/O problem.
 
+mod output;
+
 use crate::diagnostics::{self, render_all, render_json, Diagnostic};
-use crate::driver::{self, Compiled, Format, Output, RunOptions, UsageError};
-use crate::eval::DEFAULT_MAX_SYMBOLS;
-use crate::render::{RenderOptions, View};
+use crate::driver::picture;
+use crate::driver::DEFAULT_MAX_SYMBOLS;
+use crate::driver::{self, Compiled, Format, RunOptions};
+use crate::render::View;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
+use output::{picture_format, Output, UsageError};
 use std::io::{IsTerminal, Write};
 
 #[derive(Parser, Debug)]
@@ -456,216 +460,114 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
     })
 }
 
-/// `graftal render`: the picture, drawn from shared subtrees when the
-/// driver can, else from the derived word.
+/// `graftal render`: the picture, a mesh or an animation, as the output's
+/// name and `--to` say, drawn by [`picture::draw`].
 fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
+    let (target, output) = match render_target(io, a) {
+        Ok(t) => t,
+        Err(e) => return usage_error(io, &e),
+    };
+    with_system(io, &a.args, |io, c, _sys, opts, _| {
+        let req = picture::Request {
+            run: opts.clone(),
+            target,
+            width: a.size.0,
+            height: a.size.1,
+            // `--view` is in degrees.
+            view: a.view.map(|(az, el)| View::degrees(az, el)),
+            style: crate::render::Style {
+                background: a.background,
+                stroke_width: a.stroke_width,
+                margin: a.margin,
+                rotate: a.rotate,
+                palette: a
+                    .palette
+                    .as_deref()
+                    .and_then(crate::render::Palette::from_name),
+            },
+            detail: crate::render::Detail::from_name(&a.detail).unwrap_or_default(),
+            spline: a.spline,
+            layout: !a.no_layout,
+            fps: a.fps,
+            material_library: material_library(&a.output),
+        };
+        let mut bars = Bars::new(io);
+        let drawn = picture::draw(c, &req, &mut bars);
+        bars.clear();
+        let p = match drawn {
+            Ok(p) => p,
+            Err(picture::DrawError::Stopped(d)) => return Err(vec![*d]),
+            Err(e) => {
+                let _ = writeln!(io.stderr, "error: {e}");
+                return Ok(2);
+            }
+        };
+        report(io, c, &p.warnings, a.args.format);
+        Ok(write_picture(io, a, &output, &p))
+    })
+}
+
+/// What `render` makes and where it writes it: a mesh by the output's
+/// extension (`.obj`, `.ply`, `.glb`), an animation with `--animate`, else
+/// a still picture in the format `--to` or the extension names.
+fn render_target(io: &Io<'_>, a: &RenderArgs) -> Result<(picture::Target, Output), UsageError> {
     if let Some(mesh) = crate::mesh::MeshFormat::from_path(&a.output).filter(|_| a.to.is_none()) {
-        return render_mesh(io, a, mesh);
+        return Ok((picture::Target::Mesh(mesh), Output::File(a.output.clone())));
     }
     let output = Output::from_arg(Some(&a.output));
     if a.animate {
-        return animate(io, a, &output);
-    }
-    let to = a.to.as_deref().and_then(Format::from_name);
-    let format = match driver::picture_format(&output, to, io.stdout_terminal) {
-        Ok(f) => f,
-        Err(e) => return usage_error(io, &e),
-    };
-    with_system(io, &a.args, |io, c, sys, opts, _| {
-        // The stdlib's kolams are drawn as the book draws them.
-        let spline = a.spline || crate::stdlib::draws_as_spline(&c.file.name);
-        let ropts = RenderOptions {
-            spline,
-            ..render_options(a, sys)
-        };
-        let bar = draw_bar(io);
-        let mut progress = |drawn: u64, total: u64| {
-            if let Some(bar) = &bar {
-                bar.set_length(total);
-                bar.set_position(drawn);
-            }
-        };
-        if let Some(bytes) = driver::render_shared_with(sys, opts, format, ropts, &mut progress) {
-            if let Some(bar) = &bar {
-                bar.finish_and_clear();
-            }
-            return Ok(write_picture(io, &output, bytes));
-        }
-        driver::check_moves_up_front(sys, opts).map_err(|d| vec![d])?;
-        let (word, values) = if driver::streams(sys, format, &ropts) {
-            let w = with_step_bar(io, sys, opts, |p| driver::derive_symbols(sys, opts, p))
-                .map_err(|d| vec![d])?;
-            match driver::render_streamed(sys, opts, w, ropts, &mut progress) {
-                driver::Streamed::Picture(bytes) => {
-                    if let Some(bar) = &bar {
-                        bar.finish_and_clear();
-                    }
-                    return Ok(write_picture(io, &output, bytes));
-                }
-                driver::Streamed::Word(w, values) => (w, values),
-            }
-        } else {
-            derive_reporting(io, sys, opts).map_err(|d| vec![d])?
-        };
-        if driver::streams_lit(sys, format, &ropts, !a.no_layout) {
-            let lit = driver::render_lit(sys, &word, &values, opts, ropts, &mut progress);
-            if let Some(bytes) = lit.map_err(|d| vec![d])? {
-                if let Some(bar) = &bar {
-                    bar.finish_and_clear();
-                }
-                return Ok(write_picture(io, &output, bytes));
-            }
-        }
-        let mut g = driver::interpret(sys, &word, &values, opts, spline).map_err(|d| vec![d])?;
-        if !a.no_layout {
-            driver::add_layout(sys, &mut g);
-        }
-        if g.is_empty() {
-            report(
-                io,
-                c,
-                &[driver::nothing_drawn(
-                    sys,
-                    &word,
-                    &c.file.name,
-                    opts,
-                    &c.diagnostics,
-                )],
-                a.args.format,
-            );
-        } else if let Some(d) = driver::nearly_nothing_drawn(sys, &g, &ropts) {
-            report(io, c, &[d], a.args.format);
-        }
-        let bytes = driver::render_bytes_with(sys, &g, format, ropts, &mut progress);
-        if let Some(bar) = &bar {
-            bar.finish_and_clear();
-        }
-        Ok(write_picture(io, &output, bytes))
-    })
-}
-
-/// `graftal render --animate`: steps 0..N as the frames of a GIF or APNG.
-fn animate(io: &mut Io<'_>, a: &RenderArgs, output: &Output) -> i32 {
-    use crate::render::animate::{Animation, Container};
-    let Some(container) = Container::choose(output.path(), a.to.as_deref()) else {
-        return usage_error(
-            io,
-            &UsageError {
+        use crate::render::animate::Container;
+        let Some(container) = Container::choose(output.path(), a.to.as_deref()) else {
+            return Err(UsageError {
                 message: "`--animate` writes a GIF or an animated PNG".into(),
                 help: "name the output `….gif` or `….png` (`--to png` with `-o -`)".into(),
-            },
-        );
-    };
-    if container == Container::Apng && *output == Output::Stdout && io.stdout_terminal {
-        let e = driver::picture_format(output, Some(Format::Png), true);
-        return usage_error(io, &e.expect_err("a PNG on a terminal is refused"));
-    }
-    with_system(io, &a.args, |io, c, sys, opts, _| {
-        let spline = a.spline || crate::stdlib::draws_as_spline(&c.file.name);
-        let ropts = RenderOptions {
-            spline,
-            ..render_options(a, sys)
+            });
         };
-        let anim = Animation {
-            container,
-            width: a.size.0,
-            height: a.size.1,
-            fps: a.fps,
-            frames: 0,
-        };
-        let bar = stage_bar(io, "frames", "frames");
-        let mut progress = |k: u64, n: u64| {
-            if let Some(bar) = &bar {
-                bar.set_length(n);
-                bar.set_position(k);
-            }
-        };
-        let bytes = driver::animate(sys, opts, ropts, anim, !a.no_layout, &mut progress)
-            .map_err(|d| vec![d])?;
-        if let Some(bar) = &bar {
-            bar.finish_and_clear();
+        if container == Container::Apng && output == Output::Stdout && io.stdout_terminal {
+            picture_format(&output, Some(Format::Png), true)?;
         }
-        Ok(write_picture(io, output, bytes))
-    })
+        return Ok((picture::Target::Animation(container), output));
+    }
+    let to = a.to.as_deref().and_then(Format::from_name);
+    let format = picture_format(&output, to, io.stdout_terminal)?;
+    Ok((picture::Target::Still(format), output))
 }
 
-/// `graftal render -o OUT.obj|OUT.ply|OUT.glb`: the mesh (an OBJ's
-/// material library beside it), and what it holds on stdout.
-fn render_mesh(io: &mut Io<'_>, a: &RenderArgs, format: crate::mesh::MeshFormat) -> i32 {
-    let mtl_path = std::path::Path::new(&a.output).with_extension("mtl");
-    let mtl_file = mtl_path
-        .file_name()
+/// The file name an OBJ gives its material library: the output's, ending
+/// in `.mtl`.
+fn material_library(output: &str) -> String {
+    let mtl = std::path::Path::new(output).with_extension("mtl");
+    mtl.file_name()
         .and_then(|n| n.to_str())
-        .unwrap_or("graftal.mtl");
-    with_system(io, &a.args, |io, _c, sys, opts, _| {
-        let bar = stage_bar(io, "meshing", "primitives");
-        let mut progress = |done: u64, total: u64| {
-            if let Some(bar) = &bar {
-                bar.set_length(total);
-                bar.set_position(done);
-            }
-        };
-        let out = driver::render_mesh(sys, opts, format, mtl_file, a.no_layout, &mut progress)
-            .map_err(|d| vec![d])?;
-        if let Some(bar) = &bar {
-            bar.finish_and_clear();
-        }
-        if let Some(mtl) = &out.mtl {
-            let status = write_output(
-                io,
-                &Output::File(mtl_path.display().to_string()),
-                mtl.as_bytes(),
-            );
-            if status != 0 {
-                return Ok(status);
-            }
-        }
-        let status = write_output(io, &Output::File(a.output.clone()), &out.bytes);
-        if status == 0 {
-            let s = &out.stats;
-            let _ = match a.args.format {
-                OutputFormat::Json => writeln!(io.stdout, "{}", serde_json::json!(s)),
-                OutputFormat::Human => writeln!(
-                    io.stdout,
-                    "{} vertices, {} triangles, {} materials, {} meshes placed {} times",
-                    s.vertices, s.triangles, s.materials, s.meshes, s.nodes
-                ),
-            };
-        }
-        Ok(status)
-    })
+        .unwrap_or("graftal.mtl")
+        .to_string()
 }
 
-/// The picture `a` asks for; the view is `--view`, else the file's own.
-fn render_options(a: &RenderArgs, sys: &crate::ir::System) -> RenderOptions {
-    // `--view` is in degrees, the file's view in radians.
-    let view = a
-        .view
-        .map(|(az, el)| View::degrees(az, el))
-        .or(sys.settings.view.map(|(az, el)| View {
-            azimuth: az,
-            elevation: el,
-        }))
-        .unwrap_or_default();
-    RenderOptions {
-        width: a.size.0,
-        height: a.size.1,
-        view,
-        spline: a.spline,
-        view_given: a.view.is_some(),
-        style: crate::render::Style {
-            background: a.background,
-            stroke_width: a.stroke_width,
-            margin: a.margin,
-            rotate: a.rotate,
-            palette: a
-                .palette
-                .as_deref()
-                .and_then(crate::render::Palette::from_name),
-        },
-        detail: crate::render::Detail::from_name(&a.detail).unwrap_or_default(),
-        ..RenderOptions::default()
+/// Writes a picture, its side files beside it, and for a mesh what it
+/// holds on stdout; the exit status.
+fn write_picture(io: &mut Io<'_>, a: &RenderArgs, output: &Output, p: &picture::Picture) -> i32 {
+    let folder = std::path::Path::new(&a.output)
+        .parent()
+        .unwrap_or(std::path::Path::new(""));
+    for side in &p.side_files {
+        let path = folder.join(&side.name).display().to_string();
+        let status = write_output(io, &Output::File(path), &side.bytes);
+        if status != 0 {
+            return status;
+        }
     }
+    let status = write_output(io, output, &p.bytes);
+    if let (0, Some(s)) = (status, &p.mesh) {
+        let _ = match a.args.format {
+            OutputFormat::Json => writeln!(io.stdout, "{}", serde_json::json!(s)),
+            OutputFormat::Human => writeln!(
+                io.stdout,
+                "{} vertices, {} triangles, {} materials, {} meshes placed {} times",
+                s.vertices, s.triangles, s.materials, s.meshes, s.nodes
+            ),
+        };
+    }
+    status
 }
 
 /// `graftal gallery`: every stdlib entry's pictures and the index.
@@ -1045,22 +947,6 @@ fn listing_json(c: &Compiled) -> serde_json::Value {
     })
 }
 
-/// Writes a rendered picture to `output`; the exit status.
-fn write_picture(
-    io: &mut Io<'_>,
-    output: &Output,
-    bytes: Result<Vec<u8>, driver::LoadError>,
-) -> i32 {
-    let bytes = match bytes {
-        Ok(b) => b,
-        Err(e) => {
-            let _ = writeln!(io.stderr, "error: {e}");
-            return 2;
-        }
-    };
-    write_output(io, output, &bytes)
-}
-
 /// Writes `bytes` to a file or to stdout; the exit status. A closed pipe
 /// (`| head`) is not an error, as for `derive`.
 fn write_output(io: &mut Io<'_>, output: &Output, bytes: &[u8]) -> i32 {
@@ -1085,57 +971,79 @@ fn usage_error(io: &mut Io<'_>, e: &UsageError) -> i32 {
     2
 }
 
-/// Derives with a progress bar on a terminal (never in pipes or CI).
-fn derive_reporting(
-    io: &Io<'_>,
-    sys: &crate::ir::System,
-    opts: &RunOptions,
-) -> Result<(crate::ir::Word, driver::Globals), Diagnostic> {
-    with_step_bar(io, sys, opts, |p| driver::derive_values(sys, opts, p))
-}
-
-/// Runs the derivation `derive` with a bar over its steps, when
-/// [`show_progress`].
-fn with_step_bar<T>(
-    io: &Io<'_>,
-    sys: &crate::ir::System,
-    opts: &RunOptions,
-    derive: impl FnOnce(&mut dyn FnMut(u64, usize)) -> Result<T, Diagnostic>,
-) -> Result<T, Diagnostic> {
-    let Some(bar) = step_bar(io, sys, opts) else {
-        return derive(&mut |_, _| {});
-    };
-    let r = derive(&mut |step, len| {
-        bar.set_position(step);
-        bar.set_message(format!("{len} symbols"));
-    });
-    bar.finish_and_clear();
-    r
-}
-
 /// Whether progress is shown: on a terminal, outside CI.
 fn show_progress(io: &Io<'_>) -> bool {
     io.terminal && std::env::var_os("CI").is_none()
-}
-
-/// A progress bar over segments drawn, when [`show_progress`]; its length
-/// is set when drawing starts.
-fn draw_bar(io: &Io<'_>) -> Option<indicatif::ProgressBar> {
-    stage_bar(io, "drawing", "segments")
 }
 
 /// A progress bar for a long stage (`stage`: drawing, encoding, mesh,
 /// frames), counting `unit`s, when [`show_progress`]; its length is set
 /// when the stage starts. Never in pipes: `io.terminal` is false there.
 pub(crate) fn stage_bar(io: &Io<'_>, stage: &str, unit: &str) -> Option<indicatif::ProgressBar> {
-    if !show_progress(io) {
-        return None;
-    }
+    show_progress(io).then(|| new_stage_bar(stage, unit))
+}
+
+/// A bar for `stage`, counting `unit`s.
+fn new_stage_bar(stage: &str, unit: &str) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(0);
     let template = format!("{stage:9} {{bar:30}} {{pos}}/{{len}} {unit}");
     bar.set_style(indicatif::ProgressStyle::with_template(&template).expect("valid template"));
     bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    Some(bar)
+    bar
+}
+
+/// The progress bars of a picture being made, each started when its
+/// stage first reports ([`picture::Progress`]), when [`show_progress`].
+struct Bars {
+    show: bool,
+    steps: Option<indicatif::ProgressBar>,
+    stage: Option<indicatif::ProgressBar>,
+}
+
+impl Bars {
+    fn new(io: &Io<'_>) -> Bars {
+        Bars {
+            show: show_progress(io),
+            steps: None,
+            stage: None,
+        }
+    }
+
+    /// Clears the bars from the terminal.
+    fn clear(self) {
+        self.steps
+            .iter()
+            .chain(&self.stage)
+            .for_each(|b| b.finish_and_clear());
+    }
+}
+
+impl picture::Progress for Bars {
+    fn derived(&mut self, step: u64, steps: u64, symbols: usize) {
+        if !self.show || steps == 0 {
+            return;
+        }
+        let bar = self.steps.get_or_insert_with(|| new_step_bar(steps));
+        bar.set_position(step);
+        bar.set_message(format!("{symbols} symbols"));
+    }
+
+    fn advanced(&mut self, stage: picture::Stage, done: u64, total: u64) {
+        if !self.show {
+            return;
+        }
+        if let Some(steps) = self.steps.take() {
+            steps.finish_and_clear();
+        }
+        let (name, unit) = match stage {
+            picture::Stage::Drawing => ("drawing", "segments"),
+            picture::Stage::Meshing => ("meshing", "primitives"),
+            picture::Stage::Frames => ("frames", "frames"),
+        };
+        let bar = self.stage.get_or_insert_with(|| new_stage_bar(name, unit));
+        bar.set_length(total);
+        bar.set_position(done);
+    }
 }
 
 /// A progress bar over derivation steps, when [`show_progress`].
@@ -1145,16 +1053,18 @@ fn step_bar(
     opts: &RunOptions,
 ) -> Option<indicatif::ProgressBar> {
     let steps = opts.derive_options(sys).steps;
-    if !show_progress(io) || steps == 0 {
-        return None;
-    }
+    (show_progress(io) && steps > 0).then(|| new_step_bar(steps))
+}
+
+/// A bar over `steps` derivation steps.
+fn new_step_bar(steps: u64) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("deriving {bar:30} step {pos}/{len} {msg}")
             .expect("valid template"),
     );
     bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    Some(bar)
+    bar
 }
 
 fn report(io: &mut Io<'_>, c: &Compiled, ds: &[Diagnostic], format: OutputFormat) {

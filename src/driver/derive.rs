@@ -1,0 +1,177 @@
+//! Deriving a system's word: the options of a run, the word with the
+//! values its program's globals were left with, its symbols as narrow as
+//! they were derived, or written straight to a stream.
+
+use super::interpret::{answer_queries, MAX_MOVES};
+use crate::diagnostics::Diagnostic;
+use crate::eval::parametric::Globals;
+use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
+use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
+use crate::front::Front;
+use crate::ir::{System, Word};
+use std::io::Write as _;
+
+/// Derives and writes the word as [`Front::word_text`] would, followed by a
+/// newline. A context-free deterministic system whose notation spells words
+/// by their symbols' names ([`Front::spells_words_by_name`]) is written
+/// straight from its shared derivation tree ([`Tree::walk`]), in chunks,
+/// without building the word; any other is derived, then written.
+/// `progress` is called as [`derive_with_progress`] calls it. Write errors (a closed
+/// pipe) end the writing quietly.
+pub fn write_derived(
+    front: &dyn Front,
+    sys: &System,
+    opts: &RunOptions,
+    out: &mut dyn std::io::Write,
+    mut progress: impl FnMut(u64, usize),
+) -> Result<(), Diagnostic> {
+    let dopts = opts.derive_options(sys);
+    let by_name = front.spells_words_by_name();
+    let tree = match by_name && dopts.steps <= MAX_TREE_DEPTH {
+        true => Tree::new(sys),
+        false => None,
+    };
+    let mut out = std::io::BufWriter::with_capacity(1 << 18, out);
+    let names: Vec<&[u8]> = sys.symbols.iter().map(|(_, i)| i.name.as_bytes()).collect();
+    if let Some(t) = tree {
+        // Checks the limit before anything is written.
+        let len = Deriver::new(sys).tree_len(&t, &dopts)?;
+        let _ = t.walk(
+            dopts.steps,
+            |s| names[s.index()],
+            |chunk| out.write_all(chunk),
+        );
+        progress(dopts.steps, len);
+    } else if by_name && !sys.rewrites_modules() {
+        // Plain symbols, kept as narrow as they were derived (a byte each
+        // for most alphabets) and written in chunks: no wider copy of the
+        // word, no text of it.
+        let w = Deriver::new(sys).derive_symbols(&dopts, progress)?;
+        write_names(&names, w.iter(), &mut out);
+    } else {
+        let w = derive_with_progress(sys, opts, progress)?;
+        if by_name && !w.has_params() {
+            write_names(&names, w.0.iter().copied(), &mut out);
+        } else {
+            let _ = out.write_all(front.word_text(sys, &w).as_bytes());
+        }
+    }
+    let _ = out.write_all(b"\n");
+    let _ = out.flush();
+    Ok(())
+}
+
+/// Writes the symbols' names one after the other, stopping at the first
+/// write error (a closed pipe).
+fn write_names(
+    names: &[&[u8]],
+    word: impl Iterator<Item = crate::ir::SymbolId>,
+    out: &mut dyn std::io::Write,
+) {
+    if names.iter().all(|n| n.len() == 1) {
+        // One byte per symbol: a table look-up per symbol, a chunk at a time.
+        let byte: Vec<u8> = names.iter().map(|n| n[0]).collect();
+        let mut chunk = Vec::with_capacity(1 << 16);
+        for s in word {
+            chunk.push(byte[s.index()]);
+            if chunk.len() == chunk.capacity() {
+                if out.write_all(&chunk).is_err() {
+                    return;
+                }
+                chunk.clear();
+            }
+        }
+        let _ = out.write_all(&chunk);
+    } else {
+        // Name by name into the buffer: no text built in between.
+        for s in word {
+            if out.write_all(names[s.index()]).is_err() {
+                return;
+            }
+        }
+    }
+}
+
+/// How many symbols of `word` are written: STL's silent stem-level markers
+/// (symbols with an empty name) are not counted.
+pub(super) fn written_symbols(sys: &System, word: &Word) -> usize {
+    let silent: Vec<bool> = sys.symbols.iter().map(|(_, i)| i.name.is_empty()).collect();
+    if silent.iter().any(|&s| s) {
+        word.0.iter().filter(|s| !silent[s.index()]).count()
+    } else {
+        word.len()
+    }
+}
+
+/// Settings given on the command line.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Steps; `None` means the file's own derivation length, else 0.
+    pub steps: Option<u64>,
+    pub seed: u64,
+    pub max_symbols: usize,
+    /// The most turtle moves interpreted (see [`MAX_MOVES`]).
+    pub max_moves: usize,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            steps: None,
+            seed: 0,
+            max_symbols: DEFAULT_MAX_SYMBOLS,
+            max_moves: MAX_MOVES,
+        }
+    }
+}
+
+impl RunOptions {
+    pub fn derive_options(&self, sys: &System) -> DeriveOptions {
+        DeriveOptions::new(self.steps.or(sys.settings.steps).unwrap_or(0))
+            .seed(self.seed)
+            .max_symbols(self.max_symbols)
+    }
+}
+
+/// Derives the word, reporting progress after each step.
+pub fn derive_with_progress(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<Word, Diagnostic> {
+    derive_values(sys, opts, progress).map(|(w, _)| w)
+}
+
+/// Derives the word, reporting progress after each step, with the values
+/// its program's globals and arrays were left with (what the homomorphism
+/// reads when the word is drawn: [`interpret`]).
+pub fn derive_values(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<(Word, Globals), Diagnostic> {
+    let dopts = opts.derive_options(sys);
+    // The module test alone ([`eval::plan`] would build the Deriver, and
+    // its table, a second time): the plain methods are the Deriver's.
+    if sys.rewrites_modules() {
+        return eval::parametric::derive(sys, &dopts, progress, &mut |w, values| {
+            answer_queries(sys, w, values, opts)
+        });
+    }
+    let word = Deriver::new(sys).derive(&dopts, progress)?;
+    Ok((word, Globals::initial(&sys.program)))
+}
+
+/// Derives the word.
+pub fn derive(sys: &System, opts: &RunOptions) -> Result<Word, Diagnostic> {
+    derive_with_progress(sys, opts, |_, _| {})
+}
+/// Derives the word of a system without modules, its symbols as narrow as
+/// the derivation held them (what [`render_streamed`] draws).
+pub fn derive_symbols(
+    sys: &System,
+    opts: &RunOptions,
+    progress: impl FnMut(u64, usize),
+) -> Result<eval::Symbols, Diagnostic> {
+    Deriver::new(sys).derive_symbols(&opts.derive_options(sys), progress)
+}

@@ -1,0 +1,181 @@
+//! Words into geometry: the turtle run over a derived word (through the
+//! system's homomorphism where it has one), within the limit on moves;
+//! query modules answered with what the turtle finds; an STL layout's
+//! shapes added under the tree.
+
+use super::derive::{derive_values, RunOptions};
+use crate::diagnostics::{codes, Diagnostic};
+use crate::eval;
+use crate::eval::parametric::Globals;
+use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
+use crate::ir::{System, TurtleOp, Word};
+use crate::turtle::{self, Geometry};
+
+/// The most turtle moves a word may have to be interpreted: each becomes a
+/// segment or a point kept in memory (about 64 bytes, and as much again to
+/// draw it), so 30 million stay within a few GB.
+pub const MAX_MOVES: usize = 30_000_000;
+
+/// Interprets `word`, refusing words whose geometry would not fit in memory
+/// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too. A
+/// system whose rewriting needs modules draws its word through its
+/// homomorphism, which reads the program's globals and arrays as `values`
+/// holds them ([`derive_values`]).
+pub fn interpret(
+    sys: &System,
+    word: &Word,
+    values: &Globals,
+    opts: &RunOptions,
+    paths: bool,
+) -> Result<Geometry, Diagnostic> {
+    let options = turtle::TurtleOptions {
+        paths,
+        ..Default::default()
+    };
+    let drawn = drawn_word(sys, word, values, opts)?;
+    Ok(turtle::interpret_with(
+        sys,
+        &drawn,
+        opts.seed,
+        options,
+        &mut |_, _, _| {},
+    ))
+}
+
+/// The word the turtle draws for `word`: itself, or what the system's
+/// homomorphism makes of it (reading the program's globals and arrays as
+/// `values` holds them); refused when its geometry would not fit in
+/// memory ([`MAX_MOVES`]).
+pub(super) fn drawn_word<'w>(
+    sys: &System,
+    word: &'w Word,
+    values: &Globals,
+    opts: &RunOptions,
+) -> Result<std::borrow::Cow<'w, Word>, Diagnostic> {
+    if sys.rewrites_modules() {
+        let dopts = opts.derive_options(sys);
+        let (drawn, _) = eval::parametric::homomorphism(sys, word, values, &dopts)?;
+        let moves = turtle::drawn_cost(sys, &drawn);
+        if moves > opts.max_moves as u64 {
+            return Err(too_much_geometry(moves, opts.max_moves).with_note(
+                "each triangle of a surface and face of a generalized cylinder counts as a move",
+            ));
+        }
+        return Ok(std::borrow::Cow::Owned(drawn));
+    }
+    let moves = turtle::drawn_cost(sys, word);
+    if moves > opts.max_moves as u64 {
+        return Err(too_much_geometry(moves, opts.max_moves)
+            .with_note(format!("the derived word has {} symbols", word.len())));
+    }
+    Ok(std::borrow::Cow::Borrowed(word))
+}
+
+/// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
+/// finds there, drawing the word through the homomorphism.
+pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, opts: &RunOptions) {
+    let dopts = opts.derive_options(sys);
+    let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, values, &dopts) else {
+        return;
+    };
+    let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
+    turtle::interpret_with(
+        sys,
+        &drawn,
+        opts.seed,
+        turtle::TurtleOptions::default(),
+        &mut |i, _, v| answers.push((i, v)),
+    );
+    for (i, v) in answers {
+        // Only a query module the homomorphism kept writes back.
+        let Some(&o) = origins.get(i) else { continue };
+        let o = o as usize;
+        if word.0.get(o) != drawn.0.get(i) {
+            continue;
+        }
+        word.set_args(o, &v);
+    }
+}
+
+/// Derives and interprets: the geometry of the system.
+pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
+    let (word, values) = derive_values(sys, opts, |_, _| {})?;
+    let g = interpret(sys, &word, &values, opts, false)?;
+    Ok((word, g))
+}
+
+/// Adds an STL system's layout shapes to `g` as filled polygons drawn
+/// first, so the tree is drawn over them (PNG and SVG draw polygons before
+/// segments). Systems without a layout are left as they are.
+pub fn add_layout(sys: &System, g: &mut Geometry) {
+    let Some(st) = &sys.structure else { return };
+    let shapes: Vec<turtle::Polygon> = st
+        .constraint
+        .outline
+        .iter()
+        .map(|s| turtle::Polygon {
+            points: crate::ir::layout::outline(s)
+                .into_iter()
+                .map(|p| [p[0], p[1], 0.0])
+                .collect(),
+            colour: crate::ir::layout::colour(s),
+            index: 0,
+            surface: false,
+        })
+        .filter(|p| p.points.len() >= 3)
+        .collect();
+    g.polygons.splice(0..0, shapes);
+}
+
+/// Refuses, before deriving, to draw a system whose word would move the
+/// turtle more than [`RunOptions::max_moves`] times when it must be drawn
+/// segment by segment: counted on the shared derivation tree of a
+/// context-free deterministic system, and bounded from below for the
+/// others ([`eval::fewest_at`]: the fewest moves any choices can make).
+pub(super) fn check_moves_up_front(sys: &System, opts: &RunOptions) -> Result<(), Diagnostic> {
+    let steps = opts.derive_options(sys).steps;
+    let is_move = |s: crate::ir::SymbolId| {
+        u128::from(matches!(
+            sys.op(s),
+            Some(TurtleOp::Forward { .. } | TurtleOp::ForwardReal { .. })
+        ))
+    };
+    let max = opts.max_moves as u128;
+    if let Some(t) = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten() {
+        let moves: Vec<u128> = (0..sys.symbols.len() as u32)
+            .map(|i| is_move(crate::ir::SymbolId(i)))
+            .collect();
+        return match t.weighed(steps, &moves, max) {
+            Ok(_) => Ok(()),
+            Err(step) => Err(too_much_geometry(max, opts.max_moves).with_note(format!(
+                "known before deriving: the word of step {step} of {steps} already moves it more"
+            ))),
+        };
+    }
+    // A homomorphism decides what draws: the word's own moves tell nothing.
+    if !sys.homomorphism.productions.is_empty() {
+        return Ok(());
+    }
+    match eval::fewest_at(sys, steps, is_move, u128::from(u64::MAX)) {
+        Some(fewest) if fewest > max => Err(too_much_geometry(
+            format!("at least {fewest}"),
+            opts.max_moves,
+        )
+        .with_note("known before deriving: whatever the contexts, conditions and random choices")),
+        _ => Ok(()),
+    }
+}
+
+fn too_much_geometry(moves: impl std::fmt::Display, max: usize) -> Diagnostic {
+    Diagnostic::global(
+        codes::TOO_MUCH_GEOMETRY,
+        format!("the word moves the turtle {moves} times, more than can be drawn ({max})"),
+    )
+    .with_help("draw fewer steps with `-n`; `derive` and `stats` have no such limit")
+}
+/// Whether an STL layout would draw an outline under the system's picture.
+pub(super) fn has_outline(sys: &System) -> bool {
+    sys.structure
+        .as_ref()
+        .is_some_and(|st| !st.constraint.outline.is_empty())
+}

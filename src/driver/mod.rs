@@ -1,0 +1,41 @@
+//! The pipeline as library calls, one room per responsibility: load and
+//! compile a file ([`load`]), derive its word ([`derive`]), what `check`
+//! derives to find limits ([`check`]), turn a word into geometry
+//! ([`interpret`], which also answers query modules), translate it
+//! ([`translate`]), make its picture ([`picture`]: the one call every face
+//! draws through), say why a picture is empty ([`empty`]) and measure it
+//! ([`stats`]).
+//!
+//! The faces (the command line, the gallery, the language server) are thin
+//! layers over these calls: they parse their input, call the library and
+//! print or send what it returns. How a picture is made (from shared
+//! subtrees, streamed, lit or stored, a mesh, an animation) is decided in
+//! [`picture`] alone; its strategies are private to it.
+
+mod check;
+mod derive;
+mod empty;
+mod interpret;
+mod load;
+pub mod picture;
+mod stats;
+mod translate;
+
+pub use crate::eval::parametric::Globals;
+pub use crate::eval::DEFAULT_MAX_SYMBOLS;
+pub use crate::source::MAX_SOURCE_BYTES;
+pub use check::{
+    derivation_diagnostics, CHECK_ENTRY_MAX_SYMBOLS, CHECK_MAX_SYMBOLS, LISTED_ENTRIES,
+};
+pub use derive::{
+    derive, derive_symbols, derive_values, derive_with_progress, write_derived, RunOptions,
+};
+pub use empty::{nearly_nothing_drawn, nothing_drawn, why_nothing_drawn, NEARLY_NOTHING};
+pub use interpret::{add_layout, geometry, interpret, MAX_MOVES};
+pub use load::{
+    choose_entry, compile, compile_as, compile_entry, load, notations, split_entry, Compiled,
+    LoadError,
+};
+pub use picture::{render_bytes, Format};
+pub use stats::{stats, StageTimes, Stats};
+pub use translate::{translate, COMPARE_MAX_SYMBOLS};

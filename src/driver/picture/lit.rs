@@ -1,0 +1,59 @@
+//! Lit pictures drawn straight from the turtle: it runs once to survey
+//! the framing, then once per band of rows; nothing drawn is stored.
+
+use super::stored::{apply_look, palette, too_large};
+use super::{DrawError, Format};
+use crate::driver::derive::RunOptions;
+use crate::driver::empty::NEARLY_NOTHING;
+use crate::driver::interpret::{drawn_word, has_outline};
+use crate::driver::Globals;
+use crate::ir::{System, Word};
+use crate::render::{self, RenderOptions};
+use crate::turtle;
+
+/// Whether [`draw`] may draw `sys` to `format` with `ropts`: a PNG
+/// of a lit look, without splines or an STL layout (`layout`: one would be
+/// added).
+pub(super) fn streams_lit(
+    sys: &System,
+    format: Format,
+    ropts: &RenderOptions,
+    layout: bool,
+) -> bool {
+    format == Format::Png
+        && sys.look.lighting.is_some()
+        && !ropts.spline
+        && !(layout && has_outline(sys))
+}
+
+/// Draws a lit system's word to a PNG straight from the turtle
+/// ([`render::raster::png_surveyed`]): the turtle runs once for the framing and
+/// once per band of rows, and nothing drawn is stored, so a plant of
+/// millions of polygons draws in the memory of its picture. The picture is
+/// the one [`super::render_bytes`] draws from the stored geometry. `Ok(None)` when
+/// nearly nothing is drawn, which the stored way explains. Call it where
+/// [`streams_lit`] holds.
+pub(super) fn draw(
+    sys: &System,
+    word: &Word,
+    values: &Globals,
+    opts: &RunOptions,
+    mut ropts: RenderOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Option<Vec<u8>>, DrawError> {
+    let drawn = drawn_word(sys, word, values, opts)?;
+    apply_look(sys, &mut ropts);
+    ropts.thin_dense = true;
+    let Some(lighting) = sys.look.lighting.as_ref() else {
+        return Ok(None);
+    };
+    let replay = |sink: &mut dyn turtle::Sink| turtle::draw_into(sys, &drawn, opts.seed, sink);
+    let drawing = render::raster::Drawing::replayed(&replay, sys.settings.world_widths);
+    let survey = render::raster::survey(&drawing, lighting, &ropts);
+    if survey.pixels_across(&ropts) < NEARLY_NOTHING {
+        return Ok(None);
+    }
+    let png =
+        render::raster::png_surveyed(&drawing, &survey, lighting, palette(sys), &ropts, progress);
+    png.ok_or(too_large(&ropts)).map(Some)
+}

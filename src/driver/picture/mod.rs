@@ -1,0 +1,439 @@
+//! One call for a picture, as resvg has one `render`: a [`Request`] says
+//! what to draw (the steps, seed and limits of the run) and how (a
+//! [`Target`]: PNG, SVG, a mesh or an animation; size, view, style,
+//! detail, splines, layout), and [`draw`] returns a [`Picture`]: its
+//! bytes, its side files (an OBJ's material library), the warnings it
+//! raised and the [`Method`] it chose. [`make`] also reads and compiles
+//! the source. The command line, the gallery, an animation's frames and
+//! every face to come draw through these calls.
+//!
+//! The method is chosen here from the system and the request, as
+//! [`crate::eval::plan`] chooses a derivation, and the methods are private:
+//! a still picture is drawn from shared subtrees where the system and the
+//! view allow ([`shared`]), else streamed segment by segment ([`streamed`]),
+//! else lit straight from the turtle ([`lit`]), else from stored geometry
+//! ([`stored`]); meshes in [`mesh`], animations in [`animate`].
+
+mod animate;
+mod lit;
+mod mesh;
+mod shared;
+mod stored;
+mod streamed;
+
+use super::derive::{derive_symbols, derive_values, RunOptions};
+use super::empty::{nearly_nothing_drawn, nothing_drawn};
+use super::interpret::{add_layout, check_moves_up_front, interpret};
+use super::load::{compile_as, load, split_entry, Compiled, LoadError};
+use crate::diagnostics::{Diagnostic, Diagnostics};
+use crate::front::Front;
+use crate::ir::System;
+use crate::mesh::{MeshFormat, MeshStats};
+use crate::render::animate::Container;
+use crate::render::{Detail, RenderOptions, Style, View};
+use crate::source::SourceFile;
+use std::path::Path;
+
+pub(in crate::driver) use stored::apply_look;
+pub use stored::render_bytes;
+
+/// The formats of a still picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Png,
+    Svg,
+}
+
+impl Format {
+    /// The formats' names, as `render --to` takes them and as extensions.
+    pub const NAMES: &'static [&'static str] = &["png", "svg"];
+
+    /// The format named `name` (`png`, `svg`; any case).
+    pub fn from_name(name: &str) -> Option<Format> {
+        match name.to_ascii_lowercase().as_str() {
+            "png" => Some(Format::Png),
+            "svg" => Some(Format::Svg),
+            _ => None,
+        }
+    }
+
+    /// The format for an output path, by its extension.
+    pub fn from_path(path: &str) -> Option<Format> {
+        Format::from_name(Path::new(path).extension()?.to_str()?)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Svg => "svg",
+        }
+    }
+}
+
+/// What a picture is made into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A still picture.
+    Still(Format),
+    /// A mesh: OBJ (with its material library as a side file), PLY, glTF.
+    Mesh(MeshFormat),
+    /// The steps 0..=N as the frames of a GIF or an animated PNG.
+    Animation(Container),
+}
+
+/// The request for a picture: the run (steps, seed, limits) and how it is
+/// drawn. [`Request::new`] gives `graftal render`'s defaults.
+#[derive(Clone, Debug)]
+pub struct Request {
+    pub run: RunOptions,
+    pub target: Target,
+    pub width: u32,
+    pub height: u32,
+    /// The view asked for; `None` takes the file's own (or its camera),
+    /// else face on.
+    pub view: Option<View>,
+    pub style: Style,
+    /// What an SVG keeps of detail finer than its pixels.
+    pub detail: Detail,
+    /// Branches drawn as B-splines through the turtle's positions. The
+    /// stdlib's kolams are drawn so whatever this says.
+    pub spline: bool,
+    /// An STL file's layout shapes drawn under the tree.
+    pub layout: bool,
+    /// Frames per second of an animation.
+    pub fps: u32,
+    /// The file name an OBJ's `mtllib` line gives its material library,
+    /// returned as a side file of that name.
+    pub material_library: String,
+}
+
+impl Request {
+    /// A request for `target` with `graftal render`'s defaults: the file's
+    /// steps, seed 0, 1024x1024, the file's view, a layout, 10 frames a
+    /// second.
+    pub fn new(target: Target) -> Request {
+        Request {
+            run: RunOptions::default(),
+            target,
+            width: 1024,
+            height: 1024,
+            view: None,
+            style: Style::default(),
+            detail: Detail::default(),
+            spline: false,
+            layout: true,
+            fps: 10,
+            material_library: "graftal.mtl".into(),
+        }
+    }
+}
+
+/// How a picture was made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// From the shared derivation tree, without deriving the word.
+    SharedSubtrees,
+    /// The word's segments drawn into the picture as the turtle makes
+    /// them; none stored.
+    Streamed,
+    /// A lit look drawn straight from the turtle, band by band.
+    Lit,
+    /// The word interpreted into stored geometry, then drawn.
+    Stored,
+    /// A glTF with one mesh per repeated subtree.
+    InstancedMesh,
+    /// A mesh of the interpreted geometry.
+    Mesh,
+    /// The frames of an animation, each drawn as its still is.
+    Animation,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::SharedSubtrees => "shared subtrees",
+            Method::Streamed => "streamed",
+            Method::Lit => "lit",
+            Method::Stored => "stored",
+            Method::InstancedMesh => "instanced mesh",
+            Method::Mesh => "mesh",
+            Method::Animation => "animation",
+        }
+    }
+}
+
+/// A file written beside the picture.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SideFile {
+    /// Its file name, without folder.
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
+
+/// What [`draw`] made.
+#[derive(Clone, Debug)]
+pub struct Picture {
+    pub bytes: Vec<u8>,
+    pub side_files: Vec<SideFile>,
+    pub method: Method,
+    /// What the picture shows badly or not at all (W0008, W0009).
+    pub warnings: Vec<Diagnostic>,
+    /// What a mesh holds.
+    pub mesh: Option<MeshStats>,
+}
+
+/// Why no picture was made.
+#[derive(Debug)]
+pub enum DrawError {
+    /// The source could not be read ([`make`]).
+    NotRead(LoadError),
+    /// The source has errors, or is a library whose entry was not chosen:
+    /// the compiled file's diagnostics say which.
+    NotCompiled,
+    /// The derivation or the interpretation stopped: a limit, or an error
+    /// in the model's program.
+    Stopped(Box<Diagnostic>),
+    /// The picture cannot be encoded at this size.
+    Encode { width: u32, height: u32 },
+    /// The animation is refused: why (too many frames or pixels).
+    Animation(String),
+}
+
+impl std::fmt::Display for DrawError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DrawError::NotRead(e) => write!(f, "{e}"),
+            DrawError::NotCompiled => f.write_str("the file has errors"),
+            DrawError::Stopped(d) => f.write_str(&d.message),
+            DrawError::Encode { width, height } => {
+                write!(f, "cannot make a {width}x{height} PNG")
+            }
+            DrawError::Animation(why) => f.write_str(why),
+        }
+    }
+}
+
+impl From<Diagnostic> for DrawError {
+    fn from(d: Diagnostic) -> DrawError {
+        DrawError::Stopped(Box::new(d))
+    }
+}
+
+/// What the drawing reports while it works: the CLI shows it as progress
+/// bars. Every method has a default that does nothing ([`Quiet`]).
+pub trait Progress {
+    /// After each derivation step: `step` of `steps`, the word `symbols`
+    /// long.
+    fn derived(&mut self, _step: u64, _steps: u64, _symbols: usize) {}
+    /// `done` of `total` units of `stage`.
+    fn advanced(&mut self, _stage: Stage, _done: u64, _total: u64) {}
+}
+
+/// The stages [`Progress::advanced`] reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Segments drawn.
+    Drawing,
+    /// Primitives meshed.
+    Meshing,
+    /// Frames of an animation.
+    Frames,
+}
+
+/// Progress nobody watches.
+pub struct Quiet;
+
+impl Progress for Quiet {}
+
+/// Where a source comes from, for [`make`].
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A path, `std:NAME`, or `FILE:NAME` for a library's entry.
+    Spec(String),
+    /// Text, named as a file would be (its extension chooses the notation).
+    Text { name: String, text: String },
+}
+
+/// What [`make`] read and made: the compiled file (for its diagnostics)
+/// when the source could be read, and the picture or why there is none.
+pub struct Made {
+    pub compiled: Option<Compiled>,
+    pub picture: Result<Picture, DrawError>,
+}
+
+/// Reads `source` (choosing `entry` of a library, reading it as
+/// `notation` when given), compiles it and draws it as `req` asks.
+pub fn make(
+    source: &Source,
+    entry: Option<&str>,
+    notation: Option<&'static dyn Front>,
+    req: &Request,
+    progress: &mut dyn Progress,
+) -> Made {
+    let (file, named) = match source {
+        Source::Spec(spec) => {
+            let (path, named) = split_entry(spec);
+            match load(&path) {
+                Ok(file) => (file, named),
+                Err(e) => {
+                    return Made {
+                        compiled: None,
+                        picture: Err(DrawError::NotRead(e)),
+                    }
+                }
+            }
+        }
+        Source::Text { name, text } => (SourceFile::new(name.as_str(), text.as_str()), None),
+    };
+    let c = compile_as(file, entry.or(named.as_deref()), notation);
+    let picture = draw(&c, req, progress);
+    Made {
+        compiled: Some(c),
+        picture,
+    }
+}
+
+/// Draws the compiled file `c` as `req` asks, choosing the method.
+pub fn draw(
+    c: &Compiled,
+    req: &Request,
+    progress: &mut dyn Progress,
+) -> Result<Picture, DrawError> {
+    let sys = c.system.as_ref().ok_or(DrawError::NotCompiled)?;
+    let subject = Subject {
+        sys,
+        file: &c.file.name,
+        diagnostics: &c.diagnostics,
+    };
+    draw_subject(&subject, req, progress)
+}
+
+/// [`draw`] of a system and what is known of its file.
+fn draw_subject(
+    s: &Subject,
+    req: &Request,
+    progress: &mut dyn Progress,
+) -> Result<Picture, DrawError> {
+    let ropts = render_options(req, s.sys, s.file);
+    match req.target {
+        Target::Still(format) => still(s, &req.run, format, ropts, req.layout, progress),
+        Target::Mesh(format) => mesh::draw(s.sys, format, req, progress),
+        Target::Animation(container) => animate::draw(s, req, container, ropts, progress),
+    }
+}
+
+/// [`draw`] for a system that comes from no file (built by hand, or
+/// changed after compiling): nothing is known of its file.
+pub fn draw_system(
+    sys: &System,
+    req: &Request,
+    progress: &mut dyn Progress,
+) -> Result<Picture, DrawError> {
+    let diagnostics = Diagnostics::default();
+    let subject = Subject {
+        sys,
+        file: "",
+        diagnostics: &diagnostics,
+    };
+    draw_subject(&subject, req, progress)
+}
+
+/// The system drawn, with what a warning about its picture names: its
+/// file and the diagnostics it was compiled with.
+struct Subject<'a> {
+    sys: &'a System,
+    file: &'a str,
+    diagnostics: &'a Diagnostics,
+}
+
+/// The picture `req` asks for, in the renderer's terms: the view asked
+/// for, else the file's own; the stdlib's kolams drawn as splines.
+fn render_options(req: &Request, sys: &System, file: &str) -> RenderOptions {
+    // The file's view is in radians, as `View` holds it.
+    let view = req
+        .view
+        .or(sys.settings.view.map(|(az, el)| View {
+            azimuth: az,
+            elevation: el,
+        }))
+        .unwrap_or_default();
+    RenderOptions {
+        width: req.width,
+        height: req.height,
+        view,
+        spline: req.spline || crate::stdlib::draws_as_spline(file),
+        view_given: req.view.is_some(),
+        style: req.style,
+        detail: req.detail,
+        ..RenderOptions::default()
+    }
+}
+
+/// A still picture by the first method that serves: shared subtrees,
+/// streamed, lit, stored. Only the stored way explains an empty picture,
+/// so the others hand over to it when they draw nearly nothing.
+fn still(
+    s: &Subject,
+    run: &RunOptions,
+    format: Format,
+    ropts: RenderOptions,
+    layout: bool,
+    progress: &mut dyn Progress,
+) -> Result<Picture, DrawError> {
+    still_counted(s, run, format, ropts, layout, progress).map(|(p, _)| p)
+}
+
+/// [`still`], with the segments it kept in memory (the stored way's; an
+/// animation's frames share one limit on them).
+fn still_counted(
+    s: &Subject,
+    run: &RunOptions,
+    format: Format,
+    ropts: RenderOptions,
+    layout: bool,
+    progress: &mut dyn Progress,
+) -> Result<(Picture, usize), DrawError> {
+    let sys = s.sys;
+    let picture = |bytes, method| Picture {
+        bytes,
+        side_files: Vec::new(),
+        method,
+        warnings: Vec::new(),
+        mesh: None,
+    };
+    let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
+    if let Some(bytes) = shared::draw(sys, run, format, ropts, &mut drawing)? {
+        return Ok((picture(bytes, Method::SharedSubtrees), 0));
+    }
+    check_moves_up_front(sys, run)?;
+    let steps = run.derive_options(sys).steps;
+    let (word, values) = if streamed::streams(sys, format, &ropts) {
+        let w = derive_symbols(sys, run, |k, n| progress.derived(k, steps, n))?;
+        let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
+        match streamed::draw(sys, run, w, ropts, &mut drawing)? {
+            streamed::Streamed::Picture(bytes) => return Ok((picture(bytes, Method::Streamed), 0)),
+            streamed::Streamed::Word(w, values) => (w, values),
+        }
+    } else {
+        derive_values(sys, run, |k, n| progress.derived(k, steps, n))?
+    };
+    let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
+    if lit::streams_lit(sys, format, &ropts, layout) {
+        if let Some(bytes) = lit::draw(sys, &word, &values, run, ropts, &mut drawing)? {
+            return Ok((picture(bytes, Method::Lit), 0));
+        }
+    }
+    let mut g = interpret(sys, &word, &values, run, ropts.spline)?;
+    if layout {
+        add_layout(sys, &mut g);
+    }
+    let warning = if g.is_empty() {
+        Some(nothing_drawn(sys, &word, s.file, run, s.diagnostics))
+    } else {
+        nearly_nothing_drawn(sys, &g, &ropts)
+    };
+    let bytes = stored::render_bytes_with(sys, &g, format, ropts, &mut drawing)?;
+    let mut p = picture(bytes, Method::Stored);
+    p.warnings.extend(warning);
+    Ok((p, g.segments.len()))
+}
