@@ -1,4 +1,4 @@
-//! Throughput and peak-memory benchmarks (SPEC "Performance").
+//! Throughput and peak-memory benchmarks (README, "Speed and scale").
 //!
 //! On growing inputs of three stdlib systems:
 //!

@@ -1,14 +1,16 @@
 //! Translation: a system in the IR written out in a notation, exactly
 //! where the target can express it and honestly where not.
 //!
-//! `graftal translate FILE --to pfg|linf|stl` is source -> IR -> emitter.
-//! One emitter per target notation:
+//! `graftal translate FILE --to pfg|linf|stl|gft` is source -> IR -> emitter.
+//! One emitter per target notation, each listed in [`BACKS`]:
 //!
 //! * [`pfg`] writes the 1988 format of the Appendix A listing;
 //! * [`linf`] writes LinF blocks in the paper's order;
 //! * [`stl`] writes STL: a Branch-Expansion Description for an STL source,
 //!   and, for a pfg or LinF source, rules whose expansion is the derived
-//!   word (one macro per symbol and step, `[I n X]` where that is exact).
+//!   word (one macro per symbol and step, `[I n X]` where that is exact);
+//! * [`gft`] writes graftal's own notation: every field of the IR, never
+//!   refused ([`Back::write_everything`]).
 //!
 //! An STL source is first turned into a bracketed production system by
 //! [`from_stl`]: each branching term becomes a symbol whose production is
@@ -16,13 +18,13 @@
 //! levels become length factors. The pfg and LinF emitters then write that
 //! system like any other.
 //!
-//! The three emitters walk a system alike ([`walk`]): the symbols that
+//! The pfg, LinF and STL emitters walk a system alike ([`walk`]): the symbols that
 //! occur and what each does to the turtle, the turns as repeated turn
 //! symbols, words written symbol by symbol, and what a target drops
 //! reported in the same words; a target that rewrites one symbol by one
 //! rule takes the system's [`Rules`].
 //!
-//! Every emitter reports what its target cannot express as a [`Problem`]:
+//! Each of them reports what its target cannot express as a [`Problem`]:
 //! the kind of construct (each kind has an error code `E06xx` and, for
 //! `--lossy`, a warning code `W06xx`), the source span, what the construct
 //! is and what `--lossy` does with it. Without `--lossy` any problem means
@@ -53,7 +55,7 @@ pub static BACKS: &[&dyn Back] = &[&pfg::Pfg, &linf::Linf, &stl::Stl, &gft::Gft]
 
 /// A notation graftal writes.
 pub trait Back: Sync {
-    /// The name as the command line spells it (`pfg`, `linf`, `stl`).
+    /// The name as the command line spells it (`pfg`, `linf`, `stl`, `gft`).
     fn name(&self) -> &'static str;
     /// The extension of its files, without the dot.
     fn extension(&self) -> &'static str;

@@ -7,9 +7,15 @@
 //! evaluation, `E04xx` LinF (`codes/linf.rs`), `E05xx` STL (`codes/stl.rs`), `E06xx`
 //! translation (`codes/translate.rs`), `E07xx` Fractint (`codes/fractint.rs`),
 //! `E080x`–`E082x` the cpfg preprocessor and side files (`codes/cpfg.rs`),
-//! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`);
-//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx` translation,
-//! `W07xx` Fractint, `W080x`–`W082x` cpfg.
+//! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`), `E090x`
+//! graftal's own notation `.gft` (`codes/gft.rs`), `E097x` Smith
+//! (`codes/smith.rs`); `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx`
+//! STL, `W06xx` translation, `W07xx` Fractint, `W080x`–`W082x` cpfg, `W090x`
+//! `.gft`, `W097x` Smith.
+//!
+//! A code nothing emits any more is retired: its entry goes and its number
+//! joins [`RETIRED`], never to be given again. `tests/stale_words.rs` holds
+//! that every code registered here is emitted somewhere in `src/`.
 
 use super::Severity;
 use std::fmt;
@@ -87,6 +93,10 @@ pub use smith::*;
 pub use stl::*;
 pub use translate::*;
 
+/// Codes no longer given, whose numbers stay unused: `E0010` ("notation
+/// not supported") was given to cpfg files before graftal read cpfg.
+pub const RETIRED: &[&str] = &["E0010"];
+
 /// Every registered code: the general and pfg codes, then each front end's.
 pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
     GENERAL
@@ -102,14 +112,6 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
 }
 
 codes! { GENERAL;
-    UNSUPPORTED_NOTATION = "E0010", "notation not supported",
-"The file is in a notation whose front end this version of graftal does
-not have. `.l` files are pfg, cpfg or Fractint files, told apart by their
-content (see `graftal check`); the cpfg dialect is not read yet.
-
-Example:
-    graftal check anabaena.l     <- a cpfg file: `lsystem: 1` ... `endlsystem`";
-
     FILE_TOO_LARGE = "E0011", "file too large",
 "graftal reads source files of up to 8 MiB. L-system files are a few
 kilobytes: a larger one is most likely a derived word or another kind of
@@ -478,6 +480,7 @@ mod tests {
         let mut seen = std::collections::HashSet::new();
         for info in all() {
             assert!(seen.insert(info.code.0), "duplicate {}", info.code);
+            assert!(!RETIRED.contains(&info.code.0), "{} is retired", info.code);
             let c = info.code.0;
             assert!(c.len() == 5 && (c.starts_with('E') || c.starts_with('W')));
             assert!(c[1..].chars().all(|d| d.is_ascii_digit()));

@@ -1,6 +1,6 @@
 //! The LinF front end: the language of Pereira, Rolla, Rezende & Carceroni
 //! (2003), "The Language LinF for Fractal Specification", with the file
-//! format fixed in SPEC.md and `grammar/linf.ebnf`.
+//! format fixed in `grammar/linf.ebnf`.
 //!
 //! `lexer` (logos) -> `parser` (chumsky, recovering) -> `ast` -> `lower` (IR).
 

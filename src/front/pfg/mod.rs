@@ -1,5 +1,6 @@
 //! The pfg front end: the 1988 plant and fractal generator format of
-//! Prusinkiewicz & Hanan (Appendix A), with the extensions of SPEC.md.
+//! Prusinkiewicz & Hanan (Appendix A), as `grammar/pfg.ebnf` states it
+//! normatively.
 //!
 //! `lexer` (logos) -> `parser` (chumsky, recovering) -> `ast` -> `lower` (IR).
 

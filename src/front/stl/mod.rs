@@ -1,7 +1,7 @@
 //! The STL front end: the Structural Tree Language of Yeh, Chien & Lee
 //! (drawing components, growth rules, self-resemblance counts, stem
-//! parameters, branching syntax, layouts), with the file format SPEC.md
-//! fixes and `grammar/stl.ebnf` states normatively.
+//! parameters, branching syntax, layouts), in the file format that
+//! `grammar/stl.ebnf` fixes normatively (the paper leaves it open).
 //!
 //! `lexer` (logos) -> `parser` (chumsky, recovering) -> `ast` -> `lower`
 //! (the paper's Language Analyzer; for an Outline Description it runs
