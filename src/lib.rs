@@ -13,6 +13,7 @@
 
 pub mod back;
 pub mod cli;
+pub mod common;
 pub mod diagnostics;
 pub mod driver;
 pub mod eval;
@@ -22,6 +23,7 @@ pub mod gallery;
 pub mod ir;
 pub mod lsp;
 pub mod mesh;
+pub mod number;
 pub mod random;
 pub mod render;
 pub mod source;

@@ -8,7 +8,10 @@
 //! * a front end (`src/front/<notation>/`) imports no other front end, no
 //!   emitter, no turtle, render, eval, driver or cli;
 //! * an emitter (`src/back/`) imports no front end;
-//! * `ir` imports nothing above it (only `ir` itself);
+//! * `ir` imports nothing above it (only `ir` itself and `number`, a leaf
+//!   that imports nothing of the crate);
+//! * `common` (what several front ends and emitters share about
+//!   notations) imports only `ir` and `number`;
 //! * the turtle imports neither render nor eval (nor anything above them);
 //! * the outputs of the turtle's geometry, render (pictures, animations)
 //!   and mesh (OBJ, PLY, glTF), stand on `ir` and the turtle: they import
@@ -353,7 +356,9 @@ fn violations(files: &[Source]) -> Vec<String> {
                                 .is_some_and(|n| notations.contains(n) && *n != module[1]))
                 }
                 "back" => target == "front",
-                "ir" => target != "ir",
+                "ir" => !matches!(target, "ir" | "number"),
+                "number" => target != "number",
+                "common" => !matches!(target, "common" | "ir" | "number"),
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),
                 "render" | "mesh" => NOT_FOR_OUTPUTS.contains(&target),
                 "gallery" => NOT_FOR_THE_GALLERY.contains(&target),
@@ -520,6 +525,16 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ("back/mod.rs", "use crate::ir::System;", false),
         ("ir/mod.rs", "use crate::diagnostics::Diagnostic;", true),
         ("ir/d0l.rs", "use super::{SymbolId, System};", false),
+        ("ir/mod.rs", "let s = crate::number::readable(x);", false),
+        ("ir/mod.rs", "use crate::common::vocabulary;", true),
+        ("number.rs", "use crate::ir::Rgb;", true),
+        ("common/vocabulary.rs", "use crate::ir::TurtleOp;", false),
+        (
+            "common/gft_words.rs",
+            "use crate::front::gft::parser;",
+            true,
+        ),
+        ("common/vocabulary.rs", "use crate::turtle::Turtle;", true),
         ("turtle/instanced.rs", "use crate::render::Picture;", true),
         ("turtle/mod.rs", "use crate::random::Rng;", false),
         ("eval/mod.rs", "use clap::Parser;", true),

@@ -211,15 +211,12 @@
 
 pub mod colours;
 pub mod d0l;
-pub mod gft_words;
 pub mod growth;
 pub mod layout;
 pub mod look;
-pub mod number;
 pub mod program;
 mod same;
 pub mod seed;
-pub mod vocabulary;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};
@@ -464,7 +461,7 @@ impl Word {
                     if k > 0 {
                         s.push(',');
                     }
-                    s.push_str(&number::readable(*a));
+                    s.push_str(&crate::number::readable(*a));
                 }
                 s.push(')');
             }

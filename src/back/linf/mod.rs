@@ -24,8 +24,8 @@ use super::{
     hash_comment, hash_line, number, numbered, opening, single_symbol_rules, Attached, Emitter,
     Kind, Names, Rules,
 };
-use crate::ir::number::{radians, radians_interval};
 use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
+use crate::number::{radians, radians_interval};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;

@@ -633,7 +633,7 @@ fn text(e: &mut Emitter<'_>, n: u64, rules: &Rules, out_rules: &[Macro], seed: &
     );
     // STL has no angle factor: the exact degrees, and the factor in a
     // comment when the degrees are not a short number.
-    let degrees = crate::ir::number::turn_fraction_degrees(n);
+    let degrees = crate::number::turn_fraction_degrees(n);
     if degrees.len() > 8 {
         let _ = writeln!(out, "ANGLE {degrees} # 360/{n}");
     } else {

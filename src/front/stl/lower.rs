@@ -30,18 +30,18 @@ use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst
 use super::growth::{self, branches, Comp, Grown, Point, UnitGeom};
 use super::layout::{self, Outline};
 use super::parser::RESERVED;
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::depth::too_deep;
 use crate::front::name_list;
 use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
-use crate::ir::number::readable;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, SpanTable,
     Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
 };
+use crate::number::readable;
 use std::collections::HashMap;
 
 pub const DEFAULT_ANGLE: f64 = 30.0;
