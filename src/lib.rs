@@ -21,6 +21,7 @@ pub mod format;
 pub mod front;
 pub mod gallery;
 pub mod ir;
+pub mod layout;
 pub mod lsp;
 pub mod mesh;
 pub mod number;

@@ -45,9 +45,10 @@
 //!   self-resemblance counts), a seed of branching terms, a
 //!   [`GrowthConstraint`] — layout [`Shape`]s with colours, the growth
 //!   strategy and level limit — and [`Stems`]: broadness and length per
-//!   level. The geometry
-//!   of the shapes is [`layout`]'s and the growth inside them [`growth`]'s,
-//!   so a front end that states a growth constraint draws nothing itself.
+//!   level. The geometry of the shapes, the growth inside them and the
+//!   seed's expansion are computations over this data, in
+//!   [`crate::layout`], so a front end that states a growth constraint
+//!   draws nothing itself.
 //! * **Settings** ([`Settings`]): derivation length, angle increment δ,
 //!   step length, scale, widths, the view, the file's own seed.
 //!
@@ -211,12 +212,9 @@
 
 pub mod colours;
 pub mod d0l;
-pub mod growth;
-pub mod layout;
 pub mod look;
 pub mod program;
 mod same;
-pub mod seed;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};

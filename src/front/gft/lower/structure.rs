@@ -1,6 +1,6 @@
 //! The STL structure of docs/gft.md §8: `rule`, `stems`, `seed`, `outline`
 //! and `growth`. A seed without an outline is expanded into the axiom; an
-//! outline's seed is the planted one, grown when read (`ir::seed`), as the
+//! outline's seed is the planted one, grown when read (`layout::seed`), as the
 //! STL front end grows it.
 
 use super::items::{Fields, Val};
@@ -8,9 +8,10 @@ use super::{err, Cx, Locals};
 use crate::diagnostics::{codes, Diagnostic};
 use crate::front::gft::ast::{self, Arg, File, Item, Keyword, Piece};
 use crate::ir::{
-    seed, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems,
-    StlRule, StlRuleId, Structure, Word, MAX_NESTING,
+    BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems, StlRule,
+    StlRuleId, Structure, Word, MAX_NESTING,
 };
+use crate::layout::seed;
 
 /// Whether `k` is an STL seed (a `seed` line that is not one whole number).
 pub(super) fn is_structure_seed(k: &Keyword) -> bool {
@@ -113,7 +114,10 @@ impl Cx<'_> {
                     self.diags.push(err(
                         codes::GFT_BAD_VALUE,
                         span,
-                        format!("growth stopped at {} stems", crate::ir::growth::MAX_STEMS),
+                        format!(
+                            "growth stopped at {} stems",
+                            crate::layout::growth::MAX_STEMS
+                        ),
                         "grows too many stems",
                         "use fewer levels, a larger broadness or a smaller outline",
                     ));
