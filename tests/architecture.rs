@@ -7,7 +7,8 @@
 //!
 //! * a front end (`src/front/<notation>/`) imports no other front end, no
 //!   emitter, no turtle, render, eval, driver or cli;
-//! * an emitter (`src/back/`) imports no front end;
+//! * an emitter (`src/back/`) imports no front end and no turtle (the
+//!   default palette is the IR's);
 //! * `ir` imports nothing above it (only `ir` itself and `number`, a leaf
 //!   that imports nothing of the crate);
 //! * `common` (what several front ends and emitters share about
@@ -357,7 +358,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                                 .get(1)
                                 .is_some_and(|n| notations.contains(n) && *n != module[1]))
                 }
-                "back" => target == "front",
+                "back" => matches!(target, "front" | "turtle"),
                 "ir" => !matches!(target, "ir" | "number"),
                 "number" => target != "number",
                 "common" | "layout" => target != top && !matches!(target, "ir" | "number"),
@@ -526,6 +527,16 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
             true,
         ),
         ("back/mod.rs", "use crate::ir::System;", false),
+        (
+            "back/linf/mod.rs",
+            "let p = crate::turtle::DEFAULT_PALETTE;",
+            true,
+        ),
+        (
+            "back/linf/mod.rs",
+            "let p = crate::ir::colours::DEFAULT_PALETTE;",
+            false,
+        ),
         ("ir/mod.rs", "use crate::diagnostics::Diagnostic;", true),
         ("ir/d0l.rs", "use super::{SymbolId, System};", false),
         ("ir/mod.rs", "let s = crate::number::readable(x);", false),

@@ -505,7 +505,7 @@ fn colors(sys: &System, uses_colour: bool) -> String {
     } else if uses_colour {
         // pfg's palette wraps around; LinF stays on the last colour. The
         // palette repeated eight times covers 63 colour steps.
-        let p = crate::turtle::DEFAULT_PALETTE;
+        let p = crate::ir::colours::DEFAULT_PALETTE;
         (0..8).flat_map(|_| p.iter().copied()).collect()
     } else {
         Vec::new()

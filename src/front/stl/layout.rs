@@ -1,5 +1,6 @@
 //! Layout colours as STL writes them (Delphi names from the stdlib table,
-//! or `$00BBGGRR`); the shapes' geometry is the IR's ([`crate::layout::shapes`]).
+//! or `$00BBGGRR`); the shapes' geometry is the layout module's
+//! ([`crate::layout::shapes`]).
 
 use crate::ir::Rgb;
 pub use crate::layout::shapes::*;
