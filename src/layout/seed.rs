@@ -371,7 +371,7 @@ fn fill(
             })
             .unzip();
         let term = BranchTerm {
-            rule: crate::ir::StlRuleId(n.rule as u32),
+            rule: crate::ir::StructureRuleId(n.rule as u32),
             entries,
             grows: false,
         };

@@ -22,6 +22,7 @@ use super::walk::{
 use super::{
     hash_comment, number, numbered, opening, single_symbol_rules, Emitter, Kind, Names, Rules,
 };
+use crate::common::stl_words::RESERVED;
 use crate::ir::{
     Axis, BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word, MAX_NESTING,
 };
@@ -235,7 +236,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         rules: &rules,
         comps,
         sizes,
-        names: Names::new(&crate::ir::Structure::RESERVED),
+        names: Names::new(&RESERVED),
         stems: HashMap::new(),
         defined: HashMap::new(),
         stack: Vec::new(),

@@ -8,8 +8,8 @@ use super::{err, Cx, Locals};
 use crate::diagnostics::{codes, Diagnostic};
 use crate::front::gft::ast::{self, Arg, File, Item, Keyword, Piece};
 use crate::ir::{
-    BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems, StlRule,
-    StlRuleId, Structure, Word, MAX_NESTING,
+    BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems,
+    Structure, StructureRule, StructureRuleId, Word, MAX_NESTING,
 };
 use crate::layout::seed;
 
@@ -57,7 +57,7 @@ impl Cx<'_> {
                 .first()
                 .map(|a| a.text().to_string())
                 .unwrap_or_default();
-            st.rules.push(StlRule {
+            st.rules.push(StructureRule {
                 name,
                 body: Word::default(),
                 resemblance: None,
@@ -161,7 +161,7 @@ impl Cx<'_> {
     }
 
     /// The rule named `name`, or a reported E0906.
-    fn rule_id(&mut self, name: &str, span: &Span, st: &Structure) -> Option<StlRuleId> {
+    fn rule_id(&mut self, name: &str, span: &Span, st: &Structure) -> Option<StructureRuleId> {
         let found = st.rules.iter().position(|r| r.name == name);
         if found.is_none() {
             self.diags.push(err(
@@ -172,7 +172,7 @@ impl Cx<'_> {
                 "declare it: `rule R1 = [+F][-F]`",
             ));
         }
-        found.map(|r| StlRuleId(r as u32))
+        found.map(|r| StructureRuleId(r as u32))
     }
 
     /// `stems broadness B ΔB length L ΔL`.
@@ -340,7 +340,7 @@ impl Cx<'_> {
         depth: usize,
     ) -> (BranchTerm, usize) {
         let mut t = BranchTerm {
-            rule: StlRuleId(r as u32),
+            rule: StructureRuleId(r as u32),
             entries: Vec::new(),
             grows: false,
         };
