@@ -13,6 +13,7 @@
 
 pub mod back;
 pub mod cli;
+pub mod common;
 pub mod diagnostics;
 pub mod driver;
 pub mod eval;
@@ -20,8 +21,10 @@ pub mod format;
 pub mod front;
 pub mod gallery;
 pub mod ir;
+pub mod layout;
 pub mod lsp;
 pub mod mesh;
+pub mod number;
 pub mod random;
 pub mod render;
 pub mod source;

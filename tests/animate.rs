@@ -321,7 +321,7 @@ fn an_outline_grows_stem_by_stem() {
         let c = driver::compile(driver::load(entry).unwrap());
         let sys = c.system.as_ref().unwrap();
         let st = sys.structure.as_ref().unwrap();
-        let order = graftal::ir::seed::growth_order(&mut sys.clone(), st)
+        let order = graftal::layout::seed::growth_order(&mut sys.clone(), st)
             .unwrap()
             .expect("an outline grows");
         assert_eq!(order.word, sys.axiom, "{entry}");

@@ -918,7 +918,7 @@ pub fn angle_factor(e: &mut Emitter<'_>, by_symbol: &[(SymbolId, f64)], target: 
     }
     let list: Vec<String> = angles
         .iter()
-        .map(|a| crate::ir::number::readable(a.to_degrees()))
+        .map(|a| crate::number::readable(a.to_degrees()))
         .collect();
     let odd = odd_angle(by_symbol);
     e.problem(
@@ -967,10 +967,10 @@ pub fn repeated(e: &mut Emitter<'_>, s: SymbolId, c: char, k: i64) -> String {
     std::iter::repeat_n(c, n as usize).collect()
 }
 
-pub use crate::ir::number::degrees;
+pub use crate::number::degrees;
 /// `x` as a short decimal that reads back as the same `f64` (see
-/// [`crate::ir::number`]).
-pub use crate::ir::number::exact as number;
+/// [`crate::number`]).
+pub use crate::number::exact as number;
 
 // ---------------------------------------------------------------------
 // Names

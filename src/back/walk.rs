@@ -226,7 +226,7 @@ pub fn turning(e: &mut Emitter<'_>, syms: &[SymbolId], how: &Turning<'_>) -> u64
                 let middle = if how.middle_in_degrees && !t.is_empty() {
                     let mid: Vec<String> = t
                         .iter()
-                        .map(|x| crate::ir::number::readable(x.1.to_degrees()))
+                        .map(|x| crate::number::readable(x.1.to_degrees()))
                         .collect();
                     format!(" ({} degrees)", mid.join(", "))
                 } else {
@@ -282,7 +282,7 @@ fn intervals(sys: &System, op: TurtleOp) -> Vec<String> {
         .into_iter()
         .filter_map(|a| match a {
             Angle::Uniform { lo, hi } => {
-                Some(format!("`{}`", crate::ir::number::radians_interval(lo, hi)))
+                Some(format!("`{}`", crate::number::radians_interval(lo, hi)))
             }
             _ => None,
         })

@@ -448,7 +448,7 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
                 );
             }
             OutputFormat::Human => {
-                let b = s.bbox.map(crate::ir::number::readable);
+                let b = s.bbox.map(crate::number::readable);
                 let _ = writeln!(
                     io.stdout,
                     "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{}, {}, {}] .. [{}, {}, {}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",

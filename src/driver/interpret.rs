@@ -114,11 +114,11 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
         .outline
         .iter()
         .map(|s| turtle::Polygon {
-            points: crate::ir::layout::outline(s)
+            points: crate::layout::shapes::outline(s)
                 .into_iter()
                 .map(|p| [p[0], p[1], 0.0])
                 .collect(),
-            colour: crate::ir::layout::colour(s),
+            colour: crate::layout::shapes::colour(s),
             index: 0,
             surface: false,
         })

@@ -1,9 +1,26 @@
 //! Named colours: the Delphi colour names STL layouts use (`clGreen`, …),
 //! from `stdlib/stl/delphi-colours.txt`, and the colour arguments of the
 //! command line ([`parse`]). Any front end may read them and any emitter
-//! write them.
+//! write them. And the colour table a system without colours is drawn
+//! with ([`DEFAULT_PALETTE`]): the IR's, beside its colours, so that the
+//! turtle, the renderers and the emitters read one table.
 
 use super::Rgb;
+
+/// The colour table `'` steps through when a system gives none (it wraps
+/// around): black for index 0, as the listing draws, then leaf green and
+/// flower colours, so that the book's plants (Fig. 3.4: leaves one step up
+/// the table, flowers two) come out as plants.
+pub const DEFAULT_PALETTE: [Rgb; 8] = [
+    Rgb(0, 0, 0),
+    Rgb(34, 139, 34),
+    Rgb(218, 165, 32),
+    Rgb(199, 21, 133),
+    Rgb(85, 107, 47),
+    Rgb(139, 69, 19),
+    Rgb(154, 205, 50),
+    Rgb(106, 90, 205),
+];
 
 /// Each Delphi colour name with its RGB value, in the file's order.
 pub fn delphi() -> &'static [(&'static str, Rgb)] {

@@ -45,9 +45,10 @@
 //!   self-resemblance counts), a seed of branching terms, a
 //!   [`GrowthConstraint`] — layout [`Shape`]s with colours, the growth
 //!   strategy and level limit — and [`Stems`]: broadness and length per
-//!   level. The geometry
-//!   of the shapes is [`layout`]'s and the growth inside them [`growth`]'s,
-//!   so a front end that states a growth constraint draws nothing itself.
+//!   level. The geometry of the shapes, the growth inside them and the
+//!   seed's expansion are computations over this data, in
+//!   [`crate::layout`], so a front end that states a growth constraint
+//!   draws nothing itself.
 //! * **Settings** ([`Settings`]): derivation length, angle increment δ,
 //!   step length, scale, widths, the view, the file's own seed.
 //!
@@ -141,7 +142,7 @@
 //! ```
 //!
 //! **STL branching term** `R1{R1, , R2}`: the rules are a [`Structure`]'s
-//! [`StlRule`]s, the seed a list of [`SeedItem`]s where the term is a
+//! [`StructureRule`]s, the seed a list of [`SeedItem`]s where the term is a
 //! [`BranchTerm`] whose entries extend the rule's top-level branches (an
 //! empty entry keeps the branch as it is). A file with explicit branching
 //! (a Branch-Expansion Description) is expanded into the axiom word; a
@@ -211,15 +212,9 @@
 
 pub mod colours;
 pub mod d0l;
-pub mod gft_words;
-pub mod growth;
-pub mod layout;
 pub mod look;
-pub mod number;
 pub mod program;
 mod same;
-pub mod seed;
-pub mod vocabulary;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};
@@ -464,7 +459,7 @@ impl Word {
                     if k > 0 {
                         s.push(',');
                     }
-                    s.push_str(&number::readable(*a));
+                    s.push_str(&crate::number::readable(*a));
                 }
                 s.push(')');
             }
@@ -913,11 +908,14 @@ impl Default for Settings {
     }
 }
 
-/// STL structural syntax, kept as structure (see the module docs).
+/// A system stated as structure rather than productions (see the module
+/// docs): named rules, a seed of branching terms over them, stems, and for
+/// an outline where and how the seed grows. STL states systems so, and
+/// `.gft` writes them out.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Structure {
     /// Named rules (a table of rules, each with its self-resemblance count).
-    pub rules: Vec<StlRule>,
+    pub rules: Vec<StructureRule>,
     /// The seed: strings and branching terms over the rules (for an
     /// outline, the grown seed: its growth points replaced by what grew).
     pub seed: Vec<SeedItem>,
@@ -952,24 +950,6 @@ pub struct Stems {
 }
 
 impl Structure {
-    /// Names that cannot be rule names: the drawing components, the stem
-    /// parameters, `I` of `[I n X]` and the keywords of the STL notation,
-    /// which writes rules by name.
-    pub const RESERVED: [&'static str; 13] = [
-        "F",
-        "L",
-        "R",
-        "B",
-        "I",
-        "ANGLE",
-        "GROWTH",
-        "LEVELS",
-        "SEED",
-        "ENDSEED",
-        "LAYOUT",
-        "ENDLAYOUT",
-        "BFS",
-    ];
     /// The most drawing components an expansion may have.
     pub const MAX_EXPANSION: usize = 8_000_000;
     /// The widest stroke drawn (turtle width units: pixels per 600 pixels
@@ -996,9 +976,10 @@ impl Structure {
     }
 }
 
-/// A named STL growth rule.
+/// A named rule of a [`Structure`]: a body whose top-level branches a
+/// [`BranchTerm`] extends, with how many levels it may grow.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct StlRule {
+pub struct StructureRule {
     pub name: String,
     pub body: Word,
     /// `[I n X]`: the self-resemblance count, if given.
@@ -1007,14 +988,14 @@ pub struct StlRule {
     /// one level of growth adds (`Rk` of `[I n Rk]`, or a rule made to
     /// hold the `X` of `[I n X]`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub unit: Option<StlRuleId>,
+    pub unit: Option<StructureRuleId>,
 }
 
 /// Index into [`Structure::rules`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct StlRuleId(pub u32);
+pub struct StructureRuleId(pub u32);
 
-/// One item of an STL seed.
+/// One item of a structure's seed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum SeedItem {
     Word(Word),
@@ -1024,7 +1005,7 @@ pub enum SeedItem {
 /// `R{e1, …, em}`: entry k extends the k-th top-level branch of R.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BranchTerm {
-    pub rule: StlRuleId,
+    pub rule: StructureRuleId,
     pub entries: Vec<BranchEntry>,
     /// A growth point of an outline (only in [`Structure::planted`]): the
     /// rule grows here, and `entries` is empty.
@@ -1042,7 +1023,7 @@ pub enum BranchEntry {
     Term(BranchTerm),
 }
 
-/// STL growth strategy for outline descriptions.
+/// The growth strategy of an outline.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub enum Growth {
     #[default]
@@ -1050,7 +1031,7 @@ pub enum Growth {
     DepthFirst,
 }
 
-/// An STL layout shape (stem units, origin at the root, y up).
+/// A layout shape of an outline (stem units, origin at the root, y up).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Shape {
     Rectangle {

@@ -6,8 +6,8 @@ use super::names::{self, Names};
 use super::position::{offset, range};
 use super::publish::explanation;
 use super::{edits, json, parse, uri, Document};
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::front::cpfg::FunctionSite;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use crate::source::SourceFile;
 use lsp_types::request::{

@@ -10,9 +10,10 @@
 
 use super::tube::{tube, Chainer};
 use super::{Finish, Mesh, Node, Scene, Sizing, Transform};
+use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::System;
 use crate::turtle::instanced::{Instanced, Placement, Subtree, Summary, Walker};
-use crate::turtle::{Vec3, DEFAULT_PALETTE};
+use crate::turtle::Vec3;
 use std::collections::HashMap;
 
 /// Subtrees of at most this many segments are always taken whole.

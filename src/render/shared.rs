@@ -3,9 +3,10 @@
 //! picture's polylines, and a subtree within half a pixel is one line.
 
 use super::{Fit, Picture, RenderOptions, Run};
+use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::System;
 use crate::turtle::instanced::{Instanced, Lines};
-use crate::turtle::{Vec3, DEFAULT_PALETTE};
+use crate::turtle::Vec3;
 
 /// The picture of the word of `inst` after `steps` steps, seen face on
 /// (the default view), fitted as [`super::layout`] fits a geometry.

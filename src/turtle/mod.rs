@@ -17,6 +17,7 @@ mod gencyl;
 pub mod instanced;
 mod tropism;
 
+use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::{
     Angle, Axis, ElasticityChange, QueryKind, Rgb, RotationId, SymbolId, System, TurtleOp, Word,
 };
@@ -169,21 +170,6 @@ impl Geometry {
             && self.paths.iter().all(|p| p.points.len() < 2)
     }
 }
-
-/// The colour table `'` steps through when a system gives none (it wraps
-/// around): black for index 0, as the listing draws, then leaf green and
-/// flower colours, so that the book's plants (Fig. 3.4: leaves one step up
-/// the table, flowers two) come out as plants.
-pub const DEFAULT_PALETTE: [Rgb; 8] = [
-    Rgb(0, 0, 0),
-    Rgb(34, 139, 34),
-    Rgb(218, 165, 32),
-    Rgb(199, 21, 133),
-    Rgb(85, 107, 47),
-    Rgb(139, 69, 19),
-    Rgb(154, 205, 50),
-    Rgb(106, 90, 205),
-];
 
 const NO_HISTORY: u32 = u32::MAX;
 

@@ -4,8 +4,8 @@
 //! left-associative, `c ? a : b` loosest, its condition without another
 //! `?`), gives the same tree back.
 
-use crate::ir::number;
 use crate::ir::program::{BinOp, Builtin, Expr, Place, Stmt, UnOp, Var};
+use crate::number;
 
 /// How to write the names an expression refers to.
 pub struct Names<'a> {

@@ -4,8 +4,8 @@
 use super::expr::num;
 use super::words::Spelling;
 use crate::ir::look::{Contour, ContourRole, LineStyle, Look, Shading, Tropism, TropismKind};
-use crate::ir::number;
 use crate::ir::{Angle, BranchEntry, BranchTerm, Growth, Rgb, SeedItem, Shape, Structure, System};
+use crate::number;
 use std::fmt::Write;
 
 /// `#rrggbb`.

@@ -2,9 +2,9 @@
 
 use super::expr::{self, num, Names};
 use super::look::degrees_or_radians;
-use crate::ir::gft_words::is_keyword;
+use crate::common::gft_words::is_keyword;
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::ir::program::Expr;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{Angle, Axis, ElasticityChange, QueryKind, SymbolId, System, TurtleOp, Word};
 use std::fmt::Write;
 

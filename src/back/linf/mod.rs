@@ -24,8 +24,8 @@ use super::{
     hash_comment, hash_line, number, numbered, opening, single_symbol_rules, Attached, Emitter,
     Kind, Names, Rules,
 };
-use crate::ir::number::{radians, radians_interval};
 use crate::ir::{Angle, Axis, Rgb, SymbolId, System, TurtleOp};
+use crate::number::{radians, radians_interval};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
@@ -505,7 +505,7 @@ fn colors(sys: &System, uses_colour: bool) -> String {
     } else if uses_colour {
         // pfg's palette wraps around; LinF stays on the last colour. The
         // palette repeated eight times covers 63 colour steps.
-        let p = crate::turtle::DEFAULT_PALETTE;
+        let p = crate::ir::colours::DEFAULT_PALETTE;
         (0..8).flat_map(|_| p.iter().copied()).collect()
     } else {
         Vec::new()

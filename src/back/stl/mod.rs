@@ -22,6 +22,7 @@ use super::walk::{
 use super::{
     hash_comment, number, numbered, opening, single_symbol_rules, Emitter, Kind, Names, Rules,
 };
+use crate::common::stl_words::RESERVED;
 use crate::ir::{
     Axis, BranchEntry, BranchTerm, SeedItem, Shape, Structure, SymbolId, System, Word, MAX_NESTING,
 };
@@ -235,7 +236,7 @@ pub fn from_productions(e: &mut super::Emitter<'_>) -> String {
         rules: &rules,
         comps,
         sizes,
-        names: Names::new(&crate::ir::Structure::RESERVED),
+        names: Names::new(&RESERVED),
         stems: HashMap::new(),
         defined: HashMap::new(),
         stack: Vec::new(),
@@ -633,7 +634,7 @@ fn text(e: &mut Emitter<'_>, n: u64, rules: &Rules, out_rules: &[Macro], seed: &
     );
     // STL has no angle factor: the exact degrees, and the factor in a
     // comment when the degrees are not a short number.
-    let degrees = crate::ir::number::turn_fraction_degrees(n);
+    let degrees = crate::number::turn_fraction_degrees(n);
     if degrees.len() > 8 {
         let _ = writeln!(out, "ANGLE {degrees} # 360/{n}");
     } else {

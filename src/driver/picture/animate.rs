@@ -161,7 +161,7 @@ fn frame_framing(sys: &System, g: &Geometry, mut ropts: RenderOptions) -> render
 }
 
 /// A grown structure's picture with what drew each part, and when each
-/// symbol of its word appeared in growth ([`crate::ir::seed::growth_order`]).
+/// symbol of its word appeared in growth ([`crate::layout::seed::growth_order`]).
 struct Grown {
     geometry: Geometry,
     appeared: Vec<u32>,
@@ -174,7 +174,7 @@ struct Grown {
 /// its structure's grown seed and nothing rewrites it.
 fn grown_geometry(sys: &System, opts: &RunOptions, layout: bool) -> Option<Grown> {
     let st = sys.structure.as_ref()?;
-    let order = crate::ir::seed::growth_order(&mut sys.clone(), st).ok()??;
+    let order = crate::layout::seed::growth_order(&mut sys.clone(), st).ok()??;
     if order.word != sys.axiom || sys.rewrites_modules() || order.stems == 0 {
         return None;
     }

@@ -59,10 +59,10 @@ pub(in crate::driver) fn apply_look(sys: &System, opts: &mut RenderOptions) {
     };
 }
 
-/// The colour map: the system's colours, else the turtle's default.
+/// The colour map: the system's colours, else the IR's default palette.
 pub(super) fn palette(sys: &System) -> &[crate::ir::Rgb] {
     if sys.colours.is_empty() {
-        &crate::turtle::DEFAULT_PALETTE
+        &crate::ir::colours::DEFAULT_PALETTE
     } else {
         &sys.colours
     }

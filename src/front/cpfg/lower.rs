@@ -5,11 +5,11 @@
 //! ([`super::read`]).
 
 use super::ast::{self, BlockKind, ExprKind, Item, Section};
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, ContextFilter, Formals, Phase, Production, RulePolicy, Span, SpanTable, SymbolId,
     System, TurtleOp, Word,
@@ -23,7 +23,7 @@ pub const MAX_ARRAY: f64 = 1_000_000.0;
 
 pub use crate::ir::Lowered;
 
-/// What a cpfg symbol does ([`crate::ir::vocabulary`]'s cpfg set).
+/// What a cpfg symbol does ([`crate::common::vocabulary`]'s cpfg set).
 pub fn turtle_op(name: &str) -> Option<TurtleOp> {
     vocabulary::op(TurtleSet::Cpfg, name)
 }

@@ -90,7 +90,7 @@ pub fn commands(body: &str) -> Vec<(&str, Span)> {
         .collect()
 }
 
-pub use crate::ir::vocabulary::fractint_number as number;
+pub use crate::common::vocabulary::fractint_number as number;
 
 #[cfg(test)]
 mod tests {

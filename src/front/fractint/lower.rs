@@ -6,8 +6,8 @@
 use super::ast::{Body, Entry, LineKind};
 use super::lexer::commands;
 use super::parser::KEYWORDS;
+use crate::common::vocabulary::fractint_op;
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::ir::vocabulary::fractint_op;
 use crate::ir::{Alternative, Production, Span, SpanTable, SymbolId, System, Word};
 
 /// Fractint's default order (the `lsystem` type's one parameter, 2 in

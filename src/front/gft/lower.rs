@@ -4,11 +4,11 @@
 //! settings, the program, the axiom and the productions.
 
 use super::ast::{self, Arg, Block, Expr as AExpr, ExprKind, File, Item, Keyword, Piece};
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, Code, Diagnostic, Diagnostics};
 use crate::front::repeats::push_lazily;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, BinOp, Expr, Place, Stmt, UnOp, Var, BUILTINS};
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, Angle, Axis, ContextFilter, Formals, Lowered, Production, Rgb, Rotation,
     RotationId, RulePolicy, Span, SpanTable, SymbolId, System, TurtleOp, Word,

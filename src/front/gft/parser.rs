@@ -7,12 +7,12 @@ use super::ast::{
     Alternative, Arg, Block, Expr, ExprKind, File, Item, Keyword, Piece, Production, Stmt, Word,
 };
 use super::lexer::{lex, Token};
+/// The keywords, as the language server lists them.
+pub use crate::common::gft_words::KEYWORDS;
+use crate::common::gft_words::{is_keyword, takes_block};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::front::repeats::push_lazily;
 use crate::front::suggest::Suggester;
-/// The keywords, as the language server lists them.
-pub use crate::ir::gft_words::KEYWORDS;
-use crate::ir::gft_words::{is_keyword, takes_block};
 use crate::ir::{Span, MAX_NESTING};
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;

@@ -24,17 +24,17 @@ use super::ast::{
     Rule,
 };
 use super::lexer::BlockKind;
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::name_list;
 use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
-use crate::ir::number::radians;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, Angle, Production, Rgb, Rotation, RotationId, Span, SpanTable, SymbolId, System,
     TurtleOp, Word,
 };
+use crate::number::radians;
 use std::borrow::Cow;
 use std::collections::HashMap;
 

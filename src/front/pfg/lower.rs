@@ -2,9 +2,9 @@
 
 use super::ast::{File, Header, Item, Production as AstProduction, Symbols};
 use super::parser::HEADERS;
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
 use crate::front::repeats::push_lazily;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     Alternative, ContextFilter, Production, Span, SpanTable, SymbolId, System, TurtleOp, Word,
 };

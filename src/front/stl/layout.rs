@@ -1,8 +1,9 @@
 //! Layout colours as STL writes them (Delphi names from the stdlib table,
-//! or `$00BBGGRR`); the shapes' geometry is the IR's ([`crate::ir::layout`]).
+//! or `$00BBGGRR`); the shapes' geometry is the layout module's
+//! ([`crate::layout::shapes`]).
 
-pub use crate::ir::layout::*;
 use crate::ir::Rgb;
+pub use crate::layout::shapes::*;
 
 /// The colour `$00BBGGRR` (Delphi's TColor: red in the low byte), if the
 /// text is `$` and one to eight hex digits whose top byte is zero.

@@ -30,18 +30,19 @@ use super::ast::{Arg, ColourAst, Elem, Entries, Entry, File, Item, Num, ShapeAst
 use super::growth::{self, branches, Comp, Grown, Point, UnitGeom};
 use super::layout::{self, Outline};
 use super::parser::RESERVED;
+use crate::common::vocabulary::{self, TurtleSet};
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::depth::too_deep;
 use crate::front::name_list;
 use crate::front::names::LongestNames;
 use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
-use crate::ir::number::readable;
-use crate::ir::vocabulary::{self, TurtleSet};
 use crate::ir::{
     BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, SpanTable,
-    Stems, StlRule, StlRuleId, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
+    Stems, Structure, StructureRule, StructureRuleId, SymbolId, System, TurtleOp, Word,
+    MAX_NESTING,
 };
+use crate::number::readable;
 use std::collections::HashMap;
 
 pub const DEFAULT_ANGLE: f64 = 30.0;
@@ -1386,15 +1387,15 @@ impl Ctx<'_> {
     }
 
     /// The rules in the IR: each one's expansion and count.
-    fn ir_rules(&self, comp_ids: &ComponentIds) -> Vec<StlRule> {
+    fn ir_rules(&self, comp_ids: &ComponentIds) -> Vec<StructureRule> {
         self.rules
             .iter()
             .enumerate()
-            .map(|(r, src)| StlRule {
+            .map(|(r, src)| StructureRule {
                 name: src.name.clone(),
                 body: ir_word(&self.full[r], comp_ids),
                 resemblance: self.count[r],
-                unit: (self.grown_units.get(&r)).map(|&u| StlRuleId(u as u32)),
+                unit: (self.grown_units.get(&r)).map(|&u| StructureRuleId(u as u32)),
             })
             .collect()
     }
@@ -1611,7 +1612,7 @@ fn fmt_num(x: f64) -> String {
 
 fn ir_term(t: &Term) -> BranchTerm {
     BranchTerm {
-        rule: StlRuleId(t.rule as u32),
+        rule: StructureRuleId(t.rule as u32),
         entries: t
             .entries
             .iter()

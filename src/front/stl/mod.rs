@@ -14,7 +14,7 @@ pub mod layout;
 
 /// Outline growth is the IR's: the front end asks it, walking no turtle of
 /// its own.
-pub use crate::ir::growth;
+pub use crate::layout::growth;
 pub mod lexer;
 pub mod lower;
 pub mod parser;

@@ -22,13 +22,12 @@ use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::depth::too_deep;
 use crate::front::repeats::Repeats;
-use crate::ir::{Span, Structure};
+use crate::ir::Span;
 
 /// The statement keywords (upper case, as the paper writes them).
 pub const KEYWORDS: [&str; 7] = ["ANGLE", "B", "L", "GROWTH", "LEVELS", "SEED", "LAYOUT"];
 
-/// Names that cannot be rule names ([`Structure::RESERVED`]).
-pub const RESERVED: [&str; 13] = Structure::RESERVED;
+pub use crate::common::stl_words::RESERVED;
 
 /// The deepest nesting of `[ ]` and `{ }` read: the one depth limit.
 pub const MAX_NESTING: usize = crate::ir::MAX_NESTING;

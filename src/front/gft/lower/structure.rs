@@ -1,6 +1,6 @@
 //! The STL structure of docs/gft.md §8: `rule`, `stems`, `seed`, `outline`
 //! and `growth`. A seed without an outline is expanded into the axiom; an
-//! outline's seed is the planted one, grown when read (`ir::seed`), as the
+//! outline's seed is the planted one, grown when read (`layout::seed`), as the
 //! STL front end grows it.
 
 use super::items::{Fields, Val};
@@ -8,9 +8,10 @@ use super::{err, Cx, Locals};
 use crate::diagnostics::{codes, Diagnostic};
 use crate::front::gft::ast::{self, Arg, File, Item, Keyword, Piece};
 use crate::ir::{
-    seed, BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems,
-    StlRule, StlRuleId, Structure, Word, MAX_NESTING,
+    BranchEntry, BranchTerm, Growth, GrowthConstraint, Rgb, SeedItem, Shape, Span, Stems,
+    Structure, StructureRule, StructureRuleId, Word, MAX_NESTING,
 };
+use crate::layout::seed;
 
 /// Whether `k` is an STL seed (a `seed` line that is not one whole number).
 pub(super) fn is_structure_seed(k: &Keyword) -> bool {
@@ -56,7 +57,7 @@ impl Cx<'_> {
                 .first()
                 .map(|a| a.text().to_string())
                 .unwrap_or_default();
-            st.rules.push(StlRule {
+            st.rules.push(StructureRule {
                 name,
                 body: Word::default(),
                 resemblance: None,
@@ -113,7 +114,10 @@ impl Cx<'_> {
                     self.diags.push(err(
                         codes::GFT_BAD_VALUE,
                         span,
-                        format!("growth stopped at {} stems", crate::ir::growth::MAX_STEMS),
+                        format!(
+                            "growth stopped at {} stems",
+                            crate::layout::growth::MAX_STEMS
+                        ),
                         "grows too many stems",
                         "use fewer levels, a larger broadness or a smaller outline",
                     ));
@@ -157,7 +161,7 @@ impl Cx<'_> {
     }
 
     /// The rule named `name`, or a reported E0906.
-    fn rule_id(&mut self, name: &str, span: &Span, st: &Structure) -> Option<StlRuleId> {
+    fn rule_id(&mut self, name: &str, span: &Span, st: &Structure) -> Option<StructureRuleId> {
         let found = st.rules.iter().position(|r| r.name == name);
         if found.is_none() {
             self.diags.push(err(
@@ -168,7 +172,7 @@ impl Cx<'_> {
                 "declare it: `rule R1 = [+F][-F]`",
             ));
         }
-        found.map(|r| StlRuleId(r as u32))
+        found.map(|r| StructureRuleId(r as u32))
     }
 
     /// `stems broadness B ΔB length L ΔL`.
@@ -336,7 +340,7 @@ impl Cx<'_> {
         depth: usize,
     ) -> (BranchTerm, usize) {
         let mut t = BranchTerm {
-            rule: StlRuleId(r as u32),
+            rule: StructureRuleId(r as u32),
             entries: Vec::new(),
             grows: false,
         };

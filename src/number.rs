@@ -18,6 +18,10 @@
 //!
 //! Angles in radians print as people write them with [`radians`]: `2*pi`,
 //! `pi/3`, `-3*pi/4`, when that text reads back as the same `f64`.
+//!
+//! A leaf: it imports nothing of the crate, so that the IR, which prints
+//! a derived word's parameters by [`readable`], stands on it as every
+//! front end and emitter does, without naming a notation.
 
 /// Significant digits [`readable`] keeps.
 pub const READABLE_DIGITS: usize = 12;

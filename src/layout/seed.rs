@@ -8,8 +8,8 @@
 //! broadness and length) stands wherever the level changes.
 
 use super::growth::{self, Comp, Grown, SeedEvent, UnitGeom};
-use super::layout::{self, Outline};
-use super::{
+use super::shapes::{self, Outline};
+use crate::ir::{
     BranchEntry, BranchTerm, SeedItem, Structure, SymbolId, System, TurtleOp, Word, MAX_NESTING,
 };
 
@@ -316,12 +316,12 @@ pub fn grow(sys: &System, st: &Structure) -> Result<Outgrowth, TooLarge> {
         .collect();
     let params = growth::Params {
         delta,
-        depth_first: c.strategy == super::Growth::DepthFirst,
+        depth_first: c.strategy == crate::ir::Growth::DepthFirst,
         broadness: bw,
         length: lw,
         max_stems: growth::MAX_STEMS,
     };
-    let bounds = layout::bounds(&c.outline).unwrap_or([0.0, 0.0, 1.0, 1.0]);
+    let bounds = shapes::bounds(&c.outline).unwrap_or([0.0, 0.0, 1.0, 1.0]);
     let out = growth::grow(
         &units,
         &Outline::new(&c.outline),
@@ -371,7 +371,7 @@ fn fill(
             })
             .unzip();
         let term = BranchTerm {
-            rule: super::StlRuleId(n.rule as u32),
+            rule: crate::ir::StructureRuleId(n.rule as u32),
             entries,
             grows: false,
         };

@@ -17,7 +17,7 @@
 //! even-odd test of each piece), and the stem is inside when these
 //! intervals cover all of `[0, 1]`.
 
-use super::{Rgb, Shape};
+use crate::ir::{Rgb, Shape};
 
 /// Tolerance of the containment tests, relative to the layout's size.
 const EPS: f64 = 1e-9;

@@ -12,7 +12,7 @@
 //!   are always drawn;
 //! * each top-level branch `[...]`, in the rule's order (its priority), is a
 //!   *candidate*: it succeeds only if every stem it draws stays inside the
-//!   union of the layout shapes ([`super::layout::Outline`], an exact test)
+//!   union of the layout shapes ([`super::shapes::Outline`], an exact test)
 //!   and keeps clear of every stem already grown. Two stems collide when the
 //!   distance between their centre lines is less than the mean of their
 //!   broadnesses (their strokes would overlap). Stems that share an end
@@ -33,7 +33,7 @@
 //! bounding box (cells about one stem long), so each candidate stem is
 //! compared only with the stems in the few cells around it.
 
-use super::layout::{point_segment_distance, segment_distance, Outline};
+use super::shapes::{point_segment_distance, segment_distance, Outline};
 
 /// The most stems growth makes.
 pub const MAX_STEMS: usize = 1_000_000;

@@ -3,7 +3,7 @@
 //! numbered commands through [`fractint_op`]); the `.gft` notation names a
 //! set with `turtle SET` and starts from it.
 
-use super::{Angle, Axis, ElasticityChange, QueryKind, TurtleOp};
+use crate::ir::{Angle, Axis, ElasticityChange, QueryKind, TurtleOp};
 
 /// A named default turtle: what one notation's symbols do.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
