@@ -214,7 +214,7 @@ enum Command {
     /// Draw the system to a PNG or SVG file (by the output's extension or
     /// `--to`); `-o - --to svg` writes to standard output.
     Render(RenderArgs),
-    /// Translate a file to another notation (pfg, LinF or STL); what the
+    /// Translate a file to another notation (pfg, LinF, STL or gft); what the
     /// target cannot express is an error, or a warning with --lossy.
     Translate(TranslateArgs),
     /// Count symbols, segments, polygons; bounding box and branch depth.
