@@ -9,7 +9,7 @@ use crate::front::Front;
 use crate::ir::System;
 
 /// The most symbols `check` derives a system to (and 20 times as many
-/// rewritten, [`DeriveOptions::max_symbols`]): a derivation beyond this
+/// rewritten, [`crate::eval::DeriveOptions::max_symbols`]): a derivation beyond this
 /// takes seconds, and `check` stays quick. A derivation counted on its
 /// shared tree costs nothing to count, and is checked at `derive`'s own
 /// limit.

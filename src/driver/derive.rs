@@ -144,7 +144,7 @@ pub fn derive_with_progress(
 
 /// Derives the word, reporting progress after each step, with the values
 /// its program's globals and arrays were left with (what the homomorphism
-/// reads when the word is drawn: [`interpret`]).
+/// reads when the word is drawn: [`crate::driver::interpret`]).
 pub fn derive_values(
     sys: &System,
     opts: &RunOptions,
@@ -167,7 +167,7 @@ pub fn derive(sys: &System, opts: &RunOptions) -> Result<Word, Diagnostic> {
     derive_with_progress(sys, opts, |_, _| {})
 }
 /// Derives the word of a system without modules, its symbols as narrow as
-/// the derivation held them (what [`render_streamed`] draws).
+/// the derivation held them (what a picture drawn streamed draws).
 pub fn derive_symbols(
     sys: &System,
     opts: &RunOptions,

@@ -1,10 +1,10 @@
 //! The pipeline as library calls, one room per responsibility: load and
-//! compile a file ([`load`]), derive its word ([`derive`]), what `check`
-//! derives to find limits ([`check`]), turn a word into geometry
+//! compile a file (`load.rs`), derive its word (`derive.rs`), what `check`
+//! derives to find limits (`check.rs`), turn a word into geometry
 //! ([`interpret`], which also answers query modules), translate it
-//! ([`translate`]), make its picture ([`picture`]: the one call every face
-//! draws through), say why a picture is empty ([`empty`]) and measure it
-//! ([`stats`]).
+//! (`translate.rs`), make its picture ([`picture`]: the one call every face
+//! draws through), say why a picture is empty (`empty.rs`) and measure it
+//! (`stats.rs`).
 //!
 //! The faces (the command line, the gallery, the language server) are thin
 //! layers over these calls: they parse their input, call the library and

@@ -26,7 +26,7 @@ pub fn translate(c: &Compiled, sys: &System, req: &back::Request) -> back::Trans
     t
 }
 
-/// The most symbols [`compare_pictures`] derives for either picture: a
+/// The most symbols `--lossy`'s comparison derives for either picture: a
 /// fraction of a second, so that `--lossy` stays quick.
 pub const COMPARE_MAX_SYMBOLS: usize = 500_000;
 

@@ -10,9 +10,9 @@
 //! The method is chosen here from the system and the request, as
 //! [`crate::eval::plan`] chooses a derivation, and the methods are private:
 //! a still picture is drawn from shared subtrees where the system and the
-//! view allow ([`shared`]), else streamed segment by segment ([`streamed`]),
-//! else lit straight from the turtle ([`lit`]), else from stored geometry
-//! ([`stored`]); meshes in [`mesh`], animations in [`animate`].
+//! view allow (`shared.rs`), else streamed segment by segment (`streamed.rs`),
+//! else lit straight from the turtle (`lit.rs`), else from stored geometry
+//! (`stored.rs`); meshes in `mesh.rs`, animations in `animate.rs`.
 
 mod animate;
 mod lit;
