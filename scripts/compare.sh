@@ -29,8 +29,9 @@
 # FILE:NAME of each Fractint library as `graftal check FILE` lists it, the
 # main .l file of each cpfg object folder) and each binary:
 #   derive CASE | stats CASE --format json (the timing object "time" removed)
-#   | render CASE -o OUT.svg (the SVG file) | translate CASE --to pfg|linf|stl,
-#   each also with --lossy.
+#   | render CASE -o OUT.svg (the SVG file) | render CASE --size 256x256
+#   -o OUT.png (the PNG file) | render CASE -o OUT.obj (the OBJ file)
+#   | translate CASE --to pfg|linf|stl, each also with --lossy.
 # plus `list` and `check FILE` of each Fractint library, which enumerate the
 # cases. Each run gives one manifest line per binary: case, command, exit
 # status (or `timeout`), sha256 of stdout, of stderr, of the output file.
@@ -258,7 +259,7 @@ union() { cat -n | LC_ALL=C sort -t $'\t' -k 2 -u | sort -n | cut -f 2-; }
 cpfg_cases >"$RUN_DIR/cases-cpfg"
 
 # The commands run on every case.
-COMMANDS=(derive stats-json render-svg
+COMMANDS=(derive stats-json render-svg render-png render-obj
     translate-pfg translate-pfg-lossy translate-linf translate-linf-lossy
     translate-stl translate-stl-lossy)
 
@@ -298,6 +299,8 @@ run_one() {
         derive) args=(derive "$case") ;;
         stats-json) args=(stats "$case" --format json) filter=strip_time ;;
         render-svg) args=(render "$case" -o "$out") ;;
+        render-png) out=$scr/out.png && args=(render "$case" --size 256x256 -o "$out") ;;
+        render-obj) out=$scr/out.obj && args=(render "$case" -o "$out") ;;
         translate-*-lossy) target=${cmd#translate-} && args=(translate "$case" --to "${target%-lossy}" --lossy) ;;
         translate-*) args=(translate "$case" --to "${cmd#translate-}") ;;
         *) echo "compare.sh: unknown command $cmd" >&2; return 1 ;;
@@ -334,10 +337,10 @@ sys.stdout.buffer.write(d.replace(p.encode(), b"<OUT>"))' "$scr" "$scr/err" >"$s
     if [[ -f $out ]]; then h_file=$(sha256sum <"$out" | cut -d' ' -f1); fi
     if [[ -n $keep ]]; then
         cp "$scr/err" "$keep.stderr"
-        if [[ -f $out ]]; then cp "$out" "$keep.out.svg"; fi
+        if [[ -f $out ]]; then cp "$out" "$keep.out.${out##*.}"; fi
         echo "$status" >"$keep.status"
     fi
-    rm -f "$out" "$scr/err" "$scr/out.sha"
+    rm -f "$out" "$scr/out.mtl" "$scr/err" "$scr/out.sha"
     printf '%s\t%s\t%s\t%s\n' "$status" "$h_out" "$h_err" "$h_file"
 }
 
