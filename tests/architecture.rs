@@ -549,6 +549,17 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ("render/animate.rs", "use crate::driver::derive;", true),
         ("render/animate.rs", "use crate::mesh::Scene;", false),
         ("render/animate.rs", "use crate::turtle::Geometry;", false),
+        (
+            "render/raster/bands.rs",
+            "use crate::driver::RunOptions;",
+            true,
+        ),
+        ("render/raster/survey.rs", "use crate::turtle::Sink;", false),
+        (
+            "render/raster/target.rs",
+            "use super::super::shade::Colour;",
+            false,
+        ),
         ("gallery.rs", "use crate::cli::main;", true),
         ("gallery.rs", "use crate::front::pfg;", true),
         ("gallery.rs", "use crate::lsp::serve;", true),
