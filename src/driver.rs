@@ -645,18 +645,12 @@ pub fn interpret(
     opts: &RunOptions,
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
-    let options = turtle::TurtleOptions {
-        paths,
-        ..Default::default()
-    };
     let drawn = drawn_word(sys, word, values, opts)?;
-    Ok(turtle::interpret_with(
-        sys,
-        &drawn,
-        opts.seed,
-        options,
-        &mut |_, _, _| {},
-    ))
+    Ok(turtle::Run {
+        paths,
+        ..turtle::Run::word(sys, &drawn, opts.seed)
+    }
+    .geometry())
 }
 
 /// The word the turtle draws for `word`: itself, or what the system's
@@ -726,7 +720,9 @@ pub fn render_lit(
     let Some(lighting) = sys.look.lighting.as_ref() else {
         return Ok(None);
     };
-    let replay = |sink: &mut dyn turtle::Sink| turtle::draw_into(sys, &drawn, opts.seed, sink);
+    let replay = |sink: &mut dyn turtle::Sink| {
+        turtle::run(turtle::Run::word(sys, &drawn, opts.seed), sink).max_depth
+    };
     let drawing = render::raster::Drawing::replayed(&replay, sys.settings.world_widths);
     let survey = render::raster::survey(&drawing, lighting, &ropts);
     if survey.pixels_across(&ropts) < NEARLY_NOTHING {
@@ -749,15 +745,11 @@ fn answer_queries(sys: &System, word: &mut Word, values: &Globals, opts: &RunOpt
     let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, values, &dopts) else {
         return;
     };
-    let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
-    turtle::interpret_with(
-        sys,
-        &drawn,
-        opts.seed,
-        turtle::TurtleOptions::default(),
-        &mut |i, _, v| answers.push((i, v)),
-    );
-    for (i, v) in answers {
+    let run = turtle::Run {
+        queries: true,
+        ..turtle::Run::word(sys, &drawn, opts.seed)
+    };
+    for (i, v) in turtle::run(run, &mut Geometry::default()).answers {
         // Only a query module the homomorphism kept writes back.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;
@@ -1416,7 +1408,10 @@ pub fn render_streamed(
     let unstreamed =
         |w: eval::Symbols| Streamed::Word(w.into_word(), Globals::initial(&sys.program));
     let mut survey = render::coverage::Survey::new(&ropts);
-    turtle::interpret_into(sys, word.iter(), opts.seed, &mut survey);
+    turtle::run(
+        turtle::Run::symbols(sys, word.iter(), opts.seed),
+        &mut survey,
+    );
     if !survey.streams() {
         return unstreamed(word);
     }
@@ -1428,7 +1423,10 @@ pub fn render_streamed(
             ropts.width, ropts.height
         ))));
     };
-    turtle::interpret_into(sys, word.iter(), opts.seed, &mut painter);
+    turtle::run(
+        turtle::Run::symbols(sys, word.iter(), opts.seed),
+        &mut painter,
+    );
     if painter.overflow || painter.spread_width() < NEARLY_NOTHING {
         return unstreamed(word);
     }
@@ -1609,12 +1607,11 @@ fn grown_geometry(sys: &System, opts: &RunOptions, layout: bool) -> Option<Grown
     if order.word != sys.axiom || sys.rewrites_modules() || order.stems == 0 {
         return None;
     }
-    let options = turtle::TurtleOptions {
+    let mut geometry = turtle::Run {
         origins: true,
-        ..Default::default()
-    };
-    let mut geometry =
-        turtle::interpret_with(sys, &sys.axiom, opts.seed, options, &mut |_, _, _| {});
+        ..turtle::Run::word(sys, &sys.axiom, opts.seed)
+    }
+    .geometry();
     if layout {
         let before = geometry.polygons.len();
         add_layout(sys, &mut geometry);
@@ -1764,7 +1761,8 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         // so before it starts.
         Deriver::new(sys).tree_len(t, &dopts)?;
         let mut c = Counter::default();
-        let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
+        let run = turtle::Run::symbols(sys, t.symbols(steps), opts.seed);
+        let max_depth = turtle::run(run, &mut c).max_depth;
         return Ok(measured(c, max_depth, "streamed"));
     }
     let (w, values) = derive_values(sys, opts, |_, _| {})?;
@@ -1780,7 +1778,8 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         (w.len() as u128, c, g.max_depth)
     } else {
         let mut c = Counter::default();
-        let depth = turtle::interpret_into(sys, w.0.iter().copied(), opts.seed, &mut c);
+        let run = turtle::Run::symbols(sys, w.0.iter().copied(), opts.seed);
+        let depth = turtle::run(run, &mut c).max_depth;
         (written_symbols(sys, &w) as u128, c, depth)
     };
     let t2 = Instant::now();

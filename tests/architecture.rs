@@ -522,6 +522,11 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ("ir/d0l.rs", "use super::{SymbolId, System};", false),
         ("turtle/instanced.rs", "use crate::render::Picture;", true),
         ("turtle/mod.rs", "use crate::random::Rng;", false),
+        ("turtle/run.rs", "use crate::eval::Deriver;", true),
+        ("turtle/interpret.rs", "use crate::render::Picture;", true),
+        ("turtle/interpret.rs", "use crate::random::Rng;", false),
+        ("turtle/state.rs", "use crate::ir::Axis;", false),
+        ("turtle/geometry.rs", "use crate::driver::RunOptions;", true),
         ("eval/mod.rs", "use clap::Parser;", true),
         ("cli/mod.rs", "use clap::Parser;", false),
         (
