@@ -17,7 +17,7 @@
 //!
 //!   Before timing, every baseline's word is checked to be identical to
 //!   graftal's, so both sides do the same work.
-//! * `interpret`: `turtle::interpret` on the derived words, in segments/s.
+//! * `interpret`: `turtle::Run::word(…).geometry()` on the derived words, in segments/s.
 //! * `render-png` / `render-svg`: `render::layout` + `render::png::encode` /
 //!   `render::svg::write` at 1024x1024, in segments/s.
 //!
@@ -222,7 +222,7 @@ fn cases() -> Vec<Case> {
         .flat_map(|family| {
             family.steps.iter().map(move |&steps| {
                 let word = graftal_derive(&family.sys, steps);
-                let geometry = turtle::interpret(&family.sys, &word, SEED);
+                let geometry = turtle::Run::word(&family.sys, &word, SEED).geometry();
                 Case {
                     family,
                     steps,
@@ -288,7 +288,7 @@ fn bench_interpret(c: &mut Criterion) {
     let mut group = c.benchmark_group("interpret");
     for case in &cases {
         let sys = &case.family.sys;
-        let (g, peak) = peak_during(|| turtle::interpret(sys, &case.word, SEED));
+        let (g, peak) = peak_during(|| turtle::Run::word(sys, &case.word, SEED).geometry());
         println!(
             "peak memory: interpret {}: {}, {} segments",
             case.label(),
@@ -300,7 +300,7 @@ fn bench_interpret(c: &mut Criterion) {
         group.bench_with_input(
             BenchmarkId::new(case.family.name, case.steps),
             &case.word,
-            |b, word| b.iter(|| turtle::interpret(sys, black_box(word), SEED)),
+            |b, word| b.iter(|| turtle::Run::word(sys, black_box(word), SEED).geometry()),
         );
     }
     group.finish();

@@ -263,7 +263,7 @@ fn segments(src: &str, steps: u64) -> Vec<Segment> {
     let c = compile(SourceFile::new("t.l", src));
     let sys = c.system.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
     let word = driver::derive(&sys, &run(steps)).unwrap();
-    turtle::interpret(&sys, &word, 0).segments
+    turtle::Run::word(&sys, &word, 0).geometry().segments
 }
 
 fn ends(s: &[Segment]) -> Vec<(f64, f64)> {
@@ -338,7 +338,7 @@ fn double_cesaro_is_drawn_by_the_real_heading() {
     let c = entry("fractint.l", "DoubleCesaro");
     let sys = c.system.as_ref().unwrap();
     let w = driver::derive(sys, &run(0)).unwrap();
-    let s = turtle::interpret(sys, &w, 0).segments;
+    let s = turtle::Run::word(sys, &w, 0).geometry().segments;
     assert_eq!(ends(&s), [(0.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (0.0, 0.0)]);
 }
 
@@ -350,7 +350,7 @@ fn colours_follow_fractints_rules() {
     ));
     let mut sys = c.system.unwrap();
     // The default colour 15 is drawn black on graftal's white.
-    let g = turtle::interpret(&sys, &sys.axiom, 0);
+    let g = turtle::Run::word(&sys, &sys.axiom, 0).geometry();
     assert_eq!(g.segments[0].colour, graftal::ir::Rgb(0, 0, 0));
     assert_eq!(
         graftal::front::fractint::palette()[0],
@@ -360,7 +360,7 @@ fn colours_follow_fractints_rules() {
     // lands on 0 and goes to the last colour; <n wraps modulo 256; Cn too;
     // <256 from 0 lands on 0 and goes to 1.
     sys.colours = (0..=255u8).map(|i| graftal::ir::Rgb(i, 0, 0)).collect();
-    let g = turtle::interpret(&sys, &sys.axiom, 0);
+    let g = turtle::Run::word(&sys, &sys.axiom, 0).geometry();
     let idx: Vec<u8> = g.segments.iter().map(|s| s.colour.0).collect();
     assert_eq!(idx, [15, 1, 255, 254, 253, 44, 0, 1]);
 }

@@ -55,7 +55,7 @@ fn reference(sys: &System, n: u64) -> Option<Figures> {
         ..steps(n)
     };
     let word = driver::derive(sys, &opts).ok()?;
-    let g = turtle::interpret(sys, &word, 0);
+    let g = turtle::Run::word(sys, &word, 0).geometry();
     let written = word
         .0
         .iter()

@@ -204,7 +204,9 @@ fn branches_common_to_generations_n_and_n_plus_1_are_drawn_at_the_same_positions
         let now = driver::derive(&sys, &opts(n)).expect("derives");
         let before = driver::geometry(&sys, &opts(n)).expect("draws").1.segments;
         let (marked, next) = step_marked(&sys, &now);
-        let after = graftal::turtle::interpret(&marked, &next, 0).segments;
+        let after = graftal::turtle::Run::word(&marked, &next, 0)
+            .geometry()
+            .segments;
         let map = images(&marked, &next);
         assert_eq!(map.len(), before.len(), "one image per segment");
         // Whether the path to here has grown, per open branch.

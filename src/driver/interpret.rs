@@ -28,18 +28,12 @@ pub fn interpret(
     opts: &RunOptions,
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
-    let options = turtle::TurtleOptions {
-        paths,
-        ..Default::default()
-    };
     let drawn = drawn_word(sys, word, values, opts)?;
-    Ok(turtle::interpret_with(
-        sys,
-        &drawn,
-        opts.seed,
-        options,
-        &mut |_, _, _| {},
-    ))
+    Ok(turtle::Run {
+        paths,
+        ..turtle::Run::word(sys, &drawn, opts.seed)
+    }
+    .geometry())
 }
 
 /// The word the turtle draws for `word`: itself, or what the system's
@@ -78,15 +72,11 @@ pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, op
     let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, values, &dopts) else {
         return;
     };
-    let mut answers: Vec<(usize, [f64; 3])> = Vec::new();
-    turtle::interpret_with(
-        sys,
-        &drawn,
-        opts.seed,
-        turtle::TurtleOptions::default(),
-        &mut |i, _, v| answers.push((i, v)),
-    );
-    for (i, v) in answers {
+    let run = turtle::Run {
+        queries: true,
+        ..turtle::Run::word(sys, &drawn, opts.seed)
+    };
+    for (i, v) in turtle::run(run, &mut Geometry::default()).answers {
         // Only a query module the homomorphism kept writes back.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;

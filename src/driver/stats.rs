@@ -144,7 +144,8 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         // so before it starts.
         Deriver::new(sys).tree_len(t, &dopts)?;
         let mut c = Counter::default();
-        let max_depth = turtle::interpret_into(sys, t.symbols(steps), opts.seed, &mut c);
+        let run = turtle::Run::symbols(sys, t.symbols(steps), opts.seed);
+        let max_depth = turtle::run(run, &mut c).max_depth;
         return Ok(measured(c, max_depth, "streamed"));
     }
     let (w, values) = derive_values(sys, opts, |_, _| {})?;
@@ -160,7 +161,8 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         (w.len() as u128, c, g.max_depth)
     } else {
         let mut c = Counter::default();
-        let depth = turtle::interpret_into(sys, w.0.iter().copied(), opts.seed, &mut c);
+        let run = turtle::Run::symbols(sys, w.0.iter().copied(), opts.seed);
+        let depth = turtle::run(run, &mut c).max_depth;
         (written_symbols(sys, &w) as u128, c, depth)
     };
     let t2 = Instant::now();

@@ -554,11 +554,11 @@ fn sphere(mesh: &mut Mesh, c: Vec3, r: f64, finish: Finish) {
 mod tests {
     use super::*;
     use crate::front::pfg::read_ok;
-    use crate::turtle::{interpret, Disc};
+    use crate::turtle::{Disc, Run};
 
     fn draw(src: &str) -> Geometry {
         let sys = read_ok(src);
-        interpret(&sys, &sys.axiom, 0)
+        Run::word(&sys, &sys.axiom, 0).geometry()
     }
 
     /// Normals of unit length, indices in range, one normal a vertex.
@@ -728,7 +728,7 @@ mod tests {
         let scene = instanced::scene(&sys, &mut inst, 4).unwrap();
         let word = crate::eval::derive(&sys, &crate::eval::DeriveOptions::new(4)).unwrap();
         let whole = Scene::single(of_geometry(
-            &interpret(&sys, &word, 0),
+            &Run::word(&sys, &word, 0).geometry(),
             None,
             &mut |_, _| {},
         ));

@@ -3,7 +3,7 @@
 //! instead of running out of it: cpfg surfaces and generalized cylinders
 //! make many primitives from one module, which counting moves misses.
 
-use super::pieces;
+use super::interpret::pieces;
 use crate::ir::look::ContourRole;
 use crate::ir::{System, TurtleOp, Word};
 

@@ -16,7 +16,8 @@
 //! the distance between the control points: cpfg's `x U − y L` with cpfg's
 //! up, the turtle's −U.
 
-use super::{add_scaled, cross, dot, normalised, Vec3};
+use super::state::{add_scaled, cross, dot, normalised};
+use super::Vec3;
 use crate::ir::look::CONTOUR_SAMPLES;
 
 /// A control point of a generalized cylinder: where it is, its frame (H

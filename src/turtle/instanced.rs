@@ -27,7 +27,8 @@
 //! polygons, discs, two headings — is left to the streaming turtle (see
 //! [`crate::driver::stats`]); [`Instanced::new`] says `None`.
 
-use super::{rotate, Vec3};
+use super::state::rotate;
+use super::Vec3;
 use crate::ir::{Angle, Axis, D0l, SymbolId, System, TurtleOp};
 use std::collections::HashMap;
 

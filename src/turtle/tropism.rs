@@ -9,7 +9,8 @@
 //! restore it with the turtle's state. A system without tropisms has none
 //! of it and draws as before.
 
-use super::{cross, dot, normalised, State, Vec3};
+use super::state::{cross, dot, normalised, State};
+use super::Vec3;
 use crate::ir::look::{Tropism, TropismKind};
 use crate::ir::ElasticityChange;
 
@@ -261,7 +262,7 @@ impl<'a> Tropisms<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::turtle::{interpret, Geometry};
+    use crate::turtle::{Geometry, Run};
 
     fn tropism(vector: Vec3, elasticity: f64, kind: TropismKind) -> Tropism {
         Tropism {
@@ -281,7 +282,7 @@ mod tests {
         sys.settings.delta = 90f64.to_radians();
         sys.settings.tropisms = tropisms;
         let word = crate::driver::derive(&sys, &crate::driver::RunOptions::default()).unwrap();
-        interpret(&sys, &word, 0)
+        Run::word(&sys, &word, 0).geometry()
     }
 
     fn direction(g: &Geometry, k: usize) -> Vec3 {

@@ -178,12 +178,11 @@ fn grown_geometry(sys: &System, opts: &RunOptions, layout: bool) -> Option<Grown
     if order.word != sys.axiom || sys.rewrites_modules() || order.stems == 0 {
         return None;
     }
-    let options = turtle::TurtleOptions {
+    let mut geometry = turtle::Run {
         origins: true,
-        ..Default::default()
-    };
-    let mut geometry =
-        turtle::interpret_with(sys, &sys.axiom, opts.seed, options, &mut |_, _, _| {});
+        ..turtle::Run::word(sys, &sys.axiom, opts.seed)
+    }
+    .geometry();
     if layout {
         let before = geometry.polygons.len();
         add_layout(sys, &mut geometry);

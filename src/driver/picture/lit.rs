@@ -47,7 +47,9 @@ pub(super) fn draw(
     let Some(lighting) = sys.look.lighting.as_ref() else {
         return Ok(None);
     };
-    let replay = |sink: &mut dyn turtle::Sink| turtle::draw_into(sys, &drawn, opts.seed, sink);
+    let replay = |sink: &mut dyn turtle::Sink| {
+        turtle::run(turtle::Run::word(sys, &drawn, opts.seed), sink).max_depth
+    };
     let drawing = render::raster::Drawing::replayed(&replay, sys.settings.world_widths);
     let survey = render::raster::survey(&drawing, lighting, &ropts);
     if survey.pixels_across(&ropts) < NEARLY_NOTHING {

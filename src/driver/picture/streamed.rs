@@ -49,7 +49,10 @@ pub(super) fn draw(
     let unstreamed =
         |w: eval::Symbols| Streamed::Word(w.into_word(), Globals::initial(&sys.program));
     let mut survey = render::coverage::Survey::new(&ropts);
-    turtle::interpret_into(sys, word.iter(), opts.seed, &mut survey);
+    turtle::run(
+        turtle::Run::symbols(sys, word.iter(), opts.seed),
+        &mut survey,
+    );
     if !survey.streams() {
         return Ok(unstreamed(word));
     }
@@ -58,7 +61,10 @@ pub(super) fn draw(
     else {
         return Err(too_large(&ropts));
     };
-    turtle::interpret_into(sys, word.iter(), opts.seed, &mut painter);
+    turtle::run(
+        turtle::Run::symbols(sys, word.iter(), opts.seed),
+        &mut painter,
+    );
     if painter.overflow || painter.spread_width() < NEARLY_NOTHING {
         return Ok(unstreamed(word));
     }

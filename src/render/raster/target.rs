@@ -1,0 +1,198 @@
+//! The samples a lit picture is drawn into: a band of sample rows (or a
+//! thread's share of it) holding a colour and a depth per sample, and the
+//! triangles and lines rasterised into it (the nearer sample wins; on a
+//! tie the first drawn).
+
+use crate::ir::Rgb;
+use crate::render::shade::{to_colour, Colour};
+
+/// A vertex in samples (x right, y down), with its depth (smaller is
+/// nearer) and colour.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SVert {
+    pub(super) x: f64,
+    pub(super) y: f64,
+    pub(super) z: f64,
+    pub(super) c: Colour,
+}
+
+/// A band of sample rows, or one thread's share of it: the band's rows
+/// are dealt out in stripes of `stripe` rows to `shares` targets, and this
+/// one holds the stripes of share `share` (colour and depth), so that
+/// threads drawing a plant share its dense parts alike.
+pub(super) struct Target {
+    /// First sample row of the band, and its rows.
+    y0: i64,
+    rows: i64,
+    pub(super) width: i64,
+    stripe: i64,
+    shares: i64,
+    share: i64,
+    pub(super) colour: Vec<u32>,
+    depth: Vec<f32>,
+}
+
+/// An opaque colour as `0xAARRGGBB`.
+fn pack(c: Colour) -> u32 {
+    let q = |x: f32| (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u32;
+    (255 << 24) | (q(c[0]) << 16) | (q(c[1]) << 8) | q(c[2])
+}
+
+/// Twice the signed area of (a, b, p); swapping a and b negates it exactly,
+/// so triangles sharing an edge leave no gap along it.
+fn edge(a: &SVert, b: &SVert, px: f64, py: f64) -> f64 {
+    (a.x - px) * (b.y - py) - (a.y - py) * (b.x - px)
+}
+
+impl Target {
+    /// Share `share` of `shares` of the band, in stripes of `stripe` rows.
+    pub(super) fn share(
+        y0: i64,
+        rows: i64,
+        width: i64,
+        (background, alpha): (Rgb, u8),
+        (stripe, shares, share): (i64, i64, i64),
+    ) -> Target {
+        let mut t = Target {
+            y0,
+            rows,
+            width,
+            stripe,
+            shares,
+            share,
+            colour: Vec::new(),
+            depth: Vec::new(),
+        };
+        let held = (0..rows).filter(|r| t.owns(y0 + r)).count();
+        let n = held * width.max(0) as usize;
+        let bg = pack(to_colour(background)) & 0x00ff_ffff | u32::from(alpha) << 24;
+        t.colour = vec![bg; n];
+        t.depth = vec![f32::INFINITY; n];
+        t
+    }
+
+    /// Whether sample row `y` is held here.
+    pub(super) fn owns(&self, y: i64) -> bool {
+        let r = y - self.y0;
+        (0..self.rows).contains(&r) && (r / self.stripe) % self.shares == self.share
+    }
+
+    /// Where held row `y` is stored.
+    fn local(&self, y: i64) -> i64 {
+        let r = y - self.y0;
+        r / self.stripe / self.shares * self.stripe + r % self.stripe
+    }
+
+    /// Whether sample rows `lo..=hi` meet the band.
+    pub(super) fn meets(&self, lo: f64, hi: f64) -> bool {
+        hi >= self.y0 as f64 - 1.0 && lo <= (self.y0 + self.rows) as f64 + 1.0
+    }
+
+    pub(super) fn plot(&mut self, x: i64, y: i64, z: f64, c: Colour) {
+        let i = (self.local(y) * self.width + x) as usize;
+        let z = z as f32;
+        if z < self.depth[i] {
+            self.depth[i] = z;
+            self.colour[i] = pack(c);
+        }
+    }
+
+    /// The rows of samples whose centres lie in `lo..=hi`, in the band
+    /// (those held here: [`Target::owns`]).
+    pub(super) fn rows_between(&self, lo: f64, hi: f64) -> std::ops::Range<i64> {
+        let first = ((lo - 0.5).ceil() as i64).max(self.y0);
+        let last = ((hi - 0.5).floor() as i64).min(self.y0 + self.rows - 1);
+        first..last + 1
+    }
+
+    pub(super) fn triangle(&mut self, v: [SVert; 3]) {
+        if v.iter()
+            .any(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()))
+        {
+            return;
+        }
+        let area = edge(&v[0], &v[1], v[2].x, v[2].y);
+        // NaN-safe: a NaN area is not above the bound either.
+        if area.abs().partial_cmp(&1e-12) != Some(std::cmp::Ordering::Greater) {
+            return;
+        }
+        let v = if area < 0.0 { [v[0], v[2], v[1]] } else { v };
+        let area = area.abs();
+        let lo = v.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+        let hi = v.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
+        for y in self.rows_between(lo, hi) {
+            if !self.owns(y) {
+                continue;
+            }
+            let yc = y as f64 + 0.5;
+            let Some((xl, xr)) = span(&v, yc) else {
+                continue;
+            };
+            let first = ((xl - 0.5).ceil() as i64 - 1).max(0);
+            let last = ((xr - 0.5).floor() as i64 + 1).min(self.width - 1);
+            for x in first..=last {
+                let xc = x as f64 + 0.5;
+                let w0 = edge(&v[1], &v[2], xc, yc);
+                let w1 = edge(&v[2], &v[0], xc, yc);
+                let w2 = edge(&v[0], &v[1], xc, yc);
+                if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                    continue;
+                }
+                let (b0, b1, b2) = (w0 / area, w1 / area, w2 / area);
+                let z = b0 * v[0].z + b1 * v[1].z + b2 * v[2].z;
+                let (b0, b1, b2) = (b0 as f32, b1 as f32, b2 as f32);
+                let c = [0, 1, 2].map(|k| b0 * v[0].c[k] + b1 * v[1].c[k] + b2 * v[2].c[k]);
+                self.plot(x, y, z, c);
+            }
+        }
+    }
+
+    /// A line between `a` and `b` (samples) `width` samples wide, with
+    /// square ends reaching half its width past them, in one colour.
+    pub(super) fn line(&mut self, a: [f64; 3], b: [f64; 3], width: f64, c: Colour) {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = (dx * dx + dy * dy).sqrt();
+        if len.partial_cmp(&1e-9) != Some(std::cmp::Ordering::Greater) || !width.is_finite() {
+            return;
+        }
+        let h = width.clamp(1.0, 1e6) / 2.0;
+        let (tx, ty) = (dx / len * h, dy / len * h);
+        let (nx, ny) = (-ty, tx);
+        let at = |p: [f64; 3], s: f64, side: f64| SVert {
+            x: p[0] + s * tx + side * nx,
+            y: p[1] + s * ty + side * ny,
+            z: p[2],
+            c,
+        };
+        let q = [
+            at(a, -1.0, -1.0),
+            at(a, -1.0, 1.0),
+            at(b, 1.0, 1.0),
+            at(b, 1.0, -1.0),
+        ];
+        self.triangle([q[0], q[1], q[2]]);
+        self.triangle([q[0], q[2], q[3]]);
+    }
+}
+
+/// Where the row at `yc` crosses the triangle `v`: its leftmost and
+/// rightmost x.
+fn span(v: &[SVert; 3], yc: f64) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for (p, q) in [(&v[0], &v[1]), (&v[1], &v[2]), (&v[2], &v[0])] {
+        let (y0, y1) = (p.y.min(q.y), p.y.max(q.y));
+        if yc < y0 || yc > y1 {
+            continue;
+        }
+        let x = if y1 - y0 > 1e-12 {
+            p.x + (yc - p.y) * (q.x - p.x) / (q.y - p.y)
+        } else {
+            lo = lo.min(p.x.min(q.x));
+            p.x.max(q.x)
+        };
+        lo = lo.min(x);
+        hi = hi.max(x);
+    }
+    (lo <= hi).then_some((lo, hi))
+}

@@ -1,0 +1,204 @@
+//! What the turtle draws (segments, polygons, discs, paths) and where it
+//! goes: a [`Sink`], which stores it ([`Geometry`]), counts it or draws it
+//! straight into a picture.
+
+use super::Vec3;
+use crate::ir::Rgb;
+use serde::Serialize;
+
+/// A drawn line segment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Segment {
+    pub a: Vec3,
+    pub b: Vec3,
+    pub width: f64,
+    pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
+    /// How many branches it is nested in (`[` deep), for a picture coloured
+    /// by depth ([`crate::render::Palette::Depth`]).
+    #[serde(skip)]
+    pub depth: u16,
+}
+
+/// A filled polygon.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Polygon {
+    pub points: Vec<Vec3>,
+    pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
+    /// Part of a surface (`~`): cpfg's colour-map shading scales the index
+    /// within its block of 64 for surfaces, and shifts it for polygons
+    /// and the tubes of cylinders (manual §8.1.3).
+    pub surface: bool,
+}
+
+/// The sequence of turtle positions along one branch (every move, drawn or
+/// not), for spline rendering: the book draws kolams (§6.2) and Fig. 2.11
+/// by using consecutive turtle positions as B-spline control points.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TurtlePath {
+    pub points: Vec<Vec3>,
+    pub width: f64,
+    pub colour: Rgb,
+    /// How many branches deep the path is (0 for the trunk), for colouring
+    /// by depth ([`crate::render::Palette::Depth`]).
+    pub depth: u16,
+}
+
+/// A filled disc facing the viewer (a cpfg sphere `@O` or circle `@o`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Disc {
+    pub centre: Vec3,
+    pub diameter: f64,
+    /// Whether `diameter` is in pixels (a line width) rather than turtle
+    /// units.
+    pub pixels: bool,
+    pub colour: Rgb,
+    /// The colour index it was drawn with: the material of a lit look
+    /// ([`crate::ir::look::Lighting`]).
+    pub index: u16,
+}
+
+/// What the turtle drew.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Geometry {
+    pub segments: Vec<Segment>,
+    pub polygons: Vec<Polygon>,
+    pub discs: Vec<Disc>,
+    /// Whether segment widths are in turtle units rather than pixels
+    /// ([`crate::ir::Settings::world_widths`]).
+    pub world_widths: bool,
+    /// Turtle paths, when asked for ([`Run::paths`](super::Run::paths)).
+    pub paths: Vec<TurtlePath>,
+    /// The deepest branch nesting reached.
+    pub max_depth: usize,
+    /// Which module drew what, when asked for ([`Run::origins`](super::Run::origins)).
+    #[serde(skip)]
+    pub origins: Origins,
+    /// The order the turtle drew in, as runs of one kind, so that a stored
+    /// drawing replays as it was drawn ([`Geometry::replay`]): a lit
+    /// picture drawn from it and one drawn straight from the turtle agree.
+    #[serde(skip)]
+    pub order: Vec<(Drawn, u32)>,
+}
+
+/// Grows the box `b` (`[minx, miny, minz, maxx, maxy, maxz]`, `None` when
+/// empty) to hold `p`.
+pub fn grow_box(b: &mut Option<[f64; 6]>, p: Vec3) {
+    let b = b.get_or_insert([p[0], p[1], p[2], p[0], p[1], p[2]]);
+    for k in 0..3 {
+        b[k] = b[k].min(p[k]);
+        b[k + 3] = b[k + 3].max(p[k]);
+    }
+}
+
+/// A kind of thing the turtle draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Drawn {
+    Segment,
+    Polygon,
+    Disc,
+}
+
+/// Per segment, polygon and disc drawn, the index in the word of the
+/// module that drew it: what lets a growth animation show the parts of a
+/// word in the order they grew.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Origins {
+    pub segments: Vec<usize>,
+    pub polygons: Vec<usize>,
+    pub discs: Vec<usize>,
+}
+
+impl Geometry {
+    /// `[minx, miny, minz, maxx, maxy, maxz]` of everything drawn, or `None`
+    /// when nothing was drawn.
+    pub fn bbox(&self) -> Option<[f64; 6]> {
+        let pts = self
+            .segments
+            .iter()
+            .flat_map(|s| [s.a, s.b])
+            .chain(self.polygons.iter().flat_map(|p| p.points.iter().copied()))
+            .chain(self.discs.iter().map(|d| d.centre));
+        let mut b: Option<[f64; 6]> = None;
+        for p in pts {
+            grow_box(&mut b, p);
+        }
+        b
+    }
+
+    /// Nothing drawn: no segment, no polygon, and no path with a move.
+    pub fn is_empty(&self) -> bool {
+        self.segments.is_empty()
+            && self.polygons.is_empty()
+            && self.discs.is_empty()
+            && self.paths.iter().all(|p| p.points.len() < 2)
+    }
+}
+
+/// A colour index as primitives keep it.
+pub(crate) fn index_of(colour: usize) -> u16 {
+    colour.min(u16::MAX as usize) as u16
+}
+
+/// Where the turtle's drawing goes: stored ([`Geometry`]), counted, or
+/// drawn straight into a picture.
+pub trait Sink {
+    fn segment(&mut self, s: Segment);
+    fn polygon(&mut self, p: Polygon);
+    fn disc(&mut self, d: Disc);
+}
+
+impl Sink for Geometry {
+    fn segment(&mut self, s: Segment) {
+        self.note(Drawn::Segment);
+        self.segments.push(s);
+    }
+    fn polygon(&mut self, p: Polygon) {
+        self.note(Drawn::Polygon);
+        self.polygons.push(p);
+    }
+    fn disc(&mut self, d: Disc) {
+        self.note(Drawn::Disc);
+        self.discs.push(d);
+    }
+}
+
+impl Geometry {
+    fn note(&mut self, kind: Drawn) {
+        match self.order.last_mut() {
+            Some((k, n)) if *k == kind && *n < u32::MAX => *n += 1,
+            _ => self.order.push((kind, 1)),
+        }
+    }
+
+    /// Gives everything drawn to `sink` in the order it was drawn; what
+    /// was added without a note of its order (a layout, a geometry built by
+    /// hand) follows: polygons, then segments, then discs.
+    pub fn replay(&self, sink: &mut dyn Sink) {
+        let mut next = [0usize; 3];
+        let mut give = |kind: Drawn, n: usize, sink: &mut dyn Sink| {
+            let k = kind as usize;
+            let len = [self.segments.len(), self.polygons.len(), self.discs.len()][k];
+            let end = next[k].saturating_add(n).min(len);
+            for i in next[k]..end {
+                match kind {
+                    Drawn::Segment => sink.segment(self.segments[i].clone()),
+                    Drawn::Polygon => sink.polygon(self.polygons[i].clone()),
+                    Drawn::Disc => sink.disc(self.discs[i].clone()),
+                }
+            }
+            next[k] = end;
+        };
+        for &(kind, n) in &self.order {
+            give(kind, n as usize, sink);
+        }
+        for kind in [Drawn::Polygon, Drawn::Segment, Drawn::Disc] {
+            give(kind, usize::MAX, sink);
+        }
+    }
+}

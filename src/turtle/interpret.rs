@@ -1,0 +1,708 @@
+//! What each symbol does: the turtle walking a word, one module at a time,
+//! turning, moving, branching, drawing and colouring as the book, cpfg,
+//! LinF and Fractint define their symbols.
+
+use super::geometry::index_of;
+use super::run::{Learned, Record};
+use super::state::{
+    add_scaled, dot, hermite, Cylinder, State, DEFAULT_TANGENTS, NO_HISTORY, RENORMALISE_EVERY,
+};
+use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, TurtlePath, Vec3};
+use crate::ir::colours::DEFAULT_PALETTE;
+use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, System, TurtleOp};
+use crate::random::{Rng, Stream};
+
+/// The parameters of the module being interpreted.
+#[derive(Clone, Copy)]
+pub(super) struct Args<'w>(pub(super) &'w [f64]);
+
+impl Args<'_> {
+    /// Parameter `k`. A parameter that is not a number draws nothing odd:
+    /// it is treated as absent.
+    fn get(self, k: usize) -> Option<f64> {
+        self.0.get(k).copied().filter(|v| v.is_finite())
+    }
+
+    /// How many parameters the module has.
+    fn len(self) -> usize {
+        self.0.len()
+    }
+
+    /// Parameters `k`, `k + 1` and `k + 2` as a vector, absent ones 0.
+    fn vector(self, k: usize) -> Vec3 {
+        [self.get(k), self.get(k + 1), self.get(k + 2)].map(|x| x.unwrap_or(0.0))
+    }
+}
+
+/// How many pieces a cylinder module's parameter asks for.
+pub(super) fn pieces(n: f64) -> usize {
+    n.clamp(1.0, 64.0) as usize
+}
+
+/// The turtle interpreting a word: its state and the enclosing branches'
+/// states, and what it is building; what it draws goes to `sink`.
+pub(super) struct Turtle<'a> {
+    sys: &'a System,
+    palette: Vec<Rgb>,
+    /// The stream interval angles are drawn from.
+    rng: Rng,
+    state: State,
+    /// The states of the enclosing branches.
+    stack: Vec<State>,
+    /// Arena of the colour histories: (previous entry, colour).
+    history: Vec<(u32, usize)>,
+    /// The polygons being collected, innermost last: vertices and colour.
+    open_polygons: Vec<(Vec<Vec3>, usize)>,
+    /// What the run learns: the paths, the deepest nesting and the
+    /// queries' answers (segments, polygons and discs go to `sink`).
+    learned: Learned,
+    record_paths: bool,
+    record_queries: bool,
+    /// Index into `geometry.paths` of the current branch's path, and of
+    /// the enclosing branches' paths.
+    path: usize,
+    path_stack: Vec<usize>,
+    /// Rotations since the frame was last re-orthonormalised.
+    rotations: u32,
+    /// The system's tropisms and what bends with the turtle; `None` when
+    /// it has none.
+    tropisms: Option<tropism::Tropisms<'a>>,
+    sink: &'a mut dyn Sink,
+}
+
+impl<'a> Turtle<'a> {
+    /// A turtle at the start of a word of `sys`, recording what `record`
+    /// asks for.
+    pub(super) fn new(sys: &'a System, seed: u64, record: Record, sink: &'a mut dyn Sink) -> Self {
+        let palette: Vec<Rgb> = if sys.colours.is_empty() {
+            DEFAULT_PALETTE.to_vec()
+        } else {
+            sys.colours.clone()
+        };
+        let state = State {
+            pos: [0.0; 3],
+            h: [0.0, 1.0, 0.0],
+            l: [-1.0, 0.0, 0.0],
+            u: [0.0, 0.0, 1.0],
+            length: sys.settings.step,
+            width: sys.settings.width,
+            colour: sys.settings.colour.min(palette.len() - 1),
+            history: NO_HISTORY,
+            swapped: false,
+            cylinder: None,
+            real: 0.0,
+            contour: 0,
+            tangents: DEFAULT_TANGENTS,
+            radius_tangents: [[0.0; 2]; 2],
+            scale_radius_tangents: false,
+        };
+        let mut turtle = Turtle {
+            sys,
+            palette,
+            rng: Rng::new(seed, Stream::Turtle),
+            state,
+            stack: Vec::new(),
+            history: Vec::new(),
+            open_polygons: Vec::new(),
+            learned: Learned::default(),
+            record_paths: record.paths,
+            record_queries: record.queries,
+            path: usize::MAX,
+            path_stack: Vec::new(),
+            rotations: 0,
+            tropisms: tropism::Tropisms::new(&sys.settings.tropisms, &state),
+            sink,
+        };
+        if record.paths {
+            turtle.path = turtle.start_path();
+        }
+        turtle
+    }
+
+    /// Interprets `op`, the module at index `i` of the word.
+    // Inlined into `run::interpret`'s loop, as `forward` is: called as functions they
+    // made interpretation (benches/throughput.rs, `interpret`) a fifth
+    // slower.
+    #[inline(always)]
+    pub(super) fn apply(&mut self, i: usize, op: TurtleOp, args: Args) {
+        if self.rotations >= RENORMALISE_EVERY {
+            self.state.renormalise();
+            self.rotations = 0;
+        }
+        match op {
+            TurtleOp::Forward { draw } if self.tropisms.is_some() => self.forward_bent(draw, args),
+            TurtleOp::Forward { draw } => self.forward(self.state.h, draw, args),
+            TurtleOp::ForwardReal { draw } => {
+                // Along the real heading in the plane of the initial
+                // H = +y and L = −x.
+                let real = self.state.real;
+                self.forward([-real.sin(), real.cos(), 0.0], draw, args);
+            }
+            TurtleOp::MoveTo => self.move_to(args),
+            TurtleOp::Rotate { axis, angle } => self.rotate(axis, angle, args),
+            TurtleOp::Frenet { rotation, negate } => self.frenet(rotation, negate),
+            TurtleOp::TurnUnswapped(angle) => {
+                let a = self.resolve(angle);
+                self.state.turn_unswapped(a);
+                self.rotations += 1;
+            }
+            TurtleOp::RotateReal(angle) => {
+                let a = self.resolve(angle);
+                // Positive turns right, as `Rotate` about U does.
+                self.state.real -= if self.state.swapped { -a } else { a };
+            }
+            // Not affected by swapped turns: a half turn either way.
+            TurtleOp::TurnAround => self.state.turn_unswapped(std::f64::consts::PI),
+            TurtleOp::SwapTurns => self.state.swapped = !self.state.swapped,
+            TurtleOp::SetHeading => self.state.set_heading(args.vector(0), args.vector(3)),
+            TurtleOp::RollToVertical => self.state.roll_to_vertical(),
+            TurtleOp::Push => self.push(),
+            TurtleOp::Pop => self.pop(),
+            // cpfg `{(n)`: a generalized cylinder, not a polygon.
+            TurtleOp::PolygonBegin if args.get(0).is_some() => self.start_cylinder(),
+            TurtleOp::PolygonBegin => self
+                .open_polygons
+                .push((vec![self.state.pos], self.state.colour)),
+            TurtleOp::PolygonEnd if args.get(0).is_some() => self.cylinder_point(4, true),
+            TurtleOp::PolygonEnd => self.end_polygon(),
+            TurtleOp::PolygonVertex => self.polygon_vertex(args),
+            TurtleOp::CylinderStart => self.start_cylinder(),
+            TurtleOp::CylinderPoint { end } => {
+                self.cylinder_point(pieces(args.get(0).unwrap_or(1.0)), end);
+            }
+            // cpfg `@Gt(a[,b])`: arriving a, leaving b (or a), for the
+            // control points that follow; nothing without a parameter.
+            TurtleOp::CylinderTangents => {
+                if let Some(a) = args.get(0) {
+                    self.state.tangents = (a, args.get(1).unwrap_or(a));
+                }
+            }
+            TurtleOp::RadiusTangents => self.radius_tangents(args),
+            TurtleOp::SetColour(n) => self.state.colour = n as usize % self.palette.len(),
+            TurtleOp::ShiftColour { by, up } => self.shift_colour(by, up),
+            TurtleOp::NextColour => self.next_colour(),
+            TurtleOp::PreviousColour => self.previous_colour(),
+            TurtleOp::ColourIndex { up } => self.colour_index(up, args),
+            TurtleOp::DecrementWidth => self.state.width *= self.sys.settings.width_factor,
+            TurtleOp::LineWidth { up } => self.line_width(up, args),
+            TurtleOp::ScaleLength(f) => self.state.length *= f,
+            TurtleOp::Stem { width, length } => {
+                self.state.width = width;
+                self.state.length = length;
+            }
+            TurtleOp::Sphere | TurtleOp::ScreenDisc => self.disc(args),
+            TurtleOp::Circle => self.circle(args),
+            TurtleOp::Surface(k) => self.surface(k, args),
+            TurtleOp::Query(kind) => {
+                if self.record_queries {
+                    let v = self.state.vector(kind);
+                    self.learned.answers.push((i, v));
+                }
+            }
+            TurtleOp::Elasticity { tropism, change } => self.elasticity(tropism, change, args),
+            TurtleOp::Untwist => {
+                if let Some(t) = self.tropisms.as_mut() {
+                    t.untwist(&mut self.state);
+                }
+            }
+            TurtleOp::KeepTwist => {
+                if let Some(t) = self.tropisms.as_mut() {
+                    t.keep_twist(&self.state);
+                }
+            }
+            TurtleOp::SetContour => self.set_contour(args),
+        }
+    }
+
+    /// What the turtle learned: the paths with a move, the deepest
+    /// nesting and the queries' answers.
+    pub(super) fn finish(mut self) -> Learned {
+        self.learned.paths.retain(|p| p.points.len() >= 2);
+        self.learned
+    }
+
+    /// The angle `a` stands for, drawing an interval angle from the
+    /// turtle's stream.
+    fn resolve(&mut self, a: Angle) -> f64 {
+        match a {
+            Angle::Delta(f) => f * self.sys.settings.delta,
+            Angle::Radians(r) => r,
+            Angle::Uniform { lo, hi } => lo + (hi - lo) * self.rng.next_f64(),
+        }
+    }
+
+    /// The palette's colour `index`, the last one past its end.
+    fn colour_of(&self, index: usize) -> Rgb {
+        self.palette[index.min(self.palette.len() - 1)]
+    }
+
+    /// How many branches the turtle is in.
+    fn depth(&self) -> u16 {
+        u16::try_from(self.stack.len()).unwrap_or(u16::MAX)
+    }
+
+    /// The colour the turtle draws with.
+    fn colour(&self) -> Rgb {
+        self.colour_of(self.state.colour)
+    }
+}
+
+/// Moves.
+impl Turtle<'_> {
+    /// A step along `direction`, drawn (when `draw`) as a segment, or a
+    /// vertex of the polygon being collected.
+    #[inline(always)]
+    fn forward(&mut self, direction: Vec3, draw: bool, args: Args) {
+        let a = self.state.pos;
+        let b = add_scaled(a, direction, args.get(0).unwrap_or(self.state.length));
+        self.state.pos = b;
+        self.record_position();
+        if let Some((points, _)) = self.open_polygons.last_mut() {
+            points.push(b);
+        } else if draw {
+            let colour = self.colour();
+            self.sink.segment(Segment {
+                a,
+                b,
+                width: self.state.width,
+                colour,
+                index: index_of(self.state.colour),
+                depth: self.depth(),
+            });
+        }
+    }
+
+    /// A step bent by the tropisms: the pulls act on the frame before the
+    /// step, the older tropisms after it, and a drawn step is where the
+    /// next untwisting starts from (cpfg's order).
+    fn forward_bent(&mut self, draw: bool, args: Args) {
+        if let Some(t) = self.tropisms.as_mut() {
+            t.before_step(&mut self.state);
+        }
+        self.forward(self.state.h, draw, args);
+        if let Some(t) = self.tropisms.as_mut() {
+            t.after_step(&mut self.state);
+            if draw {
+                t.drawn_step(&self.state);
+            }
+        }
+        self.rotations += 1;
+    }
+
+    /// `@Ts`, `@Ti`, `@Td`, `_`: an elasticity change; the tropism is the
+    /// op's, or the one the first parameter names (1-based), and the value
+    /// the parameter after it.
+    fn elasticity(&mut self, tropism: Option<u16>, change: ElasticityChange, args: Args) {
+        let Some(t) = self.tropisms.as_mut() else {
+            return;
+        };
+        let (k, value) = match tropism {
+            Some(k) => (Some(k as usize), args.get(0)),
+            None => (
+                args.get(0)
+                    .filter(|id| *id >= 1.0 && *id <= tropism::MAX_TROPISMS as f64)
+                    .map(|id| id as usize - 1),
+                args.get(1),
+            ),
+        };
+        if let Some(k) = k {
+            t.change(k, change, value);
+        }
+    }
+
+    /// cpfg `@M(x, y, z)`: a move to absolute coordinates, those given.
+    fn move_to(&mut self, args: Args) {
+        for k in 0..3 {
+            if let Some(v) = args.get(k) {
+                self.state.pos[k] = v;
+            }
+        }
+        self.record_position();
+    }
+
+    fn record_position(&mut self) {
+        if self.record_paths {
+            self.learned.paths[self.path].points.push(self.state.pos);
+        }
+    }
+
+    /// Starts a path at the turtle; its index in `geometry.paths`.
+    fn start_path(&mut self) -> usize {
+        let colour = self.colour();
+        self.learned.paths.push(TurtlePath {
+            points: vec![self.state.pos],
+            width: self.state.width,
+            colour,
+            depth: self.depth(),
+        });
+        self.learned.paths.len() - 1
+    }
+}
+
+/// Rotations.
+impl Turtle<'_> {
+    /// A turn about `axis`; a module's parameter gives the angle in
+    /// degrees, in the direction of the symbol's own.
+    fn rotate(&mut self, axis: Axis, angle: Angle, args: Args) {
+        let a = match (args.get(0), angle) {
+            (Some(degrees), Angle::Delta(k)) => k.signum() * degrees.to_radians(),
+            _ => self.resolve(angle),
+        };
+        self.state.turn(axis, a);
+        self.rotations += 1;
+    }
+
+    /// A named LinF rotation: torsion about H, then curvature about U.
+    fn frenet(&mut self, rotation: RotationId, negate: bool) {
+        let Some(r) = self.sys.rotations.get(rotation.0 as usize) else {
+            return;
+        };
+        let sign = if negate { -1.0 } else { 1.0 };
+        let (t, k) = (self.resolve(r.torsion), self.resolve(r.curvature));
+        self.state.turn(Axis::Heading, -sign * t);
+        self.state.turn(Axis::Up, -sign * k);
+        self.rotations += 1;
+    }
+}
+
+/// Branches.
+impl Turtle<'_> {
+    fn push(&mut self) {
+        self.stack.push(self.state);
+        if let Some(t) = self.tropisms.as_mut() {
+            t.push();
+        }
+        self.learned.max_depth = self.learned.max_depth.max(self.stack.len());
+        if self.record_paths {
+            self.path_stack.push(self.path);
+            self.path = self.start_path();
+        }
+    }
+
+    fn pop(&mut self) {
+        if let Some(s) = self.stack.pop() {
+            self.state = s;
+            if let Some(t) = self.tropisms.as_mut() {
+                t.pop();
+            }
+            if let Some(p) = self.path_stack.pop() {
+                self.path = p;
+            }
+        }
+    }
+}
+
+/// Polygons and generalized cylinders.
+impl Turtle<'_> {
+    fn end_polygon(&mut self) {
+        if let Some((points, colour)) = self.open_polygons.pop() {
+            if points.len() >= 3 {
+                let index = index_of(colour);
+                let colour = self.colour_of(colour);
+                self.sink.polygon(Polygon {
+                    points,
+                    colour,
+                    index,
+                    surface: false,
+                });
+            }
+        }
+    }
+
+    /// `.`: a vertex of the polygon being collected, or, with a parameter
+    /// (cpfg `.(n)`), a control point of a generalized cylinder.
+    fn polygon_vertex(&mut self, args: Args) {
+        if let Some(n) = args.get(0) {
+            self.cylinder_point(pieces(n), false);
+        } else if let Some((points, _)) = self.open_polygons.last_mut() {
+            points.push(self.state.pos);
+        }
+    }
+
+    fn start_cylinder(&mut self) {
+        self.state.cylinder = Some(Cylinder::at(&self.state));
+    }
+
+    /// A control point of the current generalized cylinder at the turtle:
+    /// the axis from the previous control point is drawn as a Hermite curve
+    /// of `pieces` segments (at least 4, so that curves look like curves),
+    /// or, with a cross-section, swept in `pieces` rings as cpfg's `@Gc(n)`
+    /// asks (a calyx of ten control points a step, as Lychnis's, would
+    /// otherwise make four times the quadrilaterals cpfg draws).
+    fn cylinder_point(&mut self, pieces: usize, end: bool) {
+        let Some(c) = self.state.cylinder else {
+            return;
+        };
+        if c.contour != 0 || self.state.contour != 0 {
+            self.cylinder_mesh(&c, pieces);
+        } else {
+            self.cylinder_segments(&c, pieces.max(4));
+        }
+        self.state.cylinder = if end {
+            None
+        } else {
+            Some(Cylinder::at(&self.state))
+        };
+    }
+
+    /// cpfg `@Gr`: one parameter says whether radius tangents scale with
+    /// the distance between control points; two or four set the arriving
+    /// and leaving tangents from an angle (degrees) and a length each.
+    fn radius_tangents(&mut self, args: Args) {
+        let tangent = |k: usize| {
+            let (a, l) = (args.get(k).unwrap_or(0.0).to_radians(), args.get(k + 1));
+            let l = l.unwrap_or(0.0);
+            [a.cos() * l, a.sin() * l]
+        };
+        match args.len() {
+            0 => {}
+            1 => self.state.scale_radius_tangents = args.get(0).is_some_and(|s| s != 0.0),
+            n => {
+                let arriving = tangent(0);
+                let leaving = if n >= 4 { tangent(2) } else { arriving };
+                self.state.radius_tangents = [arriving, leaving];
+            }
+        }
+    }
+
+    /// The tangent factors of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c` and the one arriving here (cpfg's
+    /// `interpolate_connection`).
+    fn piece_tangents(&self, c: &Cylinder) -> (f64, f64) {
+        (c.tangents.1, self.state.tangents.0)
+    }
+
+    /// The radius tangents of the piece of cylinder from `c` to the turtle:
+    /// the one leaving `c`, the one arriving here, their radius parts
+    /// scaled by the distance `d` when the turtle says so.
+    fn piece_radius_tangents(&self, c: &Cylinder, d: f64) -> gencyl::RadiusTangents {
+        let scale = if self.state.scale_radius_tangents {
+            d
+        } else {
+            1.0
+        };
+        let scaled = |[t, r]: [f64; 2]| [t, r * scale];
+        gencyl::RadiusTangents {
+            start: scaled(c.radius_tangents[1]),
+            end: scaled(self.state.radius_tangents[0]),
+        }
+    }
+
+    /// A piece of generalized cylinder with a cross-section: the contour
+    /// swept from `c` to the turtle as quadrilaterals.
+    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
+        let st = &self.state;
+        let chord: Vec3 = std::array::from_fn(|i| st.pos[i] - c.point[i]);
+        let radius_tangents = self.piece_radius_tangents(c, dot(chord, chord).sqrt());
+        let from = gencyl::End {
+            pos: c.point,
+            h: c.heading,
+            u: c.up,
+            radius: c.width / 2.0,
+        };
+        let to = gencyl::End {
+            pos: st.pos,
+            h: st.h,
+            u: st.u,
+            radius: st.width / 2.0,
+        };
+        let section = |k: u16| match k.checked_sub(1) {
+            Some(i) => self.sys.contours[usize::from(i)].points.clone(),
+            None => gencyl::circle(),
+        };
+        let quads = gencyl::sweep(
+            &from,
+            &to,
+            self.piece_tangents(c),
+            radius_tangents,
+            pieces,
+            &section(c.contour),
+            &section(st.contour),
+        );
+        let index = index_of(st.colour);
+        let colour = self.colour();
+        for q in quads {
+            self.sink.polygon(Polygon {
+                points: q.to_vec(),
+                colour,
+                index,
+                surface: false,
+            });
+        }
+    }
+
+    /// A piece of generalized cylinder without a cross-section: its axis
+    /// as a chain of segments as wide as the turtle's line.
+    fn cylinder_segments(&mut self, c: &Cylinder, pieces: usize) {
+        let st = &self.state;
+        let d = {
+            let v = [
+                st.pos[0] - c.point[0],
+                st.pos[1] - c.point[1],
+                st.pos[2] - c.point[2],
+            ];
+            dot(v, v).sqrt()
+        };
+        let (f0, f1) = self.piece_tangents(c);
+        let t0 = c.heading.map(|x| x * d * f0);
+        let t1 = st.h.map(|x| x * d * f1);
+        let colour = self.colour();
+        let mut a = c.point;
+        for b in hermite(c.point, t0, st.pos, t1, pieces) {
+            self.sink.segment(Segment {
+                a,
+                b,
+                width: st.width,
+                colour,
+                index: index_of(st.colour),
+                depth: self.depth(),
+            });
+            a = b;
+        }
+    }
+}
+
+/// Colours, widths and lengths.
+impl Turtle<'_> {
+    /// cpfg `@#(id)`: the contour of that id becomes the cross-section of
+    /// generalized cylinders; 0, no parameter or an id no contour has: the
+    /// circle.
+    fn set_contour(&mut self, args: Args) {
+        let id = args.get(0).unwrap_or(0.0);
+        self.state.contour = self
+            .sys
+            .contours
+            .iter()
+            .position(|c| {
+                c.role == crate::ir::look::ContourRole::CrossSection
+                    && f64::from(c.id) == id
+                    && id >= 1.0
+            })
+            .map_or(0, |k| (k + 1).min(u16::MAX as usize) as u16);
+    }
+
+    /// Fractint's `<n` / `>n`: the colour `by` places up or down the
+    /// palette, wrapping around and skipping colour 0.
+    fn shift_colour(&mut self, by: u32, up: bool) {
+        let len = self.palette.len() as i64;
+        let by = i64::from(by) % len;
+        let mut c = (self.state.colour as i64 + if up { by } else { -by }).rem_euclid(len);
+        if c == 0 {
+            c = if up { 1 } else { len - 1 };
+        }
+        self.state.colour = (c.min(len - 1)) as usize;
+    }
+
+    /// `'`: the next colour (wrapping around the default palette, staying
+    /// at the last of a system's own), remembered for `PreviousColour`.
+    fn next_colour(&mut self) {
+        self.history.push((self.state.history, self.state.colour));
+        self.state.history = (self.history.len() - 1) as u32;
+        if self.sys.colours.is_empty() {
+            self.state.colour = (self.state.colour + 1) % self.palette.len();
+        } else {
+            self.state.colour = (self.state.colour + 1).min(self.palette.len() - 1);
+        }
+    }
+
+    fn previous_colour(&mut self) {
+        if self.state.history != NO_HISTORY {
+            let (previous, c) = self.history[self.state.history as usize];
+            self.state.colour = c;
+            self.state.history = previous;
+        }
+    }
+
+    /// cpfg `;` / `,`: the colour index given, or one colour step up or
+    /// down.
+    fn colour_index(&mut self, up: bool, args: Args) {
+        let step = self.sys.settings.colour_step;
+        let c = match args.get(0) {
+            Some(v) => v,
+            None if up => self.state.colour as f64 + step,
+            None => self.state.colour as f64 - step,
+        };
+        self.state.colour = c.round().clamp(0.0, (self.palette.len() - 1) as f64) as usize;
+    }
+
+    /// cpfg `#` / `!`: the line width given, or one width step up or down.
+    fn line_width(&mut self, up: bool, args: Args) {
+        let step = self.sys.settings.width_step;
+        self.state.width = match args.get(0) {
+            Some(v) => v.max(0.0),
+            None if up => self.state.width + step,
+            None => (self.state.width - step).max(0.0),
+        };
+    }
+}
+
+/// cpfg's shapes: discs, circles and surfaces.
+impl Turtle<'_> {
+    /// `@O` / `@o`: a disc at the turtle, of the diameter given (turtle
+    /// units), else of the line width.
+    fn disc(&mut self, args: Args) {
+        let (diameter, pixels) = match args.get(0) {
+            Some(d) => (d.abs(), false),
+            None => (self.state.width, !self.sys.settings.world_widths),
+        };
+        let colour = self.colour();
+        self.sink.disc(Disc {
+            centre: self.state.pos,
+            diameter,
+            pixels,
+            colour,
+            index: index_of(self.state.colour),
+        });
+    }
+
+    /// `@c`: a circle in the plane of H and L, as a 24-gon.
+    fn circle(&mut self, args: Args) {
+        let st = &self.state;
+        let r = args.get(0).unwrap_or(st.width).abs() / 2.0;
+        let points = (0..24)
+            .map(|k| {
+                let (s, c) = (k as f64 * std::f64::consts::TAU / 24.0).sin_cos();
+                add_scaled(add_scaled(st.pos, st.h, r * c), st.l, r * s)
+            })
+            .collect();
+        let colour = self.colour();
+        self.sink.polygon(Polygon {
+            points,
+            colour,
+            index: index_of(st.colour),
+            surface: false,
+        });
+    }
+
+    /// `~k`: surface `k`'s triangles placed in the turtle's frame, scaled
+    /// by the parameters (one for all three axes, or one each).
+    fn surface(&mut self, k: u16, args: Args) {
+        let Some(mesh) = self.sys.surfaces.get(k as usize) else {
+            return;
+        };
+        let scale: Vec3 = match (args.get(0), args.get(1), args.get(2)) {
+            (Some(x), Some(y), Some(z)) => [x, y, z],
+            (Some(s), _, _) => [s, s, s],
+            _ => [1.0, 1.0, 1.0],
+        };
+        let colour = self.colour();
+        let st = &self.state;
+        for tri in &mesh.triangles {
+            let points = tri
+                .iter()
+                .map(|p| {
+                    let q = add_scaled(st.pos, st.l, p[0] * scale[0]);
+                    let q = add_scaled(q, st.h, p[1] * scale[1]);
+                    // z along cpfg's up, the turtle's −U.
+                    add_scaled(q, st.u, -p[2] * scale[2])
+                })
+                .collect();
+            self.sink.polygon(Polygon {
+                points,
+                colour,
+                index: index_of(st.colour),
+                surface: true,
+            });
+        }
+    }
+}
