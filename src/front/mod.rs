@@ -14,6 +14,7 @@
 //! `endlsystem` or a `#define`/`#include`/`#if` directive is cpfg;
 //! everything else is pfg, graftal's oldest front end.
 
+pub mod comments;
 pub mod cpfg;
 pub mod depth;
 pub mod fractint;
@@ -30,6 +31,10 @@ use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::ir::{Lowered, Span, System, Word};
 use crate::source::SourceFile;
 use serde::Serialize;
+
+pub(crate) use comments::{
+    block_comments, line_comments, skip_block_comment, strip_block_comments,
+};
 
 /// Every notation graftal reads. The order breaks ties in [`detect`].
 pub static FRONTS: &[&dyn Front] = &[
@@ -364,73 +369,6 @@ pub fn read_clean(read: impl FnOnce(&mut Diagnostics) -> Lowered) -> System {
     let l = read(&mut d);
     assert!(!d.has_errors(), "{d:#?}");
     l.system
-}
-
-/// Text with `/* … */` comments removed (an unclosed one runs to the end).
-pub(crate) fn strip_block_comments(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(k) = rest.find("/*") {
-        out.push_str(&rest[..k]);
-        match rest[k + 2..].find("*/") {
-            Some(e) => rest = &rest[k + 2 + e + 2..],
-            None => rest = "",
-        }
-    }
-    out.push_str(rest);
-    out
-}
-
-/// A logos callback's part for a `/*` just read: skips to past the `*/`
-/// and says whether there was one (an unclosed comment takes the rest).
-pub(crate) fn skip_block_comment<'s, T>(lex: &mut logos::Lexer<'s, T>) -> bool
-where
-    T: logos::Logos<'s, Source = str>,
-{
-    match lex.remainder().find("*/") {
-        Some(end) => {
-            lex.bump(end + 2);
-            true
-        }
-        None => {
-            lex.bump(lex.remainder().len());
-            false
-        }
-    }
-}
-
-/// `/* … */` comments of `src` with their spans (an unclosed one runs to
-/// the end).
-pub(crate) fn block_comments(src: &str) -> Vec<(Span, String)> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    while let Some(k) = src[i..].find("/*") {
-        let start = i + k;
-        let (end, body_end) = match src[start + 2..].find("*/") {
-            Some(e) => (start + 2 + e + 2, start + 2 + e),
-            None => (src.len(), src.len()),
-        };
-        out.push((start..end, src[start + 2..body_end].to_string()));
-        i = end;
-    }
-    out
-}
-
-/// `#` comments to the end of the line of `src` with their spans, except
-/// lines whose comment starts with one of `directives` (LinF's `#:`).
-pub(crate) fn line_comments(src: &str, directive: Option<char>) -> Vec<(Span, String)> {
-    let mut out = Vec::new();
-    let mut offset = 0;
-    for line in src.split_inclusive('\n') {
-        if let Some(k) = line.find('#') {
-            let body = line[k + 1..].trim_end_matches(['\n', '\r']);
-            if !directive.is_some_and(|d| body.starts_with(d)) {
-                out.push((offset + k..offset + line.len(), body.to_string()));
-            }
-        }
-        offset += line.len();
-    }
-    out
 }
 
 #[cfg(test)]
