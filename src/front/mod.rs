@@ -21,6 +21,7 @@ pub mod fractint;
 pub mod gft;
 pub mod linf;
 pub mod names;
+pub mod parse;
 pub mod pfg;
 pub mod repeats;
 pub mod smith;
@@ -35,6 +36,7 @@ use serde::Serialize;
 pub(crate) use comments::{
     block_comments, line_comments, skip_block_comment, strip_block_comments,
 };
+pub use parse::syntax_error;
 
 /// Every notation graftal reads. The order breaks ties in [`detect`].
 pub static FRONTS: &[&dyn Front] = &[
@@ -315,47 +317,6 @@ where
     match total.checked_sub(LISTED_NAMES) {
         Some(more) if more > 0 => format!("{shown}, … and {more} more"),
         _ => shown,
-    }
-}
-
-/// A parser's syntax error as a diagnostic: at the end of input E0007
-/// "unexpected end of file", else E0003 "unexpected TOKEN" labelled with the
-/// tokens that were expected there. `help` may add a hint for the token
-/// found.
-pub fn syntax_error<T: std::fmt::Display>(
-    err: &chumsky::error::Rich<'_, T>,
-    help: impl Fn(&T) -> Option<&'static str>,
-) -> Diagnostic {
-    let span = err.span().into_range();
-    let expected: Vec<String> = err
-        .expected()
-        .map(|e| e.to_string().trim_matches('\'').to_string())
-        .filter(|e| e != "something else")
-        .collect();
-    let expected = match expected.len() {
-        0 => None,
-        _ => Some(expected.join(", ")),
-    };
-    match err.found() {
-        None => {
-            let d = Diagnostic::at(codes::UNEXPECTED_EOF, span, "unexpected end of file")
-                .with_label("the file ends here");
-            match expected {
-                Some(e) => d.with_help(format!("expected {e}")),
-                None => d,
-            }
-        }
-        Some(tok) => {
-            let d = Diagnostic::at(codes::SYNTAX, span, format!("unexpected {tok}"));
-            let d = match &expected {
-                Some(e) => d.with_label(format!("expected {e}")),
-                None => d.with_label("not expected here"),
-            };
-            match help(tok) {
-                Some(h) => d.with_help(h),
-                None => d,
-            }
-        }
     }
 }
 

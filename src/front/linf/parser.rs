@@ -888,10 +888,7 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> File {
-        let mut d = Diagnostics::default();
-        let f = parse(src, &mut d);
-        assert!(d.is_empty(), "{d:#?}");
-        f
+        crate::front::parse::parse_clean(parse, src)
     }
 
     fn errors(src: &str) -> Vec<(crate::diagnostics::Code, Span)> {
