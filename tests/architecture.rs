@@ -5,8 +5,10 @@
 //! paths) and the external crates it names (`clap::`, `ariadne::`, …) are
 //! its imports. The rules (README, "How graftal is built"):
 //!
-//! * a front end (`src/front/<notation>/`) imports no other front end, no
-//!   emitter, no turtle, render, eval, driver or cli;
+//! * a front end (`src/front/<notation>/`, its rooms such as
+//!   `stl/lower/` included) imports no other front end, no emitter, no
+//!   turtle, render, eval, driver or cli; the rooms the front ends share
+//!   (`src/front/*.rs`: comments, parse, depth, …) import no front end;
 //! * an emitter (`src/back/`) imports no front end and no turtle (the
 //!   default palette is the IR's);
 //! * `ir` imports nothing above it (only `ir` itself and `number`, a leaf
@@ -545,6 +547,31 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
             true,
         ),
         ("front/pfg/mod.rs", "fn f() { super::linf::read(x) }", true),
+        (
+            "front/stl/lower/names.rs",
+            "use crate::front::stl::ast::File;",
+            false,
+        ),
+        (
+            "front/stl/lower/names.rs",
+            "use crate::front::gft::ast::File;",
+            true,
+        ),
+        (
+            "front/cpfg/preprocess/macros.rs",
+            "use crate::render::Picture;",
+            true,
+        ),
+        (
+            "front/comments.rs",
+            "use crate::front::pfg::lexer::Token;",
+            true,
+        ),
+        (
+            "front/parse.rs",
+            "use crate::front::repeats::push_lazily;",
+            false,
+        ),
         ("front/pfg/lower.rs", "use super::ast::File;", false),
         (
             "front/stl/lower.rs",

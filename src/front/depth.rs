@@ -225,6 +225,55 @@ pub fn node_depth(operands: impl IntoIterator<Item = usize>) -> Result<usize, Op
     }
 }
 
+/// An expression tree kept within [`MAX_NESTING`] as the parser builds it
+/// (cpfg's and LinF's): each node knows how deep it is, and a node that
+/// would pass the limit becomes a *cut*, a leaf standing for what was left
+/// out, for the parser to report.
+pub trait Bounded: Clone {
+    /// How deep the tree is: 1 for a leaf, one more than the deepest
+    /// operand for an operation, past [`MAX_NESTING`] for a cut.
+    fn depth(&self) -> usize;
+    /// A cut at `at`, where an expression went past [`MAX_NESTING`].
+    fn cut(at: Span) -> Self;
+    /// The same tree, written at `span`.
+    fn written_at(self, span: Span) -> Self;
+}
+
+/// The operation `make(kind, depth)` over the operands `operands(&kind)`,
+/// `at` its operator, kept within [`MAX_NESTING`] as [`node_depth`] says:
+/// an operation on a cut is that cut, and one that would go deeper than
+/// the limit is a new cut at `at`. So no tree a parser builds is deeper
+/// than the limit (chains like `1+1+…+1` are built by iteration; the code
+/// that walks trees, dropping them included, recurses), and the first
+/// place past the limit is kept for the parser to report.
+pub fn bounded_operation<K, E: Bounded>(
+    kind: K,
+    operands: impl Fn(&K) -> Vec<&E>,
+    at: Span,
+    make: impl FnOnce(K, usize) -> E,
+) -> E {
+    let depth = {
+        let operands = operands(&kind);
+        match node_depth(operands.iter().map(|e| e.depth())) {
+            Ok(depth) => depth,
+            Err(Some(cut)) => return operands[cut].clone(),
+            Err(None) => return E::cut(at),
+        }
+    };
+    make(kind, depth)
+}
+
+/// `inner` read between parentheses written at `span`: the whole span is
+/// the expression's, unless it is a cut, which stays where it went too
+/// deep rather than at the parentheses around.
+pub fn parenthesized<E: Bounded>(inner: E, span: Span) -> E {
+    if inner.depth() > MAX_NESTING {
+        inner
+    } else {
+        inner.written_at(span)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,12 +14,14 @@
 //! `endlsystem` or a `#define`/`#include`/`#if` directive is cpfg;
 //! everything else is pfg, graftal's oldest front end.
 
+pub mod comments;
 pub mod cpfg;
 pub mod depth;
 pub mod fractint;
 pub mod gft;
 pub mod linf;
 pub mod names;
+pub mod parse;
 pub mod pfg;
 pub mod repeats;
 pub mod smith;
@@ -30,6 +32,11 @@ use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::ir::{Lowered, Span, System, Word};
 use crate::source::SourceFile;
 use serde::Serialize;
+
+pub(crate) use comments::{
+    block_comments, line_comments, skip_block_comment, strip_block_comments,
+};
+pub use parse::syntax_error;
 
 /// Every notation graftal reads. The order breaks ties in [`detect`].
 pub static FRONTS: &[&dyn Front] = &[
@@ -313,47 +320,6 @@ where
     }
 }
 
-/// A parser's syntax error as a diagnostic: at the end of input E0007
-/// "unexpected end of file", else E0003 "unexpected TOKEN" labelled with the
-/// tokens that were expected there. `help` may add a hint for the token
-/// found.
-pub fn syntax_error<T: std::fmt::Display>(
-    err: &chumsky::error::Rich<'_, T>,
-    help: impl Fn(&T) -> Option<&'static str>,
-) -> Diagnostic {
-    let span = err.span().into_range();
-    let expected: Vec<String> = err
-        .expected()
-        .map(|e| e.to_string().trim_matches('\'').to_string())
-        .filter(|e| e != "something else")
-        .collect();
-    let expected = match expected.len() {
-        0 => None,
-        _ => Some(expected.join(", ")),
-    };
-    match err.found() {
-        None => {
-            let d = Diagnostic::at(codes::UNEXPECTED_EOF, span, "unexpected end of file")
-                .with_label("the file ends here");
-            match expected {
-                Some(e) => d.with_help(format!("expected {e}")),
-                None => d,
-            }
-        }
-        Some(tok) => {
-            let d = Diagnostic::at(codes::SYNTAX, span, format!("unexpected {tok}"));
-            let d = match &expected {
-                Some(e) => d.with_label(format!("expected {e}")),
-                None => d.with_label("not expected here"),
-            };
-            match help(tok) {
-                Some(h) => d.with_help(h),
-                None => d,
-            }
-        }
-    }
-}
-
 /// The system `read` lowers from a text that must be free of errors (the
 /// front ends' `read_ok`, for tests and examples).
 ///
@@ -364,73 +330,6 @@ pub fn read_clean(read: impl FnOnce(&mut Diagnostics) -> Lowered) -> System {
     let l = read(&mut d);
     assert!(!d.has_errors(), "{d:#?}");
     l.system
-}
-
-/// Text with `/* … */` comments removed (an unclosed one runs to the end).
-pub(crate) fn strip_block_comments(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(k) = rest.find("/*") {
-        out.push_str(&rest[..k]);
-        match rest[k + 2..].find("*/") {
-            Some(e) => rest = &rest[k + 2 + e + 2..],
-            None => rest = "",
-        }
-    }
-    out.push_str(rest);
-    out
-}
-
-/// A logos callback's part for a `/*` just read: skips to past the `*/`
-/// and says whether there was one (an unclosed comment takes the rest).
-pub(crate) fn skip_block_comment<'s, T>(lex: &mut logos::Lexer<'s, T>) -> bool
-where
-    T: logos::Logos<'s, Source = str>,
-{
-    match lex.remainder().find("*/") {
-        Some(end) => {
-            lex.bump(end + 2);
-            true
-        }
-        None => {
-            lex.bump(lex.remainder().len());
-            false
-        }
-    }
-}
-
-/// `/* … */` comments of `src` with their spans (an unclosed one runs to
-/// the end).
-pub(crate) fn block_comments(src: &str) -> Vec<(Span, String)> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    while let Some(k) = src[i..].find("/*") {
-        let start = i + k;
-        let (end, body_end) = match src[start + 2..].find("*/") {
-            Some(e) => (start + 2 + e + 2, start + 2 + e),
-            None => (src.len(), src.len()),
-        };
-        out.push((start..end, src[start + 2..body_end].to_string()));
-        i = end;
-    }
-    out
-}
-
-/// `#` comments to the end of the line of `src` with their spans, except
-/// lines whose comment starts with one of `directives` (LinF's `#:`).
-pub(crate) fn line_comments(src: &str, directive: Option<char>) -> Vec<(Span, String)> {
-    let mut out = Vec::new();
-    let mut offset = 0;
-    for line in src.split_inclusive('\n') {
-        if let Some(k) = line.find('#') {
-            let body = line[k + 1..].trim_end_matches(['\n', '\r']);
-            if !directive.is_some_and(|d| body.starts_with(d)) {
-                out.push((offset + k..offset + line.len(), body.to_string()));
-            }
-        }
-        offset += line.len();
-    }
-    out
 }
 
 #[cfg(test)]

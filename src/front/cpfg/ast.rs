@@ -1,6 +1,7 @@
 //! The syntax tree of a cpfg L-system file, as written (after the
 //! preprocessor). Every node keeps its span in the preprocessed text.
 
+use crate::front::depth::{bounded_operation, Bounded};
 use crate::ir::program::{BinOp, UnOp};
 use crate::ir::{Span, MAX_NESTING};
 
@@ -42,19 +43,15 @@ impl Expr {
 
     /// An operation whose operands are in `kind`, written at `span`; `at`
     /// is the operator. The tree is kept within [`MAX_NESTING`] as it is
-    /// built: an operation that would go deeper becomes a *cut*, a leaf at
-    /// `at`, and an operation on a cut is that cut. So no tree the parser
-    /// makes is deeper than the limit (chains like `1+1+…+1` are built by
-    /// iteration, and the code that walks trees recursively, dropping them
-    /// included, stays within the stack), and the first place past the
-    /// limit is kept for the parser to report.
+    /// built ([`bounded_operation`]): an operation that would go deeper
+    /// becomes a *cut*, a leaf at `at`, and an operation on a cut is that
+    /// cut.
     pub fn operation(kind: ExprKind, span: Span, at: Span) -> Self {
-        let operands = kind.operands();
-        match crate::front::depth::node_depth(operands.iter().map(|e| e.depth)) {
-            Ok(depth) => Expr { kind, span, depth },
-            Err(Some(cut)) => operands[cut].clone(),
-            Err(None) => Expr::cut(at),
-        }
+        bounded_operation(kind, ExprKind::operands, at, |kind, depth| Expr {
+            kind,
+            span,
+            depth,
+        })
     }
 
     /// A cut at `at`: where an expression went past [`MAX_NESTING`]. It
@@ -72,6 +69,18 @@ impl Expr {
     /// span is the operator there).
     pub fn is_cut(&self) -> bool {
         self.depth > MAX_NESTING
+    }
+}
+
+impl Bounded for Expr {
+    fn depth(&self) -> usize {
+        self.depth
+    }
+    fn cut(at: Span) -> Self {
+        Expr::cut(at)
+    }
+    fn written_at(self, span: Span) -> Self {
+        Expr { span, ..self }
     }
 }
 

@@ -12,7 +12,7 @@ use super::ast::{
 };
 use super::lexer::{lex, Keyword, Token};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
-use crate::front::depth::{cut_too_deep, too_deep, Nest};
+use crate::front::depth::{cut_too_deep, parenthesized, too_deep, Nest};
 use crate::front::syntax_error;
 use crate::ir::program::{BinOp, UnOp};
 use crate::ir::Span;
@@ -97,17 +97,7 @@ where
         .or(expr
             .clone()
             .delimited_by(just(Token::LParen), just(Token::RParen))
-            .map_with(|inner: Expr, e| {
-                if inner.is_cut() {
-                    // Where it went too deep, not the parentheses around.
-                    inner
-                } else {
-                    Expr {
-                        span: range(e.span()),
-                        ..inner
-                    }
-                }
-            }))
+            .map_with(|inner: Expr, e| parenthesized(inner, range(e.span()))))
         .labelled("an expression");
         let unary = select! { Token::Minus => UnOp::Neg, Token::Not => UnOp::Not }
             .map_with(|op, e| (op, range(e.span())))
@@ -713,10 +703,7 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> File {
-        let mut d = Diagnostics::default();
-        let f = parse(src, &mut d);
-        assert!(d.is_empty(), "{d:#?}");
-        f
+        crate::front::parse::parse_clean(parse, src)
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //! the lexer need not know which names a file declares. Comments are
 //! `/* … */`; line breaks are tokens, since `.gft` is line-oriented.
 
-use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::diagnostics::Diagnostics;
+use crate::front::comments::unterminated_comment;
 use crate::ir::Span;
 use logos::Logos;
 use std::fmt;
@@ -104,16 +105,7 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
             Ok(Token::Comment) => {}
             Ok(Token::Newline) if out.last().is_some_and(|t| t.0 == Token::Newline) => {}
             Ok(tok) => out.push((tok, span)),
-            Err(LexError::UnterminatedComment) => diags.push(
-                Diagnostic::at(
-                    codes::UNTERMINATED_COMMENT,
-                    span.start..span.start + 2,
-                    "unterminated comment",
-                )
-                .with_label("this comment is never closed")
-                .with_secondary(src.len()..src.len(), "the file ends here")
-                .with_help("close the comment with `*/`"),
-            ),
+            Err(LexError::UnterminatedComment) => diags.push(unterminated_comment(src, span.start)),
             Err(LexError::InvalidCharacter) => diags.push_invalid_character(src, span),
         }
     }
@@ -140,6 +132,7 @@ pub fn comment_spans(src: &str) -> Vec<Span> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnostics::codes;
 
     fn texts(src: &str) -> Vec<&str> {
         let mut d = Diagnostics::default();

@@ -11,6 +11,7 @@ use super::lexer::{lex, Token};
 pub use crate::common::gft_words::KEYWORDS;
 use crate::common::gft_words::{is_keyword, takes_block};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::front::parse::push_syntax_errors;
 use crate::front::repeats::push_lazily;
 use crate::front::suggest::Suggester;
 use crate::ir::{Span, MAX_NESTING};
@@ -451,14 +452,7 @@ fn input<'s>(toks: &[Tok<'s>]) -> Vec<(Token<'s>, SimpleSpan)> {
 }
 
 fn report(errors: Vec<Rich<'_, Token<'_>>>, diags: &mut Diagnostics) {
-    for err in errors {
-        let code = if err.found().is_some() {
-            codes::SYNTAX
-        } else {
-            codes::UNEXPECTED_EOF
-        };
-        push_lazily(diags, code, || crate::front::syntax_error(&err, |_| None));
-    }
+    push_syntax_errors(diags, errors, |_| None);
 }
 
 /// One expression filling `toks`.

@@ -5,6 +5,7 @@
 //! knows.
 
 use super::lexer::BlockKind;
+use crate::front::depth::{bounded_operation, Bounded};
 use crate::ir::{Span, MAX_NESTING};
 
 /// A parsed file: its blocks in order, and its `#:` directives.
@@ -95,22 +96,15 @@ impl Expr {
 
     /// An operation whose operands are in `kind`, written at `span`; `at`
     /// is the operator. The tree is kept within [`MAX_NESTING`] as it is
-    /// built: an operation that would go deeper becomes a *cut*, a leaf at
-    /// `at`, and an operation on a cut is that cut. So no tree is deeper
-    /// than the limit (a chain `1+1+…+1` is built by iteration; evaluating
-    /// and dropping trees recurse), and the first place past it is kept for
-    /// the parser to report.
+    /// built ([`bounded_operation`]): an operation that would go deeper
+    /// becomes a *cut*, a leaf at `at`, and an operation on a cut is that
+    /// cut.
     pub fn operation(kind: ExprKind, span: Span, at: Span) -> Self {
-        let operands: Vec<&Expr> = match &kind {
-            ExprKind::Number(_) | ExprKind::Name(_) => Vec::new(),
-            ExprKind::Neg(a) => vec![a],
-            ExprKind::Binary(_, a, b) => vec![a, b],
-        };
-        match crate::front::depth::node_depth(operands.iter().map(|e| e.depth)) {
-            Ok(depth) => Expr { kind, span, depth },
-            Err(Some(cut)) => operands[cut].clone(),
-            Err(None) => Expr::cut(at),
-        }
+        bounded_operation(kind, ExprKind::operands, at, |kind, depth| Expr {
+            kind,
+            span,
+            depth,
+        })
     }
 
     /// A cut at `at`: where an expression went past [`MAX_NESTING`]. It
@@ -137,6 +131,29 @@ pub enum ExprKind {
     Name(String),
     Neg(Box<Expr>),
     Binary(BinOp, Box<Expr>, Box<Expr>),
+}
+
+impl Bounded for Expr {
+    fn depth(&self) -> usize {
+        self.depth
+    }
+    fn cut(at: Span) -> Self {
+        Expr::cut(at)
+    }
+    fn written_at(self, span: Span) -> Self {
+        Expr { span, ..self }
+    }
+}
+
+impl ExprKind {
+    /// The expressions this one is made of.
+    fn operands(&self) -> Vec<&Expr> {
+        match self {
+            ExprKind::Number(_) | ExprKind::Name(_) => Vec::new(),
+            ExprKind::Neg(a) => vec![a],
+            ExprKind::Binary(_, a, b) => vec![a, b],
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -14,7 +14,7 @@ use super::ast::{
 };
 use super::lexer::{lex, BlockKind, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::front::depth::{cut_too_deep, too_deep, Nest};
+use crate::front::depth::{cut_too_deep, parenthesized, too_deep, Nest};
 use crate::front::repeats::Repeats;
 use crate::ir::Span;
 use chumsky::input::ValueInput;
@@ -213,17 +213,7 @@ where
         name().map(|n| Expr::leaf(ExprKind::Name(n.text), n.span)),
         just(Token::TooDeep).map_with(|_, e| Expr::cut(range(e.span()))),
         expr.delimited_by(just(Token::LParen), just(Token::RParen))
-            .map_with(|inner: Expr, e| {
-                if inner.is_cut() {
-                    // Where it went too deep, not the parentheses around.
-                    inner
-                } else {
-                    Expr {
-                        span: range(e.span()),
-                        ..inner
-                    }
-                }
-            }),
+            .map_with(|inner: Expr, e| parenthesized(inner, range(e.span()))),
     ))
 }
 
@@ -888,10 +878,7 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> File {
-        let mut d = Diagnostics::default();
-        let f = parse(src, &mut d);
-        assert!(d.is_empty(), "{d:#?}");
-        f
+        crate::front::parse::parse_clean(parse, src)
     }
 
     fn errors(src: &str) -> Vec<(crate::diagnostics::Code, Span)> {

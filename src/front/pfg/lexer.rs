@@ -11,7 +11,8 @@
 //! blank lines cost nothing (eight million of them took the parser 3.8 s
 //! and 1.4 GB, one empty line each).
 
-use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use crate::diagnostics::Diagnostics;
+use crate::front::comments::unterminated_comment;
 use crate::ir::Span;
 use logos::Logos;
 use std::fmt;
@@ -106,16 +107,7 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
                 out.push((Token::Newline, span.start..span.start + first));
             }
             Ok(tok) => out.push((tok, span)),
-            Err(LexError::UnterminatedComment) => diags.push(
-                Diagnostic::at(
-                    codes::UNTERMINATED_COMMENT,
-                    span.start..span.start + 2,
-                    "unterminated comment",
-                )
-                .with_label("this comment is never closed")
-                .with_secondary(src.len()..src.len(), "the file ends here")
-                .with_help("close the comment with `*/`"),
-            ),
+            Err(LexError::UnterminatedComment) => diags.push(unterminated_comment(src, span.start)),
             Err(LexError::InvalidCharacter) => diags.push_invalid_character(src, span),
         }
     }
@@ -125,6 +117,7 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, S
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnostics::codes;
 
     fn kinds(src: &str) -> Vec<Token<'_>> {
         let mut d = Diagnostics::default();

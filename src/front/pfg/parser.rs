@@ -13,6 +13,7 @@
 use super::ast::{File, Header, Item, Production, Symbols};
 use super::lexer::{lex, Token};
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::front::parse::push_syntax_errors;
 use crate::front::repeats::push_lazily;
 use crate::ir::Span;
 use chumsky::input::ValueInput;
@@ -142,15 +143,7 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let (lines, errors) = line_parser()
         .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
-    for err in errors {
-        // A file may repeat a mistake on every line: past the most kept,
-        // the diagnostics are counted without being built.
-        let code = match err.found() {
-            Some(_) => codes::SYNTAX,
-            None => codes::UNEXPECTED_EOF,
-        };
-        push_lazily(diags, code, || syntax_error(&err));
-    }
+    push_syntax_errors(diags, errors, help_for);
     let mut file = File::default();
     for line in lines.unwrap_or_default().into_iter().flatten() {
         if let Some(item) = build(line, src, diags) {
@@ -160,8 +153,9 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     file
 }
 
-fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
-    crate::front::syntax_error(err, |tok| match tok {
+/// A hint for an unexpected token.
+fn help_for(tok: &Token<'_>) -> Option<&'static str> {
+    match tok {
         Token::Arrow => {
             Some("a production has exactly one `-->`; put each production on its own line")
         }
@@ -169,7 +163,7 @@ fn syntax_error(err: &Rich<'_, Token<'_>>) -> Diagnostic {
             Some("`:` starts a header (`axiom: F`) or, after the successor, a weight (`: 0.5`)")
         }
         _ => None,
-    })
+    }
 }
 
 fn range(s: SimpleSpan) -> Span {
@@ -544,16 +538,11 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> File {
-        let mut d = Diagnostics::default();
-        let f = parse(src, &mut d);
-        assert!(d.is_empty(), "{d:#?}");
-        f
+        crate::front::parse::parse_clean(parse, src)
     }
 
     fn codes_of(src: &str) -> Vec<&'static str> {
-        let mut d = Diagnostics::default();
-        parse(src, &mut d);
-        d.iter().map(|d| d.code.0).collect()
+        crate::front::parse::parse_codes(parse, src)
     }
 
     #[test]

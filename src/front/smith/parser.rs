@@ -5,8 +5,8 @@
 
 use super::ast::{Entry, File};
 use super::lexer::{lex, Token};
-use crate::diagnostics::{codes, Diagnostics};
-use crate::front::repeats::push_lazily;
+use crate::diagnostics::Diagnostics;
+use crate::front::parse::push_syntax_errors;
 use chumsky::input::ValueInput;
 use chumsky::prelude::*;
 
@@ -56,17 +56,9 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let (lines, errors) = line_parser()
         .parse(tokens.as_slice().map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
-    for err in errors {
-        let code = match err.found() {
-            Some(_) => codes::SYNTAX,
-            None => codes::UNEXPECTED_EOF,
-        };
-        push_lazily(diags, code, || {
-            crate::front::syntax_error(&err, |_| {
-                Some("each line is `key: value`, as in `rules: 0.1[1].1.1.0.11.1.0`")
-            })
-        });
-    }
+    push_syntax_errors(diags, errors, |_| {
+        Some("each line is `key: value`, as in `rules: 0.1[1].1.1.0.11.1.0`")
+    });
     let mut file = File::default();
     for ((key, key_span), value) in lines.unwrap_or_default().into_iter().flatten() {
         let Token::Key(key) = key else { continue };
@@ -88,6 +80,7 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnostics::codes;
 
     #[test]
     fn lines_become_entries_and_a_bad_line_is_one_error() {

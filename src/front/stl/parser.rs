@@ -741,16 +741,11 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> File {
-        let mut d = Diagnostics::default();
-        let f = parse(src, &mut d);
-        assert!(d.is_empty(), "{d:#?}");
-        f
+        crate::front::parse::parse_clean(parse, src)
     }
 
     fn codes_of(src: &str) -> Vec<&'static str> {
-        let mut d = Diagnostics::default();
-        parse(src, &mut d);
-        d.iter().map(|d| d.code.0).collect()
+        crate::front::parse::parse_codes(parse, src)
     }
 
     #[test]
