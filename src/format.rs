@@ -16,6 +16,7 @@ use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Compiled};
 use crate::front::gft::ast::{Block, Item};
 use crate::front::gft::{lexer, parser};
+use crate::front::Front;
 use crate::ir::Span;
 use crate::source::SourceFile;
 use std::collections::HashMap;
@@ -37,9 +38,17 @@ pub struct Formatting {
     pub outcome: Outcome,
 }
 
+/// The notation `graftal fmt` formats.
+const FORMATTED: &str = "gft";
+
+/// Whether `graftal fmt` formats files that `front` reads (`.gft` files).
+pub fn formats(front: &dyn Front) -> bool {
+    front.name() == FORMATTED
+}
+
 /// Formats a `.gft` file (whatever its name: it is read as `.gft`).
 pub fn format(file: SourceFile) -> Formatting {
-    let compiled = driver::compile_as(file, None, crate::front::by_name("gft"));
+    let compiled = driver::compile_as(file, None, crate::front::by_name(FORMATTED));
     let outcome = outcome(&compiled);
     Formatting { compiled, outcome }
 }

@@ -31,6 +31,9 @@
 //! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
 //!   `chumsky` and `logos` only in front ends;
 //! * a front end walks no turtle of its own;
+//! * the language server names no notation (no `"pfg"`, no
+//!   `front::cpfg::…`): what it needs of one, each front end answers
+//!   through `Front`;
 //! * the top-level modules form no import cycle.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -513,6 +516,86 @@ fn no_front_end_walks_a_turtle_of_its_own() {
     assert!(files
         .iter()
         .any(|f| f.path == "layout/growth.rs" && f.code.contains(".sin()")));
+}
+
+/// Where a face names a notation: each `"NAME"` string and each
+/// `front::NAME` path in `raw` (a file's text with its comments and test
+/// module, but not its strings, left out), for each notation in
+/// `notations`.
+fn notations_named(raw: &str, notations: &BTreeSet<String>) -> Vec<String> {
+    let code = without_tests(&strip_comments(raw));
+    let words = tokens(&code);
+    let mut out = Vec::new();
+    for n in notations {
+        if code.contains(&format!("\"{n}\"")) {
+            out.push(format!("\"{n}\""));
+        }
+        let path = words
+            .windows(3)
+            .any(|w| w[0].1 == FRONT_ENDS_ARE && w[1].1 == "::" && w[2].1 == n.as_str());
+        if path {
+            out.push(format!("front::{n}"));
+        }
+    }
+    out
+}
+
+/// `src` without its comments (strings kept), for [`notations_named`].
+fn strip_comments(src: &str) -> String {
+    let mut out = String::with_capacity(src.len());
+    let mut rest = src;
+    while let Some(k) = rest.find("//") {
+        // A `//` inside a string on this line is not a comment.
+        let line_start = rest[..k].rfind('\n').map_or(0, |i| i + 1);
+        if rest[line_start..k].matches('"').count() % 2 == 1 {
+            out.push_str(&rest[..k + 2]);
+            rest = &rest[k + 2..];
+            continue;
+        }
+        out.push_str(&rest[..k]);
+        rest = &rest[k..];
+        rest = &rest[rest.find('\n').unwrap_or(rest.len())..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The language server matches on no notation's name: what it needs of a
+/// notation (keywords, comments, declarations, user functions), the front
+/// end answers through `Front`.
+#[test]
+fn the_language_server_names_no_notation() {
+    let notations = notations();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join("lsp");
+    let mut files = Vec::new();
+    collect(&root, &mut files);
+    assert!(files.len() >= 5, "{files:?}");
+    let named: Vec<String> = files
+        .iter()
+        .flat_map(|p| {
+            let raw = std::fs::read_to_string(p).unwrap();
+            let shown = p.strip_prefix(&root).unwrap().display().to_string();
+            (notations_named(&raw, &notations).into_iter())
+                .map(move |n| format!("lsp/{shown}: {n}"))
+        })
+        .collect();
+    assert!(
+        named.is_empty(),
+        "the language server names notations:\n{}",
+        named.join("\n")
+    );
+    // The check sees what it looks for.
+    let seen = |code: &str| !notations_named(code, &notations).is_empty();
+    assert!(seen("match n { \"stl\" => rules(t), _ => vec![] }"));
+    assert!(seen("use crate::front::cpfg::FunctionSite;"));
+    assert!(seen("let f = front::fractint::lexer::comment_spans(t);"));
+    assert!(!seen("// as \"cpfg\" does\nlet k = c.front.keywords();"));
+    assert!(!seen(
+        "let k = f.keywords();\n#[cfg(test)]\nmod tests { fn t() { find(\"cpfg\") } }"
+    ));
+    assert!(!seen("let u = \"http://x\"; let s = \"pfgs\";"));
 }
 
 #[test]

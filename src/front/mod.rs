@@ -4,7 +4,10 @@
 //! knows which notation a system came from.
 //!
 //! Adding a notation is a folder here (lexer, parser, AST, lowering, and a
-//! unit struct implementing [`Front`]) and one line in [`FRONTS`]. Choosing
+//! unit struct implementing [`Front`], which also answers what the language
+//! server asks of the notation: keywords, comments, declared names, user
+//! functions) and one line in [`FRONTS`]; the README ("How graftal is
+//! built") lists the other places a notation touches. Choosing
 //! the front for a file is [`detect`]: by extension where only one front
 //! claims it, by content where several share it (`.l` is pfg, cpfg and
 //! Fractint). The content rule, from the survey of the three `.l` dialects'
@@ -16,6 +19,7 @@
 
 pub mod comments;
 pub mod cpfg;
+pub mod declared;
 pub mod depth;
 pub mod fractint;
 pub mod gft;
@@ -31,7 +35,9 @@ pub mod suggest;
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
 use crate::ir::{Lowered, Span, System, Word};
 use crate::source::SourceFile;
+pub use declared::{Declaration, DeclarationKind, FunctionSite};
 use serde::Serialize;
+use std::path::Path;
 
 pub(crate) use comments::{
     block_comments, line_comments, skip_block_comment, strip_block_comments,
@@ -115,6 +121,45 @@ pub trait Front: Sync {
     /// The turn divided into whole angle increments as the source states
     /// it (pfg's `angle factor`), which a translation keeps when it fits.
     fn angle_divisions(&self, _sys: &System) -> Option<u64> {
+        None
+    }
+
+    // What the language server asks of a notation, so that it matches on
+    // no notation's name: each front end answers for itself.
+
+    /// The keywords of this notation, as its parser spells them (for
+    /// completion).
+    fn keywords(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
+    /// The spans of a source text's comments, in order, as this notation's
+    /// lexer finds them: by default those of [`Front::comments`].
+    fn comment_spans(&self, src: &str) -> Vec<Span> {
+        self.comments(src)
+            .into_iter()
+            .map(|(span, _)| span)
+            .collect()
+    }
+    /// The names a source text declares besides its symbols (rules,
+    /// rotations, macros, library entries), comments included: the
+    /// language server leaves out what a comment holds.
+    fn declarations(&self, _src: &str) -> Vec<Declaration> {
+        Vec::new()
+    }
+    /// Where a source text uses declared names, as its syntax tree says:
+    /// each use's name and span. `None` (the default): every word outside
+    /// comments spelt as a declared name is a use of it.
+    fn declared_name_uses(&self, _src: &str) -> Option<Vec<(String, Span)>> {
+        None
+    }
+    /// The user functions that the files beside the source at `path`
+    /// declare, numbered as the source calls them.
+    fn user_functions(&self, _path: &Path) -> Vec<FunctionSite> {
+        Vec::new()
+    }
+    /// The number or name of the user function a source text calls at byte
+    /// `at`, when `at` is on it (outside comments).
+    fn user_function_called_at<'t>(&self, _src: &'t str, _at: usize) -> Option<&'t str> {
         None
     }
 }

@@ -87,7 +87,7 @@ fn whole_edit(uri: &Uri, edits: Vec<TextEdit>) -> WorkspaceEdit {
 /// `.gft`, or does not read (its diagnostics say why).
 pub fn formatted(doc: &Document) -> Vec<TextEdit> {
     let c = &doc.compiled;
-    if c.front.name() != "gft" {
+    if !crate::format::formats(c.front) {
         return Vec::new();
     }
     match outcome(c) {

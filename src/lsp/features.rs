@@ -7,7 +7,8 @@ use super::position::{offset, range};
 use super::publish::explanation;
 use super::{edits, json, parse, uri, Document};
 use crate::common::vocabulary::{self, TurtleSet};
-use crate::front::cpfg::FunctionSite;
+use crate::front::declared::word_at;
+use crate::front::FunctionSite;
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use crate::source::SourceFile;
 use lsp_types::request::{
@@ -85,8 +86,7 @@ pub struct Occurrence {
 /// The names `doc` declares besides its symbols, found once per compile.
 fn names(doc: &Document) -> &Names {
     let c = &doc.compiled;
-    doc.names
-        .get_or_init(|| names::find(c.front.name(), &c.file.text))
+    doc.names.get_or_init(|| names::find(c.front, &c.file.text))
 }
 
 /// Every place a symbol of `doc`'s system is written, found once per
@@ -165,32 +165,14 @@ fn symbol_at(occ: &[Occurrence], at: usize) -> Option<SymbolId> {
         .map(|o| o.symbol)
 }
 
-/// The user function a cpfg `func(NAME, x)` or `func(k, x)` calls, when
-/// `at` is on its `NAME` or `k` (outside comments).
+/// The user function a source calls at `at` (a cpfg `func(NAME, x)` or
+/// `func(k, x)`, when `at` is on its `NAME` or `k`), as its front end
+/// finds it.
 fn user_function_at(doc: &Document, at: usize) -> Option<&FunctionSite> {
     let c = &doc.compiled;
-    if c.front.name() != "cpfg" {
-        return None;
-    }
-    let text = &c.file.text;
-    let word = word_at(text, at)?;
-    let start = text
-        .get(..at)?
-        .rfind(|ch: char| !(ch.is_alphanumeric() || ch == '_'));
-    let start = start.map_or(0, |i| i + 1);
-    let before = text[..start].trim_end().strip_suffix('(')?.trim_end();
-    let called = before.strip_suffix("func")?;
-    if called.ends_with(|ch: char| ch.is_alphanumeric() || ch == '_') {
-        return None; // `myfunc(`
-    }
-    let comments = names::comment_spans("cpfg", text);
-    if comments.iter().any(|s| s.start <= start && start < s.end) {
-        return None;
-    }
+    let word = c.front.user_function_called_at(&c.file.text, at)?;
     let path = std::path::Path::new(&c.file.name);
-    let sites = doc
-        .functions
-        .get_or_init(|| crate::front::cpfg::function_sites(path));
+    let sites = doc.functions.get_or_init(|| c.front.user_functions(path));
     match word.parse::<usize>() {
         Ok(k) => sites.iter().find(|s| s.number == k),
         Err(_) => sites.iter().find(|s| s.name.as_deref() == Some(word)),
@@ -216,7 +198,7 @@ fn function_text(f: &FunctionSite) -> String {
         .path
         .file_name()
         .map_or("?".into(), |n| n.to_string_lossy());
-    let points = &f.function.points;
+    let points = &f.points;
     let shown: Vec<String> = (points.iter().take(HOVER_POINTS))
         // Read as single precision, as cpfg reads them: shown so, as written.
         .map(|[x, y]| format!("({}, {})", *x as f32, *y as f32))
@@ -230,7 +212,7 @@ fn function_text(f: &FunctionSite) -> String {
     format!(
         "cpfg user function `{name}` (function {} of `{file}`)\n\nsamples: {}; {} points: {}{more}",
         f.number,
-        f.function.samples,
+        f.samples,
         points.len(),
         shown.join(", ")
     )
@@ -263,18 +245,6 @@ fn locations(doc: &Document, at: usize, definitions: bool) -> String {
     spans.dedup();
     let file = &doc.compiled.file;
     json::locations(&doc.uri, spans.into_iter().map(|s| range(file, s)))
-}
-
-/// The word (letters, digits, `_`) around byte `at` of `text`.
-fn word_at(text: &str, at: usize) -> Option<&str> {
-    let at = at.min(text.len());
-    let is_word = |c: char| c.is_alphanumeric() || c == '_';
-    let start = text.get(..at)?.rfind(|c| !is_word(c)).map_or(0, |i| i + 1);
-    let end = text
-        .get(at..)?
-        .find(|c| !is_word(c))
-        .map_or(text.len(), |i| at + i);
-    (start < end).then(|| &text[start..end])
 }
 
 /// What hovering at `at` shows: the explanation of the diagnostics there,
@@ -442,7 +412,7 @@ fn outline(doc: &Document) -> String {
 /// factor: 4`, `ANGLE 30`, `axiom F`), as outline entries.
 fn settings(doc: &Document) -> Vec<(String, SymbolKind, lsp_types::Range)> {
     let file = &doc.compiled.file;
-    let keys: Vec<String> = (keywords(doc.compiled.front.name()).into_iter())
+    let keys: Vec<String> = (doc.compiled.front.keywords().into_iter())
         .map(|k| k.trim_end_matches(':').to_lowercase())
         .collect();
     let mut out = Vec::new();
@@ -474,28 +444,6 @@ fn turtle_set(doc: &Document) -> TurtleSet {
     TurtleSet::from_name(doc.compiled.front.name()).unwrap_or(TurtleSet::None)
 }
 
-/// The keywords of a notation, as its parser spells them.
-fn keywords(notation: &str) -> Vec<&'static str> {
-    use crate::front;
-    match notation {
-        "pfg" => front::pfg::parser::HEADERS.to_vec(),
-        "stl" => front::stl::parser::KEYWORDS.to_vec(),
-        "fractint" => front::fractint::parser::KEYWORDS.to_vec(),
-        "gft" => front::gft::parser::KEYWORDS
-            .iter()
-            .map(|(k, _)| *k)
-            .collect(),
-        "smith" => front::smith::lower::KEYS.to_vec(),
-        "linf" => (front::linf::lexer::BlockKind::ALL.iter())
-            .map(|k| k.keyword())
-            .collect(),
-        "cpfg" => (front::cpfg::lexer::Keyword::ALL.iter())
-            .map(|k| k.text())
-            .collect(),
-        _ => Vec::new(),
-    }
-}
-
 /// Completion: the notation's keywords, its turtle symbols with what they
 /// do, and the symbols the document writes.
 fn completions(doc: &Document) -> Vec<CompletionItem> {
@@ -506,7 +454,7 @@ fn completions(doc: &Document) -> Vec<CompletionItem> {
         ..Default::default()
     };
     let notation = doc.compiled.front.name();
-    let mut out: Vec<CompletionItem> = (keywords(notation).into_iter())
+    let mut out: Vec<CompletionItem> = (doc.compiled.front.keywords().into_iter())
         .map(|k| {
             item(
                 k,

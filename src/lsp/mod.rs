@@ -42,8 +42,9 @@ pub struct Document {
     occurrences: OnceCell<Vec<features::Occurrence>>,
     /// The names it declares besides symbols, found like `occurrences`.
     names: OnceCell<names::Names>,
-    /// A cpfg object's user functions, read from disk like `occurrences`.
-    functions: OnceCell<Vec<crate::front::cpfg::FunctionSite>>,
+    /// The user functions the files beside it declare (a cpfg object's),
+    /// read from disk like `occurrences`.
+    functions: OnceCell<Vec<crate::front::FunctionSite>>,
 }
 
 impl Document {

@@ -1,11 +1,11 @@
-//! The names a file declares besides its symbols: STL rules, LinF
-//! rotations and declared names, cpfg macros (object-like and
-//! function-like), Fractint entries; and the places each is used. Found
-//! from the front end's syntax tree (a parse, no lowering or derivation)
-//! or, for cpfg's `#define`s, from the lines that declare them.
+//! The names a file declares besides its symbols (STL rules, LinF
+//! rotations and declared names, cpfg macros, Fractint entries, as its
+//! front end finds them: [`Front::declarations`]) and the places each is
+//! used. Each front end answers for its own notation; this module matches
+//! on none.
 
-use crate::diagnostics::Diagnostics;
-use crate::front;
+use crate::front::declared::is_name_char;
+use crate::front::{Declaration, DeclarationKind, Front};
 use crate::ir::Span;
 use lsp_types::SymbolKind;
 use std::collections::HashMap;
@@ -17,6 +17,22 @@ pub struct Decl {
     pub span: Span,
     pub kind: SymbolKind,
     pub about: String,
+}
+
+impl From<Declaration> for Decl {
+    fn from(d: Declaration) -> Self {
+        Decl {
+            name: d.name,
+            span: d.span,
+            kind: match d.kind {
+                DeclarationKind::Function => SymbolKind::FUNCTION,
+                DeclarationKind::Constant => SymbolKind::CONSTANT,
+                DeclarationKind::Variable => SymbolKind::VARIABLE,
+                DeclarationKind::Module => SymbolKind::MODULE,
+            },
+            about: d.about,
+        }
+    }
 }
 
 /// The declarations of a file, and each place one of them is used (the
@@ -44,47 +60,29 @@ impl Names {
     }
 }
 
-/// The names `text`, read as `notation`, declares and uses.
-pub fn find(notation: &str, text: &str) -> Names {
-    let decls = match notation {
-        "stl" => stl_rules(text),
-        "linf" => linf_names(text),
-        "cpfg" => cpfg_macros(text),
-        "fractint" => fractint_entries(text),
-        _ => Vec::new(),
-    };
+/// The names `text`, read by `front`, declares and uses.
+pub fn find(front: &dyn Front, text: &str) -> Names {
     // Names in comments are neither declared nor used.
-    let comments = comment_spans(notation, text);
+    let comments = front.comment_spans(text);
     let in_comment = |s: &Span| {
         let k = comments.partition_point(|c| c.end <= s.start);
         comments.get(k).is_some_and(|c| c.start <= s.start)
     };
-    let decls: Vec<Decl> = decls.into_iter().filter(|d| !in_comment(&d.span)).collect();
-    let uses = match notation {
-        // Read from the syntax tree, split as lowering splits `FR1`.
-        "stl" => {
-            let file = front::stl::parser::parse(text, &mut Diagnostics::default());
+    let decls: Vec<Decl> = (front.declarations(text).into_iter())
+        .filter(|d| !in_comment(&d.span))
+        .map(Decl::from)
+        .collect();
+    let uses = match front.declared_name_uses(text) {
+        // Read from the syntax tree (split as lowering splits `FR1`).
+        Some(found) => {
             let by_name = first_by_name(&decls);
-            (front::stl::lower::rule_uses(&file).into_iter())
+            (found.into_iter())
                 .filter_map(|(name, span)| Some((*by_name.get(name.as_str())?, span)))
                 .collect()
         }
-        _ => uses(text, &decls, &in_comment),
+        None => uses(text, &decls, &in_comment),
     };
     Names { decls, uses }
-}
-
-/// The spans of `text`'s comments, in order, as `notation`'s lexer finds
-/// them.
-pub fn comment_spans(notation: &str, text: &str) -> Vec<Span> {
-    match notation {
-        "cpfg" => front::cpfg::lexer::comment_spans(text),
-        "fractint" => front::fractint::lexer::comment_spans(text),
-        _ => (front::by_name(notation).into_iter())
-            .flat_map(|f| f.comments(text))
-            .map(|(span, _)| span)
-            .collect(),
-    }
 }
 
 /// Each name's first declaration, by index.
@@ -92,162 +90,6 @@ fn first_by_name(decls: &[Decl]) -> HashMap<&str, usize> {
     (decls.iter().enumerate().rev())
         .map(|(i, d)| (d.name.as_str(), i))
         .collect()
-}
-
-/// `text[span]`, cut to a line's worth for a hover.
-fn quoted(text: &str, span: &Span) -> String {
-    crate::diagnostics::shortened(text.get(span.clone()).unwrap_or("").trim(), 200).into_owned()
-}
-
-/// STL's rules: each with its body and the self-resemblance counts
-/// (`[I n X]`) written in it.
-fn stl_rules(text: &str) -> Vec<Decl> {
-    use front::stl::ast::{Elem, Item, Str};
-    fn counts(s: &Str, out: &mut Vec<f64>) {
-        for e in &s.elems {
-            match e {
-                Elem::Resemble { count, body, .. } => {
-                    out.push(count.value);
-                    counts(body, out);
-                }
-                Elem::Branch { body, .. } => counts(body, out),
-                _ => {}
-            }
-        }
-    }
-    let file = front::stl::parser::parse(text, &mut Diagnostics::default());
-    let mut out = Vec::new();
-    for item in &file.items {
-        if let Item::Rule {
-            name,
-            name_span,
-            body,
-            ..
-        } = item
-        {
-            let mut found = Vec::new();
-            counts(body, &mut found);
-            let resemblance = match found.as_slice() {
-                [] => "no self-resemblance (`[I n …]`)".to_string(),
-                ns => {
-                    let ns: Vec<String> = ns.iter().map(|n| n.to_string()).collect();
-                    format!("self-resemblance count {}", ns.join(", "))
-                }
-            };
-            out.push(Decl {
-                name: name.clone(),
-                span: name_span.clone(),
-                kind: SymbolKind::FUNCTION,
-                about: format!(
-                    "STL rule `{name}` = `{}`\n\n{resemblance}",
-                    quoted(text, &body.span)
-                ),
-            });
-        }
-    }
-    out
-}
-
-/// LinF's named rotations (with their pair) and the names its `lines` and
-/// `blanks` blocks declare.
-fn linf_names(text: &str) -> Vec<Decl> {
-    use front::linf::ast::BlockBody;
-    let file = front::linf::parser::parse(text, &mut Diagnostics::default());
-    let mut out = Vec::new();
-    for block in &file.blocks {
-        match &block.body {
-            BlockBody::Angles(rotations) => {
-                for r in rotations {
-                    let Some(name) = &r.name else { continue };
-                    out.push(Decl {
-                        name: name.text.clone(),
-                        span: name.span.clone(),
-                        kind: SymbolKind::CONSTANT,
-                        about: format!(
-                            "LinF rotation `{}` = `{}` (torsion, curvature)",
-                            name.text,
-                            quoted(text, &r.span)
-                        ),
-                    });
-                }
-            }
-            BlockBody::Names(names) => {
-                let block_name = text.get(block.keyword.clone()).unwrap_or("lines");
-                for n in names {
-                    out.push(Decl {
-                        name: n.text.clone(),
-                        span: n.span.clone(),
-                        kind: SymbolKind::VARIABLE,
-                        about: format!("`{}`: declared in `{block_name}`", n.text),
-                    });
-                }
-            }
-            _ => {}
-        }
-    }
-    out
-}
-
-/// cpfg's `#define NAME body` and `#define NAME(args) body` lines: macros
-/// and the functions written as macros, with their expansion.
-fn cpfg_macros(text: &str) -> Vec<Decl> {
-    let mut out = Vec::new();
-    let mut at = 0;
-    for line in text.split_inclusive('\n') {
-        let start = at;
-        at += line.len();
-        let trimmed = line.trim_start();
-        let Some(rest) = trimmed.strip_prefix('#') else {
-            continue;
-        };
-        let Some(rest) = rest.trim_start().strip_prefix("define") else {
-            continue;
-        };
-        let name_from = line.len() - rest.trim_start().len();
-        let name_len = rest.trim_start().find(|c: char| !is_name_char(c));
-        let name_len = name_len.unwrap_or(rest.trim_start().len());
-        if name_len == 0 || name_from == line.len() - rest.len() {
-            continue; // no name, or `#defineX`
-        }
-        let span = start + name_from..start + name_from + name_len;
-        let name = text[span.clone()].to_string();
-        let after = &line[name_from + name_len..];
-        let (kind, what) = if after.starts_with('(') {
-            (SymbolKind::FUNCTION, "function-like macro")
-        } else {
-            (SymbolKind::CONSTANT, "macro")
-        };
-        let definition = quoted(line, &(name_from..line.len()));
-        out.push(Decl {
-            about: format!("cpfg {what} `{name}`: expands as `#define {definition}`"),
-            name,
-            span,
-            kind,
-        });
-    }
-    out
-}
-
-/// A Fractint library's entries, each with its first lines.
-fn fractint_entries(text: &str) -> Vec<Decl> {
-    let file = front::fractint::parser::parse(text, &mut Diagnostics::default());
-    (file.entries.into_iter())
-        .filter(|e| !e.name.is_empty())
-        .map(|e| {
-            let lines = (e.span.end - e.span.start).min(300);
-            let shown = text.get(e.span.start..e.span.start + lines).unwrap_or("");
-            Decl {
-                about: format!("Fractint entry `{}`\n\n```\n{shown}\n```", e.name),
-                name: e.name,
-                span: e.name_span,
-                kind: SymbolKind::MODULE,
-            }
-        })
-        .collect()
-}
-
-fn is_name_char(c: char) -> bool {
-    c.is_alphanumeric() || c == '_'
 }
 
 /// Every word of `text` (a run of letters, digits and `_`) outside
@@ -284,7 +126,7 @@ mod tests {
     #[test]
     fn cpfg_macros_and_their_uses() {
         let text = "#define N 5\n# define LEAF(a) [+F(a)]\n#definex 1\nA --> LEAF(N)\n";
-        let names = find("cpfg", text);
+        let names = find(crate::front::by_name("cpfg").unwrap(), text);
         let found: Vec<_> = names.decls.iter().map(|d| d.name.as_str()).collect();
         assert_eq!(found, ["N", "LEAF"]);
         assert_eq!(names.decls[1].kind, SymbolKind::FUNCTION);

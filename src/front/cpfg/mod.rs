@@ -13,6 +13,7 @@
 pub mod ast;
 pub mod calls;
 pub mod contour;
+pub mod declared;
 pub mod environment;
 pub mod func;
 pub mod lexer;
@@ -27,7 +28,9 @@ pub mod view;
 pub use crate::ir::Lowered;
 
 use crate::diagnostics::{Diagnostic, Diagnostics, SideFile};
-use crate::front::{line_comments, strip_block_comments, Confidence, Front, Read};
+use crate::front::{
+    line_comments, strip_block_comments, Confidence, Declaration, Front, FunctionSite, Read,
+};
 use crate::ir::{Span, System};
 use crate::source::SourceFile;
 use std::collections::HashMap;
@@ -76,6 +79,21 @@ impl Front for Cpfg {
     }
     fn comments(&self, src: &str) -> Vec<(Span, String)> {
         line_comments(src, None)
+    }
+    fn keywords(&self) -> Vec<&'static str> {
+        (lexer::Keyword::ALL.iter()).map(|k| k.text()).collect()
+    }
+    fn comment_spans(&self, src: &str) -> Vec<Span> {
+        lexer::comment_spans(src)
+    }
+    fn declarations(&self, src: &str) -> Vec<Declaration> {
+        declared::macros(src)
+    }
+    fn user_functions(&self, path: &Path) -> Vec<FunctionSite> {
+        function_sites(path)
+    }
+    fn user_function_called_at<'t>(&self, src: &'t str, at: usize) -> Option<&'t str> {
+        declared::user_function_called_at(src, at)
     }
     fn describe(&self, sys: Option<&System>) -> Option<String> {
         Some(match sys {
@@ -138,21 +156,6 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     lowered
 }
 
-/// A user function where the object's files declare it: what `func(k, x)`
-/// and `func(NAME, x)` call.
-pub struct FunctionSite {
-    /// k, from 1, in the order cpfg numbers them.
-    pub number: usize,
-    /// `NAME`: its name in capitals, as the macro cpfg defines for it.
-    pub name: Option<String>,
-    /// The `.func` or `.fset` file that declares it, and its text.
-    pub path: std::path::PathBuf,
-    pub text: String,
-    /// Where its name is written there (its file's start when unnamed).
-    pub span: Span,
-    pub function: func::Function,
-}
-
 /// The user functions of the cpfg object whose `.l` file is at `path`, as
 /// [`read_file`] numbers them: the view file's `function:` files, then its
 /// `function set:` files; those that do not read are left out, as there.
@@ -178,13 +181,15 @@ pub fn function_sites(path: &Path) -> Vec<FunctionSite> {
         };
         let names = func::name_spans(&text);
         for (k, function) in functions.unwrap_or_default().into_iter().enumerate() {
+            // `NAME` in capitals, as the macro cpfg defines for it.
             out.push(FunctionSite {
                 number: out.len() + 1,
                 name: function.name.as_ref().map(|n| n.to_uppercase()),
                 path: path.clone(),
                 text: text.clone(),
                 span: names.get(k).cloned().unwrap_or(0..0),
-                function,
+                points: function.points,
+                samples: function.samples,
             });
         }
     }

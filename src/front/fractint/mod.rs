@@ -7,6 +7,7 @@
 //! `lower` (one [`crate::ir::System`] per entry).
 
 pub mod ast;
+pub mod declared;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
@@ -15,8 +16,9 @@ pub use lower::{lower_entry, palette, DEFAULT_ORDER, RESERVED};
 pub use parser::parse;
 
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
-use crate::front::{Confidence, EntryInfo, Front, Library, Read};
+use crate::front::{Confidence, Declaration, EntryInfo, Front, Library, Read};
 pub use crate::ir::Lowered;
+use crate::ir::Span;
 use crate::source::SourceFile;
 use ast::Entry;
 use std::collections::HashMap;
@@ -51,6 +53,15 @@ impl Front for Fractint {
     }
     fn library_form(&self) -> Option<&'static str> {
         Some("`Name { … }` entries")
+    }
+    fn keywords(&self) -> Vec<&'static str> {
+        parser::KEYWORDS.to_vec()
+    }
+    fn comment_spans(&self, src: &str) -> Vec<Span> {
+        lexer::comment_spans(src)
+    }
+    fn declarations(&self, src: &str) -> Vec<Declaration> {
+        declared::entries(src)
     }
     // The comments of a library belong to its many entries, not to the
     // one translated: none are carried over (the default).

@@ -20,6 +20,9 @@ use crate::source::SourceFile;
 pub struct Gft;
 
 impl Front for Gft {
+    fn keywords(&self) -> Vec<&'static str> {
+        parser::KEYWORDS.iter().map(|(k, _)| *k).collect()
+    }
     fn name(&self) -> &'static str {
         "gft"
     }

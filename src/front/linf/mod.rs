@@ -5,6 +5,7 @@
 //! `lexer` (logos) -> `parser` (chumsky, recovering) -> `ast` -> `lower` (IR).
 
 pub mod ast;
+pub mod declared;
 pub mod lexer;
 pub mod lower;
 pub mod parser;
@@ -14,7 +15,7 @@ pub use lower::lower;
 pub use parser::parse;
 
 use crate::diagnostics::Diagnostics;
-use crate::front::{line_comments, Front, Read};
+use crate::front::{line_comments, Declaration, Front, Read};
 use crate::ir::{Span, System, Word};
 use crate::source::SourceFile;
 
@@ -44,6 +45,14 @@ impl Front for Linf {
     /// `#` to the end of the line; `#:` lines are directives, not comments.
     fn comments(&self, src: &str) -> Vec<(Span, String)> {
         line_comments(src, Some(':'))
+    }
+    fn keywords(&self) -> Vec<&'static str> {
+        (lexer::BlockKind::ALL.iter())
+            .map(|k| k.keyword())
+            .collect()
+    }
+    fn declarations(&self, src: &str) -> Vec<Declaration> {
+        declared::names(src)
     }
 }
 

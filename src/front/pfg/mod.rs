@@ -22,6 +22,9 @@ use crate::source::SourceFile;
 pub struct Pfg;
 
 impl Front for Pfg {
+    fn keywords(&self) -> Vec<&'static str> {
+        parser::HEADERS.to_vec()
+    }
     fn name(&self) -> &'static str {
         "pfg"
     }

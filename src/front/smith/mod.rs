@@ -20,6 +20,9 @@ use crate::source::SourceFile;
 pub struct Smith;
 
 impl Front for Smith {
+    fn keywords(&self) -> Vec<&'static str> {
+        lower::KEYS.to_vec()
+    }
     fn name(&self) -> &'static str {
         "smith"
     }

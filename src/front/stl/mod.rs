@@ -10,6 +10,7 @@
 //! [`crate::back::stl`] writes back out.
 
 pub mod ast;
+pub mod declared;
 pub mod layout;
 
 /// Outline growth is the IR's: the front end asks it, walking no turtle of
@@ -24,7 +25,7 @@ pub use lower::lower;
 pub use parser::parse;
 
 use crate::diagnostics::Diagnostics;
-use crate::front::{line_comments, Front, Read};
+use crate::front::{line_comments, Declaration, Front, Read};
 use crate::ir::Span;
 use crate::source::SourceFile;
 
@@ -46,6 +47,15 @@ impl Front for Stl {
     }
     fn comments(&self, src: &str) -> Vec<(Span, String)> {
         line_comments(src, None)
+    }
+    fn keywords(&self) -> Vec<&'static str> {
+        parser::KEYWORDS.to_vec()
+    }
+    fn declarations(&self, src: &str) -> Vec<Declaration> {
+        declared::rules(src)
+    }
+    fn declared_name_uses(&self, src: &str) -> Option<Vec<(String, Span)>> {
+        Some(declared::rule_uses(src))
     }
 }
 
