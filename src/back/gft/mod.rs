@@ -44,7 +44,7 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     let mut out = String::new();
     settings(&mut out, &sys.settings, steps);
     look::rotations(&mut out, sys);
-    if sys.colours == crate::ir::colours::fractint_palette() {
+    if sys.colours == crate::common::palettes::fractint_palette() {
         out.push_str("colours fractint\n");
     } else if !sys.colours.is_empty() {
         let hex: Vec<String> = sys.colours.iter().map(|&c| look::hex(c)).collect();

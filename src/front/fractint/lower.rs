@@ -22,7 +22,7 @@ pub const DEFAULT_COLOUR: usize = 15;
 
 pub use crate::ir::Lowered;
 
-pub use crate::ir::colours::fractint_palette as palette;
+pub use crate::common::palettes::fractint_palette as palette;
 
 struct Cx<'a> {
     sys: System,

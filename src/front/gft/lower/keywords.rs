@@ -234,7 +234,7 @@ impl Cx<'_> {
     fn colours(&mut self, k: &Keyword) {
         if let [Arg::Word(w, _)] = k.args.as_slice() {
             if w == "fractint" {
-                self.sys.colours = crate::ir::colours::fractint_palette();
+                self.sys.colours = crate::common::palettes::fractint_palette();
                 return;
             }
         }
