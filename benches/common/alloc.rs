@@ -1,5 +1,5 @@
 //! A counting global allocator for peak-memory figures, shared by the
-//! benchmarks and `tests/scale.rs`: it wraps `std::alloc::System`, keeps
+//! benchmarks and the integration tests (`tests/it/main.rs`): it wraps `std::alloc::System`, keeps
 //! the live heap bytes and the most live at once since the last reset.
 //! Every allocation costs a few relaxed atomic operations, in graftal and
 //! the baselines alike. Each binary declares
@@ -80,13 +80,4 @@ pub fn mib(bytes: usize) -> String {
     } else {
         format!("{:.1} KiB", bytes as f64 / 1024.0)
     }
-}
-
-/// Held by each test of a binary that measures peaks: the peak counts
-/// every thread's allocations, so a test drawing pictures beside one that
-/// measures would be measured too. (Held also after another test failed
-/// while holding it.)
-pub fn alone() -> std::sync::MutexGuard<'static, ()> {
-    static ALONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    ALONE.lock().unwrap_or_else(|e| e.into_inner())
 }
