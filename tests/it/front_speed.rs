@@ -7,7 +7,7 @@
 //! the old figures are in the comments; this profile is slower).
 //!
 //! A slow suite: it runs when `GRAFTAL_SLOW=1`, each test holding
-//! [`timed`] so that no other bound or the fuzzer runs beside it.
+//! `common::timed` so that no other bound or the fuzzer runs beside it.
 
 use graftal::diagnostics::{codes, Diagnostic, MAX_KEPT};
 use graftal::driver::{compile, compile_entry, Compiled};
@@ -15,7 +15,7 @@ use graftal::source::SourceFile;
 use std::time::{Duration, Instant};
 
 use crate::common;
-use common::{graftal, slow, temp, timed};
+use common::{graftal, slow_timed, temp};
 
 /// Compiles `text` as the file `name`, and how long that took.
 fn timed_compile(name: &str, text: String, entry: Option<&str>) -> (Compiled, Duration) {
@@ -44,10 +44,9 @@ const QUICK: Duration = Duration::from_secs(3);
 
 #[test]
 fn a_seed_of_a_million_bad_modules_is_four_diagnostics() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 4 MB on one line: three E0003 per `F(1)` were built (3 million, 1.5 s
     // and 476 MB of which 100,000 were kept); now the unterminated SEED
     // and three E0003, the third counting the rest.
@@ -65,10 +64,9 @@ fn a_seed_of_a_million_bad_modules_is_four_diagnostics() {
 
 #[test]
 fn each_line_of_an_stl_block_starts_its_count_again() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     let lines = "F(1)(2)(3)(4)(5)\n".repeat(3);
     let c = compile(SourceFile::new("s.stl", format!("SEED\n{lines}ENDSEED\n")));
     // Three per line, the third of each with the count of that line.
@@ -85,10 +83,9 @@ fn each_line_of_an_stl_block_starts_its_count_again() {
 
 #[test]
 fn a_linf_rule_of_a_million_bad_marks_is_three_diagnostics() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 2 MB: one E0406 per `f@` (a million, 1.1 s and 314 MB); now three.
     let n = 1_000_000;
     let text = format!("lines f\naxiom f\nrules f = {}", "f@".repeat(n));
@@ -100,10 +97,9 @@ fn a_linf_rule_of_a_million_bad_marks_is_three_diagnostics() {
 
 #[test]
 fn a_line_of_stray_linf_tokens_is_folded_and_a_run_of_equals_is_one() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     let text = format!(
         "lines f\naxiom f\nrules f = f{}\n",
         ") f = f".repeat(100_000)
@@ -130,10 +126,9 @@ fn unclosed_angles(blocks: usize) -> String {
 
 #[test]
 fn unclosed_angles_blocks_are_read_in_linear_time() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 20,000 blocks (240 KB): over 5 s before (killed at 5 s); now each
     // block's `(` is reported once and closed where the block ends.
     let n = 20_000;
@@ -165,10 +160,9 @@ fn library(n: usize, extra: &str) -> String {
 
 #[test]
 fn a_library_of_fifty_thousand_entries_is_read_in_linear_time() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 20,000 entries took 1.0 s and 100,000 took 25-36 s (each name was
     // compared with every earlier one); 50,000 now take a fraction of a
     // second.
@@ -190,10 +184,9 @@ fn a_library_of_fifty_thousand_entries_is_read_in_linear_time() {
 
 #[test]
 fn an_unknown_entry_lists_a_few_names_not_all() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     let (c, _) = timed_compile("big.l", library(1_000, ""), Some("nope"));
     let d = c
         .diagnostics
@@ -206,10 +199,9 @@ fn an_unknown_entry_lists_a_few_names_not_all() {
 
 #[test]
 fn check_lists_a_hundred_entries_and_counts_the_rest() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 100,000 entries printed 100,000 lines (2.9 MB).
     let p = temp("library.l");
     std::fs::write(&p, library(5_000, "")).unwrap();
@@ -238,10 +230,9 @@ fn check_lists_a_hundred_entries_and_counts_the_rest() {
 
 #[test]
 fn blank_lines_cost_one_token_per_run() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 8 million blank lines took 3.8 s and 1.4 GB: the parser read one
     // empty line for each.
     let n = 4_000_000;
@@ -265,10 +256,9 @@ fn blank_lines_cost_one_token_per_run() {
 
 #[test]
 fn a_full_list_of_diagnostics_stops_growing() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // Far more mistakes than are kept, one per item: the list keeps
     // MAX_KEPT and counts the rest.
     let rules: String = (0..MAX_KEPT + 10).map(|i| format!("f{i} = f@\n")).collect();
@@ -282,10 +272,9 @@ fn a_full_list_of_diagnostics_stops_growing() {
 
 #[test]
 fn thousands_of_unknown_names_among_thousands_of_rules_are_linear() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // Each unknown name was compared with every declared one (a help
     // listing them all, an edit distance to each): 20,000 of each took 77 s
     // in STL and two minutes in LinF. Now the suggestions stop at a budget
@@ -314,10 +303,9 @@ fn thousands_of_unknown_names_among_thousands_of_rules_are_linear() {
 
 #[test]
 fn a_long_declared_name_does_not_slow_the_splitting_of_strings() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // Each place of a string tried every length up to the longest name,
     // hashing each: a name of 2,000 letters and a string of 20,000 took
     // 7 s (22 KB). Now 200,000 letters take a fraction of a second.
@@ -338,10 +326,9 @@ fn a_long_declared_name_does_not_slow_the_splitting_of_strings() {
 
 #[test]
 fn a_cpfg_line_of_a_million_tokens_is_no_runaway_expansion() {
-    if !slow("front_speed: hostile inputs under wall-clock bounds") {
+    let Some(_timed) = slow_timed("front_speed: hostile inputs under wall-clock bounds") else {
         return;
-    }
-    let _timed = timed();
+    };
     // More than two million plain tokens between directives were taken for
     // a macro expansion that runs away (E0810), and each unknown function
     // was reported (300,000 E0832, 2.5 s); now three E0832.

@@ -21,7 +21,7 @@
 //! raw control characters; with `--format json`, a line that is not JSON).
 //!
 //! A slow suite: `GRAFTAL_SLOW=1 cargo test` runs a brief, fixed set of
-//! mutants (each run holding [`timed`]: it keeps every core busy). The
+//! mutants (each run holding `common::timed`: it keeps every core busy). The
 //! environment runs it for longer (see `tests/fuzz/README.md`):
 //! `GRAFTAL_FUZZ_SECONDS`,
 //! `GRAFTAL_FUZZ_CASES` (mutants per notation), `GRAFTAL_FUZZ_SEED`,
@@ -46,7 +46,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{mpsc, Mutex};
 use std::time::{Duration, Instant};
 
-use crate::common::{slow, timed};
+use crate::common::slow_timed;
 
 /// Mutants per notation in the brief run of `cargo test`: a mutant that
 /// runs clean takes about 80 ms of commands (debug build, on a busy 2-core
@@ -1558,10 +1558,9 @@ fn regression_tasks() -> Vec<Task> {
 /// test`; as long as `GRAFTAL_FUZZ_SECONDS` or `GRAFTAL_FUZZ_CASES` say.
 #[test]
 fn mutants_of_every_notation_run_without_a_finding() {
-    if !slow("fuzz: mutants and regression inputs through the binary") {
+    let Some(_timed) = slow_timed("fuzz: mutants and regression inputs through the binary") else {
         return;
-    }
-    let _timed = timed();
+    };
     let mut settings = Settings::from_env();
     settings.findings = findings_root().join(format!("seed{}", settings.seed));
     let seeds = load_seeds();
@@ -1601,10 +1600,9 @@ fn mutants_of_every_notation_run_without_a_finding() {
 /// same commands without a finding.
 #[test]
 fn every_regression_input_runs_without_a_finding() {
-    if !slow("fuzz: mutants and regression inputs through the binary") {
+    let Some(_timed) = slow_timed("fuzz: mutants and regression inputs through the binary") else {
         return;
-    }
-    let _timed = timed();
+    };
     let settings = Settings {
         findings: findings_root().join("regressions"),
         ..Settings::from_env()

@@ -7,7 +7,7 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver};
 use std::time::{Duration, Instant};
 
-use crate::common::{slow, timed};
+use crate::common::{slow, slow_timed};
 
 /// The longest a test waits for any one message.
 const WAIT: Duration = Duration::from_secs(30);
@@ -380,10 +380,9 @@ const BOUND: Duration = Duration::from_millis(200);
 
 #[test]
 fn a_ten_thousand_line_file_answers_every_request_quickly() {
-    if !slow("lsp: every request on a 10,000-line file within 200 ms") {
+    let Some(_timed) = slow_timed("lsp: every request on a 10,000-line file within 200 ms") else {
         return;
-    }
-    let _timed = timed();
+    };
     // 10,000 productions of `F` (each after the first shadowed: a warning
     // with related information apiece), with non-ASCII comments.
     let mut text = String::from("derivation length: 2\nangle factor: 4\naxiom: F\n");

@@ -72,6 +72,13 @@ pub fn slow(what: &str) -> bool {
     on
 }
 
+/// A slow test that bounds wall-clock time or loads every core: [`slow`],
+/// then holding [`timed`];
+/// `let Some(_timed) = slow_timed("what it checks") else { return };`.
+pub fn slow_timed(what: &str) -> Option<MutexGuard<'static, ()>> {
+    slow(what).then(timed)
+}
+
 /// Asserts that `took` is under `bound` when the slow suites run: a
 /// wall-clock bound belongs to them, since a loaded machine (or tests
 /// beside it) can break it. Without `GRAFTAL_SLOW=1` says it was skipped.

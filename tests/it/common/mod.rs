@@ -6,7 +6,7 @@
 mod alone;
 pub mod random;
 
-pub use alone::{alone, assert_within, slow, timed};
+pub use alone::{alone, assert_within, slow, slow_timed};
 
 use graftal::cli::{run, Io};
 use std::path::Path;
