@@ -6,14 +6,15 @@
 //! mesh validators, wall-clock bounds) run too when `GRAFTAL_SLOW=1`
 //! ([`common::slow`]), as `.ci/run` sets it.
 
-// Counts every allocation of this binary, for the peak-memory figures of
-// `scale` and `lychnis`; those tests run in a process of their own
-// ([`common::alone`]), where no other test allocates beside them.
+// Counts allocations for the peak-memory figures of `scale` and `lychnis`:
+// those tests run in a process of their own ([`common::alone`]), where no
+// other test allocates beside them and where counting starts; the other
+// processes allocate uncounted, at full speed.
 #[path = "../../benches/common/alloc.rs"]
 mod alloc;
 
 #[global_allocator]
-static ALLOC: alloc::Counting = alloc::Counting;
+static ALLOC: alloc::CountingWhenStarted = alloc::CountingWhenStarted;
 
 mod common;
 

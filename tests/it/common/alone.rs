@@ -21,8 +21,8 @@ const ALONE: &str = "GRAFTAL_TEST_ALONE";
 /// the calling test (named by its thread, as the test harness names it),
 /// on one thread (holding [`timed`] meanwhile); fails with the child's
 /// output unless it ran that one test and passed, and returns `None`: the
-/// test is done. In the child,
-/// returns a guard and the test goes on.
+/// test is done. In the child, starts counting allocations
+/// (`alloc::CountingWhenStarted`) and returns a guard: the test goes on.
 pub fn alone() -> Option<MutexGuard<'static, ()>> {
     static ONE: Mutex<()> = Mutex::new(());
     let thread = std::thread::current();
@@ -30,6 +30,7 @@ pub fn alone() -> Option<MutexGuard<'static, ()>> {
         .name()
         .expect("a test runs on a thread named after it");
     if std::env::var(ALONE).as_deref() == Ok(name) {
+        crate::alloc::start_counting();
         return Some(ONE.lock().unwrap_or_else(|e| e.into_inner()));
     }
     let _timed = timed();
