@@ -191,7 +191,7 @@ stdlib_cases() {
 }
 
 # The Fractint libraries: the .l files and the older releases in history/
-# (fractint.l.v15.0 ...), which tests/fractint.rs also reads as Fractint.
+# (fractint.l.v15.0 ...), which tests/it/fractint.rs also reads as Fractint.
 shopt -s nullglob
 fractint_files() {
     local f
@@ -221,7 +221,7 @@ fractint_cases() {
     done
 }
 
-# The L-system of a cpfg object, as tests/cpfg.rs `main_l` picks it: the
+# The L-system of a cpfg object, as tests/it/cpfg.rs `main_l` picks it: the
 # first .l word on a line of `specifications` starting with `cpfg`, else the
 # first .l file by name. (\r counts as white space, as in Rust's
 # split_whitespace.)

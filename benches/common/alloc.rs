@@ -1,27 +1,33 @@
 //! A counting global allocator for peak-memory figures, shared by the
-//! benchmarks and `tests/scale.rs`: it wraps `std::alloc::System`, keeps
+//! benchmarks and the integration tests (`tests/it/main.rs`): it wraps `std::alloc::System`, keeps
 //! the live heap bytes and the most live at once since the last reset.
 //! Every allocation costs a few relaxed atomic operations, in graftal and
-//! the baselines alike. Each binary declares
-//! `#[global_allocator] static ALLOC: alloc::Counting = alloc::Counting;`.
+//! the baselines alike. Each benchmark declares
+//! `#[global_allocator] static ALLOC: alloc::Counting = alloc::Counting;`;
+//! the test binary declares [`CountingWhenStarted`], which costs nothing
+//! in the processes that do not measure.
 
 #![allow(dead_code)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicIsize, Ordering::Relaxed};
 
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
+// Signed: under `CountingWhenStarted`, memory allocated before counting
+// started may be freed after, which takes the count below zero; a peak is
+// a difference of counts, so it is the same.
+static CURRENT: AtomicIsize = AtomicIsize::new(0);
+static PEAK: AtomicIsize = AtomicIsize::new(0);
 
 pub struct Counting;
 
 fn grew(bytes: usize) {
+    let bytes = bytes as isize;
     let now = CURRENT.fetch_add(bytes, Relaxed) + bytes;
     PEAK.fetch_max(now, Relaxed);
 }
 
 fn shrank(bytes: usize) {
-    CURRENT.fetch_sub(bytes, Relaxed);
+    CURRENT.fetch_sub(bytes as isize, Relaxed);
 }
 
 // SAFETY: every call is forwarded unchanged to `System`; only counters are
@@ -63,13 +69,60 @@ unsafe impl GlobalAlloc for Counting {
     }
 }
 
+/// [`Counting`] from [`start_counting`] on, [`System`] alone before: for a
+/// binary that measures peaks only in some of its processes.
+pub struct CountingWhenStarted;
+
+static STARTED: AtomicBool = AtomicBool::new(false);
+
+/// Makes [`CountingWhenStarted`] count in this process from now on.
+pub fn start_counting() {
+    STARTED.store(true, Relaxed);
+}
+
+// SAFETY: every call goes to `Counting` or to `System`, which `Counting`
+// forwards to unchanged; a block allocated by either is freed by `System`.
+unsafe impl GlobalAlloc for CountingWhenStarted {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if STARTED.load(Relaxed) {
+            unsafe { Counting.alloc(layout) }
+        } else {
+            unsafe { System.alloc(layout) }
+        }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if STARTED.load(Relaxed) {
+            unsafe { Counting.alloc_zeroed(layout) }
+        } else {
+            unsafe { System.alloc_zeroed(layout) }
+        }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        if STARTED.load(Relaxed) {
+            unsafe { Counting.dealloc(ptr, layout) }
+        } else {
+            unsafe { System.dealloc(ptr, layout) }
+        }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if STARTED.load(Relaxed) {
+            unsafe { Counting.realloc(ptr, layout, new_size) }
+        } else {
+            unsafe { System.realloc(ptr, layout, new_size) }
+        }
+    }
+}
+
 /// Runs `f` once; returns its result and the peak of live heap bytes during
 /// the call above those live before it (the result itself included).
 pub fn peak_during<T>(f: impl FnOnce() -> T) -> (T, usize) {
     let base = CURRENT.load(Relaxed);
     PEAK.store(base, Relaxed);
     let out = f();
-    let peak = PEAK.load(Relaxed).saturating_sub(base);
+    let peak = (PEAK.load(Relaxed) - base).max(0) as usize;
     (out, peak)
 }
 
@@ -80,13 +133,4 @@ pub fn mib(bytes: usize) -> String {
     } else {
         format!("{:.1} KiB", bytes as f64 / 1024.0)
     }
-}
-
-/// Held by each test of a binary that measures peaks: the peak counts
-/// every thread's allocations, so a test drawing pictures beside one that
-/// measures would be measured too. (Held also after another test failed
-/// while holding it.)
-pub fn alone() -> std::sync::MutexGuard<'static, ()> {
-    static ALONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    ALONE.lock().unwrap_or_else(|e| e.into_inner())
 }
