@@ -3,18 +3,54 @@
 //! LinF and Fractint define their symbols.
 
 use super::geometry::index_of;
-use super::run::{Learned, Record};
+use super::run::{Learned, Record, Run};
 use super::state::{
     add_scaled, dot, hermite, Cylinder, State, DEFAULT_TANGENTS, NO_HISTORY, RENORMALISE_EVERY,
 };
 use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, TurtlePath, Vec3};
 use crate::ir::colours::DEFAULT_PALETTE;
-use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, System, TurtleOp};
+use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, SymbolId, System, TurtleOp};
 use crate::random::{Rng, Stream};
+use std::cell::Cell;
+
+/// [`run`](super::run), telling `at` which module is being interpreted.
+// Here, beside the turtle, so that its calls are compiled (and inlined)
+// with the loop: `interpret` in benches/throughput.rs was 5% slower with
+// the loop in another module.
+pub(super) fn interpret<W: Iterator<Item = SymbolId>>(
+    run: Run<'_, W>,
+    sink: &mut dyn Sink,
+    at: Option<&Cell<usize>>,
+) -> Learned {
+    let sys = run.system;
+    let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
+        .map(|i| sys.op(SymbolId(i as u32)))
+        .collect();
+    let record = Record {
+        paths: run.paths,
+        queries: run.queries,
+    };
+    let params = run.params;
+    let mut turtle = Turtle::new(sys, run.seed, record, sink);
+    for (i, sym) in run.symbols.enumerate() {
+        let Some(op) = ops.get(sym.index()).copied().flatten() else {
+            continue;
+        };
+        let args = Args(match params {
+            Some(w) => w.args(i),
+            None => &[],
+        });
+        if let Some(at) = at {
+            at.set(i);
+        }
+        turtle.apply(i, op, args);
+    }
+    turtle.finish()
+}
 
 /// The parameters of the module being interpreted.
 #[derive(Clone, Copy)]
-pub(super) struct Args<'w>(pub(super) &'w [f64]);
+struct Args<'w>(&'w [f64]);
 
 impl Args<'_> {
     /// Parameter `k`. A parameter that is not a number draws nothing odd:
@@ -41,7 +77,7 @@ pub(super) fn pieces(n: f64) -> usize {
 
 /// The turtle interpreting a word: its state and the enclosing branches'
 /// states, and what it is building; what it draws goes to `sink`.
-pub(super) struct Turtle<'a> {
+struct Turtle<'a> {
     sys: &'a System,
     palette: Vec<Rgb>,
     /// The stream interval angles are drawn from.

@@ -1,9 +1,9 @@
 //! The turtle's one entry point: [`run`] interprets the symbols of a
 //! [`Run`] into a [`Sink`] and returns what the run learned ([`Learned`]).
 
-use super::interpret::{Args, Turtle};
+use super::interpret::interpret;
 use super::{Disc, Geometry, Origins, Polygon, Segment, Sink, TurtlePath, Vec3};
-use crate::ir::{SymbolId, System, TurtleOp, Word};
+use crate::ir::{SymbolId, System, Word};
 use std::cell::Cell;
 
 /// What to interpret, and what to record on the way. Build one with
@@ -38,6 +38,22 @@ impl<'a> Run<'a, WordSymbols<'a>> {
             ..Run::symbols(system, word.0.iter().copied(), seed)
         }
     }
+
+    /// [`run`] into a stored [`Geometry`], which keeps what the run
+    /// learned (its paths, origins and deepest nesting) beside what it drew.
+    // Not generic, so that the interpreter is compiled here, its calls
+    // inlined, whichever crate asks (benches/throughput.rs `interpret`
+    // was a sixth slower when it was instantiated there).
+    pub fn geometry(self) -> Geometry {
+        let world_widths = self.system.settings.world_widths;
+        let mut g = Geometry::default();
+        let learned = run(self, &mut g);
+        g.paths = learned.paths;
+        g.max_depth = learned.max_depth;
+        g.origins = learned.origins;
+        g.world_widths = world_widths;
+        g
+    }
 }
 
 impl<'a, W: Iterator<Item = SymbolId>> Run<'a, W> {
@@ -53,19 +69,6 @@ impl<'a, W: Iterator<Item = SymbolId>> Run<'a, W> {
             origins: false,
             queries: false,
         }
-    }
-
-    /// [`run`] into a stored [`Geometry`], which keeps what the run
-    /// learned (its paths, origins and deepest nesting) beside what it drew.
-    pub fn geometry(self) -> Geometry {
-        let world_widths = self.system.settings.world_widths;
-        let mut g = Geometry::default();
-        let learned = run(self, &mut g);
-        g.paths = learned.paths;
-        g.max_depth = learned.max_depth;
-        g.origins = learned.origins;
-        g.world_widths = world_widths;
-        g
     }
 }
 
@@ -107,38 +110,6 @@ pub fn run<W: Iterator<Item = SymbolId>>(run: Run<'_, W>, sink: &mut dyn Sink) -
     let mut learned = interpret(run, &mut noting, Some(&at));
     learned.origins = noting.origins;
     learned
-}
-
-/// [`run`], telling `at` which module is being interpreted.
-fn interpret<W: Iterator<Item = SymbolId>>(
-    run: Run<'_, W>,
-    sink: &mut dyn Sink,
-    at: Option<&Cell<usize>>,
-) -> Learned {
-    let sys = run.system;
-    let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
-        .map(|i| sys.op(SymbolId(i as u32)))
-        .collect();
-    let record = Record {
-        paths: run.paths,
-        queries: run.queries,
-    };
-    let params = run.params;
-    let mut turtle = Turtle::new(sys, run.seed, record, sink);
-    for (i, sym) in run.symbols.enumerate() {
-        let Some(op) = ops.get(sym.index()).copied().flatten() else {
-            continue;
-        };
-        let args = Args(match params {
-            Some(w) => w.args(i),
-            None => &[],
-        });
-        if let Some(at) = at {
-            at.set(i);
-        }
-        turtle.apply(i, op, args);
-    }
-    turtle.finish()
 }
 
 /// A sink that notes, for everything drawn, the module being interpreted

@@ -72,22 +72,27 @@ impl Target {
     }
 
     /// Whether sample row `y` is held here.
+    #[inline]
     pub(super) fn owns(&self, y: i64) -> bool {
         let r = y - self.y0;
         (0..self.rows).contains(&r) && (r / self.stripe) % self.shares == self.share
     }
 
     /// Where held row `y` is stored.
+    #[inline]
     fn local(&self, y: i64) -> i64 {
         let r = y - self.y0;
         r / self.stripe / self.shares * self.stripe + r % self.stripe
     }
 
     /// Whether sample rows `lo..=hi` meet the band.
+    #[inline]
     pub(super) fn meets(&self, lo: f64, hi: f64) -> bool {
         hi >= self.y0 as f64 - 1.0 && lo <= (self.y0 + self.rows) as f64 + 1.0
     }
 
+    // Called per sample from the other rooms of the raster.
+    #[inline]
     pub(super) fn plot(&mut self, x: i64, y: i64, z: f64, c: Colour) {
         let i = (self.local(y) * self.width + x) as usize;
         let z = z as f32;
@@ -99,6 +104,7 @@ impl Target {
 
     /// The rows of samples whose centres lie in `lo..=hi`, in the band
     /// (those held here: [`Target::owns`]).
+    #[inline]
     pub(super) fn rows_between(&self, lo: f64, hi: f64) -> std::ops::Range<i64> {
         let first = ((lo - 0.5).ceil() as i64).max(self.y0);
         let last = ((hi - 0.5).floor() as i64).min(self.y0 + self.rows - 1);
