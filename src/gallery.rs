@@ -150,7 +150,7 @@ defaults by `graftal gallery docs/gallery`";
 pub fn readme(items: &[Item]) -> String {
     let mut s = format!(
         "# graftal gallery\n\n{INTRO} ({SIZE}x{SIZE} pixels). Regenerate it after changing \
-         the library or the renderer; `tests/gallery.rs` fails when it is out of date.\n\n\
+         the library or the renderer; `tests/it/gallery.rs` fails when it is out of date.\n\n\
          | entry | figure | picture | files |\n|---|---|---|---|\n"
     );
     for it in items {

@@ -30,7 +30,7 @@
 //! is and what `--lossy` does with it. Without `--lossy` any problem means
 //! nothing is written; with it, each problem is one warning. A translation
 //! without problems is exact: the translated file, evaluated with the same
-//! steps and seed, draws the same segments (tests/translate.rs checks this
+//! steps and seed, draws the same segments (tests/it/translate.rs checks this
 //! over the standard library and over random systems).
 //!
 //! Everything the emitters decide is also recorded as a [`Mapped`] entry

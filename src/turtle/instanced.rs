@@ -35,7 +35,7 @@ use std::collections::HashMap;
 /// A subtree whose box is smaller than this many pixels across is drawn
 /// as one line. The paper's criterion is one pixel; at one pixel the inked
 /// pixels of the Koch island at 5 steps in 256² differed from drawing
-/// every segment by 17%, at half a pixel by none (`tests/scale.rs`).
+/// every segment by 17%, at half a pixel by none (`tests/it/scale.rs`).
 const WITHIN: f64 = 0.5;
 
 /// The most frames a system may reach.

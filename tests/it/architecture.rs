@@ -598,6 +598,45 @@ fn the_language_server_names_no_notation() {
     assert!(!seen("let u = \"http://x\"; let s = \"pfgs\";"));
 }
 
+/// The most lines a source file holds before its test module: a file
+/// longer than this mixes responsibilities, and is split into rooms.
+const MOST_LINES_BEFORE_TESTS: usize = 1200;
+
+/// The one file allowed to be longer: the IR's specification, whose
+/// length is its documentation (each notation's lowering a doctest).
+const THE_SPECIFICATION: &str = "ir/mod.rs";
+
+/// The lines of a file before its `#[cfg(test)]` module (all of it when it
+/// has none), comments and blank lines included.
+fn lines_before_tests(text: &str) -> usize {
+    text.lines()
+        .take_while(|l| !l.starts_with("#[cfg(test)]"))
+        .count()
+}
+
+#[test]
+fn no_file_but_the_specification_is_over_1200_lines_before_its_tests() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    collect(&root, &mut files);
+    let mut long = Vec::new();
+    for p in files {
+        let path = p
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let n = lines_before_tests(&std::fs::read_to_string(&p).unwrap());
+        if n > MOST_LINES_BEFORE_TESTS && path != THE_SPECIFICATION {
+            long.push(format!("{path}: {n} lines"));
+        }
+    }
+    assert!(long.is_empty(), "split by responsibility: {long:?}");
+    // The count sees what it counts.
+    assert_eq!(lines_before_tests("a\nb\n#[cfg(test)]\nmod tests {}\n"), 2);
+    assert_eq!(lines_before_tests("a\n\n// c\n"), 3);
+}
+
 #[test]
 fn the_top_level_modules_form_no_cycle() {
     let graph = module_graph(&sources());

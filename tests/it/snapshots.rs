@@ -17,9 +17,15 @@
 //! - each notation of `translate`: `graftal translate --to NOTATION`
 //!   (`tests/out/NOTATION/NAME.EXT`).
 //!
-//! `tests/in/README.md` says which input takes which way of drawing.
+//! `svg_method` and `png_method` in a parameter file name the way of
+//! drawing the library's one call for a picture chooses for that picture
+//! (`shared subtrees`, `streamed`, `lit`, `stored`), and it must: the inputs
+//! cover every way. `tests/in/README.md` says which input takes which.
 
 use graftal::back::BACKS;
+use graftal::driver::picture::{self, Format, Quiet, Request};
+use graftal::driver::{compile, load, RunOptions};
+use graftal::render::View;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -50,6 +56,10 @@ struct Params {
     /// The notations the input is translated to, each a target.
     #[serde(default)]
     translate: Vec<String>,
+    /// The way the SVG is drawn ([`picture::Method::name`]), checked.
+    svg_method: Option<String>,
+    /// The way the PNG is drawn, checked.
+    png_method: Option<String>,
 }
 
 fn default_targets() -> Vec<Target> {
@@ -231,6 +241,51 @@ impl Input {
         text.into_bytes()
     }
 
+    /// The way the library's one call for a picture draws the picture
+    /// `graftal render` draws in `format` at `size` (`WxH`).
+    fn method(&self, format: Format, size: &str) -> &'static str {
+        let c = compile(load(&self.path).unwrap());
+        let (w, h) = size.split_once('x').expect("WxH");
+        let view = (self.params.view.as_deref()).map(|v| {
+            let (az, el) = v.split_once(',').expect("AZ,EL");
+            View::degrees(az.parse().unwrap(), el.parse().unwrap())
+        });
+        let req = Request {
+            run: RunOptions {
+                steps: self.params.steps,
+                seed: self.params.seed,
+                ..RunOptions::default()
+            },
+            width: w.parse().unwrap(),
+            height: h.parse().unwrap(),
+            view,
+            ..Request::new(picture::Target::Still(format))
+        };
+        let p = picture::draw(&c, &req, &mut Quiet).unwrap();
+        p.method.name()
+    }
+
+    /// Where a picture is not drawn the way its parameters say.
+    fn wrong_methods(&self) -> Vec<String> {
+        let asked = [
+            (Format::Svg, &self.params.svg_method, &self.params.svg_size),
+            (Format::Png, &self.params.png_method, &self.params.png_size),
+        ];
+        let mut out = Vec::new();
+        for (format, method, size) in asked {
+            let Some(method) = method else { continue };
+            let drawn = self.method(format, size);
+            if drawn != method {
+                out.push(format!(
+                    "{}: the {} is drawn {drawn}, not {method}",
+                    self.name,
+                    format.name()
+                ));
+            }
+        }
+        out
+    }
+
     /// The translation to `notation` and its golden file.
     fn translation(&self, notation: &str) -> (PathBuf, Vec<u8>) {
         let bytes = self.output("translate", &["--to", notation]);
@@ -257,6 +312,7 @@ fn every_input_gives_its_snapshots() {
     for input in &inputs {
         let params = &input.params;
         let outputs = (params.targets.iter()).flat_map(|&t| input.outputs(t));
+        failures.extend(input.wrong_methods());
         let translations = (params.translate.iter()).map(|to| input.translation(to));
         for (golden, actual) in outputs.chain(translations) {
             if let Err(e) = check_golden_bytes(&golden, &actual) {

@@ -14,7 +14,7 @@
 //! `.gft`, `W097x` Smith.
 //!
 //! A code nothing emits any more is retired: its entry goes and its number
-//! joins [`RETIRED`], never to be given again. `tests/stale_words.rs` holds
+//! joins [`RETIRED`], never to be given again. `tests/it/stale_words.rs` holds
 //! that every code registered here is emitted somewhere in `src/`.
 
 use super::Severity;
