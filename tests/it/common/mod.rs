@@ -59,13 +59,21 @@ pub fn graftal_bytes(args: &[&str], stdout_terminal: bool) -> (i32, Vec<u8>, Vec
 /// The stack `graftal` runs on (`STACK_BYTES` in src/main.rs).
 const GRAFTAL_STACK_BYTES: usize = 64 << 20;
 
-/// A path named `name` in the calling suite's temporary directory (one a
-/// source file of `tests/it/` and process, so suites do not share names).
+/// A path named `name` in the calling test's temporary directory: one a
+/// source file of `tests/it/`, process and test (the test threads are named
+/// after their tests), so that tests running side by side never write the
+/// same file.
 #[track_caller]
 pub fn temp(name: &str) -> std::path::PathBuf {
     let caller = Path::new(std::panic::Location::caller().file());
     let suite = caller.file_stem().unwrap().to_string_lossy();
-    let dir = std::env::temp_dir().join(format!("graftal-{suite}-{}", std::process::id()));
+    let thread = std::thread::current();
+    let test: String = (thread.name().unwrap_or("main").chars())
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let dir = std::env::temp_dir()
+        .join(format!("graftal-{suite}-{}", std::process::id()))
+        .join(test);
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }
