@@ -1,5 +1,5 @@
 //! Animations: the steps 0..=N as the frames of a GIF or an animated PNG,
-//! each frame drawn as its still is ([`super::still`]) and framed as the
+//! each frame drawn as its still is ([`super::still_counted`]) and framed as the
 //! last one; an outline's growth replayed stem by stem.
 
 use super::stored::{apply_look, render_bytes};

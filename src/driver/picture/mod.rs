@@ -316,7 +316,9 @@ fn draw_subject(
 ) -> Result<Picture, DrawError> {
     let ropts = render_options(req, s.sys, s.file);
     match req.target {
-        Target::Still(format) => still(s, &req.run, format, ropts, req.layout, progress),
+        Target::Still(format) => {
+            still_counted(s, &req.run, format, ropts, req.layout, progress).map(|(p, _)| p)
+        }
         Target::Mesh(format) => mesh::draw(s.sys, format, req, progress),
         Target::Animation(container) => animate::draw(s, req, container, ropts, progress),
     }
@@ -370,21 +372,10 @@ fn render_options(req: &Request, sys: &System, file: &str) -> RenderOptions {
 }
 
 /// A still picture by the first method that serves: shared subtrees,
-/// streamed, lit, stored. Only the stored way explains an empty picture,
-/// so the others hand over to it when they draw nearly nothing.
-fn still(
-    s: &Subject,
-    run: &RunOptions,
-    format: Format,
-    ropts: RenderOptions,
-    layout: bool,
-    progress: &mut dyn Progress,
-) -> Result<Picture, DrawError> {
-    still_counted(s, run, format, ropts, layout, progress).map(|(p, _)| p)
-}
-
-/// [`still`], with the segments it kept in memory (the stored way's; an
-/// animation's frames share one limit on them).
+/// streamed, lit, stored, with the segments it kept in memory (the stored
+/// way's; an animation's frames share one limit on them). Only the stored
+/// way explains an empty picture, so the others hand over to it when they
+/// draw nearly nothing.
 fn still_counted(
     s: &Subject,
     run: &RunOptions,
