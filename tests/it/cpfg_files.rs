@@ -233,7 +233,7 @@ fn every_l_file_finds_its_view() {
         if dir.ends_with("11-CPFG-Sedge") && name != "sedge.l" {
             continue;
         }
-        let v = find_view(dir, &name).unwrap_or_else(|| panic!("{}", l.display()));
+        let v = find_view(dir, &name).unwrap_or_else(|e| panic!("{}: {e:?}", l.display()));
         assert!(!is_panel(&read(&v)));
         if v.file_stem() != l.file_stem() {
             odd.push(format!(
@@ -463,6 +463,7 @@ fn a_bad_colour_map_is_a_warning() {
     fs::write(dir.join("a.l"), "lsystem: 1\naxiom: F\nendlsystem\n").unwrap();
     fs::write(dir.join("specifications"), "cpfg -m short.map a.l a.v\n").unwrap();
     fs::write(dir.join("short.map"), [1u8; 700]).unwrap();
+    fs::write(dir.join("a.v"), "angle factor: 8\n").unwrap();
     let c = graftal::driver::compile(graftal::source::SourceFile::read(&dir.join("a.l")).unwrap());
     let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
     assert_eq!(codes, ["W0806"]);
@@ -477,4 +478,109 @@ fn a_bad_colour_map_is_a_warning() {
     let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
     assert_eq!(codes, ["W0806"]);
     fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The files of the object `name` of the corpus copied into a fresh folder,
+/// with `rename` applied to their names and `specifications` left out: the
+/// layout L-studio writes.
+fn l_studio_copy(name: &str, rename: &[(&str, &str)]) -> PathBuf {
+    let to = crate::common::temp(name);
+    fs::create_dir_all(&to).unwrap();
+    for e in fs::read_dir(corpus().join(name)).unwrap() {
+        let e = e.unwrap();
+        let file = e.file_name().to_string_lossy().into_owned();
+        if file == "specifications" {
+            continue;
+        }
+        let new = (rename.iter().find(|(from, _)| *from == file)).map_or(file.as_str(), |r| r.1);
+        fs::copy(e.path(), to.join(new)).unwrap();
+    }
+    to
+}
+
+fn compile_at(path: &Path) -> graftal::driver::Compiled {
+    graftal::driver::compile(graftal::source::SourceFile::read(path).unwrap())
+}
+
+/// An L-studio folder (no `specifications`) is drawn with the materials
+/// it holds, as vlab draws the same object with its `cpfg -M` line, and a
+/// contour named `calyx.con` in the view file is read from `CALYX.con`;
+/// warnings say which files were taken.
+#[test]
+fn an_l_studio_folder_draws_with_its_own_colours_and_any_case_names() {
+    let vlab = compile_object("10-GettingStarted-01-Lychnis", "plant.l");
+    let dir = l_studio_copy(
+        "10-GettingStarted-01-Lychnis",
+        &[("calyx.con", "CALYX.con"), ("material.mat", "Lychnis.mat")],
+    );
+    let studio = compile_at(&dir.join("plant.l"));
+    let (vlab_sys, studio_sys) = (vlab.system.unwrap(), studio.system.unwrap());
+    assert_eq!(studio_sys.colours, vlab_sys.colours);
+    assert_eq!(studio_sys.look, vlab_sys.look);
+    assert_eq!(studio_sys.contours, vlab_sys.contours);
+    let said = |code: &str| {
+        (studio.diagnostics.iter())
+            .find(|d| d.code.0 == code)
+            .unwrap_or_else(|| panic!("no {code} in {:?}", studio.diagnostics))
+            .message
+            .clone()
+    };
+    assert!(said("W0811").contains("`Lychnis.mat`"), "{}", said("W0811"));
+    let case = said("W0809");
+    assert!(
+        case.contains("`calyx.con`") && case.contains("`CALYX.con`"),
+        "{case}"
+    );
+    let codes: Vec<&str> = vlab.diagnostics.iter().map(|d| d.code.0).collect();
+    assert!(
+        !codes.contains(&"W0811") && !codes.contains(&"W0809"),
+        "{codes:?}"
+    );
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// With two colour maps and none named like the `.l`, none is taken (the
+/// choice would be a guess); named like the `.l`, that one is.
+#[test]
+fn a_folder_colour_map_is_taken_only_when_it_is_the_objects() {
+    let dir = crate::common::temp("maps");
+    fs::create_dir_all(&dir).unwrap();
+    fs::write(dir.join("a.l"), "lsystem: 1\naxiom: F\nendlsystem\n").unwrap();
+    fs::write(dir.join("a.v"), "angle factor: 8\n").unwrap();
+    let map = |b: u8| [b; 768];
+    fs::write(dir.join("x.map"), map(7)).unwrap();
+    fs::write(dir.join("y.map"), map(9)).unwrap();
+    let c = compile_at(&dir.join("a.l"));
+    assert!(c.diagnostics.is_empty(), "{:?}", c.diagnostics);
+    let default = graftal::front::cpfg::view::default_colormap().to_vec();
+    assert_eq!(c.system.unwrap().colours, default);
+    fs::write(dir.join("A.map"), map(5)).unwrap();
+    let c = compile_at(&dir.join("a.l"));
+    assert_eq!(c.system.unwrap().colours[0], graftal::ir::Rgb(5, 5, 5));
+    assert_eq!(c.diagnostics.0[0].code.0, "W0811");
+}
+
+/// No view file, or one named in `specifications` and absent, is a
+/// warning naming cpfg's defaults the picture is drawn with.
+#[test]
+fn a_missing_view_file_is_a_warning_naming_the_defaults() {
+    let dir = crate::common::temp("noview");
+    fs::create_dir_all(&dir).unwrap();
+    fs::write(dir.join("a.l"), "lsystem: 1\naxiom: F\nendlsystem\n").unwrap();
+    let c = compile_at(&dir.join("a.l"));
+    let d = &c.diagnostics.0[0];
+    assert_eq!(
+        (d.code.0, d.message.as_str()),
+        ("W0810", "no view file for `a.l`")
+    );
+    assert!(d.notes[0].contains("angle 45°"), "{:?}", d.notes);
+    fs::write(dir.join("specifications"), "cpfg a.l gone.v\n").unwrap();
+    let c = compile_at(&dir.join("a.l"));
+    let d = &c.diagnostics.0[0];
+    assert_eq!(d.code.0, "W0810");
+    assert!(d.message.contains("`gone.v`"), "{}", d.message);
+    // Text with no folder behind it (standard input, an editor's buffer
+    // not saved) has no view file to miss.
+    let text = graftal::source::SourceFile::new("<stdin>", "lsystem: 1\naxiom: F\nendlsystem\n");
+    assert!(graftal::driver::compile(text).diagnostics.is_empty());
 }

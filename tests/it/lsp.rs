@@ -600,7 +600,13 @@ fn cpfg_side_files_are_read_from_disk_and_reported_on_them() {
 /// the `#include` line; the document itself has none.
 #[test]
 fn problems_of_an_included_file_are_reported_on_it() {
-    let dir = cpfg_object("include", &[("leaf.h", "B --> F(1\n#bogus\n")]);
+    let dir = cpfg_object(
+        "include",
+        &[
+            ("leaf.h", "B --> F(1\n#bogus\n"),
+            ("plant.v", "angle factor: 8\n"),
+        ],
+    );
     let uri = |f: &str| format!("file://{}", dir.join(f).display());
     let plant =
         "Lsystem: 1\n#include \"leaf.h\"\nderivation length: 2\nAxiom: A\nA --> B\nendlsystem\n";

@@ -313,4 +313,41 @@ Example:
 Write:
     angle factor: 16
     viewpoint: 0,0,1";
+
+    CPFG_NAME_CASE = "W0809", "side file found in another case",
+"A view file, `specifications` or `#include` names a file of the object's
+folder in another case than the file on disk has. L-studio and vlab ran on
+file systems that do not tell cases apart (Windows, macOS), so such objects
+worked there; graftal finds the file the same way and says which it read,
+since a case-sensitive system (Linux) would not.
+
+Example (the view file):
+    contour: SEPAL.con
+and the folder holds `sepal.con`.
+
+Write:
+    contour: sepal.con";
+
+    CPFG_NO_VIEW = "W0810", "no view file",
+"cpfg draws an L-system with the view file named on its command line (in
+vlab, on the `cpfg` line of the object's `specifications`): the angle
+increment, line widths, colours, camera, surfaces and functions. Here
+there is none: the object's `specifications` names a view file that is not
+in the folder, or nothing names one and the folder holds no `.v` file (or
+several, none named like the `.l`). The picture is drawn with cpfg's
+defaults, which the note lists, and may look nothing like the object.
+
+Put the view file beside the `.l`, named like it (`plant.l`, `plant.v`).";
+
+    CPFG_FOLDER_COLOURS = "W0811", "colour files taken from the folder",
+"The object's folder has no `specifications` file, the layout L-studio
+(vlab's Windows successor) uses: the `.l`, `.v`, colour map (`.map`) or
+materials (`.mat`) and side files side by side. As L-studio does, graftal
+draws with the colour map and the materials named like the `.l`, else the
+folder's only ones, and says which it took, since a folder of several
+would be drawn with others.
+
+To choose the files, write a `specifications` file with the `cpfg` line
+vlab runs, e.g.
+    cpfg plant.l plant.v -m plant.map -M plant.mat";
 }

@@ -15,6 +15,7 @@ pub mod calls;
 pub mod contour;
 pub mod declared;
 pub mod environment;
+mod folder;
 pub mod func;
 pub mod lexer;
 pub mod look;
@@ -131,9 +132,7 @@ const MAX_SURFACE_TRIANGLES: usize = 20_000;
 /// into the original `.l` text; problems in the other files name the file.
 pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     let path = Path::new(&file.name);
-    let beside = Beside {
-        dir: folder_of(path),
-    };
+    let beside = Beside::new(path);
     let view = beside.view(path, diags);
     let functions = beside.user_functions(&view, diags);
     let contours = beside.contours(&view, diags);
@@ -153,6 +152,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     if let Some(dir) = beside.dir {
         environment::name_program(dir, path, diags);
     }
+    beside.report_other_case(diags);
     lowered
 }
 
@@ -160,18 +160,16 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
 /// [`read_file`] numbers them: the view file's `function:` files, then its
 /// `function set:` files; those that do not read are left out, as there.
 pub fn function_sites(path: &Path) -> Vec<FunctionSite> {
-    let beside = Beside {
-        dir: folder_of(path),
-    };
-    let Some(dir) = beside.dir else {
+    let beside = Beside::new(path);
+    if beside.dir.is_none() {
         return Vec::new();
-    };
+    }
     let view = beside.view(path, &mut Diagnostics::default());
     let mut out: Vec<FunctionSite> = Vec::new();
     let files = (view.functions.iter().map(|f| (f, false)))
         .chain(view.function_sets.iter().map(|f| (f, true)));
     for (fname, is_set) in files {
-        let (Some(path), Some(text)) = (inside(dir, fname), beside.read(fname)) else {
+        let (Some(path), Some(text)) = (beside.path(fname), beside.read(fname)) else {
             continue;
         };
         let functions = if is_set {
@@ -212,13 +210,58 @@ fn folder_of(path: &Path) -> Option<&Path> {
 /// it (none when the `.l` has no folder on disk).
 struct Beside<'a> {
     dir: Option<&'a Path>,
+    /// Side files read under another case than the name written: (the name
+    /// written, the name on disk), each once.
+    other_case: std::cell::RefCell<Vec<(String, String)>>,
 }
 
-impl Beside<'_> {
+impl<'a> Beside<'a> {
+    /// The folder of the `.l` file at `path`.
+    fn new(path: &'a Path) -> Self {
+        Beside {
+            dir: folder_of(path),
+            other_case: Default::default(),
+        }
+    }
+
     /// The text of the file `name` of the folder, if it can be read and
     /// lies inside the folder ([`inside`]).
     fn read(&self, name: &str) -> Option<String> {
-        read_lossy(&inside(self.dir?, name)?)
+        read_lossy(&self.path(name)?)
+    }
+
+    /// The path of the file `name` of the folder ([`inside`]), noting a
+    /// name found in another case than written.
+    fn path(&self, name: &str) -> Option<std::path::PathBuf> {
+        let dir = self.dir?;
+        let path = inside(dir, name)?;
+        let on_disk = folder::name_in(dir, &path);
+        if on_disk != name.trim_start_matches("./") && path.exists() {
+            let mut seen = self.other_case.borrow_mut();
+            let pair = (name.to_string(), on_disk);
+            if !seen.contains(&pair) {
+                seen.push(pair);
+            }
+        }
+        Some(path)
+    }
+
+    /// A warning for each side file read under another case than written.
+    fn report_other_case(&self, diags: &mut Diagnostics) {
+        for (written, on_disk) in self.other_case.borrow().iter() {
+            diags.push(
+                Diagnostic::global(
+                    crate::diagnostics::codes::CPFG_NAME_CASE,
+                    format!(
+                        "`{written}` is not in the object's folder; `{on_disk}` is read instead"
+                    ),
+                )
+                .with_help(format!(
+                    "write `{on_disk}` where `{written}` is named, so that the object reads \
+                     the same on a file system that tells cases apart"
+                )),
+            );
+        }
     }
 
     /// The file `name` of the folder (a `what` file named by the view file)
@@ -258,11 +301,16 @@ impl Beside<'_> {
 
     /// The view file of the `.l` at `path`; the defaults when there is none.
     fn view(&self, path: &Path, diags: &mut Diagnostics) -> view::View {
-        let view_path = self
-            .dir
-            .and_then(|d| view::find_view(d, path.file_name()?.to_str()?));
-        let Some(p) = view_path else {
+        let (Some(dir), Some(l_name)) = (self.dir, path.file_name()) else {
             return view::View::default();
+        };
+        let l_name = l_name.to_string_lossy();
+        let p = match view::find_view(dir, &l_name) {
+            Ok(p) => p,
+            Err(why) => {
+                diags.push(no_view(&l_name, why));
+                return view::View::default();
+            }
         };
         let text = read_lossy(&p).unwrap_or_default();
         let (v, d) = view::read_view(&text);
@@ -371,7 +419,7 @@ impl Beside<'_> {
     /// cap), if it lies inside the folder.
     fn read_bytes(&self, name: &str) -> Option<Vec<u8>> {
         use std::io::Read;
-        let file = std::fs::File::open(inside(self.dir?, name)?).ok()?;
+        let file = std::fs::File::open(self.path(name)?).ok()?;
         let mut bytes = Vec::new();
         let cap = crate::source::MAX_SOURCE_BYTES as u64;
         file.take(cap + 1).read_to_end(&mut bytes).ok()?;
@@ -384,10 +432,10 @@ impl Beside<'_> {
     /// lights.
     fn add_look(&self, sys: &mut System, path: &Path, view: &view::View, diags: &mut Diagnostics) {
         let l_name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        let files = self
-            .read("specifications")
-            .map(|spec| look::colour_files(&spec, l_name.as_deref().unwrap_or("")))
-            .unwrap_or_default();
+        let files = match self.read("specifications") {
+            Some(spec) => look::colour_files(&spec, l_name.as_deref().unwrap_or("")),
+            None => self.colour_files_of_folder(path, diags),
+        };
         let mut palette = view::default_colormap().to_vec();
         for (block, name) in &files.maps {
             if let Some(map) = self.read_binary(name, "colour map", look::read_map, diags) {
@@ -408,6 +456,47 @@ impl Beside<'_> {
         }
         sys.look = look::look(view, &palette, &materials);
         sys.colours = palette;
+    }
+
+    /// The colour files of a folder with no `specifications` (L-studio's
+    /// layout): the `.map` and the `.mat` named like the `.l`, else the
+    /// folder's only one of each; a warning says which were taken.
+    fn colour_files_of_folder(&self, path: &Path, diags: &mut Diagnostics) -> look::ColourFiles {
+        let (Some(dir), Some(stem)) = (self.dir, path.file_stem()) else {
+            return look::ColourFiles::default();
+        };
+        let stem = stem.to_string_lossy();
+        let map = folder::named_like_or_only(dir, &stem, "map");
+        let materials = folder::named_like_or_only(dir, &stem, "mat");
+        let taken: Vec<String> = map
+            .iter()
+            .chain(&materials)
+            .map(|n| format!("`{n}`"))
+            .collect();
+        if !taken.is_empty() {
+            let l_name = path.file_name().unwrap_or_default().to_string_lossy();
+            let flags = (map.iter().map(|m| format!(" -m {m}")))
+                .chain(materials.iter().map(|m| format!(" -M {m}")))
+                .collect::<String>();
+            diags.push(
+                Diagnostic::global(
+                    crate::diagnostics::codes::CPFG_FOLDER_COLOURS,
+                    format!(
+                        "no `specifications` in the object's folder: the colours of {} are used, \
+                         as L-studio does",
+                        taken.join(" and ")
+                    ),
+                )
+                .with_help(format!(
+                    "to choose the files, write a `specifications` file with the line \
+                     `cpfg {l_name}{flags}`"
+                )),
+            );
+        }
+        look::ColourFiles {
+            maps: map.map(|m| (0, m)).into_iter().collect(),
+            materials,
+        }
     }
 
     /// A binary side file named on the object's `cpfg` command line, read
@@ -470,6 +559,8 @@ impl Beside<'_> {
 /// The path of the side file `name` when it lies inside `dir`: a
 /// relative name without `..` whose file, links followed, is in the folder
 /// (checked when the file exists; a missing file is reported as missing).
+/// A name in another case than on disk finds the file, as on the
+/// case-insensitive systems cpfg objects were written on.
 fn inside(dir: &Path, name: &str) -> Option<std::path::PathBuf> {
     use std::path::Component;
     let relative = Path::new(name);
@@ -479,7 +570,7 @@ fn inside(dir: &Path, name: &str) -> Option<std::path::PathBuf> {
     {
         return None;
     }
-    let path = dir.join(relative);
+    let path = folder::find_any_case(dir, name).unwrap_or_else(|| dir.join(relative));
     match (path.canonicalize(), dir.canonicalize()) {
         (Ok(file), Ok(folder)) if !file.starts_with(&folder) => None,
         _ => Some(path),
@@ -721,6 +812,30 @@ fn report_undefined_surfaces(lowered: &Lowered, view: &view::View, diags: &mut D
             );
         }
     }
+}
+
+/// The warning for an object drawn without a view file: which defaults
+/// cpfg's picture then has.
+fn no_view(l_name: &str, why: view::NoView) -> Diagnostic {
+    let (message, help) = match why {
+        view::NoView::Named(v) => (
+            format!("the view file `{v}` named in `specifications` is not in the object's folder"),
+            format!("put `{v}` beside `{l_name}`"),
+        ),
+        view::NoView::Absent => (
+            format!("no view file for `{l_name}`"),
+            format!(
+                "cpfg reads one named on its command line: put a `.v` file named like \
+                 `{l_name}` beside it"
+            ),
+        ),
+    };
+    Diagnostic::global(crate::diagnostics::codes::CPFG_NO_VIEW, message)
+        .with_note(format!(
+            "drawn with cpfg's defaults: {}",
+            view::defaults_said()
+        ))
+        .with_help(help)
 }
 
 fn missing_file(name: &str, what: &str, named_in: &str) -> crate::diagnostics::Diagnostic {

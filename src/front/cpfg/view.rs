@@ -899,52 +899,85 @@ pub fn is_panel(text: &str) -> bool {
         })
 }
 
+/// Why an object has no view file to read.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NoView {
+    /// The `cpfg` line of `specifications` names this view file, and it is
+    /// not in the folder.
+    Named(String),
+    /// Nothing names one, and the folder holds none (or several, none
+    /// named like the `.l`).
+    Absent,
+}
+
 /// The view file of the L-system `l_file` in `dir`: the `.v` with the same
 /// stem; else the `.v` named after `l_file` on the `cpfg …` line of the
 /// folder's `specifications` file; else the folder's only view file. Panel
-/// files named `*.v` are never taken.
-pub fn find_view(dir: &Path, l_file: &str) -> Option<PathBuf> {
+/// files named `*.v` are never taken; names match in any case (L-studio's
+/// objects were written on Windows).
+pub fn find_view(dir: &Path, l_file: &str) -> Result<PathBuf, NoView> {
     let is_view = |p: &Path| {
         std::fs::read(p)
             .ok()
             .is_some_and(|b| !is_panel(&String::from_utf8_lossy(&b)))
     };
     let stem = Path::new(l_file)
-        .file_stem()?
-        .to_string_lossy()
-        .into_owned();
-    let same = dir.join(format!("{stem}.v"));
-    if is_view(&same) {
-        return Some(same);
+        .file_stem()
+        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    if let Some(same) = super::folder::find_any_case(dir, &format!("{stem}.v")) {
+        if is_view(&same) {
+            return Ok(same);
+        }
     }
+    let named = named_in_specifications(dir, l_file);
+    if let Some(v) = &named {
+        match super::folder::find_any_case(dir, v) {
+            Some(p) if is_view(&p) => return Ok(p),
+            _ => {}
+        }
+    }
+    let mut views: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .take(256)
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("v")) && is_view(p))
+        .collect();
+    views.sort();
+    match (views.len(), named) {
+        (1, _) => Ok(views.remove(0)),
+        (_, Some(v)) => Err(NoView::Named(v)),
+        (_, None) => Err(NoView::Absent),
+    }
+}
+
+/// The `.v` file the `cpfg` line of `dir`'s `specifications` names after
+/// `l_file`.
+fn named_in_specifications(dir: &Path, l_file: &str) -> Option<String> {
+    let spec = std::fs::read(dir.join("specifications")).ok()?;
+    let spec = String::from_utf8_lossy(&spec);
     let l_name = Path::new(l_file)
         .file_name()?
         .to_string_lossy()
         .into_owned();
-    if let Ok(spec) = std::fs::read(dir.join("specifications")) {
-        let spec = String::from_utf8_lossy(&spec);
-        for line in spec.lines() {
-            let words: Vec<&str> = line.split_whitespace().collect();
-            if words.first() != Some(&"cpfg") {
-                continue;
-            }
-            if let Some(k) = words.iter().position(|w| *w == l_name) {
-                if let Some(v) = words[k + 1..].iter().find(|w| w.ends_with(".v")) {
-                    let p = dir.join(v);
-                    if is_view(&p) {
-                        return Some(p);
-                    }
-                }
-            }
+    spec.lines().find_map(|line| {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.first() != Some(&"cpfg") {
+            return None;
         }
-    }
-    let mut views: Vec<PathBuf> = std::fs::read_dir(dir)
-        .ok()?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "v") && is_view(p))
-        .collect();
-    views.sort();
-    (views.len() == 1).then(|| views.remove(0))
+        let k = words.iter().position(|w| *w == l_name)?;
+        let v = words[k + 1..].iter().find(|w| w.ends_with(".v"))?;
+        Some(v.to_string())
+    })
+}
+
+/// What cpfg draws with when it reads no view file, as a warning says it.
+pub fn defaults_said() -> String {
+    let v = View::default();
+    format!(
+        "angle {}°, line width {} pixel, colour {}, viewpoint on the z axis, parallel projection",
+        v.angle, v.initial_line_width, v.initial_color
+    )
 }
 
 /// The colour map used when an object has no `.map` file.
