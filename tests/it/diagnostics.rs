@@ -325,3 +325,43 @@ fn each_gft_code_has_its_snapshot_and_explanation() {
         );
     }
 }
+
+/// The cpfg mistakes cpfg itself passes in silence each get their own
+/// diagnostic, at the place written, with the help a new user needs: `//`
+/// between rolls, a misspelt item keyword, a parameter count no production
+/// takes, `$` for the roll to horizontal, the file functions; and a
+/// did-you-mean never names a name that is itself undefined.
+#[test]
+fn cpfg_mistakes_made_in_silence_are_each_said() {
+    let name = "cpfg-mistakes.l";
+    let text = std::fs::read_to_string(dir().join(name)).unwrap();
+    let c = compile(SourceFile::new(name, text.clone()));
+    let at = |code: &str, nth: usize| {
+        let d = (c.diagnostics.iter().filter(|d| d.code.0 == code))
+            .nth(nth)
+            .unwrap_or_else(|| panic!("no {code} #{nth}: {:?}", c.diagnostics));
+        (text[d.span.clone().unwrap()].to_string(), d.clone())
+    };
+    let (slashes, d) = at("W0812", 0);
+    assert_eq!(slashes, "///");
+    assert_eq!(d.fix.unwrap().replacement, "/ / /");
+    let (key, d) = at("E0101", 0);
+    assert_eq!(key, "derivaton length");
+    assert_eq!(d.fix.unwrap().replacement, "derivation length");
+    assert_eq!(at("W0827", 0).0, "A(1,2)");
+    let (dollar, d) = at("E0839", 0);
+    assert_eq!(
+        (dollar.as_str(), d.fix.unwrap().replacement.as_str()),
+        ("$", "@v")
+    );
+    let io: Vec<String> = (0..3).map(|k| at("W0822", k).0).collect();
+    assert_eq!(io, ["fopen", "fscanf", "fprintf"]);
+    let (second, d) = at("W0820", 2);
+    assert_eq!(second, "lennn");
+    assert_eq!(d.help, None, "`lenn` is undefined itself: no did-you-mean");
+    assert!(
+        !c.diagnostics.iter().any(|d| d.code.0 == "E0003"),
+        "{:?}",
+        c.diagnostics
+    );
+}

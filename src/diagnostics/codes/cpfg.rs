@@ -350,4 +350,17 @@ would be drawn with others.
 To choose the files, write a `specifications` file with the `cpfg` line
 vlab runs, e.g.
     cpfg plant.l plant.v -m plant.map -M plant.mat";
+
+    CPFG_SLASHES_COMMENT = "W0812", "`//` read as a comment in a word",
+"cpfg runs the C preprocessor over the `.l` file, and `//` starts a
+comment that runs to the end of the line. In an axiom or a successor, two
+rolls written together (`//`) therefore cut the word short: everything
+after them is not read, and cpfg (and graftal) draw what is left. Write
+the rolls with a space between them.
+
+Example:
+    Axiom: E///T(0)FFFA(0)     <- read as `Axiom: E`
+
+Write:
+    Axiom: E/ / /T(0)FFFA(0)";
 }

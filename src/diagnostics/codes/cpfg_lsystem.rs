@@ -127,4 +127,19 @@ the `]` that closes it: `F > [+D=]` matches `F[+DX…]`, whatever follows
 anything but `]` never matches, and cpfg reads past the pattern when `=`
 ends it. graftal matches `=]` as cpfg does and reads this context as
 never matching. Write `=]` to skip the rest of a branch.";
+
+    CPFG_PARAMETER_COUNT = "W0827", "no production takes this many parameters",
+"cpfg rewrites a module only with a production whose predecessor has the
+same letter and the same number of parameters. This module's letter has
+productions, but none with as many parameters as it is written with here,
+so it is never rewritten (nor decomposed, nor drawn by a homomorphism
+production) and the plant does not grow from it. cpfg says nothing; it is
+usually a parameter left out or added by mistake.
+
+Example:
+    axiom: A(1,2)
+    A(l) --> F(l) A(l+1)     <- takes one parameter
+
+Write:
+    axiom: A(1)";
 }

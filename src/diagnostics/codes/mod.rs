@@ -250,6 +250,8 @@ Write:
     axiom: STRING
     ignore: SYMBOLS
 Any other `name:` line is not understood. Misspellings get a suggestion.
+cpfg files get the same for their item keywords (`derivation length:`,
+`axiom:`, `maximum depth:`, …).
 
 Example:
     derivation lenght: 5

@@ -51,7 +51,8 @@ struct Lowerer<'d> {
     /// Names warned about as undefined (once each).
     undefined: std::collections::HashSet<String>,
     warned_not_drawn: std::collections::HashSet<String>,
-    warned_io: bool,
+    /// The input and output functions warned about (W0822), each once.
+    warned_io: std::collections::HashSet<String>,
     warned_env: bool,
     /// Whether a sub-L-system call was reported: one error says the file
     /// needs them, not one per call.
@@ -101,20 +102,7 @@ impl Lowerer<'_> {
         }
         if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
             if !std::mem::replace(&mut self.warned_sub, true) {
-                self.diags.push(
-                    Diagnostic::at(
-                        codes::CPFG_SUB_LSYSTEM,
-                        m.span.clone(),
-                        "sub-L-systems are not supported",
-                    )
-                    .with_label(if m.name == "$" {
-                        "`$` returns from a sub-L-system"
-                    } else {
-                        "`?(n, s)` calls sub-L-system n"
-                    })
-                    .with_note("reported here once for every `?(n, s)` and `$` of the file")
-                    .with_help("write the sub-L-system's productions into this L-system"),
-                );
+                self.diags.push(sub_lsystem(m));
             }
         } else if m.name == "?E" && !self.warned_env {
             self.warned_env = true;
@@ -239,7 +227,9 @@ impl Lowerer<'_> {
             .locals
             .iter()
             .map(String::as_str)
-            .filter(|l| !l.is_empty())
+            // A name already found undefined is a local only so that it is
+            // reported once: never the name to suggest.
+            .filter(|l| !l.is_empty() && !self.undefined.contains(*l))
             .collect();
         known.extend(self.globals.keys().map(String::as_str));
         self.diags.push(with_nearest(d, n, &known));
@@ -361,18 +351,27 @@ impl Lowerer<'_> {
         });
     }
 
-    /// Warns (once) about the input and output functions, which graftal
-    /// reads but does not run.
+    /// Warns, once for each of them, about the input and output functions,
+    /// which graftal reads but does not run.
     fn warn_not_run(&mut self, name: &str, name_span: &Span, builtin: Builtin) {
-        if builtin == Builtin::Io && !self.warned_io {
-            self.warned_io = true;
-            self.diags.push(
-                Diagnostic::at(
-                    codes::CPFG_IO_IGNORED,
-                    name_span.clone(),
+        if builtin == Builtin::Io && self.warned_io.insert(name.to_string()) {
+            let (message, label) = match name {
+                "fscanf" => (
+                    "`fscanf` reads nothing in graftal".to_string(),
+                    "the variables it is given keep their values; it returns 0",
+                ),
+                "fopen" => (
+                    "`fopen` opens no file in graftal".to_string(),
+                    "returns 0; reads and writes through it do nothing",
+                ),
+                _ => (
                     format!("`{name}` does nothing in graftal"),
-                )
-                .with_label("no file or console output"),
+                    "no file or console output",
+                ),
+            };
+            self.diags.push(
+                Diagnostic::at(codes::CPFG_IO_IGNORED, name_span.clone(), message)
+                    .with_label(label),
             );
         }
     }
@@ -609,6 +608,30 @@ impl Lowerer<'_> {
     }
 }
 
+/// The error for the first sub-L-system module `m` (`?(n, s)` or `$`) of
+/// a file. A `$` is more often pfg's and LinF's roll to horizontal, which
+/// cpfg writes `@v`: the help says so and the fix writes it.
+fn sub_lsystem(m: &ast::Module) -> Diagnostic {
+    let d = Diagnostic::at(
+        codes::CPFG_SUB_LSYSTEM,
+        m.span.clone(),
+        "sub-L-systems are not supported",
+    )
+    .with_note("reported here once for every `?(n, s)` and `$` of the file");
+    if m.name == "$" {
+        d.with_label("`$` returns from a sub-L-system in cpfg")
+            .with_note("to use a sub-L-system, write its productions into this L-system")
+            .with_fix(
+                m.span.clone(),
+                "@v".into(),
+                "for the roll to horizontal (`$` in pfg and LinF), cpfg writes `@v`".into(),
+            )
+    } else {
+        d.with_label("`?(n, s)` calls sub-L-system n")
+            .with_help("write the sub-L-system's productions into this L-system")
+    }
+}
+
 /// `d` with a help naming the nearest of `candidates` to `name`, when one
 /// is near.
 fn with_nearest(d: Diagnostic, name: &str, candidates: &[&str]) -> Diagnostic {
@@ -742,7 +765,7 @@ impl<'d> Lowerer<'d> {
             arrays: HashMap::new(),
             undefined: Default::default(),
             warned_not_drawn: Default::default(),
-            warned_io: false,
+            warned_io: Default::default(),
             warned_env: false,
             warned_sub: false,
             later_lsystem: None,

@@ -10,6 +10,7 @@
 //! [`view`] (the `.v` view file: angle, widths, colours, surfaces,
 //! functions), [`func`] (`.func`, `.fset`) and [`surface`] (`.s`).
 
+mod arity;
 pub mod ast;
 pub mod calls;
 pub mod contour;
@@ -364,6 +365,7 @@ impl<'a> Beside<'a> {
         let mut lowered = lower::lower_with_curves(&ast, curves, &mut own);
         let (arrays, given) = (&lowered.system.program.arrays, functions.functions.len());
         calls::check(&ast, arrays, given, &mut own);
+        arity::check(&ast, &mut own);
         let map = |s: &Span| pre.map.to_source(s.clone());
         for d in own.0 {
             // Where expansion stopped too deep the text is left as written:

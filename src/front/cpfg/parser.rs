@@ -85,13 +85,18 @@ where
             name().then(args).map_with(|((n, span), a), e| {
                 Expr::operation(ExprKind::Call(n, span.clone(), a), range(e.span()), span)
             }),
-            name().then(subscripts).map_with(|((n, span), s), e| {
-                Expr::operation(ExprKind::Index(n, s), range(e.span()), span)
-            }),
+            name()
+                .then(subscripts.clone())
+                .map_with(|((n, span), s), e| {
+                    Expr::operation(ExprKind::Index(n, s), range(e.span()), span)
+                }),
             name().map(|(n, span)| Expr::leaf(ExprKind::Name(n), span)),
             just(Token::TooDeep).map_with(|_, e| Expr::cut(range(e.span()))),
+            // `&x` and `&x[i]`, as `fscanf` takes them: the call reads
+            // nothing (W0822), so only the name is kept.
             just(Token::Amp)
                 .ignore_then(name())
+                .then_ignore(subscripts.clone().or_not())
                 .map_with(move |(n, _), e| leaf(ExprKind::Address(n), e)),
         ))
         .or(expr
@@ -594,6 +599,37 @@ fn statement_roots<'a>(stmts: &'a mut [Stmt], out: &mut Vec<&'a mut Expr>) {
 /// reported and skipped. An item nested past [`crate::ir::MAX_NESTING`]
 /// gets one E0013, at the first place past it, and is read with that part
 /// left out.
+/// A line that does not parse and reads as a misspelt item keyword
+/// (`derivaton length: 10`): one to three words, then `:`, and a keyword
+/// near them. The same did-you-mean as pfg's headers, at the words.
+fn misspelt_item(src: &str, line: &[(Token, SimpleSpan)]) -> Option<Diagnostic> {
+    if line.iter().any(|(t, _)| *t == Token::Arrow) {
+        return None;
+    }
+    let start = line.first()?.1.start;
+    let text = src.get(start..line.last()?.1.end)?;
+    let key = text[..text.find(':')?].trim_end();
+    let words: Vec<&str> = key.split_whitespace().collect();
+    let is_word = |w: &&str| w.chars().all(|c| c.is_ascii_alphabetic());
+    if words.is_empty() || words.len() > 3 || !words.iter().all(is_word) {
+        return None;
+    }
+    let known: Vec<&str> = (Keyword::ALL.iter())
+        .map(|k| k.text().trim_end_matches(':'))
+        .collect();
+    let lower = key.to_ascii_lowercase();
+    let near = *crate::diagnostics::nearest(&lower, &known).first()?;
+    Some(
+        Diagnostic::at(
+            codes::UNKNOWN_HEADER,
+            start..start + key.len(),
+            format!("unknown item `{key}:`"),
+        )
+        .with_label("not a cpfg keyword")
+        .suggesting(near),
+    )
+}
+
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
     let lexed = lex(src, diags);
     let mut file = File::default();
@@ -674,6 +710,10 @@ pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
                 diags.push(too_deep(at, DEPTH_HELP));
             }
             _ => {
+                if let Some(d) = misspelt_item(src, line) {
+                    diags.push(d);
+                    continue;
+                }
                 if let Some(err) = errors.first() {
                     let mut d = syntax_error(err, help_for);
                     if err.found().is_none() {

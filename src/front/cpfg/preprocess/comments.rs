@@ -60,6 +60,9 @@ pub(super) fn strip_comments(text: &str, diags: &mut Diagnostics) -> (String, Ve
             }
             b'/' if b.get(i + 1) == Some(&b'/') => {
                 let start = i;
+                if let Some(d) = rolls_read_as_comment(text, start) {
+                    diags.push(d);
+                }
                 while i < b.len() && b[i] != b'\n' {
                     i += 1;
                 }
@@ -73,6 +76,45 @@ pub(super) fn strip_comments(text: &str, diags: &mut Diagnostics) -> (String, Ve
     let s = String::from_utf8(out)
         .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
     (s, nl_in_comment)
+}
+
+/// A warning when the `//` at `start` ends a module of an axiom or a
+/// successor: cpfg's preprocessor reads it as a comment, so `E///T(0)FA`
+/// is the axiom `E`, where `/` rolls were meant. A `//` after a space is
+/// taken for the comment it usually is.
+fn rolls_read_as_comment(text: &str, start: usize) -> Option<Diagnostic> {
+    let line_start = text[..start].rfind('\n').map_or(0, |k| k + 1);
+    let before = &text[line_start..start];
+    let last = before.chars().next_back()?;
+    if last.is_whitespace() || last == '>' || !is_word_line(before) {
+        return None;
+    }
+    let slashes = text[start..].bytes().take_while(|&c| c == b'/').count();
+    let spaced = vec!["/"; slashes].join(" ");
+    Some(
+        Diagnostic::at(
+            codes::CPFG_SLASHES_COMMENT,
+            start..start + slashes,
+            "`//` starts a comment here",
+        )
+        .with_label("the rest of the line is not read")
+        .with_note("cpfg runs the C preprocessor over the file, which removes `//` comments")
+        .with_fix(
+            start..start + slashes,
+            spaced.clone(),
+            format!("write `{spaced}` for {slashes} rolls"),
+        ),
+    )
+}
+
+/// Whether the text of a line up to a `//` is an axiom or a production
+/// whose successor has begun.
+fn is_word_line(before: &str) -> bool {
+    let head = before.trim_start().to_ascii_lowercase();
+    let axiom = head
+        .strip_prefix("axiom")
+        .is_some_and(|r| r.trim_start().starts_with(':'));
+    axiom || before.contains("-->") || before.contains("->")
 }
 
 // ---------------------------------------------------------------------------
