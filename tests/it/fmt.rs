@@ -154,3 +154,25 @@ fn a_dash_reads_standard_input_and_writes_standard_output() {
     assert!(text.starts_with("/* hi */\n"), "{text}");
     assert!(text.contains("\naxiom F\n"), "{text}");
 }
+
+/// pfg's arrow and parameters never closed were read as something else
+/// (`F- -> …`, `X -> Y`), and `fmt` wrote that meaning down: both are
+/// errors now, and `fmt` leaves such files as they are; a production for
+/// `-`, written with a space, is still one.
+#[test]
+fn fmt_never_rewrites_pfgs_arrow_or_an_unclosed_module() {
+    for (text, code) in [
+        ("axiom F\nF --> F[+F]F[-F]F\n", "E0908"),
+        ("axiom X\nX -> Y(\n", "E0909"),
+    ] {
+        assert_eq!(fmt(text), Err("has errors".to_string()), "{text}");
+        let file = temp("bad.gft");
+        std::fs::write(&file, text).unwrap();
+        let o = graftal(&["fmt", file.to_str().unwrap()]);
+        assert_eq!(o.status, 1, "{text}");
+        assert!(o.stderr.contains(code), "{}", o.stderr);
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), text);
+    }
+    let dash = fmt("axiom F-\n- -> F\n").unwrap();
+    assert!(dash.contains("- -> F"), "{dash}");
+}

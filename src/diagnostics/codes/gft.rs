@@ -67,6 +67,30 @@ Example:
     A(x) -> F(sin(x, 2))   <- `sin` takes one argument
     A(1) -> F              <- write a name: `A(x) : x == 1 -> F`";
 
+    GFT_LONG_ARROW = "E0908", "`-->` in a `.gft` file",
+"`.gft` writes the production arrow `->`. pfg and cpfg write `-->`, and in
+`.gft` that reads as the symbol `-` then `->`: a production for `F-`, not
+for `F`. A `-` touching the arrow is therefore refused; a production that
+really rewrites a `-` writes a space before the arrow.
+
+Example:
+    F --> F[+F]F[-F]F
+
+Write:
+    F -> F[+F]F[-F]F";
+
+    GFT_UNCLOSED = "E0909", "parenthesis not closed",
+"A module's parameters are written in parentheses, `F(x*0.7, 2)`, and the
+`(` must be closed on the item. A `(` never closed would take the rest of
+the file as parameters; graftal stops at the end of the file and refuses
+the item instead of guessing where the parameters end.
+
+Example:
+    X -> Y(
+
+Write:
+    X -> Y(1)";
+
     GFT_NO_AXIOM = "W0900", "no axiom",
 "A file without `axiom` derives the empty word: nothing is drawn.
 

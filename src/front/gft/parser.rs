@@ -278,6 +278,10 @@ pub fn structure_seed(name: &str, rest: &[Tok<'_>]) -> bool {
 /// A production line: `[left <] pred [> right] [: [{…}] cond [{…}]] -> succ [: weight] …`.
 fn production(line: &[Tok<'_>], diags: &mut Diagnostics) -> Option<Production> {
     let first_arrow = top_level(line, |t| *t == Token::Arrow)?;
+    if let Some(d) = long_arrow(line, first_arrow) {
+        diags.push(d);
+        return None;
+    }
     let head = &line[..first_arrow];
     let (lhs, cond) = match top_level(head, |t| t.is(":")) {
         Some(c) => (&head[..c], Some(&head[c + 1..])),
@@ -397,7 +401,13 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
             Token::Char("(") => {
                 let close = matching(toks, i, "(", ")");
                 let inner = &toks[i + 1..close.min(toks.len())];
+                let before = diags.len();
                 let args = arguments(inner, diags);
+                // Parameters cut short mid-expression are reported as such
+                // (E0007); a `(` left open after whole ones, here.
+                if close >= toks.len() && diags.len() == before {
+                    diags.push(unclosed(span, toks));
+                }
                 w.pieces.push(Piece::Args(
                     args,
                     span.start..toks[close.min(toks.len() - 1)].1.end,
@@ -426,6 +436,35 @@ pub fn word(toks: &[Tok<'_>], diags: &mut Diagnostics) -> Word {
         i += 1;
     }
     w
+}
+
+/// pfg's arrow `-->`, which `.gft` reads as a `-` ending the predecessor
+/// and then `->`: refused when the `-` touches the arrow at `arrow`.
+fn long_arrow(line: &[Tok<'_>], arrow: usize) -> Option<Diagnostic> {
+    let (dash, at) = (&line[arrow.checked_sub(1)?], &line[arrow].1);
+    if !dash.0.is("-") || dash.1.end != at.start {
+        return None;
+    }
+    let span = dash.1.start..at.end;
+    Some(
+        Diagnostic::at(
+            codes::GFT_LONG_ARROW,
+            span.clone(),
+            "`-->` is not `.gft`'s arrow",
+        )
+        .with_label("reads as a `-` then `->`")
+        .with_note("pfg and cpfg write `-->`; a production for `-` writes a space before `->`")
+        .with_fix(span, "->".into(), "write `->`".into()),
+    )
+}
+
+/// The error for the `(` at `open` that nothing in `toks` closes.
+fn unclosed(open: &Span, toks: &[Tok<'_>]) -> Diagnostic {
+    let end = toks.last().map_or(open.end, |t| t.1.end);
+    Diagnostic::at(codes::GFT_UNCLOSED, open.clone(), "`(` is never closed")
+        .with_label("these parameters have no `)`")
+        .with_secondary(end..end, "the item ends here")
+        .with_help("close the parameters with `)`")
 }
 
 /// The index of the `close` that closes the `open` at `at` (or the end).
