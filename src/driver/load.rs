@@ -103,8 +103,9 @@ pub fn compile_entry(file: SourceFile, entry: Option<&str>) -> Compiled {
 
 /// [`compile_entry`] in the notation `notation` (`--notation`), else in
 /// the one [`front::detect`] chooses; a file that reads badly in the
-/// chosen one ([`front::reads_badly`]) and cleanly in another says so on
-/// its first error.
+/// chosen one ([`front::reads_badly`]) and cleanly in another gets that one
+/// error (E0015) instead of the reading's errors (a note on its one error,
+/// when it has one).
 pub fn compile_as(
     file: SourceFile,
     entry: Option<&str>,
@@ -163,9 +164,20 @@ pub fn compile_as(
     diags.sort();
     if notation.is_none() && front::reads_badly(&file, &diags) {
         if let Some(other) = front::reads_cleanly_as(&file, front) {
-            let note = front::other_notation_note(front, &ext, other);
-            if let Some(first) = diags.0.iter_mut().find(|d| d.is_error()) {
-                first.notes.push(note);
+            let told = front::other_notation(front, &ext, other, &diags);
+            let errors = diags.iter().filter(|d| d.is_error()).count();
+            if errors > 1 {
+                // One error that says what happened, not every error of a
+                // reading that was never going to work.
+                diags = Diagnostics(vec![told]);
+            } else if let Some(only) = diags.0.iter_mut().find(|d| d.is_error()) {
+                // One error may be the file's own slip: it stays, told
+                // what else the file reads as.
+                only.notes.push(format!(
+                    "{}: {}",
+                    told.message,
+                    told.help.unwrap_or_default()
+                ));
             }
         }
     }

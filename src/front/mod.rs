@@ -288,11 +288,17 @@ pub fn reads_cleanly_as(file: &SourceFile, first: &dyn Front) -> Option<&'static
     })
 }
 
-/// What to tell about a file read as `first` (by its extension `ext`,
-/// without the dot) that reads cleanly as `other`: which notation was
-/// assumed, and how to read it as the other (renaming it only when that
-/// gives the other notation its own extension).
-pub fn other_notation_note(first: &dyn Front, ext: &str, other: &dyn Front) -> String {
+/// The one error for a file read as `first` (by its extension `ext`,
+/// without the dot) that reads badly there (`diags`) and cleanly as
+/// `other`: which notation was assumed, and how to read it as the other
+/// (renaming it only when that gives the other notation its own
+/// extension). It stands at the first error, which a note quotes.
+pub fn other_notation(
+    first: &dyn Front,
+    ext: &str,
+    other: &dyn Front,
+    diags: &Diagnostics,
+) -> Diagnostic {
     let own_ext = other
         .extensions()
         .iter()
@@ -301,11 +307,25 @@ pub fn other_notation_note(first: &dyn Front, ext: &str, other: &dyn Front) -> S
         Some(e) if *e != ext => format!("rename it `.{e}` or pass `--notation {}`", other.name()),
         _ => format!("pass `--notation {}`", other.name()),
     };
-    format!(
-        "read as {} (from `.{ext}`); the file reads cleanly as {}: {how}",
-        first.title(),
-        other.title()
-    )
+    let message = format!(
+        "this file reads as {}, not as {} (from `.{ext}`)",
+        other.title(),
+        first.title()
+    );
+    let errors: Vec<&Diagnostic> = diags.iter().filter(|d| d.is_error()).collect();
+    let d = match errors.first().and_then(|e| e.span.clone()) {
+        Some(span) => Diagnostic::at(codes::OTHER_NOTATION, span, message).with_label(format!(
+            "read as {}, the first of {} errors is here",
+            first.title(),
+            errors.len()
+        )),
+        None => Diagnostic::global(codes::OTHER_NOTATION, message),
+    };
+    let d = match errors.first() {
+        Some(e) => d.with_note(format!("as {}: [{}] {}", first.title(), e.code, e.message)),
+        None => d,
+    };
+    d.with_help(how)
 }
 
 /// The front end registered as `name`.

@@ -28,18 +28,18 @@ fn a_linf_file_saved_as_l_says_it_reads_as_linf() {
     let path = path.to_str().unwrap();
     let (status, ds) = check_json(path, &[]);
     assert_eq!(status, 1);
-    let first = ds.iter().find(|d| d["severity"] == "error").unwrap();
-    let notes = first["notes"].to_string();
-    assert!(
-        notes.contains("read as pfg (from `.l`); the file reads cleanly as LinF: rename it `.linf` or pass `--notation linf`"),
-        "{notes}"
+    // Said once, as the one error, not as a note on the first of many.
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert_eq!(ds[0]["code"], "E0015");
+    assert_eq!(
+        ds[0]["message"],
+        "this file reads as LinF, not as pfg (from `.l`)"
     );
-    // Said once, not on every error.
-    let told = ds
-        .iter()
-        .filter(|d| d["notes"].to_string().contains("reads cleanly"))
-        .count();
-    assert_eq!(told, 1);
+    assert_eq!(ds[0]["help"], "rename it `.linf` or pass `--notation linf`");
+    assert!(
+        ds[0]["notes"].to_string().contains("as pfg: [E0"),
+        "the first error of the pfg reading is quoted: {ds:?}"
+    );
     // And `--notation linf` reads it.
     let o = graftal(&["check", path, "--notation", "linf"]);
     assert_eq!(o.status, 0, "{}", o.stderr);
@@ -55,11 +55,15 @@ fn an_stl_file_saved_as_l_or_linf_is_recognised() {
         std::fs::write(&path, STL_KOCH).unwrap();
         let (status, ds) = check_json(path.to_str().unwrap(), &[]);
         assert_eq!(status, 1);
-        assert!(
-            ds.iter()
-                .any(|d| d["notes"].to_string().contains("reads cleanly as STL")),
-            "{name}: {ds:?}"
-        );
+        // Read as pfg, many errors: the one error says it. Read as LinF,
+        // one error (the file's own slip, perhaps): a note on it says it.
+        let said = |d: &serde_json::Value| {
+            (d["message"].to_string() + &d["notes"].to_string())
+                .contains("this file reads as STL, not as")
+        };
+        assert_eq!(ds.iter().filter(|d| said(d)).count(), 1, "{name}: {ds:?}");
+        let errors = ds.iter().filter(|d| d["severity"] == "error").count();
+        assert_eq!(errors, 1, "{name}: {ds:?}");
     }
 }
 
@@ -74,11 +78,7 @@ fn a_pfg_file_with_a_slip_is_not_sent_elsewhere() {
     let (status, ds) = check_json(path.to_str().unwrap(), &[]);
     assert_eq!(status, 1);
     assert!(!ds.is_empty());
-    assert!(
-        ds.iter()
-            .all(|d| !d["notes"].to_string().contains("reads cleanly")),
-        "{ds:?}"
-    );
+    assert!(ds.iter().all(|d| d["code"] != "E0015"), "{ds:?}");
 }
 
 #[test]
@@ -86,12 +86,12 @@ fn a_pfg_file_saved_as_linf_points_back_to_pfg() {
     let path = temp("koch-pfg.linf");
     std::fs::write(&path, include_str!("../../examples/koch-island.l")).unwrap();
     let (_, ds) = check_json(path.to_str().unwrap(), &[]);
-    assert!(
-        ds.iter().any(|d| d["notes"].to_string().contains(
-            "read as LinF (from `.linf`); the file reads cleanly as pfg: pass `--notation pfg`"
-        )),
-        "{ds:?}"
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert_eq!(
+        ds[0]["message"],
+        "this file reads as pfg, not as LinF (from `.linf`)"
     );
+    assert_eq!(ds[0]["help"], "pass `--notation pfg`");
 }
 
 /// With `--notation` the reader is told, and nothing else is tried.
@@ -101,9 +101,10 @@ fn a_notation_given_is_not_second_guessed() {
     std::fs::write(&path, LINF_PLANT).unwrap();
     let (status, ds) = check_json(path.to_str().unwrap(), &["--notation", "pfg"]);
     assert_eq!(status, 1);
-    assert!(ds
-        .iter()
-        .all(|d| !d["notes"].to_string().contains("reads cleanly")));
+    assert!(
+        ds.len() > 1 && ds.iter().all(|d| d["code"] != "E0015"),
+        "{ds:?}"
+    );
     let o = graftal(&["check", path.to_str().unwrap(), "--notation", "nope"]);
     assert_eq!(o.status, 2);
 }

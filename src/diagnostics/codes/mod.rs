@@ -133,6 +133,21 @@ no L-system to read. The same error is given in every notation.
 Example:
     graftal check new.l      <- saved before anything was written in it";
 
+    OTHER_NOTATION = "E0015", "file in another notation",
+"The file was read in the notation its extension (or its content) points
+to, and most of it did not read: errors over half its lines. Read in
+another notation, it reads without an error. It is almost certainly a file
+of that notation saved under another extension (a LinF file saved as
+`.l`), so graftal says so once, instead of listing every error the wrong
+reading finds; the note gives the first of them, in case the file is
+meant to be in the first notation after all.
+
+Example:
+    graftal check snowflake.l     <- a LinF file
+
+Write:
+    graftal check snowflake.linf  (renamed), or --notation linf";
+
     NESTED_TOO_DEEPLY = "E0013", "nested too deeply",
 "graftal follows nesting (parentheses in expressions, brackets and braces,
 branches of a structure, the levels of a derivation an emitter walks) to a
