@@ -15,7 +15,7 @@
 //!   out as its explicit tree (or, when pfg's alphabet is too small for
 //!   the distinct terms, the axiom is that tree, with no productions);
 //! * stem levels become length factors: the seed's length (`L`) is the
-//!   unit (a uniform scale, which fitting the picture undoes), each term's
+//!   step length (the coordinates stay STL's), each term's
 //!   production starts with the ratio of its level's length to its
 //!   parent's, and a seed term followed by more of the seed is followed by
 //!   the inverse ratio (a branch's `]` restores the length by itself).
@@ -241,12 +241,14 @@ pub fn productions(sys: &System, explicit: bool) -> (System, Vec<Problem>) {
         .max()
         .unwrap_or(0);
     let (mut lengths, _) = Structure::per_level(st.stems.length.0, st.stems.length.1, max_depth);
-    // Every picture is fitted to its frame: only the ratios of the levels'
-    // lengths change it, so the seed's length is the unit and a constant
-    // `L` needs no factor at all.
+    // The seed's length is the step length, so that a constant `L` needs
+    // no factor per level and the coordinates stay STL's (a translation
+    // that says it is exact draws the same numbers, not only the same
+    // shape fitted to a frame).
     let l0 = lengths.first().copied().unwrap_or(1.0);
     if l0 > 0.0 && l0.is_finite() {
         lengths.iter_mut().for_each(|l| *l /= l0);
+        out.settings.step = l0;
     }
     let (widths, _) = Structure::per_level(st.stems.broadness.0, st.stems.broadness.1, max_depth);
     if widths

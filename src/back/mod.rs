@@ -635,23 +635,31 @@ fn common_operations(sys: &System, spans: &SpanTable, to: &str) -> (System, Vec<
         plain.colours.clear();
         plain.settings.colour = 0;
     }
-    drop_leading_scale(&mut plain);
+    fold_leading_scale(&mut plain);
     (plain, problems)
 }
 
-/// Drops the length factors (LinF `10@ f`) that start the axiom and that
-/// no production rewrites: they scale the whole picture, and every picture
-/// is fitted to its frame, so without them it is the same picture.
-fn drop_leading_scale(sys: &mut System) {
+/// Folds the length factors (LinF `10@ f`) that start the axiom and that
+/// no production rewrites into the step length: they scale the whole
+/// picture, which each target then says its own way (a length factor, STL's
+/// `L`, `.gft`'s `length`) or reports (pfg's steps are 1 long), so that a
+/// translation said to be exact keeps the coordinates.
+fn fold_leading_scale(sys: &mut System) {
     let rewritten: HashSet<SymbolId> = (sys.productions.iter())
         .flat_map(|p| p.predecessor.iter().copied())
         .collect();
-    let uniform = |s: &SymbolId| {
-        matches!(sys.op(*s), Some(TurtleOp::ScaleLength(x)) if x > 0.0 && x.is_finite())
-            && !rewritten.contains(s)
+    let factor = |s: &SymbolId| match sys.op(*s) {
+        Some(TurtleOp::ScaleLength(x)) if x > 0.0 && x.is_finite() && !rewritten.contains(s) => {
+            Some(x)
+        }
+        _ => None,
     };
-    let leading = sys.axiom.0.iter().take_while(|s| uniform(s)).count();
-    sys.axiom.0.drain(..leading);
+    let factors: Vec<f64> = sys.axiom.0.iter().map_while(factor).collect();
+    let step = factors.iter().fold(sys.settings.step, |l, x| l * x);
+    if step.is_finite() && step > 0.0 {
+        sys.axiom.0.drain(..factors.len());
+        sys.settings.step = step;
+    }
 }
 
 /// The first line of `src` that starts with the word `word` (followed by

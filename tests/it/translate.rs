@@ -55,9 +55,9 @@ fn geometry(sys: &System, seed: u64) -> Geometry {
     driver::geometry(sys, &opts).expect("evaluates").1
 }
 
-/// Same segments, in the same order, within 1e-9 of the picture's size,
-/// up to a uniform scale about the turtle's start (every picture is fitted
-/// to its frame, so that is the same picture).
+/// Same segments, in the same order, within 1e-9 of the picture's size:
+/// the same coordinates, not only the same shape fitted to a frame (an
+/// exact translation keeps bounds, statistics and meshes).
 fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
     if a.segments.len() != b.segments.len() {
         return Err(format!(
@@ -69,24 +69,14 @@ fn same_drawing(a: &Geometry, b: &Geometry) -> Result<(), String> {
     let (Some(ba), Some(bb)) = (a.bbox(), b.bbox()) else {
         return Ok(());
     };
-    let extent = |bx: &[f64; 6]| {
-        (0..3)
-            .map(|i| bx[i + 3] - bx[i])
-            .fold(0.0f64, f64::max)
-            .max(1e-12)
-    };
-    let size = extent(&ba);
-    let scale = size / extent(&bb);
-    let bb = bb.map(|v| v * scale);
+    let size = (0..3).map(|i| ba[i + 3] - ba[i]).fold(0.0f64, f64::max);
     let tol = 1e-9 * size.max(1.0);
-    for i in 0..6 {
-        if (ba[i] - bb[i]).abs() > tol {
-            return Err(format!("bounding boxes differ: {ba:?} vs {bb:?}"));
-        }
+    if (0..6).any(|i| (ba[i] - bb[i]).abs() > tol) {
+        return Err(format!("bounding boxes differ: {ba:?} vs {bb:?}"));
     }
     for (k, (s, t)) in a.segments.iter().zip(&b.segments).enumerate() {
         for i in 0..3 {
-            if (s.a[i] - scale * t.a[i]).abs() > tol || (s.b[i] - scale * t.b[i]).abs() > tol {
+            if (s.a[i] - t.a[i]).abs() > tol || (s.b[i] - t.b[i]).abs() > tol {
                 return Err(format!("segment {k} differs: {s:?} vs {t:?}"));
             }
         }
@@ -679,30 +669,34 @@ fn translations_and_their_diagnostics_match_their_snapshots() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
-/// An STL seed length (`L = 10`) scales the whole picture, and every
-/// picture is fitted to its frame: pfg and LinF say the same without a
-/// length factor, exactly.
+/// An STL seed length (`L = 10`) keeps its coordinates in LinF (a length
+/// factor at the start of the axiom), exactly; pfg, whose steps are 1
+/// long, draws the same shape ten times smaller, which it says and does
+/// only when asked (`--lossy`).
 #[test]
-fn a_constant_stl_length_is_a_uniform_scale_and_translates_exactly() {
-    let src = "ANGLE 30\nL = 10\nPlant = [I 3 F[RF]F[LF]F]\nSEED\nPlant\nENDSEED\n";
+fn a_constant_stl_length_keeps_its_coordinates() {
+    let src = "ANGLE 30\nL = 10\nR1 = [I 3 F[LF][RF]]\nSEED\nR1\nENDSEED\n";
     let c = compile("plant.stl", src);
-    for to in ["pfg", "linf"] {
-        let t = translate(&c, target(to), false);
-        let text = t.text.as_deref().unwrap_or_else(|| {
-            panic!(
-                "{to}: not written: {}",
-                t.diagnostics.render(&c.file, false)
-            )
-        });
-        assert!(t.diagnostics.is_empty(), "{to}: {:?}", t.diagnostics);
-        assert!(!text.contains('@'), "{to}: a length factor in\n{text}");
-        let out = compile(&format!("plant.{}", ext(target(to))), text);
-        same_drawing(
-            &geometry(c.system.as_ref().unwrap(), 0),
-            &geometry(out.system.as_ref().unwrap(), 0),
-        )
-        .unwrap();
-    }
+    let t = translate(&c, target("linf"), false);
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    let text = t.text.expect("written");
+    assert!(text.contains("axiom 10@ R1"), "{text}");
+    let out = compile("plant.linf", &text);
+    let (a, b) = (
+        geometry(c.system.as_ref().unwrap(), 0),
+        geometry(out.system.as_ref().unwrap(), 0),
+    );
+    same_drawing(&a, &b).unwrap();
+    let right = a.bbox().unwrap()[3];
+    assert!((right - 23.660254037844386).abs() < 1e-9, "{right}");
+    let t = translate(&c, target("pfg"), false);
+    assert!(t.text.is_none());
+    let d = &t.diagnostics.0[0];
+    assert_eq!(d.message, "the step length 10: pfg's steps are 1 long");
+    let t = translate(&c, target("pfg"), true);
+    assert!(t.text.is_some());
+    let said = &t.diagnostics.0[0].message;
+    assert!(said.contains("its coordinates divided by 10"), "{said}");
 }
 
 /// Lengths that differ from level to level are still refused by pfg, in
@@ -717,6 +711,7 @@ fn stl_level_lengths_are_reported_in_stl_syntax_once() {
             .diagnostics
             .iter()
             .filter(|d| d.code.0 == if lossy { "W0607" } else { "E0607" })
+            .filter(|d| d.message.contains("differ from level to level"))
             .collect();
         assert_eq!(lengths.len(), 1, "{:?}", t.diagnostics);
         let d = lengths[0];
@@ -727,10 +722,10 @@ fn stl_level_lengths_are_reported_in_stl_syntax_once() {
     }
 }
 
-/// A step length other than 1 is a uniform scale too: pfg writes its steps
-/// 1 long, exactly.
+/// A step length other than 1 is not pfg's: a translation that kept only
+/// the shape would not be exact.
 #[test]
-fn a_step_length_is_a_uniform_scale_for_pfg() {
+fn a_step_length_pfg_cannot_keep_makes_it_inexact() {
     let c = compile("k.l", "angle factor: 4\naxiom: F+F-F\n");
     let mut sys = c.system.clone().expect("compiles");
     sys.settings.step = 10.0;
@@ -739,15 +734,12 @@ fn a_step_length_is_a_uniform_scale_for_pfg() {
         &sys,
         &Request {
             target: target("pfg"),
-            lossy: false,
+            lossy: true,
             steps: None,
         },
     );
-    assert!(t.is_exact(), "{:?}", t.diagnostics);
-    assert!(t
-        .mapping
-        .iter()
-        .any(|m| m.construct == "the step length 10"));
+    assert!(!t.is_exact(), "{:?}", t.mapping);
+    assert_eq!(t.diagnostics.0[0].code.0, "W0607");
 }
 
 /// The stdlib entry `name`, compiled as a file named `file`.
@@ -826,20 +818,25 @@ fn a_source_too_large_to_compare_is_skipped_with_a_note() {
 }
 
 /// A LinF axiom that starts with a length factor scales the whole picture:
-/// pfg says the same without it.
+/// STL says it as its `L`, exactly, with the same coordinates; pfg, whose
+/// steps are 1 long, only with `--lossy`.
 #[test]
-fn a_length_factor_starting_the_axiom_is_a_uniform_scale() {
+fn a_length_factor_starting_the_axiom_is_the_step_length() {
     let src = "lines f\nangles (0, pi/2)\naxiom 10@ f + f\nrules\n  f = f - f\n";
     let c = compile("s.linf", src);
-    let t = translate(&c, target("pfg"), false);
+    let t = translate(&c, target("stl"), false);
     assert!(t.is_exact(), "{:?}", t.diagnostics);
     let text = t.text.unwrap();
-    let out = compile("s.l", &text);
+    assert!(text.contains("L = 10"), "{text}");
+    let out = compile("s.stl", &text);
     same_drawing(
-        &geometry(c.system.as_ref().unwrap(), 0),
-        &geometry(out.system.as_ref().unwrap(), 0),
+        &geometry(c.system.as_ref().unwrap(), 1),
+        &geometry(out.system.as_ref().unwrap(), 1),
     )
     .unwrap();
+    let t = translate(&c, target("pfg"), false);
+    let d = &t.diagnostics.0[0];
+    assert_eq!(d.message, "the step length 10: pfg's steps are 1 long");
     // Elsewhere a factor changes the picture's proportions: still refused.
     let c = compile("t.linf", "lines f\nangles (0, pi/2)\naxiom f + 10@ f\n");
     let t = translate(&c, target("pfg"), false);

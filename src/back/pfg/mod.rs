@@ -218,23 +218,23 @@ pub fn write(e: &mut Emitter<'_>) -> String {
             .unwrap_or(Spelling::Chars(String::new()));
         sp.spell.insert(s, base);
     }
-    // pfg's steps are 1 long; every picture is fitted to its frame, so
-    // another positive step length is the same picture (a negative one
-    // turns it round, and none draws nothing).
+    // pfg's steps are 1 long. Another positive length draws the same
+    // shape fitted to the frame, but not the same coordinates (bounds,
+    // statistics, meshes): not exact.
     let step = sys.settings.step;
-    let what = format!("the step length {}", number(step));
-    if step > 0.0 && step != 1.0 {
-        e.exact(
-            what,
-            None,
-            "steps 1 long: the same picture, fitted to the frame",
-        );
-    } else if step <= 0.0 {
+    if step != 1.0 {
         e.problem(
             Kind::Length,
             None,
-            format!("{what}: pfg's steps are 1 long"),
-            "steps are 1 long",
+            format!("the step length {}: pfg's steps are 1 long", number(step)),
+            if step > 0.0 {
+                format!(
+                    "the same shape, its coordinates divided by {}",
+                    number(step)
+                )
+            } else {
+                "steps are 1 long".to_string()
+            },
         );
     }
     let mut lines: Vec<String> = Vec::new();
