@@ -88,7 +88,7 @@ impl<'a> Tree<'a> {
     /// symbol counted `weight[s]` times, however large; `None` when the
     /// numbers would take more than [`COUNT_BUDGET`] limb operations to
     /// add up (thousands of steps of a system with many symbols, each
-    /// rewritten into many: counts of tens of thousands of digits).
+    /// rewritten into many: counts of thousands of digits).
     pub fn count(&self, steps: u64, weight: &[u128]) -> Option<Count> {
         self.count_within(steps, weight, COUNT_BUDGET)
     }
