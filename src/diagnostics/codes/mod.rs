@@ -369,9 +369,13 @@ Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
 
     TOO_MUCH_GEOMETRY = "E0303", "picture too large to draw",
-"The derived word moves the turtle more times than graftal draws (30
-million): every move becomes a segment or a point held in memory, and
-drawing needs as much again. `derive` is not limited this way.
+"The derived word moves the turtle more times than graftal draws segment
+by segment (30 million): every move becomes a segment or a point held in
+memory, and drawing needs as much again. `derive` is not limited this way,
+nor is a context-free system drawn in one colour and width, face on, up to
+4096 steps: that is drawn from its shared subtrees, however many segments
+its word has. The message says how many moves the word makes (at least,
+where contexts and random choices decide), and a note how that is known.
 
 Draw fewer steps with `-n`. Beyond a few million segments a picture shows
 little more than at a step less.";
