@@ -198,7 +198,7 @@ fn bench_stats(c: &mut Criterion) {
             assert_eq!(s.segments, u128::from(segments));
             assert_eq!(
                 s.bbox,
-                [b[0] as f64, b[1] as f64, 0.0, b[2] as f64, b[3] as f64, 0.0]
+                Some([b[0] as f64, b[1] as f64, 0.0, b[2] as f64, b[3] as f64, 0.0])
             );
             println!(
                 "peak memory: stats koch-island n={n}: {} (graftal) vs {} (baseline), {} segments",
@@ -214,7 +214,7 @@ fn bench_stats(c: &mut Criterion) {
             );
         }
         group.throughput(Throughput::Elements(
-            s.segments.min(u128::from(u64::MAX)) as u64
+            u64::try_from(s.segments.to_u128().unwrap_or(u128::MAX)).unwrap_or(u64::MAX),
         ));
         group.bench_function(BenchmarkId::new("graftal", n), |b| {
             b.iter(|| driver::stats(black_box(&sys), &steps(n)).unwrap())

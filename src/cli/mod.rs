@@ -436,9 +436,10 @@ fn derive(io: &mut Io<'_>, a: &DeriveCmd) -> i32 {
 
 /// `graftal stats`: counts, box, depth, method and times, as text or JSON.
 fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
-    with_system(io, a, |io, _c, sys, opts, parse| {
+    with_system(io, a, |io, c, sys, opts, parse| {
         let mut s = driver::stats(sys, opts).map_err(|d| vec![d])?;
         s.time.parse = parse;
+        report(io, c, &s.warnings, a.format);
         match a.format {
             OutputFormat::Json => {
                 let _ = writeln!(
@@ -448,11 +449,20 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
                 );
             }
             OutputFormat::Human => {
-                let b = s.bbox.map(crate::number::readable);
+                let bbox = match s.bbox.map(|b| b.map(crate::number::readable)) {
+                    Some(b) => format!(
+                        "[{}, {}, {}] .. [{}, {}, {}]",
+                        b[0], b[1], b[2], b[3], b[4], b[5]
+                    ),
+                    None => format!(
+                        "beyond floating point ({})",
+                        diagnostics::codes::BOX_TOO_LARGE
+                    ),
+                };
                 let _ = writeln!(
                     io.stdout,
-                    "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       [{}, {}, {}] .. [{}, {}, {}]\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
-                    s.steps, s.symbols, s.segments, s.polygons, b[0], b[1], b[2], b[3], b[4], b[5], s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
+                    "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       {bbox}\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
+                    s.steps, s.symbols, s.segments, s.polygons, s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
                 );
             }
         }

@@ -135,31 +135,42 @@ pub(super) fn check_moves_up_front(sys: &System, opts: &RunOptions) -> Result<()
         let moves: Vec<u128> = (0..sys.symbols.len() as u32)
             .map(|i| is_move(crate::ir::SymbolId(i)))
             .collect();
-        return match t.weighed(steps, &moves, max) {
-            Ok(_) => Ok(()),
-            Err(step) => Err(too_much_geometry(max, opts.max_moves).with_note(format!(
-                "known before deriving: the word of step {step} of {steps} already moves it more"
-            ))),
+        let Err(step) = t.weighed(steps, &moves, max) else {
+            return Ok(());
         };
+        // How many, exactly, when that is quick to add up.
+        let many = t.count(steps, &moves);
+        let many = many.map_or_else(|| format!("more than {max}"), |c| c.short());
+        return Err(too_much_geometry(many, opts.max_moves).with_note(format!(
+            "known before deriving: the word of step {step} of {steps} already moves it more than {max} times"
+        )));
     }
     // A homomorphism decides what draws: the word's own moves tell nothing.
     if !sys.homomorphism.productions.is_empty() {
         return Ok(());
     }
-    match eval::fewest_at(sys, steps, is_move, u128::from(u64::MAX)) {
-        Some(fewest) if fewest > max => Err(too_much_geometry(
-            format!("at least {fewest}"),
-            opts.max_moves,
-        )
-        .with_note("known before deriving: whatever the contexts, conditions and random choices")),
-        _ => Ok(()),
-    }
+    let refused = match eval::fewest_at(sys, steps, is_move, u128::from(u64::MAX)) {
+        Some(fewest) if fewest > max => {
+            too_much_geometry(format!("at least {fewest}"), opts.max_moves).with_note(
+                "known before deriving: whatever the contexts, conditions and random choices",
+            )
+        }
+        _ => return Ok(()),
+    };
+    // A context-free system is drawn from its shared subtrees, without this
+    // limit, up to the depth of its tree: beyond, the limit is why not.
+    Err(match crate::ir::D0l::of(sys) {
+        Some(_) if steps > MAX_TREE_DEPTH => refused.with_note(format!(
+            "pictures of more than {MAX_TREE_DEPTH} steps are drawn segment by segment, not from shared subtrees"
+        )),
+        _ => refused,
+    })
 }
 
 fn too_much_geometry(moves: impl std::fmt::Display, max: usize) -> Diagnostic {
     Diagnostic::global(
         codes::TOO_MUCH_GEOMETRY,
-        format!("the word moves the turtle {moves} times, more than can be drawn ({max})"),
+        format!("the word moves the turtle {moves} times, more than can be drawn segment by segment ({max})"),
     )
     .with_help("draw fewer steps with `-n`; `derive` and `stats` have no such limit")
 }

@@ -4,10 +4,11 @@
 use super::derive::written_symbols;
 use super::derive::{derive_values, RunOptions};
 use super::interpret::interpret;
-use crate::diagnostics::Diagnostic;
-use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
+use crate::diagnostics::{codes, Diagnostic};
+use crate::eval::count::Count;
+use crate::eval::tree::{Tree, COUNT_BUDGET, MAX_TREE_DEPTH};
 use crate::eval::{self, Deriver};
-use crate::ir::System;
+use crate::ir::{SymbolId, System, TurtleOp};
 use crate::turtle;
 use crate::turtle::instanced::Instanced;
 use serde::Serialize;
@@ -17,12 +18,14 @@ use std::time::{Duration, Instant};
 #[derive(Clone, Debug, Serialize)]
 pub struct Stats {
     pub steps: u64,
-    pub symbols: u128,
-    pub segments: u128,
-    pub polygons: u128,
+    /// Exact, however large (JSON numbers of as many digits as they take).
+    pub symbols: Count,
+    pub segments: Count,
+    pub polygons: Count,
     /// `[minx, miny, minz, maxx, maxy, maxz]`, turtle units (zeros when
-    /// nothing is drawn).
-    pub bbox: [f64; 6],
+    /// nothing is drawn); `None` when it is beyond `f64`
+    /// ([`codes::BOX_TOO_LARGE`], in [`Stats::warnings`]).
+    pub bbox: Option<[f64; 6]>,
     pub max_depth: usize,
     /// How the figures were found: `"shared subtrees"` (context-free
     /// systems, without deriving the word), `"streamed"` (the word's
@@ -36,6 +39,9 @@ pub struct Stats {
     pub derivation: &'static str,
     /// Seconds per stage.
     pub time: StageTimes,
+    /// What could not be given, and why.
+    #[serde(skip)]
+    pub warnings: Vec<Diagnostic>,
 }
 
 #[derive(Clone, Debug, Default, Serialize)]
@@ -55,26 +61,14 @@ struct Counter {
 }
 
 impl Counter {
-    /// The figures counted, with what else `stats` reports: how the
-    /// figures were found and how the word is derived.
-    fn stats(
-        self,
-        steps: u64,
-        symbols: u128,
-        max_depth: usize,
-        (method, derivation): (&'static str, &'static str),
-        time: StageTimes,
-    ) -> Stats {
-        Stats {
-            steps,
+    /// What was counted, with the word's symbols and deepest branching.
+    fn measured(self, symbols: Count, max_depth: usize) -> Measured {
+        Measured {
             symbols,
-            segments: self.segments,
-            polygons: self.polygons,
-            bbox: self.bbox.unwrap_or([0.0; 6]),
+            segments: Count::from(self.segments),
+            polygons: Count::from(self.polygons),
+            bbox: finite_box(self.bbox),
             max_depth,
-            method,
-            derivation,
-            time,
         }
     }
 
@@ -98,47 +92,155 @@ impl turtle::Sink for Counter {
     }
 }
 
+/// The figures `stats` found, however it found them.
+struct Measured {
+    symbols: Count,
+    segments: Count,
+    polygons: Count,
+    /// The box in turtle units (`None`: nothing drawn), or the warning
+    /// that it cannot be given.
+    bbox: Result<Option<[f64; 6]>, Diagnostic>,
+    max_depth: usize,
+}
+
+impl Measured {
+    /// The figures, with what else `stats` reports: how they were found
+    /// and how the word is derived.
+    fn stats(
+        self,
+        steps: u64,
+        (method, derivation): (&'static str, &'static str),
+        time: StageTimes,
+    ) -> Stats {
+        let (bbox, warnings) = match self.bbox {
+            Ok(b) => (Some(b.unwrap_or([0.0; 6])), Vec::new()),
+            Err(w) => (None, vec![w]),
+        };
+        Stats {
+            steps,
+            symbols: self.symbols,
+            segments: self.segments,
+            polygons: self.polygons,
+            bbox,
+            max_depth: self.max_depth,
+            method,
+            derivation,
+            time,
+            warnings,
+        }
+    }
+}
+
+/// `b`, or the warning that it is beyond `f64` when a bound is not finite.
+fn finite_box(b: Option<[f64; 6]>) -> Result<Option<[f64; 6]>, Diagnostic> {
+    match b {
+        Some(b) if b.iter().any(|v| !v.is_finite()) => Err(box_too_large(None)),
+        b => Ok(b),
+    }
+}
+
+/// The warning that the box cannot be given: its extent, when known, is
+/// `log10` of its width in turtle units.
+fn box_too_large(log10: Option<f64>) -> Diagnostic {
+    let across = match log10.filter(|l| l.is_finite()) {
+        Some(l) => {
+            let e = l.floor();
+            format!("about {:.1}e{e} turtle units across", 10f64.powf(l - e))
+        }
+        None => "too large to measure".to_string(),
+    };
+    Diagnostic::global(
+        codes::BOX_TOO_LARGE,
+        format!(
+            "the bounding box cannot be given: it is {across}, beyond the largest floating-point number ({:.1e})",
+            f64::MAX
+        ),
+    )
+    .with_note("the counts are exact whatever their size")
+}
+
+/// The error that exact counts would take too long to add up.
+fn counts_too_long(steps: u64) -> Diagnostic {
+    Diagnostic::global(
+        codes::COUNTS_TOO_LONG,
+        format!("the counts after {steps} steps would take too long to add up exactly"),
+    )
+    .with_note(format!(
+        "adding them takes more than {COUNT_BUDGET} limb operations: numbers of thousands of digits, over many symbols"
+    ))
+    .with_help("count fewer steps with `-n`")
+}
+
+/// How many symbols the word after `steps` steps holds of those `which`
+/// picks, exactly, from its shared tree.
+fn tree_count(
+    sys: &System,
+    (t, steps): (&Tree, u64),
+    which: impl Fn(SymbolId) -> bool,
+) -> Result<Count, Diagnostic> {
+    let weights: Vec<u128> = (0..sys.symbols.len() as u32)
+        .map(|i| u128::from(which(SymbolId(i))))
+        .collect();
+    t.count(steps, &weights)
+        .ok_or_else(|| counts_too_long(steps))
+}
+
+/// The figures of the system of `inst` after `steps` steps, from its
+/// shared subtrees: the box in the unit that holds it, which says how far
+/// beyond `f64` it is when that is not turtle units.
+fn instanced(inst: &mut Instanced, steps: u64, symbols: Count, segments: Count) -> Measured {
+    let (x, unit) = inst.word_scaled(steps);
+    let b = [x.lo[0], x.lo[1], x.lo[2], x.hi[0], x.hi[1], x.hi[2]];
+    let bbox = if !x.draws() {
+        Ok(None)
+    } else if unit == 0 {
+        finite_box(Some(b))
+    } else {
+        let width = (0..3).map(|i| x.hi[i] - x.lo[i]).fold(0.0, f64::max);
+        Err(box_too_large(Some(
+            width.log10() + unit as f64 * std::f64::consts::LOG10_2,
+        )))
+    };
+    Measured {
+        symbols,
+        segments,
+        polygons: Count::zero(),
+        bbox,
+        max_depth: x.depth as usize,
+    }
+}
+
 /// Derives and interprets without drawing, and measures; nothing drawn is
 /// kept. A context-free deterministic system is measured on its shared
 /// derivation tree ([`Instanced`]) without deriving its word, so its size
-/// is not limited by `--max-symbols`; when its turtle commands cannot be
-/// instanced, its word is streamed symbol by symbol through the turtle
-/// (memory grows with the depth, not the word). Any other system is
-/// derived (within the symbol limit), then interpreted.
+/// is not limited by `--max-symbols`, and its counts are exact however
+/// large; when its turtle commands cannot be instanced, its word is
+/// streamed symbol by symbol through the turtle (memory grows with the
+/// depth, not the word). Any other system is derived (within the symbol
+/// limit), then interpreted.
 pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
     let t0 = Instant::now();
     let dopts = opts.derive_options(sys);
     let steps = dopts.steps;
     let derivation = eval::plan(sys, steps).name();
     let secs = |d: Duration| d.as_secs_f64();
-    let silent: Vec<u128> = sys
-        .symbols
-        .iter()
-        .map(|(_, i)| u128::from(!i.name.is_empty()))
-        .collect();
     let tree = (steps <= MAX_TREE_DEPTH).then(|| Tree::new(sys)).flatten();
     if let Some(t) = &tree {
-        let symbols = t
-            .weighed(steps, &silent, u128::MAX)
-            .expect("no limit to pass");
-        let measured = |c: Counter, max_depth: usize, method: &'static str| {
+        let symbols = tree_count(sys, (t, steps), |s| !sys.symbols.info(s).name.is_empty())?;
+        let done = |m: Measured, method: &'static str| {
             let time = StageTimes {
                 parse: 0.0,
                 derive: 0.0,
                 interpret: secs(t0.elapsed()),
             };
-            c.stats(steps, symbols, max_depth, (method, derivation), time)
+            m.stats(steps, (method, derivation), time)
         };
         if let Some(mut inst) = Instanced::new(sys).filter(|i| i.fits(steps)) {
-            let x = inst.word(steps);
-            let c = Counter {
-                segments: x.segments,
-                polygons: 0,
-                bbox: x
-                    .draws()
-                    .then(|| [x.lo[0], x.lo[1], x.lo[2], x.hi[0], x.hi[1], x.hi[2]]),
-            };
-            return Ok(measured(c, x.depth as usize, "shared subtrees"));
+            // The drawing steps are what it draws, one segment each.
+            let draws = |s| matches!(sys.op(s), Some(TurtleOp::Forward { draw: true }));
+            let segments = tree_count(sys, (t, steps), draws)?;
+            let m = instanced(&mut inst, steps, symbols, segments);
+            return Ok(done(m, "shared subtrees"));
         }
         // Streaming costs time in proportion to the word: the limit says
         // so before it starts.
@@ -146,11 +248,11 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         let mut c = Counter::default();
         let run = turtle::Run::symbols(sys, t.symbols(steps), opts.seed);
         let max_depth = turtle::run(run, &mut c).max_depth;
-        return Ok(measured(c, max_depth, "streamed"));
+        return Ok(done(c.measured(symbols, max_depth), "streamed"));
     }
     let (w, values) = derive_values(sys, opts, |_, _| {})?;
     let t1 = Instant::now();
-    let (symbols, c, max_depth) = if sys.rewrites_modules() {
+    let m = if sys.rewrites_modules() {
         // Drawn through the homomorphism, which may need the whole word.
         let g = interpret(sys, &w, &values, opts, false)?;
         let c = Counter {
@@ -158,12 +260,12 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
             polygons: g.polygons.len() as u128,
             bbox: g.bbox(),
         };
-        (w.len() as u128, c, g.max_depth)
+        c.measured(Count::from(w.len() as u64), g.max_depth)
     } else {
         let mut c = Counter::default();
         let run = turtle::Run::symbols(sys, w.0.iter().copied(), opts.seed);
         let depth = turtle::run(run, &mut c).max_depth;
-        (written_symbols(sys, &w) as u128, c, depth)
+        c.measured(Count::from(written_symbols(sys, &w) as u64), depth)
     };
     let t2 = Instant::now();
     let time = StageTimes {
@@ -171,5 +273,5 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         derive: secs(t1 - t0),
         interpret: secs(t2 - t1),
     };
-    Ok(c.stats(steps, symbols, max_depth, ("derived", derivation), time))
+    Ok(m.stats(steps, ("derived", derivation), time))
 }

@@ -13,6 +13,7 @@
 //! memory or run without end.
 
 mod bound;
+pub mod count;
 pub use bound::fewest_at;
 pub mod parametric;
 

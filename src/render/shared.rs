@@ -5,28 +5,36 @@
 use super::{Fit, Picture, RenderOptions, Run};
 use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::System;
-use crate::turtle::instanced::{Instanced, Lines};
+use crate::turtle::instanced::{ldexp, Instanced, Lines};
 use crate::turtle::Vec3;
 
 /// The picture of the word of `inst` after `steps` steps, seen face on
-/// (the default view), fitted as [`super::layout`] fits a geometry.
+/// (the default view), fitted as [`super::layout`] fits a geometry. It is
+/// drawn in the unit [`Instanced::word_scaled`] chooses, so that a picture
+/// whose size is beyond `f64` in turtle units is drawn all the same.
 pub fn picture(
     sys: &System,
     inst: &mut Instanced<'_>,
     steps: u64,
     opts: &RenderOptions,
 ) -> Picture {
-    let whole = inst.word(steps);
+    let (whole, unit) = inst.word_scaled(steps);
     let corners = [[whole.lo[0], whole.lo[1]], [whole.hi[0], whole.hi[1]]];
     let settings = &sys.settings;
-    let pad = super::margin_pad(settings.width, opts, settings.world_widths);
+    // A width in turtle units is one in the picture's units too.
+    let width = if settings.world_widths {
+        ldexp(settings.width, -unit)
+    } else {
+        settings.width
+    };
+    let pad = super::margin_pad(width, opts, settings.world_widths);
     let fit = Fit::padded(corners.iter(), opts, pad);
     let mut pen = Pen {
         lines: Vec::new(),
         at: None,
         fit: &fit,
     };
-    inst.lines(steps, fit.scale, &mut pen);
+    inst.lines(steps, fit.scale, unit, &mut pen);
     let palette = if sys.colours.is_empty() {
         DEFAULT_PALETTE.to_vec()
     } else {
@@ -39,7 +47,7 @@ pub fn picture(
         background_alpha: opts.background_alpha,
         runs: vec![Run {
             colour: palette[settings.colour.min(palette.len() - 1)],
-            width: fit.line_width(settings.width, settings.world_widths),
+            width: fit.line_width(width, settings.world_widths),
             lines: pen.lines,
         }],
         polygons: Vec::new(),

@@ -16,6 +16,14 @@
 //! long the word is: the quadratic Koch island at 12 steps (2.7 × 10¹¹
 //! segments) is counted and boxed exactly from 4 × 13 × 4 summaries.
 //!
+//! The summaries grow with the depth — the Koch island's by 4 a step, past
+//! the largest `f64` at 512 steps — while the picture they make converges
+//! in shape. So each level of the table keeps its lengths in its own unit,
+//! a power of two chosen so that the level's largest is about 1: scaling
+//! by a power of two is exact, so every figure is the same, bit for bit,
+//! as in unit steps wherever those fit, and a picture of any depth is
+//! drawn in the unit of its top level ([`Instanced::word_scaled`]).
+//!
 //! [`Instanced::picture`] draws with the "smaller than one pixel" criterion
 //! of the same paper: a subtree whose box falls within half a pixel is
 //! drawn as one line from where it starts to where it ends, and not
@@ -73,7 +81,9 @@ enum Rotation {
     Frenet { torsion: f64, curvature: f64 },
 }
 
-/// A subtree seen from its start, for unit step length.
+/// A subtree seen from its start, for unit step length, its lengths in
+/// the unit of its level: a power of two steps, one for each depth, that
+/// brings the level's largest length to about 1 (see the module notes).
 #[derive(Clone, Copy, Debug)]
 pub struct Summary {
     /// Where it ends, relative to its start.
@@ -86,6 +96,8 @@ pub struct Summary {
     /// when it draws nothing.
     pub lo: Vec3,
     pub hi: Vec3,
+    /// Saturates at `u128::MAX`: enough to choose what to walk into; the
+    /// exact count is [`crate::eval::tree::Tree::count`]'s.
     pub segments: u128,
     /// The deepest branch nesting inside it, relative to its start.
     pub depth: u32,
@@ -107,6 +119,63 @@ impl Summary {
     pub fn draws(&self) -> bool {
         self.segments > 0
     }
+
+    /// Its lengths times `2^e`.
+    fn rescaled(mut self, e: i64) -> Self {
+        for v in [&mut self.end, &mut self.lo, &mut self.hi] {
+            *v = v.map(|x| ldexp(x, e));
+        }
+        self
+    }
+
+    /// Its lengths times `k`.
+    fn times(mut self, k: f64) -> Self {
+        for v in [&mut self.end, &mut self.lo, &mut self.hi] {
+            *v = v.map(|x| x * k);
+        }
+        self
+    }
+
+    /// Whether its lengths are all finite numbers (its box only when it
+    /// draws).
+    fn finite(&self) -> bool {
+        let bounds = self.lo.iter().chain(&self.hi).filter(|_| self.draws());
+        self.end.iter().chain(bounds).all(|v| v.is_finite())
+    }
+
+    /// The largest magnitude of its lengths that is finite (0 for none).
+    fn largest(&self) -> f64 {
+        let ends = self.end.iter();
+        let bounds = self.lo.iter().chain(&self.hi).filter(|_| self.draws());
+        ends.chain(bounds)
+            .map(|v| v.abs())
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    }
+}
+
+/// `x · 2^e`: exact unless the result is beyond `f64`'s range (then
+/// infinite, or 0 and subnormals below).
+pub fn ldexp(mut x: f64, e: i64) -> f64 {
+    // Past ±2200 every finite non-zero `x` overflows or vanishes alike.
+    let mut e = e.clamp(-2200, 2200);
+    while e != 0 {
+        let k = e.clamp(-1000, 1000);
+        // 2^k, built from its exponent bits: exact.
+        x *= f64::from_bits(((k + 1023) as u64) << 52);
+        e -= k;
+    }
+    x
+}
+
+/// The power of two that brings `m` to within `[0.5, 1)`: 0 for 0 or a
+/// number that is not finite.
+fn exponent_of(m: f64) -> i64 {
+    if m > 0.0 && m.is_finite() {
+        m.log2().floor() as i64 + 1
+    } else {
+        0
+    }
 }
 
 /// A system prepared for instanced interpretation.
@@ -121,8 +190,12 @@ pub struct Instanced<'a> {
     /// Whether any symbol changes colour or width (a picture then needs
     /// the streaming turtle).
     styled: bool,
-    /// Summaries of rewritten symbols by (symbol, depth, state).
+    /// Summaries of rewritten symbols by (symbol, depth, state), each in
+    /// the unit of its level.
     memo: HashMap<(u32, u64, u32), Summary>,
+    /// `units[d]`: the unit of level `d`'s lengths is `2^units[d]` steps;
+    /// known for the levels filled ([`Instanced::fill`]), `units[0] = 0`.
+    units: Vec<i64>,
 }
 
 /// The frame the turtle starts in: H = +y, L = −x, U = +z.
@@ -381,6 +454,7 @@ impl<'a> Instanced<'a> {
             next,
             styled,
             memo: HashMap::new(),
+            units: vec![0],
         })
     }
 
@@ -389,20 +463,26 @@ impl<'a> Instanced<'a> {
     }
 
     /// The summary of the subtree of `s` after `d` more steps, starting in
-    /// `state`.
+    /// `state`, in the unit of level `d` (of level 0 for a symbol that is
+    /// not rewritten).
     fn summary(&mut self, s: SymbolId, d: u64, state: u32) -> Summary {
         match self.tree.successor(s) {
-            Some(w) if d > 0 => {
-                if let Some(x) = self.memo.get(&(s.0, d, state)) {
-                    return *x;
-                }
-                // Children first, deepest levels first, without deep
-                // recursion: fill the levels below bottom-up.
-                let x = self.compose(w, d - 1, state);
-                self.memo.insert((s.0, d, state), x);
-                x
+            Some(_) if d > 0 => {
+                // The levels are filled bottom-up, whole, before they are
+                // read: each level's unit needs all of it.
+                self.fill(d);
+                let x = self.memo.get(&(s.0, d, state));
+                x.copied().unwrap_or_else(|| Summary::identity(state))
             }
             _ => self.leaf(s, state),
+        }
+    }
+
+    /// The unit of the summary of `s` after `d` more steps: `2^this` steps.
+    fn unit_of(&self, s: SymbolId, d: u64) -> i64 {
+        match self.tree.successor(s) {
+            Some(_) if d > 0 => self.units.get(d as usize).copied().unwrap_or(0),
+            _ => 0,
         }
     }
 
@@ -427,8 +507,9 @@ impl<'a> Instanced<'a> {
     }
 
     /// The summary of the word `w` with every symbol `d` more steps deep,
-    /// starting in `state`.
+    /// starting in `state`, in the unit of level `d`.
     fn compose(&mut self, w: &[SymbolId], d: u64, state: u32) -> Summary {
+        let unit = self.units.get(d as usize).copied().unwrap_or(0);
         let mut acc = Summary::identity(state);
         // (end, state, scale) at each open branch.
         let mut stack: Vec<(Vec3, u32, f64)> = Vec::new();
@@ -447,7 +528,10 @@ impl<'a> Instanced<'a> {
                 }
                 _ => {}
             }
+            // A symbol that is not rewritten is one step long, in the
+            // unit of the level: negligible far up, but not nothing.
             let x = self.summary(c, d, acc.state);
+            let x = x.rescaled(self.unit_of(c, d) - unit);
             let k = acc.scale;
             if x.draws() {
                 for i in 0..3 {
@@ -466,35 +550,71 @@ impl<'a> Instanced<'a> {
         acc
     }
 
-    /// Fills the summaries of every level below `steps` bottom-up, so the
-    /// recursion in [`Instanced::summary`] is never deeper than one level.
+    /// Fills the summaries of every level up to `steps` that is not yet,
+    /// bottom-up and each from the one below, so that no recursion is
+    /// deeper than one level; each level in its own unit, the power of two
+    /// that brings its largest length to about 1.
     fn fill(&mut self, steps: u64) {
-        let rewritten: Vec<SymbolId> = (0..self.tree.symbol_count() as u32)
+        if (self.units.len() as u64) > steps {
+            return;
+        }
+        let rewritten: Vec<(SymbolId, &'a [SymbolId])> = (0..self.tree.symbol_count() as u32)
             .map(SymbolId)
-            .filter(|&s| self.tree.successor(s).is_some())
+            .filter_map(|s| Some((s, self.tree.successor(s)?)))
             .collect();
         let states = self.states() as u32;
-        for d in 1..steps {
-            for &s in &rewritten {
+        while (self.units.len() as u64) <= steps {
+            let d = self.units.len() as u64;
+            let mut level = Vec::with_capacity(rewritten.len() * states as usize);
+            for &(s, w) in &rewritten {
                 for st in 0..states {
-                    self.summary(s, d, st);
+                    level.push(((s.0, d, st), self.compose(w, d - 1, st)));
                 }
+            }
+            let largest = level.iter().map(|(_, x)| x.largest()).fold(0.0, f64::max);
+            let shift = exponent_of(largest);
+            let below = self.units[d as usize - 1];
+            self.units.push(below.saturating_add(shift));
+            for (k, x) in level {
+                self.memo.insert(k, x.rescaled(-shift));
             }
         }
     }
 
-    /// The summary of the whole word after `steps` steps, in turtle units.
+    /// The summary of the whole word after `steps` steps, in turtle units:
+    /// infinite where it is beyond `f64` ([`Instanced::word_scaled`] is
+    /// not).
     pub fn word(&mut self, steps: u64) -> Summary {
+        let (x, unit) = self.word_in_units(steps);
+        x.rescaled(unit).times(self.sys.settings.step)
+    }
+
+    /// The summary of the whole word after `steps` steps, its lengths in
+    /// units of `2^k` turtle units, with `k`: 0 where turtle units hold
+    /// them, else the unit of the top level. A picture is the same shape
+    /// in any unit ([`Instanced::lines`] draws in this one).
+    pub fn word_scaled(&mut self, steps: u64) -> (Summary, i64) {
+        let (x, unit) = self.word_in_units(steps);
+        let step = self.sys.settings.step;
+        let turtle = x.rescaled(unit).times(step);
+        // Turtle units hold it when nothing overflows, and nothing that
+        // is not nothing vanishes into the subnormals.
+        let tiny = f64::MIN_POSITIVE * f64::EPSILON.recip();
+        let kept = x.largest() == 0.0 || turtle.largest() >= tiny;
+        if unit == 0 || (turtle.finite() && kept) {
+            (turtle, 0)
+        } else {
+            (x.times(step), unit)
+        }
+    }
+
+    /// The whole word's summary in the unit of its top level, for unit
+    /// steps, with that unit (`2^this` steps).
+    fn word_in_units(&mut self, steps: u64) -> (Summary, i64) {
         self.fill(steps);
         let axiom = self.tree.axiom();
-        let mut x = self.compose(axiom, steps, 0);
-        let k = self.sys.settings.step;
-        for i in 0..3 {
-            x.end[i] *= k;
-            x.lo[i] *= k;
-            x.hi[i] *= k;
-        }
-        x
+        let x = self.compose(axiom, steps, 0);
+        (x, self.units[steps as usize])
     }
 
     /// Whether the memo would stay within bounds for `steps` steps.
@@ -513,23 +633,29 @@ impl<'a> Instanced<'a> {
 
     /// Walks the word after `steps` steps as lines through the shared
     /// subtrees, seen face on: a subtree whose box is within half a pixel
-    /// (`pixels` per turtle unit) goes to `out` as one line from its start
-    /// to its end, in turtle units; larger subtrees are walked into.
-    pub fn lines(&mut self, steps: u64, pixels: f64, out: &mut dyn Lines) {
-        self.walk(steps, &mut Within { pixels, out });
+    /// (`pixels` per unit of `2^unit` turtle units) goes to `out` as one
+    /// line from its start to its end, in those units; larger subtrees are
+    /// walked into.
+    pub fn lines(&mut self, steps: u64, pixels: f64, unit: i64, out: &mut dyn Lines) {
+        self.walk_in(steps, unit, &mut Within { pixels, out });
     }
 
     /// Walks the word after `steps` steps through the shared subtrees:
     /// `walker` says which drawing subtrees to walk into, and receives the
     /// others whole, where they are placed.
     pub fn walk(&mut self, steps: u64, walker: &mut dyn Walker) {
+        self.walk_in(steps, 0, walker);
+    }
+
+    /// [`Instanced::walk`] in units of `2^unit` turtle units.
+    fn walk_in(&mut self, steps: u64, unit: i64, walker: &mut dyn Walker) {
         let start = Turtle {
             pos: [0.0; 3],
             state: 0,
             scale: self.sys.settings.step,
         };
         let axiom = self.tree.axiom();
-        self.walk_from(axiom, steps, start, walker);
+        self.walk_from(axiom, steps, (start, unit), walker);
     }
 
     /// Walks `subtree` alone from the origin, in the start frame (turns
@@ -541,10 +667,18 @@ impl<'a> Instanced<'a> {
             state: u32::from(subtree.swapped),
             scale: 1.0,
         };
-        self.walk_from(&[subtree.symbol], subtree.depth, start, walker);
+        self.walk_from(&[subtree.symbol], subtree.depth, (start, 0), walker);
     }
 
-    fn walk_from(&mut self, word: &[SymbolId], steps: u64, start: Turtle, out: &mut dyn Walker) {
+    /// Walks `word` with every symbol `steps` more steps deep from the
+    /// turtle `start`, in units of `2^unit` turtle units.
+    fn walk_from(
+        &mut self,
+        word: &[SymbolId],
+        steps: u64,
+        (start, unit): (Turtle, i64),
+        out: &mut dyn Walker,
+    ) {
         let mut t = start;
         let mut branches: Vec<Turtle> = Vec::new();
         let mut stack: Vec<(&[SymbolId], u64)> = vec![(word, steps)];
@@ -571,16 +705,18 @@ impl<'a> Instanced<'a> {
                 _ => {}
             }
             let x = self.summary(c, d, t.state);
+            // The step in the walk's units, times the summary's unit.
+            let k = ldexp(t.scale, self.unit_of(c, d) - unit);
             if let Some(w) = rewritten {
-                if x.draws() && out.enter(&x, t.scale) {
+                if x.draws() && out.enter(&x, k) {
                     stack.push((w, d - 1));
                     continue;
                 }
             }
             let end = [
-                t.pos[0] + t.scale * x.end[0],
-                t.pos[1] + t.scale * x.end[1],
-                t.pos[2] + t.scale * x.end[2],
+                t.pos[0] + k * x.end[0],
+                t.pos[1] + k * x.end[1],
+                t.pos[2] + k * x.end[2],
             ];
             if x.draws() {
                 let subtree = Subtree {
@@ -628,7 +764,8 @@ pub struct Placement {
 /// What [`Instanced::walk`] is walked for.
 pub trait Walker {
     /// Whether to walk into the drawing subtree summarised by `x`, at
-    /// step length `scale`, rather than take it whole.
+    /// step length `scale` (which takes `x`'s lengths, in the unit of its
+    /// level, to the walk's units), rather than take it whole.
     fn enter(&mut self, x: &Summary, scale: f64) -> bool;
     /// A drawing subtree (or a single drawn step, `depth` 0) taken whole:
     /// placed at `at`, ending at `end`.

@@ -678,3 +678,128 @@ fn check_shows_a_mistake_of_an_included_file_in_that_file() {
         "{text}"
     );
 }
+
+/// A natural number in decimal, worked out apart from graftal's own
+/// counts: digits of base 10⁹, least significant first.
+struct Decimal(Vec<u64>);
+
+impl Decimal {
+    const BASE: u64 = 1_000_000_000;
+
+    /// `self · k + add`, for `k` and `add` below 10⁹.
+    fn times_plus(mut self, k: u64, add: u64) -> Decimal {
+        let mut carry = add;
+        for d in &mut self.0 {
+            let v = *d * k + carry;
+            *d = v % Self::BASE;
+            carry = v / Self::BASE;
+        }
+        while carry > 0 {
+            self.0.push(carry % Self::BASE);
+            carry /= Self::BASE;
+        }
+        self
+    }
+
+    fn power_of_two(k: u32) -> Decimal {
+        (0..k).fold(Decimal(vec![1]), |d, _| d.times_plus(2, 0))
+    }
+
+    fn digits(&self) -> String {
+        let mut groups = self.0.iter().rev();
+        let top = groups.next().map_or("0".to_string(), u64::to_string);
+        groups.fold(top, |s, g| format!("{s}{g:09}"))
+    }
+}
+
+/// The Koch island's figures after `n` steps: `4 · 8ⁿ` segments, and
+/// `4 (1 + 13 (8ⁿ − 1) / 7) + 3` symbols, where `(8ⁿ − 1) / 7` is
+/// `1 + 8 + … + 8ⁿ⁻¹`.
+fn koch_island_counts(n: u32) -> (String, String) {
+    let segments = Decimal::power_of_two(3 * n + 2);
+    let g = (0..n).fold(Decimal(vec![0]), |g, _| g.times_plus(8, 1));
+    (g.times_plus(52, 7).digits(), segments.digits())
+}
+
+/// The `stats` figure named `name`, from its human output.
+fn stats_line<'a>(stdout: &'a str, name: &str) -> &'a str {
+    let line = stdout.lines().find(|l| l.starts_with(name));
+    line.unwrap_or_else(|| panic!("no {name} in {stdout}"))[name.len()..].trim()
+}
+
+#[test]
+fn stats_counts_are_exact_past_u128() {
+    // 2^128 segments at 42 steps: u128's largest plus one.
+    let (symbols, segments) = koch_island_counts(42);
+    assert_eq!(segments, "340282366920938463463374607431768211456");
+    for n in [42, 100] {
+        let (symbols_n, segments_n) = koch_island_counts(n);
+        let o = graftal(&["stats", "std:koch-island", "-n", &n.to_string()]);
+        assert_eq!(o.status, 0, "{}", o.stderr);
+        assert_eq!(stats_line(&o.stdout, "segments"), segments_n, "n={n}");
+        assert_eq!(stats_line(&o.stdout, "symbols"), symbols_n, "n={n}");
+    }
+    // JSON numbers of every digit (a reader that keeps integers exact reads
+    // them exactly; serde_json's `Value` would round them to `f64`).
+    let o = graftal(&["stats", "std:koch-island", "-n", "42", "--format", "json"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(
+        o.stdout.contains(&format!("\"segments\":{segments},")),
+        "{}",
+        o.stdout
+    );
+    assert!(o.stdout.contains(&format!("\"symbols\":{symbols},")));
+}
+
+#[test]
+fn stats_says_a_box_beyond_floating_point_cannot_be_given() {
+    // The island is 4 times wider a step: about 1.7 · 4ⁿ, the largest
+    // f64 (2^1024) passed at 512 steps.
+    let o = graftal(&["stats", "std:koch-island", "-n", "511"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(o.stderr.is_empty(), "{}", o.stderr);
+    assert!(
+        stats_line(&o.stdout, "bbox").contains("e307"),
+        "{}",
+        o.stdout
+    );
+    for n in ["512", "1000"] {
+        let o = graftal(&["stats", "std:koch-island", "-n", n]);
+        // The counts are given, exact: a warning, not an error.
+        assert_eq!(o.status, 0, "{}", o.stderr);
+        assert!(o.stderr.contains("W0010"), "{}", o.stderr);
+        assert!(!o.stdout.contains("inf"), "{}", o.stdout);
+        let bbox = stats_line(&o.stdout, "bbox");
+        assert_eq!(bbox, "beyond floating point (W0010)");
+    }
+    let o = graftal(&["stats", "std:koch-island", "-n", "1000"]);
+    assert!(
+        o.stderr.contains("about 1.9e602 turtle units across"),
+        "{}",
+        o.stderr
+    );
+    let (_, segments) = koch_island_counts(1000);
+    assert_eq!(stats_line(&o.stdout, "segments"), segments);
+    let o = graftal(&["stats", "std:koch-island", "-n", "1000", "--format", "json"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(o.stdout.contains("\"bbox\":null"), "{}", o.stdout);
+    assert!(o.stdout.contains(&format!("\"segments\":{segments},")));
+    assert!(o.stderr.contains("\"code\":\"W0010\""), "{}", o.stderr);
+}
+
+#[test]
+fn stats_refuses_counts_too_long_to_add_up_exactly() {
+    // 52 symbols each rewritten into all 52, 4096 steps: numbers of some
+    // 7000 digits, 2704 products of them a step.
+    let letters: String = ('A'..='Z').chain('a'..='z').collect();
+    let rules: String = letters
+        .chars()
+        .map(|c| format!("{c} --> {letters}\n"))
+        .collect();
+    let f = temp("many.l");
+    std::fs::write(&f, format!("axiom: {letters}\n{rules}")).unwrap();
+    let o = graftal(&["stats", f.to_str().unwrap(), "-n", "4096"]);
+    assert_eq!(o.status, 1, "{}", o.stdout);
+    assert!(o.stderr.contains("E0304"), "{}", o.stderr);
+    assert!(o.stdout.is_empty(), "{}", o.stdout);
+}

@@ -162,6 +162,40 @@ fn a_refused_derivation_stops_before_the_work_that_would_pass_the_limit() {
     );
 }
 
+/// A context-free picture refused for its moves names how many there are,
+/// not the limit: a colour change keeps it off the shared subtrees, which
+/// have no such limit.
+#[test]
+fn a_refused_context_free_picture_names_its_true_number_of_moves() {
+    let sys = read("big.l", "axiom: F'F\nF --> FF\n");
+    let draw = |n| {
+        let req = Request {
+            run: RunOptions {
+                steps: Some(n),
+                ..RunOptions::default()
+            },
+            width: 64,
+            height: 64,
+            ..Request::new(Target::Still(Format::Png))
+        };
+        picture::draw_system(&sys, &req, &mut Quiet)
+    };
+    let message = |n| match draw(n) {
+        Err(DrawError::Stopped(d)) if d.code.0 == "E0303" => (d.message, d.notes),
+        other => panic!("n={n}: {:?}", other.map(|p| p.method)),
+    };
+    // 2 · 2^26 moves; the limit is 30 million.
+    let (m, notes) = message(26);
+    assert!(m.contains("moves the turtle 134217728 times"), "{m}");
+    assert!(
+        notes.iter().any(|n| n.contains("step 24 of 26")),
+        "{notes:?}"
+    );
+    // 2^601, past u128: its first digits and power of ten.
+    let (m, _) = message(600);
+    assert!(m.contains("moves the turtle about 8.2e180 times"), "{m}");
+}
+
 /// Drawing's limit is checked before deriving too: when even the fewest
 /// moves any random choices make pass `max_moves`, `render` is refused up
 /// front; when they may not, the check leaves it to the derivation.

@@ -103,6 +103,56 @@ fn the_method_follows_from_the_system_and_the_request() {
     assert_eq!(method("std:plant-e", Some(3), obj), Method::Mesh);
 }
 
+/// The box of the inked pixels of a PNG: `[left, top, right, bottom]`.
+fn inked_box(png: &[u8]) -> [u32; 4] {
+    let p = tiny_skia::Pixmap::decode_png(png).expect("a PNG");
+    let mut b = [u32::MAX, u32::MAX, 0, 0];
+    for (i, c) in p.pixels().iter().enumerate() {
+        if u32::from(c.red()) + u32::from(c.green()) + u32::from(c.blue()) < 3 * 128 {
+            let (x, y) = (i as u32 % p.width(), i as u32 / p.width());
+            b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+        }
+    }
+    b
+}
+
+#[test]
+fn a_picture_larger_than_floating_point_is_drawn_as_it_converges() {
+    // The Koch island 4 times wider a step: past the largest f64 in turtle
+    // units from 512 steps. Drawn in the unit of its top level, its shape
+    // is the one it converges to: the picture of 400 steps, and of 5 steps
+    // in outline.
+    let c = compile(load("std:koch-island").unwrap());
+    let draw = |n| {
+        let req = Request {
+            run: RunOptions {
+                steps: Some(n),
+                ..RunOptions::default()
+            },
+            width: 128,
+            height: 128,
+            ..Request::new(Target::Still(Format::Png))
+        };
+        let p = picture::draw(&c, &req, &mut Quiet).unwrap_or_else(|e| panic!("n={n}: {e}"));
+        assert_eq!(p.method, Method::SharedSubtrees, "n={n}");
+        p.bytes
+    };
+    let deep = draw(600);
+    assert!(deep == draw(400), "600 steps drawn unlike 400");
+    assert!(deep == draw(4096), "4096 steps drawn unlike 600");
+    let [l, t, r, b] = inked_box(&deep);
+    let [l5, t5, r5, b5] = inked_box(&draw(5));
+    assert!(r > l + 100 && b > t + 100, "{:?}", [l, t, r, b]);
+    for (a, a5) in [(l, l5), (t, t5), (r, r5), (b, b5)] {
+        assert!(
+            a.abs_diff(a5) <= 2,
+            "{:?} vs {:?}",
+            [l, t, r, b],
+            [l5, t5, r5, b5]
+        );
+    }
+}
+
 #[test]
 fn a_gallery_picture_is_what_render_writes() {
     // One entry drawn from its shared tree, one streamed, one stored (a

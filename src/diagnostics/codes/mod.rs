@@ -386,12 +386,27 @@ Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
 
     TOO_MUCH_GEOMETRY = "E0303", "picture too large to draw",
-"The derived word moves the turtle more times than graftal draws (30
-million): every move becomes a segment or a point held in memory, and
-drawing needs as much again. `derive` is not limited this way.
+"The derived word moves the turtle more times than graftal draws segment
+by segment (30 million): every move becomes a segment or a point held in
+memory, and drawing needs as much again. `derive` is not limited this way,
+nor is a context-free system drawn in one colour and width, face on, up to
+4096 steps: that is drawn from its shared subtrees, however many segments
+its word has. The message says how many moves the word makes (at least,
+where contexts and random choices decide), and a note how that is known.
 
 Draw fewer steps with `-n`. Beyond a few million segments a picture shows
 little more than at a step less.";
+
+    COUNTS_TOO_LONG = "E0304", "counts too long to work out",
+"`stats` counts a context-free system's symbols and segments exactly from
+its shared derivation tree, without deriving the word: one level of sums a
+step, of numbers that grow by about as many digits each step. A system
+with many symbols, each rewritten into many others, at thousands of steps,
+makes numbers of thousands of digits, and adding them up over every level
+would take more than about half a second; graftal stops with this error
+instead of giving a count that is not exact.
+
+Count fewer steps with `-n`.";
 
     HEADER_ORDER = "W0001", "header out of the listing's order",
 "The Appendix A program reads its headers in a fixed order: derivation
@@ -423,6 +438,20 @@ A note names the likely cause, the first that applies: a stdlib entry
 marked as a schema (a string example: `graftal list` shows which); a turtle
 that only moves without drawing (`f`, as in a kolam: try `--spline`); a
 derived word with no symbol that moves the turtle; no derivation steps.";
+
+    BOX_TOO_LARGE = "W0010", "bounding box beyond floating point",
+"`stats` gives the bounding box in turtle units as floating-point numbers,
+and the box is larger than the largest of them (about 1.8e308): a figure
+that grows by a factor each step gets there in a few hundred steps (the
+Koch island, 4 times wider a step, from 512 on). The box is left out
+(`null` in JSON) and the warning says about how wide it is; the counts are
+exact whatever their size, and the picture of such a system is drawn all
+the same, in a unit of its own, when it is drawn from shared subtrees.
+
+Example:
+    graftal stats std:koch-island -n 1000
+
+Count fewer steps with `-n` for a box in numbers.";
 
     NEARLY_NOTHING_DRAWN = "W0009", "nearly nothing is drawn",
 "What is drawn is under two pixels wide at the picture's view and size:

@@ -41,8 +41,11 @@ pub(super) fn draw(
     let Some(mut inst) = inst else {
         return Ok(None);
     };
-    let whole = inst.word(steps);
-    if !whole.draws() || whole.lo[2] != whole.hi[2] {
+    // In the unit that holds it, however deep: the picture converges.
+    let (whole, _) = inst.word_scaled(steps);
+    let flat = whole.lo[2] == whole.hi[2];
+    let finite = whole.lo.iter().chain(&whole.hi).all(|v| v.is_finite());
+    if !whole.draws() || !flat || !finite {
         return Ok(None);
     }
     apply_look(sys, &mut ropts);
