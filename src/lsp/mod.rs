@@ -3,7 +3,8 @@
 //! makes: each open document is compiled as `graftal check` compiles it
 //! ([`driver::compile`]) on open and on every change, and its diagnostics
 //! are published; hover, definitions and the outline read the compiled
-//! system. Nothing is derived on a keystroke: `check`'s derivation limits
+//! system (of a file with errors, what was read of the parts that parse).
+//! Nothing is derived on a keystroke: `check`'s derivation limits
 //! (E0301, E0302) are left to `graftal check`.
 
 mod edits;

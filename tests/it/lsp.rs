@@ -326,6 +326,68 @@ fn definition_and_references_of_a_symbol() {
     c.stop();
 }
 
+/// Hover, definition and references of a symbol in a file with an error
+/// on another line answer as they do in the file without that line: from
+/// what the recovering parse read of the parts that parse, in each
+/// notation with symbols.
+#[test]
+fn a_file_with_an_error_answers_about_its_other_parts() {
+    let dir = cpfg_object("recovered", &[]);
+    let cpfg = format!("file://{}", dir.join("plant.l").display());
+    let gft = "file:///tmp/graftal-lsp-test/recovered.gft";
+    // The file's text before the line with the error, that line, the text
+    // after it, and where a symbol is written before it.
+    let cases = [
+        (
+            URI,
+            "derivation length: 2\naxiom: X\nX --> F[+X]-X\n",
+            "Y --> F --> F\n",
+            "",
+            (1, 7),
+        ),
+        (
+            &cpfg,
+            "Lsystem: 1\nderivation length: 2\nAxiom: X\nX --> F[+X]-X\n",
+            "Y --> F(\n",
+            "endlsystem\n",
+            (2, 7),
+        ),
+        (
+            LINF_URI,
+            "lines f g\nangles (0, pi/2)\naxiom f\nrules f = f + f\n",
+            "g = (\n",
+            "",
+            (3, 10),
+        ),
+        (gft, "axiom X\nX -> F[+X]-X\n", "widht 3\n", "", (0, 6)),
+    ];
+    let mut c = Client::start();
+    let methods = [
+        "textDocument/hover",
+        "textDocument/definition",
+        "textDocument/references",
+    ];
+    for (uri, before, broken, after, (line, column)) in cases {
+        let ds = c.open(uri, &format!("{before}{after}"));
+        assert!(!ds.iter().any(|d| d["severity"] == 1), "{uri}: {ds:?}");
+        let clean: Vec<Value> = (methods.iter())
+            .map(|m| c.at(m, uri, line, column)["result"].clone())
+            .collect();
+        let ds = c.change(uri, 2, &format!("{before}{broken}{after}"));
+        assert!(ds.iter().any(|d| d["severity"] == 1), "{uri}: {ds:?}");
+        for (method, clean) in methods.iter().zip(&clean) {
+            let found = c.at(method, uri, line, column)["result"].clone();
+            assert!(
+                found.is_object() || found.as_array().is_some_and(|a| !a.is_empty()),
+                "{uri} {method}: {found}"
+            );
+            assert_eq!(&found, clean, "{uri} {method}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
 #[test]
 fn completion_and_outline() {
     let mut c = Client::start();
