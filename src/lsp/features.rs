@@ -1,6 +1,7 @@
 //! The requests about a document: hover, definition, references, the
-//! outline and completion, answered from what compiling it gave (its
-//! system, the places of its productions and symbols) without deriving.
+//! outline, completion and formatting, answered from what compiling it
+//! gave (its system, the places of its productions and symbols) without
+//! deriving.
 
 use super::names::{self, Names};
 use super::position::{offset, range};
@@ -12,8 +13,8 @@ use crate::front::FunctionSite;
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use crate::source::SourceFile;
 use lsp_types::request::{
-    CodeActionRequest, Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest,
-    References, Request as _,
+    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest, References,
+    Request as _,
 };
 use lsp_types::{
     CompletionItem, CompletionItemKind, Hover, HoverContents, MarkupContent, MarkupKind,
@@ -60,10 +61,6 @@ pub fn answer(
             let p: lsp_types::CompletionParams = parse(params)?;
             let doc = docs.get(p.text_document_position.text_document.uri.as_str());
             serde_json::to_string(&doc.map(completions).unwrap_or_default())
-        }
-        CodeActionRequest::METHOD => {
-            let p: lsp_types::CodeActionParams = parse(params)?;
-            serde_json::to_string(&edits::quick_fixes(docs, &p.text_document.uri, p.range))
         }
         Formatting::METHOD => {
             let p: lsp_types::DocumentFormattingParams = parse(params)?;
