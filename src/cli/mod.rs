@@ -6,6 +6,7 @@
 //! usage or I/O problem.
 
 mod output;
+mod records;
 
 use crate::diagnostics::{self, render_all, render_json, Diagnostic};
 use crate::driver::picture;
@@ -380,13 +381,14 @@ fn check(io: &mut Io<'_>, files: &[String], reading: &Reading, format: OutputFor
                 }
             }
             Err(e) => {
-                let _ = writeln!(io.stderr, "error: {e}");
+                fail(io, format, &e.to_string(), None);
                 status = 2;
             }
         }
     }
     if format == OutputFormat::Json {
-        let _ = writeln!(io.stdout, "{}", serde_json::json!({ "files": listings }));
+        let listing = serde_json::json!({ "files": listings });
+        let _ = write!(io.stdout, "{}", records::line(records::FILES, listing));
     }
     status
 }
@@ -403,7 +405,8 @@ fn derive(io: &mut Io<'_>, a: &DeriveCmd) -> i32 {
         Ok(f) => f,
         Err(e) => {
             let path = path.as_deref().unwrap_or_default();
-            let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
+            let message = format!("cannot write `{path}`: {e}");
+            fail(io, a.args.format, &message, None);
             return 2;
         }
     };
@@ -442,11 +445,7 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
         report(io, c, &s.warnings, a.format);
         match a.format {
             OutputFormat::Json => {
-                let _ = writeln!(
-                    io.stdout,
-                    "{}",
-                    serde_json::to_string(&s).expect("stats serialise")
-                );
+                let _ = write!(io.stdout, "{}", records::line(records::STATS, &s));
             }
             OutputFormat::Human => {
                 let bbox = match s.bbox.map(|b| b.map(crate::number::readable)) {
@@ -475,7 +474,7 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
 fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
     let (target, output) = match render_target(io, a) {
         Ok(t) => t,
-        Err(e) => return usage_error(io, &e),
+        Err(e) => return usage_error(io, &e, a.args.format),
     };
     with_system(io, &a.args, |io, c, _sys, opts, _| {
         let req = picture::Request {
@@ -508,7 +507,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             Ok(p) => p,
             Err(picture::DrawError::Stopped(d)) => return Err(vec![*d]),
             Err(e) => {
-                let _ = writeln!(io.stderr, "error: {e}");
+                fail(io, a.args.format, &e.to_string(), None);
                 return Ok(2);
             }
         };
@@ -561,15 +560,15 @@ fn write_picture(io: &mut Io<'_>, a: &RenderArgs, output: &Output, p: &picture::
         .unwrap_or(std::path::Path::new(""));
     for side in &p.side_files {
         let path = folder.join(&side.name).display().to_string();
-        let status = write_output(io, &Output::File(path), &side.bytes);
+        let status = write_output(io, &Output::File(path), &side.bytes, a.args.format);
         if status != 0 {
             return status;
         }
     }
-    let status = write_output(io, output, &p.bytes);
+    let status = write_output(io, output, &p.bytes, a.args.format);
     if let (0, Some(s)) = (status, &p.mesh) {
         let _ = match a.args.format {
-            OutputFormat::Json => writeln!(io.stdout, "{}", serde_json::json!(s)),
+            OutputFormat::Json => write!(io.stdout, "{}", records::line(records::MESH, s)),
             OutputFormat::Human => writeln!(
                 io.stdout,
                 "{} vertices, {} triangles, {} materials, {} meshes placed {} times",
@@ -650,7 +649,7 @@ fn explain_all(io: &mut Io<'_>) -> i32 {
 fn list(io: &mut Io<'_>, format: OutputFormat) -> i32 {
     let text = match format {
         OutputFormat::Human => crate::stdlib::listing(),
-        OutputFormat::Json => format!("{}\n", crate::stdlib::listing_json()),
+        OutputFormat::Json => records::line(records::STDLIB, crate::stdlib::listing_json()),
     };
     let _ = write!(io.stdout, "{text}");
     0
@@ -715,12 +714,13 @@ fn fmt(io: &mut Io<'_>, spec: &str, check: bool) -> i32 {
         return i32::from(changed);
     }
     if spec == "-" {
-        return write_output(io, &Output::Stdout, text.as_bytes());
+        return write_output(io, &Output::Stdout, text.as_bytes(), OutputFormat::Human);
     }
     if !changed {
         return 0;
     }
-    write_output(io, &Output::File(spec.to_string()), text.as_bytes())
+    let output = Output::File(spec.to_string());
+    write_output(io, &output, text.as_bytes(), OutputFormat::Human)
 }
 
 /// `graftal translate`: source -> IR -> the target's emitter. Errors (what
@@ -782,7 +782,7 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
         if output == Output::Stdout {
             doc["text"] = serde_json::json!(t.text);
         }
-        let _ = writeln!(io.stdout, "{doc}");
+        let _ = write!(io.stdout, "{}", records::line(records::TRANSLATION, doc));
     }
     let Some(text) = t.text else {
         return 1;
@@ -791,7 +791,7 @@ fn translate(io: &mut Io<'_>, a: &TranslateArgs) -> i32 {
     if output == Output::Stdout && a.format == OutputFormat::Json {
         return 0;
     }
-    write_output(io, &output, text.as_bytes())
+    write_output(io, &output, text.as_bytes(), a.format)
 }
 
 /// Loads and compiles `a.file`, prints its diagnostics, and runs `f` on the
@@ -845,7 +845,7 @@ fn load_and_compile(
     let file = match driver::load(&path) {
         Ok(f) => f,
         Err(e) => {
-            let _ = writeln!(io.stderr, "error: {e}");
+            fail(io, format, &e.to_string(), None);
             return None;
         }
     };
@@ -958,15 +958,16 @@ fn listing_json(c: &Compiled) -> serde_json::Value {
 }
 
 /// Writes `bytes` to a file or to stdout; the exit status. A closed pipe
-/// (`| head`) is not an error, as for `derive`.
-fn write_output(io: &mut Io<'_>, output: &Output, bytes: &[u8]) -> i32 {
+/// (`| head`) is not an error, as for `derive`. A file that cannot be
+/// written is said in `format`.
+fn write_output(io: &mut Io<'_>, output: &Output, bytes: &[u8], format: OutputFormat) -> i32 {
     match output {
         Output::Stdout => {
             let _ = io.stdout.write_all(bytes).and_then(|()| io.stdout.flush());
         }
         Output::File(path) => {
             if let Err(e) = std::fs::write(path, bytes) {
-                let _ = writeln!(io.stderr, "error: cannot write `{path}`: {e}");
+                fail(io, format, &format!("cannot write `{path}`: {e}"), None);
                 return 2;
             }
         }
@@ -976,9 +977,21 @@ fn write_output(io: &mut Io<'_>, output: &Output, bytes: &[u8]) -> i32 {
 
 /// Prints a command line that cannot be carried out, with its help line;
 /// the exit status (2).
-fn usage_error(io: &mut Io<'_>, e: &UsageError) -> i32 {
-    let _ = writeln!(io.stderr, "error: {}\n  help: {}", e.message, e.help);
+fn usage_error(io: &mut Io<'_>, e: &UsageError, format: OutputFormat) -> i32 {
+    fail(io, format, &e.message, Some(&e.help));
     2
+}
+
+/// Prints a problem that is not a diagnostic (a file that cannot be read
+/// or written): `error: MESSAGE` and its help line, or in JSON its
+/// [`records::ERROR`] record, so that every line of `--format json` is one.
+fn fail(io: &mut Io<'_>, format: OutputFormat, message: &str, help: Option<&str>) {
+    let text = match (format, help) {
+        (OutputFormat::Json, _) => records::error(message, help),
+        (OutputFormat::Human, Some(help)) => format!("error: {message}\n  help: {help}\n"),
+        (OutputFormat::Human, None) => format!("error: {message}\n"),
+    };
+    let _ = write!(io.stderr, "{text}");
 }
 
 /// Whether progress is shown: on a terminal, outside CI.

@@ -717,6 +717,9 @@ fn json_in(d: &Diagnostic, file: &SourceFile) -> Value {
     }
     let notes: Vec<Cow<str>> = d.all_notes().collect();
     json!({
+        // Every record of `--format json` says what it is (the CLI's
+        // results and errors are records on the same streams).
+        "type": "diagnostic",
         "code": d.code.0,
         "severity": d.severity,
         "message": d.message,

@@ -41,9 +41,9 @@ pub fn load(spec: &str) -> Result<SourceFile, LoadError> {
     })
 }
 
-/// A file compiled to the IR. `system` is `None` when the file has errors,
-/// or when it is a library of several entries and none was chosen
-/// (`library.needs_entry`).
+/// A file compiled to the IR. `system` is `None` when the file has errors
+/// (what was read of it is `recovered`), or when it is a library of
+/// several entries and none was chosen (`library.needs_entry`).
 pub struct Compiled {
     pub file: SourceFile,
     pub system: Option<System>,
@@ -53,12 +53,22 @@ pub struct Compiled {
     pub front: &'static dyn Front,
     /// A library's entries, and which was read.
     pub library: Option<Library>,
+    /// What the front end lowered of a file with errors (`system` is then
+    /// `None`): the parts that parse, with `spans`. For finding places (an
+    /// editor's hover and definitions), never for deriving or drawing.
+    pub recovered: Option<System>,
 }
 
 impl Compiled {
     /// Several entries and none chosen: `system` is `None` without errors.
     pub fn needs_entry(&self) -> bool {
         self.library.as_ref().is_some_and(|l| l.needs_entry)
+    }
+
+    /// The system as read, errors or not: `system`, else what was
+    /// [`recovered`](Compiled::recovered) of a file with errors.
+    pub fn system_or_recovered(&self) -> Option<&System> {
+        self.system.as_ref().or(self.recovered.as_ref())
     }
 
     /// The derived word as text in the notation the file was read in.
@@ -123,6 +133,7 @@ pub fn compile_as(
             diagnostics: diags,
             front: front::FRONTS[0],
             library: None,
+            recovered: None,
         };
     }
     let ext = file.extension().unwrap_or("l").to_ascii_lowercase();
@@ -137,6 +148,7 @@ pub fn compile_as(
             diagnostics: diags,
             front,
             library: None,
+            recovered: None,
         };
     }
     let read = front.read(&file, entry, &mut diags);
@@ -185,7 +197,13 @@ pub fn compile_as(
         Some(l) => (Some(l.system), l.spans),
         None => (None, SpanTable::default()),
     };
-    let system = if diags.has_errors() { None } else { system };
+    // Kept aside rather than dropped: the language server finds symbols
+    // in the parts of a file being typed that parse.
+    let (system, recovered) = if diags.has_errors() {
+        (None, system)
+    } else {
+        (system, None)
+    };
     Compiled {
         file,
         system,
@@ -193,6 +211,7 @@ pub fn compile_as(
         diagnostics: diags,
         front,
         library: read.library,
+        recovered,
     }
 }
 

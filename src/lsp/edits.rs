@@ -1,6 +1,7 @@
 //! The requests that answer with edits: quick fixes (the replacement a
-//! diagnostic suggests, [`crate::diagnostics::Fix`]) and formatting
-//! (`.gft`, as `graftal fmt` writes it).
+//! diagnostic suggests, [`crate::diagnostics::Fix`]), as code actions or
+//! as commands that ask the client for the edit, and formatting (`.gft`,
+//! as `graftal fmt` writes it).
 
 use super::position::{position, range};
 use super::publish::convert;
@@ -8,7 +9,8 @@ use super::{uri, Document};
 use crate::format::{outcome, Outcome};
 use crate::source::SourceFile;
 use lsp_types::{
-    CodeAction, CodeActionKind, CodeActionOrCommand, Range, TextEdit, Uri, WorkspaceEdit,
+    ApplyWorkspaceEditParams, CodeAction, CodeActionKind, CodeActionOrCommand, Command,
+    ExecuteCommandParams, NumberOrString, Range, TextEdit, Uri, WorkspaceEdit,
 };
 use std::collections::HashMap;
 
@@ -16,16 +18,24 @@ use std::collections::HashMap;
 /// file with thousands of mistakes would otherwise list thousands.
 const MAX_FIXES: usize = 100;
 
-/// The quick fixes for the file at `uri` that touch `asked`: of the
-/// diagnostics that know their fix, those of the open document at `uri`
-/// and those other open documents report on it (a cpfg view file, an
-/// `#include`d file). Each writes the replacement over the span it names.
+/// The command that stands for a quick fix with a client that takes no
+/// code action literals (no `codeActionLiteralSupport`): its one argument
+/// is the `workspace/applyEdit` request the server sends when it runs.
+pub const APPLY_FIX: &str = "graftal.applyFix";
+
+/// The quick fixes for the file at `uri` asked for over `asked`, with the
+/// client's `listed` diagnostics: of the diagnostics that know their fix,
+/// those of the open document at `uri` and those other open documents
+/// report on it (a cpfg view file, an `#include`d file). Each writes the
+/// replacement over the span it names. `literal`: as code actions, else as
+/// [`APPLY_FIX`] commands.
 pub fn quick_fixes(
     docs: &HashMap<String, Document>,
     uri: &Uri,
     asked: Range,
+    listed: &[lsp_types::Diagnostic],
+    literal: bool,
 ) -> Vec<CodeActionOrCommand> {
-    let touches = |r: &Range| r.start <= asked.end && asked.start <= r.end;
     // The document itself first, then the others in a stable order.
     let mut order: Vec<&Document> = docs.values().collect();
     order.sort_by_key(|d| (d.uri != *uri, d.uri.as_str().to_string()));
@@ -51,27 +61,80 @@ pub fn quick_fixes(
                 }
             };
             let at = range(file, &fix.span);
-            if !touches(&at) {
+            let place = d.span.as_ref().map_or(at, |s| range(file, s));
+            let wanted = touches(&at, &asked) || touches(&place, &asked);
+            if !(wanted || is_listed(d.code.0, place, listed)) {
                 continue;
             }
             let was = file.text.get(fix.span.clone()).unwrap_or("");
-            out.push(CodeActionOrCommand::CodeAction(CodeAction {
-                title: format!("Replace `{was}` with `{}`", fix.replacement),
-                kind: Some(CodeActionKind::QUICKFIX),
-                diagnostics: Some(vec![convert(d, file, uri)]),
-                edit: Some(whole_edit(
-                    uri,
-                    vec![TextEdit::new(at, fix.replacement.clone())],
-                )),
-                is_preferred: Some(true),
-                ..Default::default()
-            }));
+            let title = format!("Replace `{was}` with `{}`", fix.replacement);
+            let edit = whole_edit(uri, vec![TextEdit::new(at, fix.replacement.clone())]);
+            out.push(action(title, convert(d, file, uri), edit, literal));
             if out.len() == MAX_FIXES {
                 return out;
             }
         }
     }
     out
+}
+
+/// Whether ranges `a` and `b` overlap or meet (a cursor at either end of
+/// a range touches it).
+fn touches(a: &Range, b: &Range) -> bool {
+    a.start <= b.end && b.start <= a.end
+}
+
+/// Whether the client lists the diagnostic `code` at `place` among those
+/// it asks about. A client asks over the cursor's place and lists the
+/// diagnostics of its line (Neovim), which the place may not touch.
+fn is_listed(code: &str, place: Range, listed: &[lsp_types::Diagnostic]) -> bool {
+    let code = Some(NumberOrString::String(code.to_string()));
+    (listed.iter()).any(|l| l.range == place && l.code == code)
+}
+
+/// The quick fix `title` that makes `edit`, fixing `d`: a code action, or
+/// the [`APPLY_FIX`] command that asks the client to make it.
+fn action(
+    title: String,
+    d: lsp_types::Diagnostic,
+    edit: WorkspaceEdit,
+    literal: bool,
+) -> CodeActionOrCommand {
+    if !literal {
+        let apply = ApplyWorkspaceEditParams {
+            label: Some(title.clone()),
+            edit,
+        };
+        let arguments = serde_json::to_value(apply).ok().map(|a| vec![a]);
+        return CodeActionOrCommand::Command(Command {
+            title,
+            command: APPLY_FIX.to_string(),
+            arguments,
+        });
+    }
+    CodeActionOrCommand::CodeAction(CodeAction {
+        title,
+        kind: Some(CodeActionKind::QUICKFIX),
+        diagnostics: Some(vec![d]),
+        edit: Some(edit),
+        is_preferred: Some(true),
+        ..Default::default()
+    })
+}
+
+/// The `workspace/applyEdit` request's parameters that running the
+/// command `p` (an [`APPLY_FIX`] of [`quick_fixes`]) sends.
+pub fn command_edit(p: &ExecuteCommandParams) -> Result<ApplyWorkspaceEditParams, String> {
+    if p.command != APPLY_FIX {
+        return Err(format!("graftal lsp has no command `{}`", p.command));
+    }
+    match p.arguments.as_slice() {
+        [edit] => serde_json::from_value(edit.clone())
+            .map_err(|e| format!("`{APPLY_FIX}` takes a workspace edit: {e}")),
+        _ => Err(format!(
+            "`{APPLY_FIX}` takes one argument, a workspace edit"
+        )),
+    }
 }
 
 /// `edits` of the document at `uri`, as a workspace edit.

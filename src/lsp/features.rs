@@ -1,6 +1,7 @@
 //! The requests about a document: hover, definition, references, the
-//! outline and completion, answered from what compiling it gave (its
-//! system, the places of its productions and symbols) without deriving.
+//! outline, completion and formatting, answered from what compiling it
+//! gave (its system, the places of its productions and symbols) without
+//! deriving.
 
 use super::names::{self, Names};
 use super::position::{offset, range};
@@ -12,8 +13,8 @@ use crate::front::FunctionSite;
 use crate::ir::{Angle, Axis, Rotation, Span, SymbolId, System, TurtleOp};
 use crate::source::SourceFile;
 use lsp_types::request::{
-    CodeActionRequest, Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest,
-    References, Request as _,
+    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest, References,
+    Request as _,
 };
 use lsp_types::{
     CompletionItem, CompletionItemKind, Hover, HoverContents, MarkupContent, MarkupKind,
@@ -61,10 +62,6 @@ pub fn answer(
             let doc = docs.get(p.text_document_position.text_document.uri.as_str());
             serde_json::to_string(&doc.map(completions).unwrap_or_default())
         }
-        CodeActionRequest::METHOD => {
-            let p: lsp_types::CodeActionParams = parse(params)?;
-            serde_json::to_string(&edits::quick_fixes(docs, &p.text_document.uri, p.range))
-        }
         Formatting::METHOD => {
             let p: lsp_types::DocumentFormattingParams = parse(params)?;
             let doc = docs.get(p.text_document.uri.as_str());
@@ -99,7 +96,8 @@ fn occurrences(doc: &Document) -> &[Occurrence] {
 /// records it; predecessors are found in their production's text.
 fn find_occurrences(doc: &Document) -> Vec<Occurrence> {
     let c = &doc.compiled;
-    let Some(sys) = &c.system else {
+    // A file with errors: the symbols of the parts that parse.
+    let Some(sys) = c.system_or_recovered() else {
         return Vec::new();
     };
     let spans = &c.spans;
@@ -269,7 +267,7 @@ fn hover(doc: &Document, at: usize) -> Option<Hover> {
         parts.extend(names.decls.get(i).map(|d| d.about.clone()));
     }
     parts.extend(user_function_at(doc, at).map(function_text));
-    if let (Some(sys), Some(symbol)) = (&c.system, symbol_at(occurrences(doc), at)) {
+    if let (Some(sys), Some(symbol)) = (c.system_or_recovered(), symbol_at(occurrences(doc), at)) {
         parts.push(symbol_text(doc, sys, symbol));
     }
     if parts.is_empty() {
@@ -390,7 +388,7 @@ fn outline(doc: &Document) -> String {
             out.push((name, SymbolKind::MODULE, range(file, &e.span)));
         }
     }
-    if let Some(sys) = &c.system {
+    if let Some(sys) = c.system_or_recovered() {
         for (p, span) in sys.productions.iter().zip(&c.spans.productions) {
             let name: String = (p.predecessor.iter())
                 .map(|&s| sys.symbols.name(s))
@@ -464,11 +462,7 @@ fn completions(doc: &Document) -> Vec<CompletionItem> {
         })
         .collect();
     let set = turtle_set(doc);
-    let rotations = doc
-        .compiled
-        .system
-        .as_ref()
-        .map_or(&[][..], |s| &s.rotations);
+    let rotations = (doc.compiled.system_or_recovered()).map_or(&[][..], |s| &s.rotations);
     for &name in set.names() {
         if let Some(op) = vocabulary::op(set, name) {
             out.push(item(
@@ -492,7 +486,7 @@ fn completions(doc: &Document) -> Vec<CompletionItem> {
             out.push(item(&d.name, kind, first_line));
         }
     }
-    if let Some(sys) = &doc.compiled.system {
+    if let Some(sys) = doc.compiled.system_or_recovered() {
         for (id, info) in sys.symbols.iter() {
             if !info.name.is_empty() && seen.insert(info.name.clone()) {
                 let does = sys.op(id).map_or("a symbol of this file".into(), |op| {

@@ -3,7 +3,8 @@
 //! makes: each open document is compiled as `graftal check` compiles it
 //! ([`driver::compile`]) on open and on every change, and its diagnostics
 //! are published; hover, definitions and the outline read the compiled
-//! system. Nothing is derived on a keystroke: `check`'s derivation limits
+//! system (of a file with errors, what was read of the parts that parse).
+//! Nothing is derived on a keystroke: `check`'s derivation limits
 //! (E0301, E0302) are left to `graftal check`.
 
 mod edits;
@@ -21,10 +22,11 @@ use lsp_types::notification::{
     DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, Notification as _,
     PublishDiagnostics,
 };
+use lsp_types::request::{ApplyWorkspaceEdit, CodeActionRequest, ExecuteCommand, Request as _};
 use lsp_types::{
-    CodeActionProviderCapability, CompletionOptions, HoverProviderCapability, OneOf,
-    PublishDiagnosticsParams, ServerCapabilities, TextDocumentSyncCapability, TextDocumentSyncKind,
-    Uri,
+    CodeActionProviderCapability, CompletionOptions, ExecuteCommandOptions,
+    HoverProviderCapability, OneOf, PublishDiagnosticsParams, ServerCapabilities,
+    TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 use serde_json::json;
 use std::cell::OnceCell;
@@ -62,10 +64,19 @@ impl Document {
     }
 }
 
-/// What the server knows: the open documents by URI.
+/// What the server knows: the open documents by URI, and what the client
+/// said it can take.
 #[derive(Default)]
 struct Server {
     docs: HashMap<String, Document>,
+    /// Whether the client takes code actions (`codeActionLiteralSupport`);
+    /// one that does not takes commands.
+    literal_actions: bool,
+    /// The requests to the client that answering a request made, written
+    /// before its response.
+    requests: Vec<String>,
+    /// How many requests the server has sent the client: each one's id.
+    sent: u64,
 }
 
 /// Serves the protocol on standard input and `stdout` until `exit`. A
@@ -102,6 +113,10 @@ fn capabilities() -> ServerCapabilities {
         completion_provider: Some(CompletionOptions::default()),
         code_action_provider: Some(CodeActionProviderCapability::Simple(true)),
         document_formatting_provider: Some(OneOf::Left(true)),
+        execute_command_provider: Some(ExecuteCommandOptions {
+            commands: vec![edits::APPLY_FIX.to_string()],
+            ..Default::default()
+        }),
         ..Default::default()
     }
 }
@@ -128,6 +143,7 @@ pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Resu
                 let refused = match (&stage, req.method.as_str()) {
                     (Stage::Starting, "initialize") => {
                         stage = Stage::Running;
+                        server.literal_actions = takes_literal_actions(&req.params);
                         let init = json!({ "capabilities": capabilities() });
                         write_body(out, &result_body(&req.id, &init.to_string()))?;
                         continue;
@@ -154,6 +170,9 @@ pub fn serve(incoming: &Receiver<Message>, out: &mut dyn Write) -> std::io::Resu
                         Err((code, why)) => error_body(req.id, code, why),
                     },
                 };
+                for request in std::mem::take(&mut server.requests) {
+                    write_body(out, &request)?;
+                }
                 write_body(out, &body)?;
             }
             Message::Notification(n) if n.method == "exit" => return Ok(stage == Stage::ShutDown),
@@ -194,6 +213,13 @@ fn error_body(id: RequestId, code: i32, message: String) -> String {
 fn notification_body(method: &str, params: &impl serde::Serialize) -> String {
     let params = serde_json::to_string(params).unwrap_or_else(|_| "null".into());
     format!(r#"{{"jsonrpc":"2.0","method":"{method}","params":{params}}}"#)
+}
+
+/// The request `method` with `params` and id `id`, as a message body.
+fn request_body(id: &RequestId, method: &str, params: &impl serde::Serialize) -> String {
+    let id = serde_json::to_string(id).unwrap_or_else(|_| "null".into());
+    let params = serde_json::to_string(params).unwrap_or_else(|_| "null".into());
+    format!(r#"{{"jsonrpc":"2.0","id":{id},"method":"{method}","params":{params}}}"#)
 }
 
 /// What `answer` gives, or an internal error when it panics: one bad
@@ -255,8 +281,13 @@ impl Server {
     }
 
     /// The response to request `req`.
-    fn answer(&self, req: &Request) -> Answer {
-        match features::answer(&self.docs, &req.method, &req.params) {
+    fn answer(&mut self, req: &Request) -> Answer {
+        let answered = match req.method.as_str() {
+            CodeActionRequest::METHOD => self.code_actions(&req.params),
+            ExecuteCommand::METHOD => self.execute(&req.params),
+            method => features::answer(&self.docs, method, &req.params),
+        };
+        match answered {
             Ok(Some(result)) => Ok(result),
             Ok(None) => Err((
                 ErrorCode::MethodNotFound as i32,
@@ -265,6 +296,40 @@ impl Server {
             Err(e) => Err((ErrorCode::InvalidParams as i32, e)),
         }
     }
+
+    /// The quick fixes asked for by `params`, as the client takes them.
+    fn code_actions(&self, params: &serde_json::Value) -> Result<Option<String>, String> {
+        let p: lsp_types::CodeActionParams = parse(params)?;
+        let fixes = edits::quick_fixes(
+            &self.docs,
+            &p.text_document.uri,
+            p.range,
+            &p.context.diagnostics,
+            self.literal_actions,
+        );
+        serde_json::to_string(&fixes)
+            .map(Some)
+            .map_err(|e| e.to_string())
+    }
+
+    /// Runs the command `params` names (a quick fix's): the edit is asked
+    /// of the client with `workspace/applyEdit`, and the answer is `null`.
+    fn execute(&mut self, params: &serde_json::Value) -> Result<Option<String>, String> {
+        let p: lsp_types::ExecuteCommandParams = parse(params)?;
+        let edit = edits::command_edit(&p)?;
+        self.sent = self.sent.wrapping_add(1);
+        let id = RequestId::from(format!("graftal-{}", self.sent));
+        self.requests
+            .push(request_body(&id, ApplyWorkspaceEdit::METHOD, &edit));
+        Ok(Some("null".into()))
+    }
+}
+
+/// Whether the client's capabilities (`initialize`'s `params`) say it
+/// takes code action literals rather than commands (LSP 3.8 and later).
+fn takes_literal_actions(params: &serde_json::Value) -> bool {
+    let at = "/capabilities/textDocument/codeAction/codeActionLiteralSupport";
+    params.pointer(at).is_some_and(|v| v.is_object())
 }
 
 /// The `publishDiagnostics` notification for `uri`, as a message body.

@@ -24,6 +24,8 @@ struct Client {
     next_id: i64,
     /// Notifications read while waiting for a response.
     notes: Vec<(Instant, Value)>,
+    /// What the server answered `initialize` with.
+    initialized: Value,
 }
 
 /// Reads framed messages (`Content-Length: N`, a blank line, N bytes).
@@ -60,9 +62,22 @@ fn read_messages(out: impl Read + Send + 'static) -> Receiver<(Instant, Value)> 
     rx
 }
 
+/// What the test client says it can take: code actions as literals, as
+/// VS Code, Neovim and Helix say.
+fn editor_capabilities() -> Value {
+    let kinds = json!({ "codeActionKind": { "valueSet": ["quickfix"] } });
+    json!({ "textDocument": { "codeAction": { "codeActionLiteralSupport": kinds } } })
+}
+
 impl Client {
-    /// Starts `graftal lsp` and initializes it.
+    /// Starts `graftal lsp` and initializes it as an editor does.
     fn start() -> Client {
+        Client::start_with(editor_capabilities())
+    }
+
+    /// Starts `graftal lsp` and initializes it, the client saying it has
+    /// `capabilities`.
+    fn start_with(capabilities: Value) -> Client {
         let mut child = Command::new(env!("CARGO_BIN_EXE_graftal"))
             .arg("lsp")
             .stdin(Stdio::piped())
@@ -79,12 +94,14 @@ impl Client {
             arrived: Instant::now(),
             next_id: 0,
             notes: Vec::new(),
+            initialized: Value::Null,
         };
-        let init = c.request("initialize", json!({ "capabilities": {} }));
+        let init = c.request("initialize", json!({ "capabilities": capabilities }));
         assert!(
             init["result"]["capabilities"]["hoverProvider"] == json!(true),
             "{init}"
         );
+        c.initialized = init["result"].clone();
         c.notify("initialized", json!({}));
         c
     }
@@ -323,6 +340,68 @@ fn definition_and_references_of_a_symbol() {
     // `F`: from the successor of line 4 to the production of line 5.
     let d = c.at("textDocument/definition", URI, 3, 6);
     assert_eq!(d["result"][0]["range"]["start"]["line"], 4, "{d}");
+    c.stop();
+}
+
+/// Hover, definition and references of a symbol in a file with an error
+/// on another line answer as they do in the file without that line: from
+/// what the recovering parse read of the parts that parse, in each
+/// notation with symbols.
+#[test]
+fn a_file_with_an_error_answers_about_its_other_parts() {
+    let dir = cpfg_object("recovered", &[]);
+    let cpfg = format!("file://{}", dir.join("plant.l").display());
+    let gft = "file:///tmp/graftal-lsp-test/recovered.gft";
+    // The file's text before the line with the error, that line, the text
+    // after it, and where a symbol is written before it.
+    let cases = [
+        (
+            URI,
+            "derivation length: 2\naxiom: X\nX --> F[+X]-X\n",
+            "Y --> F --> F\n",
+            "",
+            (1, 7),
+        ),
+        (
+            &cpfg,
+            "Lsystem: 1\nderivation length: 2\nAxiom: X\nX --> F[+X]-X\n",
+            "Y --> F(\n",
+            "endlsystem\n",
+            (2, 7),
+        ),
+        (
+            LINF_URI,
+            "lines f g\nangles (0, pi/2)\naxiom f\nrules f = f + f\n",
+            "g = (\n",
+            "",
+            (3, 10),
+        ),
+        (gft, "axiom X\nX -> F[+X]-X\n", "widht 3\n", "", (0, 6)),
+    ];
+    let mut c = Client::start();
+    let methods = [
+        "textDocument/hover",
+        "textDocument/definition",
+        "textDocument/references",
+    ];
+    for (uri, before, broken, after, (line, column)) in cases {
+        let ds = c.open(uri, &format!("{before}{after}"));
+        assert!(!ds.iter().any(|d| d["severity"] == 1), "{uri}: {ds:?}");
+        let clean: Vec<Value> = (methods.iter())
+            .map(|m| c.at(m, uri, line, column)["result"].clone())
+            .collect();
+        let ds = c.change(uri, 2, &format!("{before}{broken}{after}"));
+        assert!(ds.iter().any(|d| d["severity"] == 1), "{uri}: {ds:?}");
+        for (method, clean) in methods.iter().zip(&clean) {
+            let found = c.at(method, uri, line, column)["result"].clone();
+            assert!(
+                found.is_object() || found.as_array().is_some_and(|a| !a.is_empty()),
+                "{uri} {method}: {found}"
+            );
+            assert_eq!(&found, clean, "{uri} {method}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
     c.stop();
 }
 
@@ -815,18 +894,7 @@ fn a_code_written_in_a_comment_hovers_with_its_explanation() {
 
 /// The quick fixes offered over the range of diagnostic `d` of `uri`.
 fn quick_fixes(c: &mut Client, uri: &str, d: &Value) -> Vec<Value> {
-    let r = c.request(
-        "textDocument/codeAction",
-        json!({
-            "textDocument": { "uri": uri },
-            "range": d["range"],
-            "context": { "diagnostics": [d] },
-        }),
-    );
-    r["result"]
-        .as_array()
-        .unwrap_or_else(|| panic!("{r}"))
-        .clone()
+    code_actions(c, uri, d["range"].clone(), &[d])
 }
 
 /// `text` with the single edit of quick fix `fix` made.
@@ -892,6 +960,121 @@ fn quick_fixes_make_the_suggested_replacement() {
         assert!(!left.iter().any(|d| d["code"] == code), "{code}: {left:?}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+/// The code actions over `range` of `uri`, the client listing `listed`.
+fn code_actions(c: &mut Client, uri: &str, range: Value, listed: &[&Value]) -> Vec<Value> {
+    let r = c.request(
+        "textDocument/codeAction",
+        json!({
+            "textDocument": { "uri": uri },
+            "range": range,
+            "context": { "diagnostics": listed },
+        }),
+    );
+    r["result"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{r}"))
+        .clone()
+}
+
+/// Each diagnostic of a malformed arrow offers its fix however it is asked
+/// for: over its range (VS Code), over a cursor inside it, and over the
+/// cursor at its line's start with the line's diagnostics listed (Neovim);
+/// in pfg (each arrow of a file of several), cpfg and LinF.
+#[test]
+fn every_arrow_diagnostic_offers_its_fix_wherever_it_is_asked() {
+    let dir = cpfg_object("arrows", &[]);
+    let cpfg = format!("file://{}", dir.join("plant.l").display());
+    let cases = [
+        (
+            URI,
+            "derivation length: 2\naxiom: F\nF -> F+F\nG => FF\nH ==> F\n",
+            3,
+        ),
+        (
+            &cpfg,
+            "Lsystem: 1\nderivation length: 2\nAxiom: F\nF -> F+F\nG -> FF\nendlsystem\n",
+            2,
+        ),
+        (LINF_URI, "lines f\naxiom f\nrules f -> f + f\n", 1),
+    ];
+    let mut c = Client::start();
+    let arrows = |ds: &[Value]| ds.iter().filter(|d| d["code"] == "E0005").count();
+    for (uri, text, n) in cases {
+        let ds = c.open(uri, text);
+        assert_eq!(arrows(&ds), n, "{uri}: {ds:?}");
+        for (k, d) in ds.iter().filter(|d| d["code"] == "E0005").enumerate() {
+            let line = &d["range"]["start"]["line"];
+            let inside = &d["range"]["start"]["character"].as_u64().unwrap() + 1;
+            let cursor = |column: u64| {
+                let at = json!({ "line": line, "character": column });
+                json!({ "start": at, "end": at })
+            };
+            let asked = [
+                code_actions(&mut c, uri, d["range"].clone(), &[d]),
+                code_actions(&mut c, uri, cursor(inside), &[]),
+                code_actions(&mut c, uri, cursor(0), &[d]),
+            ];
+            for fixes in &asked {
+                assert_eq!(fixes.len(), 1, "{uri} arrow {k}: {fixes:?}");
+                assert_eq!(fixes[0]["edit"], asked[0][0]["edit"], "{uri} arrow {k}");
+            }
+            let left = c.change(uri, 2, &apply(text, uri, &asked[0][0]));
+            assert_eq!(arrows(&left), n - 1, "{uri} arrow {k}: {left:?}");
+            c.change(uri, 3, text);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    c.stop();
+}
+
+/// A client that takes no code action literals (no
+/// `codeActionLiteralSupport`) gets each quick fix as a command the server
+/// advertises; running it has the server ask the client to make the fix
+/// (`workspace/applyEdit`), and the server goes on after the client's
+/// answer to that and after commands it cannot run.
+#[test]
+fn a_client_without_code_action_literals_gets_commands_that_apply_the_fix() {
+    let mut c = Client::start_with(json!({}));
+    let commands = &c.initialized["capabilities"]["executeCommandProvider"]["commands"];
+    assert_eq!(*commands, json!(["graftal.applyFix"]), "{}", c.initialized);
+    let text = "derivation length: 2\naxiom: F\nF -> F+F\nG --> FF\n";
+    let ds = c.open(URI, text);
+    let d = (ds.iter().find(|d| d["code"] == "E0005")).unwrap_or_else(|| panic!("{ds:?}"));
+    let actions = quick_fixes(&mut c, URI, d);
+    assert_eq!(actions.len(), 1, "{actions:?}");
+    let command = &actions[0];
+    assert_eq!(command["command"], "graftal.applyFix", "{command}");
+    assert!(
+        command.get("edit").is_none(),
+        "not a code action: {command}"
+    );
+    let run = json!({ "command": command["command"], "arguments": command["arguments"] });
+    let r = c.request("workspace/executeCommand", run);
+    assert_eq!(r["result"], Value::Null, "{r}");
+    let (_, asked) = (c.notes.iter())
+        .find(|(_, m)| m["method"] == "workspace/applyEdit")
+        .unwrap_or_else(|| panic!("no workspace/applyEdit: {:?}", c.notes))
+        .clone();
+    assert!(
+        asked["id"].is_string() || asked["id"].is_number(),
+        "{asked}"
+    );
+    let fixed = apply(text, URI, &asked["params"]);
+    assert_eq!(fixed, text.replace("F -> F", "F --> F"));
+    c.send(json!({ "jsonrpc": "2.0", "id": asked["id"], "result": { "applied": true } }));
+    for bad in [
+        json!({ "command": "graftal.nothing" }),
+        json!({ "command": "graftal.applyFix", "arguments": [1, 2] }),
+        json!({ "command": "graftal.applyFix", "arguments": [{ "edit": 3 }] }),
+    ] {
+        let r = c.request("workspace/executeCommand", bad);
+        assert!(r["error"]["message"].is_string(), "{r}");
+    }
+    let left = c.change(URI, 2, &fixed);
+    assert!(!left.iter().any(|d| d["code"] == "E0005"), "{left:?}");
     c.stop();
 }
 

@@ -200,7 +200,11 @@ pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Lexed<'src> {
                         "LinF writes `=`, not `->`",
                     )
                     .with_label("read as `=`")
-                    .with_help("write the rule as `name = string`"),
+                    .with_fix(
+                        minus.start..span.end,
+                        "=".into(),
+                        "write the rule as `name = string`".into(),
+                    ),
                 );
                 tokens.push((Token::Eq, minus.start..span.end));
             }

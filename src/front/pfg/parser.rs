@@ -278,7 +278,12 @@ fn build_rule(
                 format!("malformed arrow `{s}`"),
             )
             .with_label("pfg writes the arrow as `-->`")
-            .with_help(format!("replace `{s}` with `-->`")),
+            // A fix, not help alone: an editor offers it.
+            .with_fix(
+                range(arrow.1),
+                "-->".into(),
+                format!("replace `{s}` with `-->`"),
+            ),
         );
     }
     let (left, pred, right) = contexts(&parts, &seps, diags)?;
