@@ -23,15 +23,20 @@ pub const STDLIB: &str = "stdlib";
 /// or written, a picture that cannot be made (exit status 2).
 pub const ERROR: &str = "error";
 
-/// `value`, an object, as one line of JSON with its `type`.
+/// `value`, an object, as one line of JSON with its `type` first. The
+/// object is written as it serialises, not through a `Value`, so that
+/// numbers past `f64` (exact counts, written raw) keep every digit.
 pub fn line(kind: &str, value: impl Serialize) -> String {
+    let kind_field = format!("\"type\":{}", Value::from(kind));
     // The values written are plain data (no maps keyed by non-strings), so
     // this does not fail; if it ever did, the record still says its type.
-    let mut v = serde_json::to_value(value).unwrap_or_else(|e| json!({ "message": e.to_string() }));
-    if let Value::Object(fields) = &mut v {
-        fields.insert("type".into(), kind.into());
+    let text = serde_json::to_string(&value)
+        .unwrap_or_else(|e| json!({ "message": e.to_string() }).to_string());
+    match text.strip_prefix('{') {
+        Some("}") => format!("{{{kind_field}}}\n"),
+        Some(rest) => format!("{{{kind_field},{rest}\n"),
+        None => format!("{{{kind_field},\"value\":{text}}}\n"),
     }
-    format!("{v}\n")
 }
 
 /// An [`ERROR`] record: `message`, and `help` (null without).
@@ -49,5 +54,21 @@ mod tests {
         assert_eq!(v, json!({ "type": "stats", "steps": 2 }));
         let v: Value = serde_json::from_str(&error("no", None)).unwrap();
         assert_eq!(v, json!({ "type": "error", "message": "no", "help": null }));
+        assert_eq!(line(FILES, json!({})), "{\"type\":\"files\"}\n");
+        // A number past u64 written raw keeps its digits.
+        let big: Box<serde_json::value::RawValue> = serde_json::value::RawValue::from_string(
+            "340282366920938463463374607431768211456".into(),
+        )
+        .unwrap();
+        let written = line(STATS, json!({ "steps": 2 }));
+        assert_eq!(written, "{\"type\":\"stats\",\"steps\":2}\n");
+        #[derive(Serialize)]
+        struct Big {
+            segments: Box<serde_json::value::RawValue>,
+        }
+        assert_eq!(
+            line(STATS, Big { segments: big }),
+            "{\"type\":\"stats\",\"segments\":340282366920938463463374607431768211456}\n"
+        );
     }
 }
