@@ -2,7 +2,7 @@
 
 use super::derive::{derive_values, RunOptions};
 use super::load::{compile_as, Compiled};
-use crate::diagnostics::Diagnostic;
+use crate::diagnostics::{codes, Diagnostic};
 use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::Deriver;
 use crate::front::Front;
@@ -83,7 +83,14 @@ fn derivation_limits(front: &dyn Front, sys: &System, max: usize) -> Option<Diag
         }
     };
     let mut d = result.err()?;
-    d.severity = crate::diagnostics::Severity::Warning;
+    // The file is valid; the limit is `derive`'s: a warning, with a code
+    // of its own (a warning never carries an error's code).
+    d.code = match d.code {
+        codes::TOO_MANY_SYMBOLS => codes::DERIVE_WOULD_EXCEED_SYMBOLS,
+        codes::TOO_MUCH_WORK => codes::DERIVE_WOULD_TAKE_TOO_LONG,
+        other => other,
+    };
+    d.severity = d.code.severity();
     Some(if capped {
         d.with_note(format!(
             "`check` derives up to {max} symbols and stops here; `graftal derive` allows {} \

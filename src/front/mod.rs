@@ -358,9 +358,15 @@ pub fn choose_entry(file_name: &str, title: &str, lib: &Library) -> Diagnostic {
 /// is one line, and a library may have 100,000 entries.
 pub const LISTED_NAMES: usize = 20;
 
+/// The most characters of names a list shows: a diagnostic's text is cut
+/// in the middle past 200 characters, which would drop names from the
+/// middle of the list without saying how many.
+const LISTED_WIDTH: usize = 150;
+
 /// `names` separated by commas (each in backticks when `quoted`), the
-/// first [`LISTED_NAMES`] of them, then how many more there are. Only
-/// those shown are read from `names`.
+/// first [`LISTED_NAMES`] of them (fewer when long names would pass
+/// [`LISTED_WIDTH`]), then how many more there are. Only those shown are
+/// read from `names`.
 pub fn name_list<'a, I>(names: I, quoted: bool) -> String
 where
     I: IntoIterator<Item = &'a str>,
@@ -368,20 +374,26 @@ where
 {
     let names = names.into_iter();
     let total = names.len();
-    let shown: Vec<String> = names
-        .take(LISTED_NAMES)
-        .map(|n| {
-            if quoted {
-                format!("`{n}`")
-            } else {
-                n.to_string()
-            }
-        })
-        .collect();
+    let mut shown: Vec<String> = Vec::new();
+    let mut width = 0;
+    for n in names.take(LISTED_NAMES) {
+        let n = if quoted {
+            format!("`{n}`")
+        } else {
+            n.to_string()
+        };
+        width += n.chars().count() + 2;
+        // The first name is always shown, however long.
+        if width > LISTED_WIDTH && !shown.is_empty() {
+            break;
+        }
+        shown.push(n);
+    }
+    let more = total - shown.len();
     let shown = shown.join(", ");
-    match total.checked_sub(LISTED_NAMES) {
-        Some(more) if more > 0 => format!("{shown}, … and {more} more"),
-        _ => shown,
+    match more {
+        0 => shown,
+        more => format!("{shown}, … and {more} more"),
     }
 }
 
@@ -427,6 +439,24 @@ mod tests {
         assert_eq!(named("linf", fr), "linf");
         assert_eq!(named("stl", fr), "stl");
         assert_eq!(named("l", ""), "pfg");
+    }
+
+    #[test]
+    fn long_names_are_listed_whole_then_counted() {
+        let long: Vec<String> = (0..30)
+            .map(|i| format!("SomeRatherLongEntryName{i}"))
+            .collect();
+        let listed = name_list(long.iter().map(String::as_str), false);
+        assert!(listed.chars().count() < 200, "{listed}");
+        let shown = listed.matches("SomeRatherLongEntryName").count();
+        assert!(
+            listed.ends_with(&format!(", … and {} more", 30 - shown)),
+            "{listed}"
+        );
+        // Each name shown is whole, in order from the first.
+        for (k, name) in listed.split(", ").take(shown).enumerate() {
+            assert_eq!(name, long[k]);
+        }
     }
 
     #[test]

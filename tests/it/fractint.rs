@@ -504,3 +504,41 @@ fn translating_fractint_only_commands_is_an_error_or_lossy() {
     assert_eq!(o.status, 1);
     assert!(o.stderr.contains("second heading"), "{}", o.stderr);
 }
+
+/// A library of one entry is drawn without choosing, and `check` does not
+/// ask to choose one.
+#[test]
+fn a_library_of_one_entry_is_not_asked_to_choose() {
+    let path = temp("one.l");
+    std::fs::write(&path, "Only {\n  Angle 4\n  Axiom F\n  F=F+F\n}\n").unwrap();
+    let path = path.to_str().unwrap();
+    let o = graftal(&["check", path]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    assert!(o.stdout.contains("1 entry"), "{}", o.stdout);
+    assert!(!o.stdout.contains("choose one"), "{}", o.stdout);
+    let o = graftal(&["derive", path, "-n", "1", "-o", "-"]);
+    assert_eq!((o.status, o.stdout.trim()), (0, "f+f"), "{}", o.stderr);
+}
+
+/// The entries E0707 lists are whole names, the first ones, then how many
+/// more: long names are not cut from the middle of the list.
+#[test]
+fn the_entries_to_choose_from_are_listed_whole() {
+    let path = temp("long.l");
+    let text: String = (0..30)
+        .map(|i| format!("SomeRatherLongEntryName{i} {{\n Angle 4\n Axiom F\n F=F+F\n}}\n"))
+        .collect();
+    std::fs::write(&path, text).unwrap();
+    let o = graftal(&["render", path.to_str().unwrap(), "--to", "svg", "-o", "-"]);
+    assert!(o.stderr.contains("E0707"), "{}", o.stderr);
+    let note = (o.stderr.lines())
+        .find(|l| l.contains("note: entries:"))
+        .unwrap_or_else(|| panic!("{}", o.stderr));
+    let listed = note.split("entries: ").nth(1).unwrap();
+    let (names, more) = listed.split_once(", … and ").expect("how many more");
+    let names: Vec<&str> = names.split(", ").collect();
+    for (k, name) in names.iter().enumerate() {
+        assert_eq!(*name, format!("SomeRatherLongEntryName{k}"), "{note}");
+    }
+    assert_eq!(more, format!("{} more", 30 - names.len()));
+}

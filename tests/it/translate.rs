@@ -321,8 +321,8 @@ fn several_linf_line_symbols_become_markers_before_pfg_f() {
     let c = compile("t.linf", src);
     let t = translate(&c, target("pfg"), false);
     let text = t.text.expect("exact");
-    assert!(text.contains("* < F > * --> *"), "{text}");
-    assert!(text.contains("* < f > * --> *"), "{text}");
+    assert!(text.contains("\nF --> *\n"), "{text}");
+    assert!(text.contains("\nf --> *"), "{text}");
     let out = compile("t.l", &text);
     assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
     same_drawing(
@@ -495,14 +495,8 @@ fn comments_are_carried_over_where_they_attach() {
     assert!(linf.contains("# the stem doubles\n  F = FF"), "{linf}");
     assert!(linf.contains("X = F[+X][-X]FX  # apex"), "{linf}");
     let pfg = translate(&c, target("pfg"), false).text.unwrap();
-    assert!(
-        pfg.contains("/* the stem doubles */\n* < F > * --> FF"),
-        "{pfg}"
-    );
-    assert!(
-        pfg.contains("* < X > * --> F[+X][-X]FX /* apex */"),
-        "{pfg}"
-    );
+    assert!(pfg.contains("/* the stem doubles */\nF --> FF"), "{pfg}");
+    assert!(pfg.contains("X --> F[+X][-X]FX /* apex */"), "{pfg}");
     // Formatting is canonical: translating the output again changes nothing
     // but the first line.
     let again = translate(&compile("b2.l", &pfg), target("pfg"), false)
@@ -909,4 +903,20 @@ fn a_refused_interval_is_quoted_as_written() {
         "{}",
         o.stderr
     );
+}
+
+/// pfg written by `translate` is the book's short form where a production
+/// has no context (`F --> …`), and has no `ignore:` line when nothing is
+/// ignored; with contexts, the full form and the ignore list stay.
+#[test]
+fn pfg_is_written_in_the_books_short_form_without_contexts() {
+    let c = std_entry("koch-island", "k.l");
+    let text = translate(&c, target("pfg"), false).text.unwrap();
+    assert!(text.contains("\nF --> F+F-F-FF+F+F-F\n"), "{text}");
+    assert!(!text.contains("* <") && !text.contains("ignore:"), "{text}");
+    let c = std_entry("hogeweg-hesper-a", "h.l");
+    let text = translate(&c, target("pfg"), false).text.unwrap();
+    assert!(text.contains("\n1 < 1 > 0 --> 0\n"), "{text}");
+    assert!(text.contains("\n+ --> -\n"), "{text}");
+    assert!(text.contains("\nignore: "), "{text}");
 }

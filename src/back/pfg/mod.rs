@@ -2,9 +2,10 @@
 //! listing, so that the listing itself could read it.
 //!
 //! * Headers in the listing's order (`derivation length`, `angle factor`,
-//!   `scale factor`, `axiom`, `ignore`), then one production per line in
-//!   the full form `lc < pred > rc --> succ`, `*` for an empty part, and
-//!   `: weight` on the alternatives of a random choice.
+//!   `scale factor`, `axiom`, `ignore` when a context needs one), then one
+//!   production per line: the book's short form `pred --> succ` without
+//!   contexts, else the full form `lc < pred > rc --> succ` with `*` for an
+//!   empty part, and `: weight` on the alternatives of a random choice.
 //! * Symbols are single characters. A source symbol keeps its name when it
 //!   is one free character (`_c` and `_xHH`, the LinF spellings of pfg
 //!   characters, are read back as `c` and the character HH); otherwise it
@@ -402,7 +403,12 @@ fn production(
         return None;
     };
     let star = |s: String| if s.is_empty() { "*".to_string() } else { s };
-    let head = format!("{} < {} > {} -->", star(lc), pred, star(rc));
+    // The book's short form where there is no context: `F --> FF`.
+    let head = if lc.is_empty() && rc.is_empty() {
+        format!("{pred} -->")
+    } else {
+        format!("{} < {} > {} -->", star(lc), pred, star(rc))
+    };
     let comment = e.attached_to(span.as_ref());
     if let Some(Attached::Above(c)) = &comment {
         lines.push(comment_block(c));
@@ -452,15 +458,15 @@ fn pair_rules(
         for s in syms {
             if let Some(Spelling::Pair(m, b)) = sp.spell.get(s) {
                 if !rewritten_alone.contains(s) {
-                    lines.push(format!("* < {m} > * --> {m}{b}"));
+                    lines.push(format!("{m} --> {m}{b}"));
                 }
             }
         }
-        lines.push(format!("* < {base} > * --> *"));
+        lines.push(format!("{base} --> *"));
         e.exact(
             format!("the drawing symbols written `{base}` after a marker"),
             None,
-            &format!("* < {base} > * --> *"),
+            &format!("{base} --> *"),
         );
     }
 }
@@ -531,7 +537,10 @@ fn text(e: &Emitter<'_>, n: u64, axiom: &str, ignore: &str, lines: &[String]) ->
         number(sys.settings.scale.clamp(0.0, 100.0))
     );
     let _ = writeln!(out, "axiom: {axiom}");
-    let _ = writeln!(out, "{}", format!("ignore: {ignore}").trim_end());
+    // An empty ignore list is the default: not written.
+    if !ignore.trim().is_empty() {
+        let _ = writeln!(out, "ignore: {ignore}");
+    }
     for l in lines {
         out.push_str(l);
         out.push('\n');

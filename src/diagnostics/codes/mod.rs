@@ -385,6 +385,20 @@ e.g. `a --> b`, `b --> a` for a billion steps.
 Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
 
+    DERIVE_WOULD_EXCEED_SYMBOLS = "W0301", "`derive` would stop at the symbol limit",
+"`graftal check` derives the file as `graftal derive` would, and the word
+would grow past the symbol limit (E0301 there). The file itself is valid,
+so `check` says it as a warning: `derive` (and drawing segment by segment)
+will stop with E0301 at this step, unless given fewer steps (`-n`) or a
+higher `--max-symbols`. A context-free picture drawn from its shared
+subtrees (`render`, `stats`) is not limited this way.";
+
+    DERIVE_WOULD_TAKE_TOO_LONG = "W0302", "`derive` would take too long",
+"`graftal check` derives the file as `graftal derive` would, and the
+derivation would rewrite more symbols over all its steps than the work
+limit allows (E0302 there). The file itself is valid, so `check` says it as
+a warning: `derive` will stop with E0302 unless given fewer steps (`-n`).";
+
     TOO_MUCH_GEOMETRY = "E0303", "picture too large to draw",
 "The derived word moves the turtle more times than graftal draws segment
 by segment (30 million): every move becomes a segment or a point held in

@@ -144,10 +144,19 @@ fn read_library(
             }
         }
     }
+    // One entry is drawn without being chosen: nothing to ask for.
+    let choose = match lib.entries.len() {
+        1 => "drawn without choosing",
+        _ => "choose one with FILE:NAME or --entry NAME",
+    };
     lib.summary = format!(
-        "Fractint, {} {} (choose one with FILE:NAME or --entry NAME; -n sets the order, default {} as in Fractint)",
+        "Fractint, {} {} ({choose}; -n sets the order, default {} as in Fractint)",
         lib.entries.len(),
-        if lib.entries.len() == 1 { "entry" } else { "entries" },
+        if lib.entries.len() == 1 {
+            "entry"
+        } else {
+            "entries"
+        },
         DEFAULT_ORDER
     );
     (lib, lowered)
