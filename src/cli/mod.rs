@@ -633,9 +633,14 @@ fn explain(io: &mut Io<'_>, code: &str) -> i32 {
     0
 }
 
-/// `graftal explain` without a code: every code and its title, a line each.
+/// `graftal explain` without a code: every code and its title, a line each,
+/// sorted so that a code is found where its number says: the errors, then
+/// the warnings, each by number (the registry keeps them by front end).
 fn explain_all(io: &mut Io<'_>) -> i32 {
-    for info in diagnostics::codes::all() {
+    let mut infos: Vec<_> = diagnostics::codes::all().collect();
+    // `E` sorts before `W`, and every number has four digits.
+    infos.sort_by_key(|info| info.code);
+    for info in infos {
         let _ = writeln!(io.stdout, "{}  {}", info.code, info.title);
     }
     let _ = writeln!(

@@ -629,14 +629,43 @@ fn explain_without_a_code_lists_the_codes() {
         .lines()
         .filter_map(|l| l.split_once("  ").map(|(code, _)| code))
         .collect();
-    let all: Vec<&str> = graftal::diagnostics::codes::all()
+    let mut all: Vec<&str> = graftal::diagnostics::codes::all()
         .map(|i| i.code.0)
         .collect();
+    all.sort_unstable();
     assert_eq!(listed, all);
     assert!(o.stdout.contains("E0014  empty file\n"), "{}", o.stdout);
     assert!(o
         .stdout
         .contains("W0808  malformed view-file value ignored\n"));
+}
+
+/// `graftal explain`'s listing is sorted: every error, then every warning,
+/// each by its number, so that E0001 comes first and a code is found where
+/// its number says (the registry keeps them by front end).
+#[test]
+fn explain_lists_errors_then_warnings_each_by_number() {
+    let o = graftal(&["explain"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let listed: Vec<(char, u32)> = o
+        .stdout
+        .lines()
+        .filter_map(|l| l.split_once("  "))
+        .map(|(code, _)| {
+            let (kind, number) = code.split_at(1);
+            (kind.chars().next().unwrap(), number.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(listed.first(), Some(&('E', 1)), "{}", o.stdout);
+    let out_of_order: Vec<_> = listed.windows(2).filter(|w| w[0] >= w[1]).collect();
+    assert!(out_of_order.is_empty(), "{out_of_order:?}");
+    let first_warning = listed.iter().position(|(kind, _)| *kind == 'W');
+    assert!(
+        listed[first_warning.unwrap()..]
+            .iter()
+            .all(|(k, _)| *k == 'W'),
+        "errors first, then warnings"
+    );
 }
 
 /// `check` of a valid file says which notation it read, and how much.
