@@ -351,6 +351,71 @@ fn render_dash_without_a_format_is_a_usage_error_with_help() {
     assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
 }
 
+/// What `render` writes but cannot do is a usage error, not ignored: an
+/// animation into a mesh's file, a frame rate with no animation.
+#[test]
+fn animation_options_that_cannot_apply_are_usage_errors() {
+    let dir = temp("render-animate-misuse");
+    let args = ["render", "std:koch-island", "-n", "1", "--size", "20x20"];
+    for (extra, wrong, what_to_do) in [
+        (
+            &["--animate", "-o", "x.obj"][..],
+            "names a mesh (.obj)",
+            "drop `--animate`",
+        ),
+        (
+            &["--animate", "-o", "x.glb"][..],
+            "names a mesh (.glb)",
+            "….gif",
+        ),
+        (
+            &["--fps", "5", "-o", "x.png"][..],
+            "no `--animate`",
+            "add `--animate`",
+        ),
+        (
+            &["--fps", "5", "-o", "x.ply"][..],
+            "no `--animate`",
+            "drop `--fps`",
+        ),
+    ] {
+        let o = binary_in(&dir, &[&args[..], extra].concat());
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.contains(wrong), "{extra:?}: {err}");
+        assert!(
+            err.contains("help:") && err.contains(what_to_do),
+            "{extra:?}: {err}"
+        );
+    }
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+    // With `--animate`, `--fps` is taken.
+    let o = binary_in(
+        &dir,
+        &[&args[..], &["--animate", "--fps", "5", "-o", "a.gif"]].concat(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+}
+
+/// `render --help` and the error for an extension graftal does not write
+/// name every format it writes, from the list the code looks names up in.
+#[test]
+fn render_help_and_a_bad_extension_name_every_format_written() {
+    use graftal::driver::picture::Target;
+    let help = graftal(&["render", "--help"]);
+    assert_eq!(help.status, 0, "{}", help.stderr);
+    let bad = graftal(&["render", "std:koch-island", "-o", "x.bmp"]);
+    assert_eq!(bad.status, 2, "{}", bad.stderr);
+    assert!(bad.stderr.contains("help:"), "{}", bad.stderr);
+    let targets: Vec<Target> = Target::all().collect();
+    assert_eq!(targets.len(), 7, "PNG, SVG, OBJ, PLY, GLB, GIF, APNG");
+    for t in targets {
+        let named = format!("{} (.{}", t.name(), t.extension());
+        assert!(help.stdout.contains(&named), "{named}: {}", help.stdout);
+        assert!(bad.stderr.contains(&named), "{named}: {}", bad.stderr);
+    }
+}
+
 #[test]
 fn a_binary_png_is_not_written_to_a_terminal() {
     let args = ["render", "std:koch-island", "--size", "20x20", "-o", "-"];
