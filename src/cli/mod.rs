@@ -169,8 +169,9 @@ struct RenderArgs {
     /// merged, coordinates to a tenth of a pixel) or full (every segment).
     #[arg(long, default_value = "merged", value_parser = clap::builder::PossibleValuesParser::new(crate::render::Detail::NAMES))]
     detail: String,
-    /// Draw steps 0..N as the frames of an animation, all framed as the
-    /// last: `-o OUT.gif`, or `-o OUT.png` for an animated PNG.
+    /// Draw steps 0..N as the frames of an animation, from the first step
+    /// that draws anything, all framed as the last: `-o OUT.gif`, or
+    /// `-o OUT.png` for an animated PNG.
     #[arg(long)]
     animate: bool,
     /// Frames per second of `--animate` [default: 10].

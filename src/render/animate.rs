@@ -1,4 +1,4 @@
-//! Growth animations: the pictures of steps 0..N as the frames of an
+//! Growth animations: the pictures of steps up to N as the frames of an
 //! animated GIF ([`gif`](::gif)) or APNG (the `png` crate's animation
 //! control). Every frame is fitted as the last one is
 //! ([`super::RenderOptions::framing`]), so the plant grows in place rather

@@ -79,7 +79,8 @@ pub enum Target {
     Still(Format),
     /// A mesh: OBJ (with its material library as a side file), PLY, glTF.
     Mesh(MeshFormat),
-    /// The steps 0..=N as the frames of a GIF or an animated PNG.
+    /// The steps up to N, from the first that draws anything, as the
+    /// frames of a GIF or an animated PNG.
     Animation(Container),
 }
 
