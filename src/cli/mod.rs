@@ -122,8 +122,8 @@ struct DeriveCmd {
 struct RenderArgs {
     #[command(flatten)]
     args: DeriveArgs,
-    /// Output file: .png or .svg; `-` is standard output (with `--to`).
-    #[arg(short = 'o', long = "output")]
+    // The help lists the formats from the code that writes them.
+    #[arg(short = 'o', long = "output", help = output_help())]
     output: String,
     /// Picture format: png or svg [default: by the output's extension].
     /// Needed with `-o -`; `--format` is the diagnostics' format.
@@ -169,13 +169,24 @@ struct RenderArgs {
     /// merged, coordinates to a tenth of a pixel) or full (every segment).
     #[arg(long, default_value = "merged", value_parser = clap::builder::PossibleValuesParser::new(crate::render::Detail::NAMES))]
     detail: String,
-    /// Draw steps 0..N as the frames of an animation, all framed as the
-    /// last: `-o OUT.gif`, or `-o OUT.png` for an animated PNG.
+    /// Draw steps 0..N as the frames of an animation, from the first step
+    /// that draws anything, all framed as the last: `-o OUT.gif`, or
+    /// `-o OUT.png` for an animated PNG.
     #[arg(long)]
     animate: bool,
-    /// Frames per second of `--animate`.
-    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=100))]
-    fps: u32,
+    /// Frames per second of `--animate` [default: 10].
+    // No default here: `--fps` without `--animate` is refused, so whether it
+    // was given must show.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100))]
+    fps: Option<u32>,
+}
+
+/// The help of `render -o`: every format graftal writes, by extension.
+fn output_help() -> String {
+    format!(
+        "Output file, in the format its extension names: {}; `-` is standard output (with `--to`)",
+        output::formats_written()
+    )
 }
 
 fn parse_stroke_width(s: &str) -> Result<f64, String> {
@@ -212,8 +223,8 @@ enum Command {
     },
     /// Print the derived word after N steps (to stdout, or to `-o FILE`).
     Derive(DeriveCmd),
-    /// Draw the system to a PNG or SVG file (by the output's extension or
-    /// `--to`); `-o - --to svg` writes to standard output.
+    /// Draw the system to a picture, a mesh or an animation (by the output's
+    /// extension or `--to`); `-o - --to svg` writes to standard output.
     Render(RenderArgs),
     /// Translate a file to another notation (pfg, LinF, STL or gft); what the
     /// target cannot express is an error, or a warning with --lossy.
@@ -497,7 +508,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             detail: crate::render::Detail::from_name(&a.detail).unwrap_or_default(),
             spline: a.spline,
             layout: !a.no_layout,
-            fps: a.fps,
+            fps: a.fps.unwrap_or(picture::DEFAULT_FPS),
             material_library: material_library(&a.output),
         };
         let mut bars = Bars::new(io);
@@ -520,7 +531,29 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
 /// extension (`.obj`, `.ply`, `.glb`), an animation with `--animate`, else
 /// a still picture in the format `--to` or the extension names.
 fn render_target(io: &Io<'_>, a: &RenderArgs) -> Result<(picture::Target, Output), UsageError> {
+    if let (Some(fps), false) = (a.fps, a.animate) {
+        return Err(UsageError {
+            message: format!(
+                "`--fps {fps}` is the frame rate of an animation, but there is no `--animate`"
+            ),
+            help: "add `--animate` to draw the steps as the frames of a GIF or an animated PNG, \
+                   or drop `--fps`"
+                .into(),
+        });
+    }
     if let Some(mesh) = crate::mesh::MeshFormat::from_path(&a.output).filter(|_| a.to.is_none()) {
+        if a.animate {
+            let ext = picture::Target::Mesh(mesh).extension();
+            return Err(UsageError {
+                message: format!(
+                    "`--animate` writes a GIF or an animated PNG, but `{}` names a mesh (.{ext})",
+                    a.output
+                ),
+                help: "name the output `….gif` or `….png`, or drop `--animate` for the mesh of \
+                       the last step"
+                    .into(),
+            });
+        }
         return Ok((picture::Target::Mesh(mesh), Output::File(a.output.clone())));
     }
     let output = Output::from_arg(Some(&a.output));
@@ -633,9 +666,14 @@ fn explain(io: &mut Io<'_>, code: &str) -> i32 {
     0
 }
 
-/// `graftal explain` without a code: every code and its title, a line each.
+/// `graftal explain` without a code: every code and its title, a line each,
+/// sorted so that a code is found where its number says: the errors, then
+/// the warnings, each by number (the registry keeps them by front end).
 fn explain_all(io: &mut Io<'_>) -> i32 {
-    for info in diagnostics::codes::all() {
+    let mut infos: Vec<_> = diagnostics::codes::all().collect();
+    // `E` sorts before `W`, and every number has four digits.
+    infos.sort_by_key(|info| info.code);
+    for info in infos {
         let _ = writeln!(io.stdout, "{}  {}", info.code, info.title);
     }
     let _ = writeln!(

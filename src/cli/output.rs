@@ -1,7 +1,20 @@
 //! Where a command writes, and the picture format it writes there: what
 //! the command line says, checked before anything is read.
 
+use crate::driver::picture::Target;
 use crate::driver::Format;
+
+/// The formats `render` writes, for its help and its errors: each with its
+/// extension, an animation's with `--animate`. Made from [`Target::all`],
+/// so that a format added there is named here.
+pub fn formats_written() -> String {
+    let named = |t: Target| match t {
+        Target::Animation(_) => format!("{} (.{}, with --animate)", t.name(), t.extension()),
+        Target::Still(_) | Target::Mesh(_) => format!("{} (.{})", t.name(), t.extension()),
+    };
+    Target::all().map(named).collect::<Vec<_>>().join(", ")
+}
+
 /// Where a command writes its result: `-o -`, like no `-o`, is standard
 /// output; anything else is a file's path (a file named `-` is `-o ./-`).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -59,8 +72,12 @@ pub fn picture_format(
         (Output::File(path), to) => match (Format::from_path(path), to) {
             (None, None) => {
                 return Err(UsageError {
-                    message: format!("cannot tell the picture format of `{path}`"),
-                    help: "end the file name in .png or .svg, or add `--to png` or `--to svg`"
+                    message: format!(
+                        "cannot tell the format of `{path}`: graftal writes {}",
+                        formats_written()
+                    ),
+                    help: "end the file name in one of these extensions, or add `--to png` or \
+                           `--to svg`"
                         .into(),
                 })
             }

@@ -48,15 +48,27 @@ pub enum MeshFormat {
 }
 
 impl MeshFormat {
+    /// Every mesh format. An output's extension is looked up here, so a
+    /// format missing from this list could not be written, and the help
+    /// that lists it ([`crate::driver::picture::Target::all`]) cannot
+    /// miss one that can.
+    pub const ALL: [MeshFormat; 3] = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Glb];
+
+    /// The format's extension, which names it.
+    pub fn extension(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "obj",
+            MeshFormat::Ply => "ply",
+            MeshFormat::Glb => "glb",
+        }
+    }
+
     /// The format for an output path, by its extension (any case).
     pub fn from_path(path: &str) -> Option<MeshFormat> {
         let ext = std::path::Path::new(path).extension()?.to_str()?;
-        match ext.to_ascii_lowercase().as_str() {
-            "obj" => Some(MeshFormat::Obj),
-            "ply" => Some(MeshFormat::Ply),
-            "glb" => Some(MeshFormat::Glb),
-            _ => None,
-        }
+        MeshFormat::ALL
+            .into_iter()
+            .find(|f| f.extension().eq_ignore_ascii_case(ext))
     }
 }
 

@@ -1,4 +1,4 @@
-//! Growth animations: the pictures of steps 0..N as the frames of an
+//! Growth animations: the pictures of steps up to N as the frames of an
 //! animated GIF ([`gif`](::gif)) or APNG (the `png` crate's animation
 //! control). Every frame is fitted as the last one is
 //! ([`super::RenderOptions::framing`]), so the plant grows in place rather
@@ -89,17 +89,32 @@ pub enum Container {
 }
 
 impl Container {
+    /// Every container. An output's extension is looked up here, so the
+    /// help that lists them ([`crate::driver::picture::Target::all`])
+    /// names every one that can be written.
+    pub const ALL: [Container; 2] = [Container::Gif, Container::Apng];
+
+    /// The extension of a file of it: an animated PNG is a `.png`.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Container::Gif => "gif",
+            Container::Apng => "png",
+        }
+    }
+
     /// The container an output path names by its extension (`.gif`, `.png`),
-    /// else the one `to` names (`gif`, `png`).
+    /// else the one `to` names (`gif`, `png`, `apng`).
     pub fn choose(path: Option<&str>, to: Option<&str>) -> Option<Container> {
         let by_ext = path
             .and_then(|p| std::path::Path::new(p).extension())
             .and_then(|e| e.to_str());
-        match to.or(by_ext)?.to_ascii_lowercase().as_str() {
-            "gif" => Some(Container::Gif),
-            "png" | "apng" => Some(Container::Apng),
-            _ => None,
+        let name = to.or(by_ext)?;
+        if name.eq_ignore_ascii_case("apng") {
+            return Some(Container::Apng);
         }
+        Container::ALL
+            .into_iter()
+            .find(|c| c.extension().eq_ignore_ascii_case(name))
     }
 }
 

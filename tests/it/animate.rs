@@ -87,7 +87,8 @@ fn a_gif_has_a_frame_per_step_at_the_size_and_rate_asked() {
         p,
     ]);
     let frames = gif_frames(&out);
-    assert_eq!(frames.len(), 4, "steps 0, 1, 2, 3");
+    // Step 0 (the axiom X) draws nothing: the animation starts at step 1.
+    assert_eq!(frames.len(), 3, "steps 1, 2, 3");
     for (w, h, delay, _) in &frames {
         assert_eq!((*w, *h, *delay), (120, 90, 5));
     }
@@ -136,6 +137,43 @@ fn the_last_apng_frame_is_the_still_picture() {
         assert_eq!(size, (160, 128));
         assert_eq!(f64::from(delay.0) / f64::from(delay.1), 0.25, "{entry}");
         assert!(frames.last().unwrap() == &still(&s), "{entry}");
+    }
+}
+
+/// An animation whose axiom draws nothing (`X`) starts at the first step
+/// that draws, not on a blank frame, in a GIF as in an APNG; its last frame
+/// is still the still picture.
+#[test]
+fn an_animation_starts_at_the_first_step_that_draws() {
+    let source = temp("bush.l");
+    std::fs::write(
+        &source,
+        "derivation length: 3\nangle factor: 8\naxiom: X\nX --> F[+X]F[-X]+X\n",
+    )
+    .unwrap();
+    let args = ["render", source.to_str().unwrap(), "--size", "64x64", "-o"];
+    let (gif, apng, s) = (temp("bush.gif"), temp("bush-anim.png"), temp("bush.png"));
+    render(&[&args[..], &[gif.to_str().unwrap(), "--animate"]].concat());
+    render(&[&args[..], &[apng.to_str().unwrap(), "--animate"]].concat());
+    render(&[&args[..], &[s.to_str().unwrap()]].concat());
+    let gif: Vec<Vec<u8>> = gif_frames(&gif).into_iter().map(|f| f.3).collect();
+    let apng = apng_frames(&std::fs::read(&apng).unwrap()).frames;
+    assert!(
+        apng.last() == Some(&still(&s)),
+        "the last frame is the still"
+    );
+    for (name, frames) in [("GIF", gif), ("APNG", apng)] {
+        assert_eq!(frames.len(), 3, "{name}: steps 1, 2, 3");
+        let first = &frames[0];
+        let background = &first[..4];
+        assert!(
+            first.chunks_exact(4).any(|p| p != background),
+            "{name}: the first frame is all background"
+        );
+        assert!(
+            ink(first).contains(&true),
+            "{name}: no dark pixel in frame 1"
+        );
     }
 }
 
@@ -387,7 +425,7 @@ fn the_last_frame_of_a_lit_system_is_its_still() {
     };
     let bytes = picture::draw_system(&sys, &req, &mut Quiet).unwrap().bytes;
     let Apng { frames, .. } = apng_frames(&bytes);
-    assert_eq!(frames.len(), 3);
+    assert_eq!(frames.len(), 2, "steps 1 and 2: the axiom X draws nothing");
     let (_, g) = driver::geometry(&sys, &opts).unwrap();
     let png = driver::render_bytes(&sys, &g, driver::Format::Png, ropts).unwrap();
     let still = graftal::render::animate::Frame::from_png(&png)

@@ -351,6 +351,71 @@ fn render_dash_without_a_format_is_a_usage_error_with_help() {
     assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
 }
 
+/// What `render` writes but cannot do is a usage error, not ignored: an
+/// animation into a mesh's file, a frame rate with no animation.
+#[test]
+fn animation_options_that_cannot_apply_are_usage_errors() {
+    let dir = temp("render-animate-misuse");
+    let args = ["render", "std:koch-island", "-n", "1", "--size", "20x20"];
+    for (extra, wrong, what_to_do) in [
+        (
+            &["--animate", "-o", "x.obj"][..],
+            "names a mesh (.obj)",
+            "drop `--animate`",
+        ),
+        (
+            &["--animate", "-o", "x.glb"][..],
+            "names a mesh (.glb)",
+            "….gif",
+        ),
+        (
+            &["--fps", "5", "-o", "x.png"][..],
+            "no `--animate`",
+            "add `--animate`",
+        ),
+        (
+            &["--fps", "5", "-o", "x.ply"][..],
+            "no `--animate`",
+            "drop `--fps`",
+        ),
+    ] {
+        let o = binary_in(&dir, &[&args[..], extra].concat());
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.contains(wrong), "{extra:?}: {err}");
+        assert!(
+            err.contains("help:") && err.contains(what_to_do),
+            "{extra:?}: {err}"
+        );
+    }
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+    // With `--animate`, `--fps` is taken.
+    let o = binary_in(
+        &dir,
+        &[&args[..], &["--animate", "--fps", "5", "-o", "a.gif"]].concat(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+}
+
+/// `render --help` and the error for an extension graftal does not write
+/// name every format it writes, from the list the code looks names up in.
+#[test]
+fn render_help_and_a_bad_extension_name_every_format_written() {
+    use graftal::driver::picture::Target;
+    let help = graftal(&["render", "--help"]);
+    assert_eq!(help.status, 0, "{}", help.stderr);
+    let bad = graftal(&["render", "std:koch-island", "-o", "x.bmp"]);
+    assert_eq!(bad.status, 2, "{}", bad.stderr);
+    assert!(bad.stderr.contains("help:"), "{}", bad.stderr);
+    let targets: Vec<Target> = Target::all().collect();
+    assert_eq!(targets.len(), 7, "PNG, SVG, OBJ, PLY, GLB, GIF, APNG");
+    for t in targets {
+        let named = format!("{} (.{}", t.name(), t.extension());
+        assert!(help.stdout.contains(&named), "{named}: {}", help.stdout);
+        assert!(bad.stderr.contains(&named), "{named}: {}", bad.stderr);
+    }
+}
+
 #[test]
 fn a_binary_png_is_not_written_to_a_terminal() {
     let args = ["render", "std:koch-island", "--size", "20x20", "-o", "-"];
@@ -629,14 +694,43 @@ fn explain_without_a_code_lists_the_codes() {
         .lines()
         .filter_map(|l| l.split_once("  ").map(|(code, _)| code))
         .collect();
-    let all: Vec<&str> = graftal::diagnostics::codes::all()
+    let mut all: Vec<&str> = graftal::diagnostics::codes::all()
         .map(|i| i.code.0)
         .collect();
+    all.sort_unstable();
     assert_eq!(listed, all);
     assert!(o.stdout.contains("E0014  empty file\n"), "{}", o.stdout);
     assert!(o
         .stdout
         .contains("W0808  malformed view-file value ignored\n"));
+}
+
+/// `graftal explain`'s listing is sorted: every error, then every warning,
+/// each by its number, so that E0001 comes first and a code is found where
+/// its number says (the registry keeps them by front end).
+#[test]
+fn explain_lists_errors_then_warnings_each_by_number() {
+    let o = graftal(&["explain"]);
+    assert_eq!(o.status, 0, "{}", o.stderr);
+    let listed: Vec<(char, u32)> = o
+        .stdout
+        .lines()
+        .filter_map(|l| l.split_once("  "))
+        .map(|(code, _)| {
+            let (kind, number) = code.split_at(1);
+            (kind.chars().next().unwrap(), number.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(listed.first(), Some(&('E', 1)), "{}", o.stdout);
+    let out_of_order: Vec<_> = listed.windows(2).filter(|w| w[0] >= w[1]).collect();
+    assert!(out_of_order.is_empty(), "{out_of_order:?}");
+    let first_warning = listed.iter().position(|(kind, _)| *kind == 'W');
+    assert!(
+        listed[first_warning.unwrap()..]
+            .iter()
+            .all(|(k, _)| *k == 'W'),
+        "errors first, then warnings"
+    );
 }
 
 /// `check` of a valid file says which notation it read, and how much.

@@ -1,6 +1,7 @@
-//! Animations: the steps 0..=N as the frames of a GIF or an animated PNG,
-//! each frame drawn as its still is ([`super::still_counted`]) and framed as the
-//! last one; an outline's growth replayed stem by stem.
+//! Animations: the steps up to N, from the first that draws anything, as
+//! the frames of a GIF or an animated PNG, each frame drawn as its still is
+//! ([`super::still_counted`]) and framed as the last one; an outline's
+//! growth replayed stem by stem.
 
 use super::stored::{apply_look, render_bytes};
 use super::{streamed, DrawError, Format, Method, Picture, Progress, Request, Stage, Subject};
@@ -13,9 +14,10 @@ use crate::render::{self, RenderOptions};
 use crate::turtle::{self, Geometry};
 
 /// An animation of a system's growth ([`render::animate`]): the still
-/// pictures of steps 0..=N (N from the request) as frames, all fitted as
-/// the last one is. Every frame is derived anew; the frames together move
-/// the turtle at most `max_moves` times.
+/// pictures of steps F..=N (N from the request, F the first step that
+/// draws anything) as frames, all fitted as the last one is. Every frame is
+/// derived anew; the frames together move the turtle at most `max_moves`
+/// times.
 pub(super) fn draw(
     s: &Subject,
     req: &Request,
@@ -45,7 +47,18 @@ pub(super) fn draw(
     let final_g = frame_geometry(sys, opts, last, budget, &ropts, req.layout)?;
     budget -= final_g.segments.len().min(budget);
     ropts.framing = Some(frame_framing(sys, &final_g, ropts));
+    // When even the last step draws nothing, every frame is as blank as
+    // step 0's: nothing is gained by looking for a first drawn step.
+    let first = if grown.is_some() || final_g.is_empty() {
+        0
+    } else {
+        first_drawn(sys, opts, last, budget, &ropts, req.layout)?
+    };
     drop(final_g);
+    if first > 0 {
+        anim.frames = last - first + 1;
+        refuse(&anim)?;
+    }
     // A frame's error, kept while the encoder stops.
     let mut failed: Option<DrawError> = None;
     let mut frame = |k: u64| -> Result<Frame, String> {
@@ -56,7 +69,7 @@ pub(super) fn draw(
             let png = render_bytes(sys, &part, Format::Png, ropts).map_err(|e| e.to_string())?;
             return Frame::from_png(&png);
         }
-        let step = if grown.is_some() { last } else { k };
+        let step = if grown.is_some() { last } else { first + k };
         // The last step's moves were counted when it was framed.
         let at = RunOptions {
             steps: Some(step),
@@ -112,6 +125,26 @@ fn in_animation(e: DrawError, max_moves: usize) -> DrawError {
         }
         e => e,
     }
+}
+
+/// The first step before `last` whose picture draws anything, else `last`:
+/// an axiom such as `X` draws nothing, and an animation that began there
+/// would open on a blank frame. Only the steps before it are derived here,
+/// and those are not framed, so no step but that one is derived twice.
+fn first_drawn(
+    sys: &System,
+    opts: &RunOptions,
+    last: u64,
+    budget: usize,
+    ropts: &RenderOptions,
+    layout: bool,
+) -> Result<u64, DrawError> {
+    for step in 0..last {
+        if !frame_geometry(sys, opts, step, budget, ropts, layout)?.is_empty() {
+            return Ok(step);
+        }
+    }
+    Ok(last)
 }
 
 /// The geometry of step `step`, as its stored still would draw it, within

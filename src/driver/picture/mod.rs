@@ -45,16 +45,18 @@ pub enum Format {
 }
 
 impl Format {
+    /// Every still format. A name is looked up here, so the help that
+    /// lists them ([`Target::all`]) names every one that can be written.
+    pub const ALL: [Format; 2] = [Format::Png, Format::Svg];
+
     /// The formats' names, as `render --to` takes them and as extensions.
     pub const NAMES: &'static [&'static str] = &["png", "svg"];
 
     /// The format named `name` (`png`, `svg`; any case).
     pub fn from_name(name: &str) -> Option<Format> {
-        match name.to_ascii_lowercase().as_str() {
-            "png" => Some(Format::Png),
-            "svg" => Some(Format::Svg),
-            _ => None,
-        }
+        Format::ALL
+            .into_iter()
+            .find(|f| f.name().eq_ignore_ascii_case(name))
     }
 
     /// The format for an output path, by its extension.
@@ -77,9 +79,48 @@ pub enum Target {
     Still(Format),
     /// A mesh: OBJ (with its material library as a side file), PLY, glTF.
     Mesh(MeshFormat),
-    /// The steps 0..=N as the frames of a GIF or an animated PNG.
+    /// The steps up to N, from the first that draws anything, as the
+    /// frames of a GIF or an animated PNG.
     Animation(Container),
 }
+
+impl Target {
+    /// Every target graftal makes: each still format, mesh format and
+    /// animation container, from the lists their names are looked up in,
+    /// so that what the help and the errors list is what can be written.
+    pub fn all() -> impl Iterator<Item = Target> {
+        let stills = Format::ALL.into_iter().map(Target::Still);
+        let meshes = MeshFormat::ALL.into_iter().map(Target::Mesh);
+        stills
+            .chain(meshes)
+            .chain(Container::ALL.into_iter().map(Target::Animation))
+    }
+
+    /// The format's name, in capitals: PNG, SVG, OBJ, PLY, GLB, GIF, APNG.
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Still(Format::Png) => "PNG",
+            Target::Still(Format::Svg) => "SVG",
+            Target::Mesh(MeshFormat::Obj) => "OBJ",
+            Target::Mesh(MeshFormat::Ply) => "PLY",
+            Target::Mesh(MeshFormat::Glb) => "GLB",
+            Target::Animation(Container::Gif) => "GIF",
+            Target::Animation(Container::Apng) => "APNG",
+        }
+    }
+
+    /// The extension of a file of it.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Target::Still(f) => f.name(),
+            Target::Mesh(f) => f.extension(),
+            Target::Animation(c) => c.extension(),
+        }
+    }
+}
+
+/// Frames per second of an animation unless the request says otherwise.
+pub const DEFAULT_FPS: u32 = 10;
 
 /// The request for a picture: the run (steps, seed, limits) and how it is
 /// drawn. [`Request::new`] gives `graftal render`'s defaults.
@@ -122,7 +163,7 @@ impl Request {
             detail: Detail::default(),
             spline: false,
             layout: true,
-            fps: 10,
+            fps: DEFAULT_FPS,
             material_library: "graftal.mtl".into(),
         }
     }
