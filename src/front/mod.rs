@@ -237,18 +237,29 @@ pub fn detect(ext: &str, text: &str) -> &'static dyn Front {
 /// The largest file [`reads_badly`] considers for reading in another notation.
 pub const GUESS_AT_MOST_BYTES: usize = 256 << 10;
 
+/// How many errors make a reading worth trying in the other notations,
+/// whatever lines they cover.
+const SEVERAL_ERRORS: usize = 3;
+
 /// Whether a reading of `file` failed badly enough that the file is more
 /// likely in another notation: it has errors, and their spans cover at
 /// least half of the file's non-blank lines (a LinF file read as pfg: 20
 /// errors on its 22 lines; an STL file read as LinF: one error over 5 of
 /// its 8 lines; a pfg file with a typo: one error on one line). An error
 /// with no place (nothing found at all) counts as covering every line.
+/// [`SEVERAL_ERRORS`] count as failing badly wherever they stand.
 pub fn reads_badly(file: &SourceFile, diags: &Diagnostics) -> bool {
     // A file saved under the wrong extension is a hand-written model; a
     // bigger one is not read again in four more notations (a 4 MB line of
     // errors would take seconds).
     if !diags.has_errors() || file.text.len() > GUESS_AT_MOST_BYTES {
         return false;
+    }
+    // Several errors are reason enough to look: a LinF file read as a
+    // Fractint library (its `{` looks like an entry) has errors at a few
+    // names only, however wrong the whole reading is.
+    if diags.iter().filter(|d| d.is_error()).count() >= SEVERAL_ERRORS {
+        return true;
     }
     let lines: Vec<&str> = file.text.split('\n').collect();
     let mut covered = vec![false; lines.len()];

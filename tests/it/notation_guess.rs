@@ -142,3 +142,20 @@ fn empty_files_are_the_same_error_in_every_notation() {
     assert_eq!(seen[0].1, "\"E0014\"");
     assert!(seen.iter().all(|s| s == &seen[0]), "{seen:?}");
 }
+
+/// A LinF file whose `{` makes it look like a Fractint library: the
+/// Fractint reading has errors at a few names only, and still the one
+/// error says what the file is.
+#[test]
+fn a_linf_file_read_as_a_fractint_library_says_it_reads_as_linf() {
+    let path = temp("plant-3d.l");
+    std::fs::write(&path, include_str!("../in/linf/linf-plant-3d.linf")).unwrap();
+    let (status, ds) = check_json(path.to_str().unwrap(), &[]);
+    assert_eq!(status, 1);
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert_eq!(ds[0]["code"], "E0015");
+    assert_eq!(
+        ds[0]["message"],
+        "this file reads as LinF, not as Fractint (from `.l`)"
+    );
+}
