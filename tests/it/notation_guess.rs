@@ -21,20 +21,24 @@ fn check_json(path: &str, extra: &[&str]) -> (i32, Vec<serde_json::Value>) {
     (o.status, ds)
 }
 
+/// The diagnostics of `check` on `path`, asserted to be one E0015 error
+/// saying `message`.
+fn the_one_error(path: &str, message: &str) -> Vec<serde_json::Value> {
+    let (status, ds) = check_json(path, &[]);
+    assert_eq!(status, 1);
+    assert_eq!(ds.len(), 1, "{ds:?}");
+    assert_eq!(ds[0]["code"], "E0015");
+    assert_eq!(ds[0]["message"], message);
+    ds
+}
+
 #[test]
 fn a_linf_file_saved_as_l_says_it_reads_as_linf() {
     let path = temp("plant-linf.l");
     std::fs::write(&path, LINF_PLANT).unwrap();
     let path = path.to_str().unwrap();
-    let (status, ds) = check_json(path, &[]);
-    assert_eq!(status, 1);
     // Said once, as the one error, not as a note on the first of many.
-    assert_eq!(ds.len(), 1, "{ds:?}");
-    assert_eq!(ds[0]["code"], "E0015");
-    assert_eq!(
-        ds[0]["message"],
-        "this file reads as LinF, not as pfg (from `.l`)"
-    );
+    let ds = the_one_error(path, "this file reads as LinF, not as pfg (from `.l`)");
     assert_eq!(ds[0]["help"], "rename it `.linf` or pass `--notation linf`");
     assert!(
         ds[0]["notes"].to_string().contains("as pfg: [E0"),
@@ -150,12 +154,8 @@ fn empty_files_are_the_same_error_in_every_notation() {
 fn a_linf_file_read_as_a_fractint_library_says_it_reads_as_linf() {
     let path = temp("plant-3d.l");
     std::fs::write(&path, include_str!("../in/linf/linf-plant-3d.linf")).unwrap();
-    let (status, ds) = check_json(path.to_str().unwrap(), &[]);
-    assert_eq!(status, 1);
-    assert_eq!(ds.len(), 1, "{ds:?}");
-    assert_eq!(ds[0]["code"], "E0015");
-    assert_eq!(
-        ds[0]["message"],
-        "this file reads as LinF, not as Fractint (from `.l`)"
+    the_one_error(
+        path.to_str().unwrap(),
+        "this file reads as LinF, not as Fractint (from `.l`)",
     );
 }
