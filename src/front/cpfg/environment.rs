@@ -8,10 +8,6 @@ use std::path::Path;
 
 use crate::diagnostics::{codes, Diagnostics};
 
-/// The most `.e` files looked at in a folder when none is named after the
-/// `.l`: a folder of many holds no single answer.
-const MAX_CANDIDATES: usize = 64;
-
 /// Adds to the `?E` warning (W0821) in `diags`, if there is one, the
 /// environment program of the `.e` file beside `l_file` in `dir`.
 pub fn name_program(dir: &Path, l_file: &Path, diags: &mut Diagnostics) {
@@ -35,27 +31,10 @@ pub fn name_program(dir: &Path, l_file: &Path, diags: &mut Diagnostics) {
 /// only `.e` file) and the command of its `executable:` line.
 fn program_of(dir: &Path, l_file: &Path) -> Option<(String, String)> {
     let stem = l_file.file_stem()?.to_string_lossy().into_owned();
-    let named = format!("{stem}.e");
-    let file = if dir.join(&named).is_file() {
-        named
-    } else {
-        only_e_file(dir)?
-    };
+    let file = super::folder::named_like_or_only(dir, &stem, "e")?;
     let text = super::read_lossy(&dir.join(&file))?;
     let program = executable(&text)?;
     Some((file, program))
-}
-
-/// The name of the one `.e` file in `dir`, if there is exactly one.
-fn only_e_file(dir: &Path) -> Option<String> {
-    let mut found = std::fs::read_dir(dir)
-        .ok()?
-        .take(MAX_CANDIDATES)
-        .filter_map(Result::ok)
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".e") && n.len() > 2);
-    let first = found.next()?;
-    found.next().is_none().then_some(first)
 }
 
 /// The value of the `executable:` line of a `.e` file's `text`.

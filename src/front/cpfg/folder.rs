@@ -14,7 +14,7 @@ const MAX_ENTRIES: usize = 256;
 /// The names of the files of `dir` whose extension is `ext` (without the
 /// dot, compared ignoring case), sorted; `None` when the folder cannot be
 /// read or holds too many entries to look through.
-fn with_extension(dir: &Path, ext: &str) -> Option<Vec<String>> {
+pub fn with_extension(dir: &Path, ext: &str) -> Option<Vec<String>> {
     let mut names = Vec::new();
     for (k, entry) in std::fs::read_dir(dir).ok()?.enumerate() {
         if k == MAX_ENTRIES {

@@ -936,14 +936,11 @@ pub fn find_view(dir: &Path, l_file: &str) -> Result<PathBuf, NoView> {
             _ => {}
         }
     }
-    let mut views: Vec<PathBuf> = std::fs::read_dir(dir)
+    let mut views: Vec<PathBuf> = (super::folder::with_extension(dir, "v").unwrap_or_default())
         .into_iter()
-        .flatten()
-        .take(256)
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("v")) && is_view(p))
+        .map(|n| dir.join(n))
+        .filter(|p| is_view(p))
         .collect();
-    views.sort();
     match (views.len(), named) {
         (1, _) => Ok(views.remove(0)),
         (_, Some(v)) => Err(NoView::Named(v)),
