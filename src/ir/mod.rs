@@ -212,6 +212,7 @@
 
 pub mod colours;
 pub mod d0l;
+pub mod graph;
 pub mod look;
 pub mod program;
 mod same;
@@ -1107,6 +1108,10 @@ pub struct System {
     pub rotations: Vec<Rotation>,
     pub colours: Vec<Rgb>,
     pub structure: Option<Structure>,
+    /// An object-instancing graph (Bekaert & Willems' IFS codes with
+    /// restrictions): a model made of transformed instances of itself,
+    /// drawn without being expanded ([`graph`]).
+    pub graph: Option<graph::InstancingGraph>,
     /// Surfaces drawn by [`TurtleOp::Surface`]: triangles in the surface's
     /// own frame (x along the turtle's L, y along H, z along cpfg's up,
     /// −U), with the contact point at the origin.
@@ -1158,6 +1163,7 @@ impl System {
             rotations: Vec::new(),
             colours: Vec::new(),
             structure: None,
+            graph: None,
             surfaces: Vec::new(),
             contours: Vec::new(),
             look: look::Look::default(),

@@ -38,6 +38,7 @@ impl System {
         debug("rotations", &self.rotations, &other.rotations)?;
         debug("colours", &self.colours, &other.colours)?;
         same.structure()?;
+        debug("graph", &self.graph, &other.graph)?;
         debug("surfaces", &self.surfaces, &other.surfaces)?;
         debug("contours", &self.contours, &other.contours)?;
         debug("look", &self.look, &other.look)
