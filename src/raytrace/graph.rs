@@ -238,6 +238,24 @@ impl<'g> GraphScene<'g> {
 }
 
 impl GraphScene<'_> {
+    pub fn graph(&self) -> &InstancingGraph {
+        self.graph
+    }
+
+    pub fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+
+    /// Whether no symbol has a geometry (the limit drawn as volumes).
+    pub fn is_pure(&self) -> bool {
+        self.pure
+    }
+
+    /// The colour of the volumes of a graph without geometry.
+    pub fn colour(&self) -> [f64; 3] {
+        self.colour
+    }
+
     /// The graph expanded as the tracer expands it under an orthographic
     /// cut of `pixel` world units: every shape placed, and in a graph
     /// without geometry every volume at the cut, as items of a flat

@@ -406,3 +406,162 @@ fn render_raytrace_draws_a_lit_linf_tree_the_same_with_any_threads() {
         .collect();
     assert!(shades.len() > 20, "{} shades of green", shades.len());
 }
+
+/// The pixels of a PNG as RGB, whatever its colour type and depth.
+fn rgb_pixels(bytes: &[u8]) -> (u32, u32, Vec<[u8; 3]>) {
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::normalize_to_color8());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    let px = buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|c| match channels {
+            1 | 2 => [c[0]; 3],
+            _ => [c[0], c[1], c[2]],
+        })
+        .collect();
+    (info.width, info.height, px)
+}
+
+/// Intersection over union of two pictures' silhouettes (what is not the
+/// white background).
+fn silhouette_iou(a: &[[u8; 3]], b: &[[u8; 3]]) -> f64 {
+    let ink = |p: &[u8; 3]| p.iter().any(|c| *c < 235);
+    let (mut both, mut either) = (0usize, 0usize);
+    for (p, q) in a.iter().zip(b) {
+        both += (ink(p) && ink(q)) as usize;
+        either += (ink(p) || ink(q)) as usize;
+    }
+    both as f64 / either.max(1) as f64
+}
+
+/// POV-Ray renders `scene` (a `.pov` text) at `size`: its PNG, or `None`
+/// when POV-Ray is not installed (an error where `.ci/run` installs it).
+fn povray(scene: &[u8], size: u32, name: &str) -> Option<Vec<u8>> {
+    let dir = crate::common::temp(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    let (input, output) = (dir.join("scene.pov"), dir.join("scene.png"));
+    std::fs::write(&input, scene).unwrap();
+    let run = std::process::Command::new("povray")
+        .arg(format!("+I{}", input.display()))
+        .arg(format!("+O{}", output.display()))
+        .args([
+            &format!("+W{size}"),
+            &format!("+H{size}"),
+            "-D",
+            "-V",
+            "+FN",
+            "-A",
+            "+WT1",
+        ])
+        .output();
+    match run {
+        Ok(out) => {
+            assert!(
+                out.status.success(),
+                "povray: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            Some(std::fs::read(&output).unwrap())
+        }
+        Err(_) => {
+            assert!(
+                std::env::var("GRAFTAL_NEED_POVRAY").as_deref() != Ok("1"),
+                "povray is missing and GRAFTAL_NEED_POVRAY=1: `.ci/run` installs it"
+            );
+            eprintln!("povray is missing: the POV-Ray scene was not rendered");
+            None
+        }
+    }
+}
+
+#[test]
+fn pov_ray_draws_the_scene_graftal_writes_with_graftals_silhouette() {
+    // An independent renderer: POV-Ray 3.7 renders the `.pov` graftal
+    // writes, and its silhouette is graftal's own ray-traced picture's.
+    const SIZE: u32 = 96;
+    let mut sys = System::new();
+    sys.graph = Some(small_tree());
+    sys.settings.view = Some((0.6, 0.3));
+    let mut tree = Request::new(Target::Still(Format::Png));
+    (tree.width, tree.height) = (SIZE, SIZE);
+    tree.tracing.samples = 1;
+    let ours = picture::draw_system(&sys, &tree, &mut Quiet).unwrap().bytes;
+    tree.target = Target::Still(Format::Pov);
+    let scene = picture::draw_system(&sys, &tree, &mut Quiet).unwrap().bytes;
+    let text = String::from_utf8(scene.clone()).unwrap();
+    assert!(
+        text.contains("#declare G_0_1 = union"),
+        "instancing kept: {text}"
+    );
+    let Some(theirs) = povray(&scene, SIZE, "pov-tree") else {
+        return;
+    };
+    let (w, h, theirs) = rgb_pixels(&theirs);
+    assert_eq!((w, h), (SIZE, SIZE));
+    let iou = silhouette_iou(&rgb_pixels(&ours).2, &theirs);
+    assert!(
+        iou >= 0.95,
+        "the instanced tree: silhouettes overlap by {iou:.3}"
+    );
+
+    // A turtle's plant, flattened to primitives.
+    let plant = crate::common::temp("pov-plant.pov");
+    let png = crate::common::temp("pov-plant.png");
+    for (out, extra) in [(&plant, None), (&png, Some("--raytrace"))] {
+        let mut args = vec![
+            "render",
+            "std:gft/signal-plant-3d",
+            "--size",
+            "96x96",
+            "--samples",
+            "1",
+            "-o",
+        ];
+        args.push(out.to_str().unwrap());
+        args.extend(extra);
+        let o = crate::common::graftal(&args);
+        assert_eq!(o.status, 0, "{}", o.stderr);
+    }
+    let Some(theirs) = povray(&std::fs::read(&plant).unwrap(), SIZE, "pov-plant") else {
+        return;
+    };
+    // Its branches are a pixel or two wide, so the two renderers' edges
+    // (each its own arithmetic) make most of the difference: every inked
+    // pixel of either lies within a pixel of the other's ink.
+    let (ours, theirs) = (
+        rgb_pixels(&std::fs::read(&png).unwrap()).2,
+        rgb_pixels(&theirs).2,
+    );
+    for (a, b, which) in [(&ours, &theirs, "graftal's"), (&theirs, &ours, "POV-Ray's")] {
+        let near = within_a_pixel(a, b, SIZE as usize);
+        assert!(
+            near >= 0.995,
+            "the signal plant: {near:.4} of {which} ink is within a pixel of the other's"
+        );
+    }
+}
+
+/// The share of `a`'s inked pixels with an inked pixel of `b` at most one
+/// pixel away.
+fn within_a_pixel(a: &[[u8; 3]], b: &[[u8; 3]], size: usize) -> f64 {
+    let ink = |p: &[u8; 3]| p.iter().any(|c| *c < 235);
+    let (mut inked, mut near) = (0usize, 0usize);
+    for y in 0..size {
+        for x in 0..size {
+            if !ink(&a[y * size + x]) {
+                continue;
+            }
+            inked += 1;
+            let ys = y.saturating_sub(1)..=(y + 1).min(size - 1);
+            near += ys
+                .flat_map(|yy| {
+                    (x.saturating_sub(1)..=(x + 1).min(size - 1)).map(move |xx| (xx, yy))
+                })
+                .any(|(xx, yy)| ink(&b[yy * size + xx])) as usize;
+        }
+    }
+    near as f64 / inked.max(1) as f64
+}

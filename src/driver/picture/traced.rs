@@ -97,7 +97,9 @@ pub(super) fn graph(
             message,
         )))
     })?;
-    encode(&scene, &options(sys, ropts, tracing), format, ropts)
+    let opts = options(sys, ropts, tracing);
+    let pov = || raytrace::pov::graph_scene(&scene, &opts);
+    encode(&scene, &opts, format, ropts, &pov)
 }
 
 /// A ray-traced picture of what a turtle drew.
@@ -120,20 +122,29 @@ pub(super) fn geometry(
         specular: 0.2,
         ..Finish::default()
     };
-    let scene = bvh::Bvh::new(bvh::from_geometry(g, pixel, finish));
-    encode(&scene, &opts, format, ropts)
+    let items = bvh::from_geometry(g, pixel, finish);
+    if format == Format::Pov {
+        return Ok(raytrace::pov::items_scene(&items, &opts, world).into_bytes());
+    }
+    let scene = bvh::Bvh::new(items);
+    encode(&scene, &opts, format, ropts, &String::new)
 }
 
+/// The picture in `format`; a POV-Ray scene is `pov`'s.
 fn encode(
     scene: &dyn Scene,
     opts: &Options,
     format: Format,
     ropts: &RenderOptions,
+    pov: &dyn Fn() -> String,
 ) -> Result<Vec<u8>, DrawError> {
+    if format == Format::Pov {
+        return Ok(pov().into_bytes());
+    }
     let rgba = raytrace::trace(scene, opts);
     let png = raytrace::png(rgba, opts.width, opts.height).ok_or(too_large(ropts))?;
     Ok(match format {
-        Format::Png => png,
         Format::Svg => raytrace::svg_of_png(&png, opts.width, opts.height).into_bytes(),
+        Format::Png | Format::Pov => png,
     })
 }
