@@ -14,6 +14,7 @@ pub mod bvh;
 pub mod graph;
 pub mod pov;
 pub mod primitive;
+pub mod subtrees;
 pub mod vec;
 
 use crate::ir::graph::Finish;

@@ -565,3 +565,64 @@ fn within_a_pixel(a: &[[u8; 3]], b: &[[u8; 3]], size: usize) -> f64 {
     }
     near as f64 / inked.max(1) as f64
 }
+
+#[test]
+fn a_context_free_plant_is_traced_from_its_shared_subtrees_as_its_geometry_is() {
+    // The derivation tree of plant (e) is an instancing graph of a few
+    // dozen subtrees; traced without deriving the word, it draws what the
+    // word's interpreted geometry draws through the flat hierarchy,
+    // within a pixel.
+    use graftal::raytrace::{bvh, subtrees};
+    use graftal::turtle::instanced::Instanced;
+    let c = compile(load("std:plant-e").unwrap());
+    let sys = c.system.as_ref().unwrap();
+    let steps = 5;
+    let mut inst = Instanced::new(sys).unwrap();
+    let colour = Rgb(0, 0, 0);
+    let size = 128;
+    let eye = view(0.0, 0.0);
+    let bare = subtrees::graph(&mut inst, steps, 0.0, colour).unwrap();
+    let opts = options(size, eye);
+    let world = graftal::raytrace::Scene::world_box(&GraphScene::new(&bare, [0.0; 3]).unwrap());
+    let pixel = graftal::raytrace::pixel_size(world, &opts);
+    let g = subtrees::graph(&mut inst, steps, pixel / sys.settings.step, colour).unwrap();
+    let segments = 2usize * 4usize.pow(steps as u32);
+    assert!(
+        g.symbols.len() < 40,
+        "{} graph symbols for a word of about {segments} segments",
+        g.symbols.len()
+    );
+    let instanced = trace(&GraphScene::new(&g, [0.0; 3]).unwrap(), &opts);
+
+    let run = graftal::driver::RunOptions {
+        steps: Some(steps),
+        ..Default::default()
+    };
+    let (_, geometry) = graftal::driver::geometry(sys, &run).unwrap();
+    let mut geometry = geometry;
+    // Lines of 2 pixels, as the graph's (radius: a pixel).
+    for s in &mut geometry.segments {
+        s.width = 2.0;
+    }
+    let flat = trace(
+        &Bvh::new(bvh::from_geometry(&geometry, pixel, Finish::default())),
+        &opts,
+    );
+    let rgb = |px: &[u8]| {
+        px.chunks(4)
+            .map(|p| [p[0], p[1], p[2]])
+            .collect::<Vec<[u8; 3]>>()
+    };
+    let (a, b) = (rgb(&instanced), rgb(&flat));
+    assert!(
+        a.iter().filter(|p| p[0] < 235).count() > 500,
+        "the plant is drawn"
+    );
+    for (x, y, which) in [(&a, &b, "instanced"), (&b, &a, "flat")] {
+        let near = within_a_pixel(x, y, size as usize);
+        assert!(
+            near >= 0.99,
+            "{near:.4} of the {which} picture's ink is within a pixel of the other's"
+        );
+    }
+}

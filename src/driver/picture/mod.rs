@@ -474,8 +474,11 @@ fn still_counted(
     let ray_traced = format == Format::Pov || traced::wanted(sys, &how.tracing);
     let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
     if ray_traced {
-        // Shared subtrees, streaming and lit bands draw lines; the tracer
-        // needs the geometry.
+        // A context-free system is traced from its shared subtrees; the
+        // rest needs the geometry (streaming and lit bands draw lines).
+        if let Some(bytes) = traced::shared(sys, run, format, &ropts, &how.tracing)? {
+            return Ok((picture(bytes, Method::RayTraced), 0));
+        }
     } else if let Some(bytes) = shared::draw(sys, run, format, ropts, &mut drawing)? {
         return Ok((picture(bytes, Method::SharedSubtrees), 0));
     }
