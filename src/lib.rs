@@ -26,6 +26,7 @@ pub mod lsp;
 pub mod mesh;
 pub mod number;
 pub mod random;
+pub mod raytrace;
 pub mod render;
 pub mod source;
 pub mod stdlib;

@@ -174,6 +174,18 @@ struct RenderArgs {
     /// `-o OUT.png` for an animated PNG.
     #[arg(long)]
     animate: bool,
+    /// Ray trace the picture: lit, with shadows, the turtle's lines as
+    /// round cylinders [default: for 3D instancing graphs and looks that
+    /// cast shadows].
+    #[arg(long)]
+    raytrace: bool,
+    /// Samples per pixel of a ray-traced picture: 1, 4, 9 or 16.
+    #[arg(long, default_value_t = 4, value_parser = parse_samples)]
+    samples: u32,
+    /// Threads that draw [default: every core; also GRAFTAL_THREADS]. The
+    /// picture is the same for every count.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
     /// Frames per second of `--animate` [default: 10].
     // No default here: `--fps` without `--animate` is refused, so whether it
     // was given must show.
@@ -195,6 +207,27 @@ fn parse_stroke_width(s: &str) -> Result<f64, String> {
         .ok()
         .filter(|w| w.is_finite() && *w >= 0.0 && *w <= f64::from(MAX_SIDE))
         .ok_or_else(|| format!("`{s}` is not a width in pixels (0..={MAX_SIDE})"))
+}
+
+fn parse_samples(s: &str) -> Result<u32, String> {
+    match s.trim().parse::<u32>() {
+        Ok(n @ (1 | 4 | 9 | 16)) => Ok(n),
+        _ => Err(format!("`{s}` is not 1, 4, 9 or 16 samples per pixel")),
+    }
+}
+
+/// Threads asked for: `--threads`, else `GRAFTAL_THREADS`, else 0 (every
+/// core).
+fn threads_asked(flag: Option<u32>) -> usize {
+    flag.map(|n| n as usize)
+        .or_else(|| {
+            let env = std::env::var("GRAFTAL_THREADS").ok()?;
+            env.trim()
+                .parse::<usize>()
+                .ok()
+                .filter(|n| (1..=1024).contains(n))
+        })
+        .unwrap_or(0)
 }
 
 fn parse_degrees(s: &str) -> Result<f64, String> {
@@ -510,6 +543,11 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
             layout: !a.no_layout,
             fps: a.fps.unwrap_or(picture::DEFAULT_FPS),
             material_library: material_library(&a.output),
+            tracing: picture::Tracing {
+                raytrace: a.raytrace.then_some(true),
+                samples: a.samples,
+                threads: threads_asked(a.threads),
+            },
         };
         let mut bars = Bars::new(io);
         let drawn = picture::draw(c, &req, &mut bars);

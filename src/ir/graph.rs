@@ -150,34 +150,33 @@ impl Affine {
         (inf * one).sqrt()
     }
 
-    /// The exact factor by which the transform stretches the longest
-    /// direction (the largest singular value of its linear part), by power
-    /// iteration on `MᵀM` from a fixed start, so it is the same everywhere.
+    /// The factor by which the transform stretches its longest direction
+    /// (the largest singular value of its linear part): the square root of
+    /// the largest eigenvalue of `MᵀM`, in closed form (Smith's formula for
+    /// symmetric 3x3 matrices), exact where power iteration crawls.
     pub fn contraction(&self) -> f64 {
         let m = &self.0;
-        let mut mtm = [[0.0; 3]; 3];
-        for (i, row) in mtm.iter_mut().enumerate() {
+        let mut a = [[0.0; 3]; 3];
+        for (i, row) in a.iter_mut().enumerate() {
             for (j, v) in row.iter_mut().enumerate() {
                 *v = (0..3).map(|k| m[k][i] * m[k][j]).sum();
             }
         }
-        let mut v = [0.577_350_269, 0.577_350_27, 0.577_350_268];
-        let mut lambda = 0.0;
-        for _ in 0..200 {
-            let w = [0, 1, 2].map(|i| (0..3).map(|j| mtm[i][j] * v[j]).sum::<f64>());
-            let n = norm(w);
-            if !(n > 0.0 && n.is_finite()) {
-                // v is in the null space of a singular map; restart off it.
-                if lambda == 0.0 && v != [1.0, 0.0, 0.0] {
-                    v = [1.0, 0.0, 0.0];
-                    continue;
-                }
-                break;
-            }
-            lambda = n;
-            v = w.map(|x| x / n);
-        }
-        lambda.sqrt()
+        let p1 = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        let q = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
+        let p2 = (0..3).map(|i| (a[i][i] - q) * (a[i][i] - q)).sum::<f64>() + 2.0 * p1;
+        let p = (p2 / 6.0).sqrt();
+        let largest = if p == 0.0 || !p.is_finite() {
+            q
+        } else {
+            let b = |i: usize, j: usize| (a[i][j] - if i == j { q } else { 0.0 }) / p;
+            let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1))
+                - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0))
+                + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
+            let phi = (det / 2.0).clamp(-1.0, 1.0).acos() / 3.0;
+            q + 2.0 * p * phi.cos()
+        };
+        largest.max(0.0).sqrt()
     }
 
     /// The inverse, with a singular transform first thickened: each
@@ -400,6 +399,20 @@ impl InstancingGraph {
         self.symbols
             .iter()
             .any(|s| !s.geometry.is_empty() || s.alternative.is_some())
+    }
+
+    /// `f` of every edge's transform, symbol by symbol (the tables a
+    /// tracer keeps beside the graph).
+    pub fn per_edge<T>(&self, f: impl Fn(&Affine) -> T) -> Vec<Vec<T>> {
+        let edges = |s: &GraphSymbol| {
+            s.rule
+                .as_deref()
+                .unwrap_or(&[])
+                .iter()
+                .map(|e| f(&e.transform))
+                .collect()
+        };
+        self.symbols.iter().map(edges).collect()
     }
 
     /// The edges leaving `symbol`.

@@ -68,6 +68,9 @@ pub struct Lighting {
     /// (cpfg `surface ambient:`, `surface diffuse:`).
     pub surface_ambient: f64,
     pub surface_diffuse: f64,
+    /// Whether lights cast shadows (cpfg `render mode: shadows`): such a
+    /// picture is ray traced.
+    pub shadows: bool,
 }
 
 impl Lighting {
@@ -97,6 +100,7 @@ impl Default for Lighting {
             index_shift: 10.0,
             surface_ambient: 0.15,
             surface_diffuse: 0.75,
+            shadows: false,
         }
     }
 }

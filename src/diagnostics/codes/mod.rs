@@ -153,6 +153,22 @@ Example:
 Write:
     graftal check snowflake.linf  (renamed), or --notation linf";
 
+    GRAPH_UNBOUNDED = "E0016", "instancing graph without a picture",
+"An instancing graph (a `.gft` `graph` block, an `.ifs` entry) is drawn
+from its limit: what its rules give when applied forever. The limit exists
+only when every cycle of rules shrinks what it places (its composed
+transform is contractive), and there is something to draw only when a
+symbol the axiom reaches carries a geometry (or no symbol does: then the
+limit itself is drawn). Without either there is no picture; `graftal
+check` names the cycle that does not shrink (E1001) or the symbol without
+a geometry (E1002).
+
+Example:
+    A -> [scale 1.1](A)       <- grows forever
+
+Write:
+    A -> [scale 0.5](A) [translate (1, 0, 0) scale 0.5](A)";
+
     NESTED_TOO_DEEPLY = "E0013", "nested too deeply",
 "graftal follows nesting (parentheses in expressions, brackets and braces,
 branches of a structure, the levels of a derivation an emitter walks) to a

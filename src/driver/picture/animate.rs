@@ -76,7 +76,17 @@ pub(super) fn draw(
             max_moves: if step == last { opts.max_moves } else { budget },
             ..opts.clone()
         };
-        let drawn = super::still_counted(s, &at, Format::Png, ropts, req.layout, &mut super::Quiet);
+        let drawn = super::still_counted(
+            s,
+            &at,
+            Format::Png,
+            ropts,
+            super::How {
+                layout: req.layout,
+                tracing: req.tracing,
+            },
+            &mut super::Quiet,
+        );
         match drawn {
             Ok((still, moves)) => {
                 if step != last {

@@ -20,6 +20,7 @@ mod mesh;
 mod shared;
 mod stored;
 mod streamed;
+mod traced;
 
 use super::derive::{derive_symbols, derive_values, RunOptions};
 use super::empty::{nearly_nothing_drawn, nothing_drawn};
@@ -36,6 +37,7 @@ use std::path::Path;
 
 pub(in crate::driver) use stored::apply_look;
 pub use stored::render_bytes;
+pub use traced::Tracing;
 
 /// The formats of a still picture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -146,6 +148,9 @@ pub struct Request {
     /// The file name an OBJ's `mtllib` line gives its material library,
     /// returned as a side file of that name.
     pub material_library: String,
+    /// Whether the picture is ray traced, with how many samples and
+    /// threads.
+    pub tracing: Tracing,
 }
 
 impl Request {
@@ -165,6 +170,7 @@ impl Request {
             layout: true,
             fps: DEFAULT_FPS,
             material_library: "graftal.mtl".into(),
+            tracing: Tracing::default(),
         }
     }
 }
@@ -187,6 +193,9 @@ pub enum Method {
     Mesh,
     /// The frames of an animation, each drawn as its still is.
     Animation,
+    /// Ray traced: an instancing graph without expanding it, or the
+    /// turtle's geometry through a bounding volume hierarchy.
+    RayTraced,
 }
 
 impl Method {
@@ -199,6 +208,7 @@ impl Method {
             Method::InstancedMesh => "instanced mesh",
             Method::Mesh => "mesh",
             Method::Animation => "animation",
+            Method::RayTraced => "ray traced",
         }
     }
 }
@@ -358,7 +368,11 @@ fn draw_subject(
     let ropts = render_options(req, s.sys, s.file);
     match req.target {
         Target::Still(format) => {
-            still_counted(s, &req.run, format, ropts, req.layout, progress).map(|(p, _)| p)
+            let how = How {
+                layout: req.layout,
+                tracing: req.tracing,
+            };
+            still_counted(s, &req.run, format, ropts, how, progress).map(|(p, _)| p)
         }
         Target::Mesh(format) => mesh::draw(s.sys, format, req, progress),
         Target::Animation(container) => animate::draw(s, req, container, ropts, progress),
@@ -412,20 +426,29 @@ fn render_options(req: &Request, sys: &System, file: &str) -> RenderOptions {
     }
 }
 
-/// A still picture by the first method that serves: shared subtrees,
-/// streamed, lit, stored, with the segments it kept in memory (the stored
-/// way's; an animation's frames share one limit on them). Only the stored
-/// way explains an empty picture, so the others hand over to it when they
-/// draw nearly nothing.
+/// What a still picture is made with besides its run and options.
+#[derive(Clone, Copy, Debug)]
+struct How {
+    /// An STL file's layout drawn under the tree.
+    layout: bool,
+    tracing: Tracing,
+}
+
+/// A still picture by the first method that serves: ray traced where the
+/// request or the model asks, else shared subtrees, streamed, lit, stored,
+/// with the segments it kept in memory (the stored way's; an animation's
+/// frames share one limit on them). Only the stored way explains an empty
+/// picture, so the others hand over to it when they draw nearly nothing.
 fn still_counted(
     s: &Subject,
     run: &RunOptions,
     format: Format,
     ropts: RenderOptions,
-    layout: bool,
+    how: How,
     progress: &mut dyn Progress,
 ) -> Result<(Picture, usize), DrawError> {
     let sys = s.sys;
+    let layout = how.layout;
     let picture = |bytes, method| Picture {
         bytes,
         side_files: Vec::new(),
@@ -433,13 +456,21 @@ fn still_counted(
         warnings: Vec::new(),
         mesh: None,
     };
+    if let Some(g) = &sys.graph {
+        let bytes = traced::graph(sys, g, format, &ropts, &how.tracing)?;
+        return Ok((picture(bytes, Method::RayTraced), 0));
+    }
+    let ray_traced = traced::wanted(sys, &how.tracing);
     let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
-    if let Some(bytes) = shared::draw(sys, run, format, ropts, &mut drawing)? {
+    if ray_traced {
+        // Shared subtrees, streaming and lit bands draw lines; the tracer
+        // needs the geometry.
+    } else if let Some(bytes) = shared::draw(sys, run, format, ropts, &mut drawing)? {
         return Ok((picture(bytes, Method::SharedSubtrees), 0));
     }
     check_moves_up_front(sys, run)?;
     let steps = run.derive_options(sys).steps;
-    let (word, values) = if streamed::streams(sys, format, &ropts) {
+    let (word, values) = if !ray_traced && streamed::streams(sys, format, &ropts) {
         let w = derive_symbols(sys, run, |k, n| progress.derived(k, steps, n))?;
         let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
         match streamed::draw(sys, run, w, ropts, &mut drawing)? {
@@ -450,7 +481,7 @@ fn still_counted(
         derive_values(sys, run, |k, n| progress.derived(k, steps, n))?
     };
     let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
-    if lit::streams_lit(sys, format, &ropts, layout) {
+    if !ray_traced && lit::streams_lit(sys, format, &ropts, layout) {
         if let Some(bytes) = lit::draw(sys, &word, &values, run, ropts, &mut drawing)? {
             return Ok((picture(bytes, Method::Lit), 0));
         }
@@ -464,8 +495,14 @@ fn still_counted(
     } else {
         nearly_nothing_drawn(sys, &g, &ropts)
     };
-    let bytes = stored::render_bytes_with(sys, &g, format, ropts, &mut drawing)?;
-    let mut p = picture(bytes, Method::Stored);
+    let (bytes, method) = if ray_traced && !g.is_empty() {
+        let bytes = traced::geometry(sys, &g, format, &ropts, &how.tracing)?;
+        (bytes, Method::RayTraced)
+    } else {
+        let bytes = stored::render_bytes_with(sys, &g, format, ropts, &mut drawing)?;
+        (bytes, Method::Stored)
+    };
+    let mut p = picture(bytes, method);
     p.warnings.extend(warning);
     Ok((p, g.segments.len()))
 }

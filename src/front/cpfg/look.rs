@@ -165,6 +165,7 @@ fn lighting(v: &View, materials: &[Option<Material>]) -> Lighting {
         index_shift: v.diffuse_reflection,
         surface_ambient: v.surface_ambient,
         surface_diffuse: v.surface_diffuse,
+        shadows: v.render_mode == view::RenderMode::Shadows,
     }
 }
 
