@@ -54,8 +54,8 @@ fn unread(line: &[Tok<'_>], span: Span) -> GraphLine {
     let mut geometry = false;
     let arrow = line.iter().position(|t| t.0 == Token::Arrow);
     match (arrow, line.first().map(|t| t.0)) {
-        (Some(1), _) => symbols.extend(name(&line[0])),
-        (Some(_), _) => {}
+        // A rule's head that is not one symbol: each name in it.
+        (Some(arrow), _) => symbols.extend(line[..arrow].iter().filter_map(name)),
         (None, Some(Token::Ident("transform"))) => {
             transform = line.get(1).and_then(name);
         }
