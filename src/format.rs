@@ -14,7 +14,7 @@
 
 use crate::diagnostics::Diagnostics;
 use crate::driver::{self, Compiled};
-use crate::front::gft::ast::{Block, Item};
+use crate::front::gft::ast::{Block, GraphLine, Item};
 use crate::front::gft::{lexer, parser};
 use crate::front::Front;
 use crate::ir::Span;
@@ -118,6 +118,9 @@ enum Key {
     Define(String),
     /// A production by its index, at top level (`""`) or in a block.
     Production(String, usize),
+    /// A line of a `graph` block: its kind, the symbol (or transform) it
+    /// is of, and how many lines of that kind and symbol come before it.
+    Graph(&'static str, String, usize),
 }
 
 /// Keywords whose first argument names what the item declares.
@@ -147,6 +150,9 @@ fn items(text: &str) -> Vec<(Key, usize)> {
                         out.push((Key::Production(k.name.clone(), i), p.span.start));
                     }
                 }
+                if let Some(Block::Graph(lines)) = &k.block {
+                    graph_items(lines, &mut out);
+                }
             }
             Item::Define { name, span, .. } => out.push((Key::Define(name.clone()), span.start)),
             Item::Production(p) => {
@@ -157,6 +163,25 @@ fn items(text: &str) -> Vec<(Key, usize)> {
     }
     out.sort_by_key(|(_, at)| *at);
     out
+}
+
+/// The keys of a `graph` block's lines.
+fn graph_items(lines: &[GraphLine], out: &mut Vec<(Key, usize)>) {
+    let mut seen: HashMap<(&'static str, String), usize> = HashMap::new();
+    for line in lines {
+        let (kind, name) = match line {
+            GraphLine::Transform { name, .. } => ("transform", name.text.clone()),
+            GraphLine::Axiom { .. } => ("axiom", String::new()),
+            GraphLine::Symbol { names, .. } => ("symbol", names[0].text.clone()),
+            GraphLine::Rule { symbol, .. } => ("rule", symbol.text.clone()),
+            GraphLine::Geometry { symbol, .. } => ("geometry", symbol.text.clone()),
+            GraphLine::Alternative { symbol, .. } => ("alternative", symbol.text.clone()),
+            GraphLine::Unread { .. } => continue,
+        };
+        let count = seen.entry((kind, name.clone())).or_default();
+        out.push((Key::Graph(kind, name, *count), line.span().start));
+        *count += 1;
+    }
 }
 
 /// Where a comment goes back: at the start of the file (one before every

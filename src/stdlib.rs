@@ -4,7 +4,9 @@
 //! also `std:pfg/koch-island`); the other notations' entries carry their
 //! folder (`std:linf/fig03-koch-snowflake`, `std:stl/fig04-plant`), and the
 //! entry's file name ends in the notation's extension, which is what picks
-//! the front end.
+//! the front end. A collection in a folder of its own inside a notation's
+//! folder is named by the collection (`stdlib/gft/bekaert/tree.gft` is
+//! `std:bekaert/tree`, Bekaert & Willems' graphs).
 
 /// One stdlib entry: its name, the file name it is shown under, its text.
 pub struct Entry {
@@ -26,6 +28,24 @@ macro_rules! entry {
             name: concat!($dir, "/", $name),
             file: concat!("std:", $dir, "/", $name, ".", $ext),
             text: include_str!(concat!("../stdlib/", $dir, "/", $name, ".", $ext)),
+        }
+    };
+    // A collection inside a notation's folder, named by the collection
+    // (`stdlib/gft/bekaert/tree.gft` is `std:bekaert/tree`).
+    ($dir:literal / $sub:literal / $name:literal . $ext:literal) => {
+        Entry {
+            name: concat!($sub, "/", $name),
+            file: concat!("std:", $sub, "/", $name, ".", $ext),
+            text: include_str!(concat!(
+                "../stdlib/",
+                $dir,
+                "/",
+                $sub,
+                "/",
+                $name,
+                ".",
+                $ext
+            )),
         }
     };
 }
@@ -114,6 +134,11 @@ pub static ENTRIES: &[Entry] = &[
     entry!("gft" / "signal-plant-3d" . "gft"),
     entry!("gft" / "stochastic-tree" . "gft"),
     entry!("gft" / "two-heading-curve" . "gft"),
+    entry!("gft" / "bekaert" / "fern" . "gft"),
+    entry!("gft" / "bekaert" / "menger" . "gft"),
+    entry!("gft" / "bekaert" / "temple" . "gft"),
+    entry!("gft" / "bekaert" / "tetrahedron" . "gft"),
+    entry!("gft" / "bekaert" / "tree" . "gft"),
 ];
 
 /// The entry called `name` (with or without its extension; pfg entries
@@ -329,6 +354,7 @@ mod tests {
             ("smith", ".smith"),
             ("smith", ".gft"),
             ("gft", ".gft"),
+            ("gft/bekaert", ".gft"),
         ] {
             let Ok(entries) = std::fs::read_dir(format!("{root}/{dir}")) else {
                 continue;
@@ -338,6 +364,7 @@ mod tests {
                 if let Some(stem) = f.strip_suffix(ext) {
                     files.push(match dir {
                         "pfg" => stem.to_string(),
+                        "gft/bekaert" => format!("bekaert/{stem}"),
                         _ => format!("{dir}/{stem}"),
                     });
                 }

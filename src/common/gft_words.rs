@@ -48,7 +48,26 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("material", false),
     ("surface", true),
     ("contour", true),
+    ("graph", true),
 ];
+
+/// The words that start a line of a `graph { … }` block (docs/gft.md
+/// §13); any other line of the block is a rule `A -> …`.
+pub const GRAPH_LINES: &[&str] = &["transform", "axiom", "symbol", "geometry", "alternative"];
+
+/// The steps a transform of a `graph` block is composed of.
+pub const TRANSFORMS: &[&str] = &["translate", "scale", "rotate", "shear", "matrix"];
+
+/// The primitive shapes of a `graph` block's `geometry` lines.
+pub const SHAPES: &[&str] = &[
+    "sphere", "box", "cylinder", "cone", "disc", "triangle", "polygon",
+];
+
+/// The finish words after a shape, each followed by a number.
+pub const FINISHES: &[&str] = &["ambient", "diffuse", "specular", "shininess"];
+
+/// The axes of `rotate x|y|z` and `shear`.
+pub const AXES: &[&str] = &["x", "y", "z"];
 
 /// Whether `name` is a keyword.
 pub fn is_keyword(name: &str) -> bool {

@@ -539,3 +539,25 @@ impl InstancingGraph {
             .collect()
     }
 }
+
+/// The colour of a shape that names none: a mid grey.
+pub const DEFAULT_SHAPE_COLOUR: Rgb = Rgb(128, 128, 128);
+
+impl Affine {
+    /// The composition of `steps`, written as in mathematics: the last
+    /// applied first (`[T, S]` is `T ∘ S`, a scaling then a translation).
+    /// The one way front ends compose a transform written in steps, so
+    /// that an emitter can tell exactly which steps give a matrix back.
+    pub fn compose(steps: &[Affine]) -> Affine {
+        match steps.split_first() {
+            None => Affine::IDENTITY,
+            Some((first, rest)) => rest.iter().fold(*first, |w, s| w.then_after(s)),
+        }
+    }
+
+    /// Whether `self` and `other` agree bit for bit (`-0` and `0` apart).
+    pub fn same_bits(&self, other: &Affine) -> bool {
+        let bits = |a: &Affine| a.0.map(|row| row.map(f64::to_bits));
+        bits(self) == bits(other)
+    }
+}

@@ -40,6 +40,7 @@ mod fuzz;
 mod gallery;
 mod gft;
 mod gft_emitter;
+mod gft_graph;
 mod gft_hub;
 mod gft_models;
 mod gft_roundtrip;

@@ -5,11 +5,12 @@
 //! default, rotations, colours, what each symbol does to the turtle
 //! (the turtle set that needs the fewest `NAME = operation` lines, and
 //! those lines), the rule policy, context filter, ring and cut, the program,
-//! the axiom, the productions, the phases, the structure, the look,
-//! surfaces and contours. Numbers are [`expr::num`]: bit-exact. Where
+//! the axiom, the productions, the phases, the structure, the graph, the
+//! look, surfaces and contours. Numbers are [`expr::num`]: bit-exact. Where
 //! docs/gft.md is silent, docs/gft-emitter-notes.md says what is written.
 
 pub mod expr;
+mod graph;
 mod look;
 mod words;
 
@@ -71,6 +72,9 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     phase(&mut out, sys, &sp, "homomorphism", &sys.homomorphism);
     if let Some(st) = &sys.structure {
         look::structure(&mut out, sys, &sp, st);
+    }
+    if let Some(g) = &sys.graph {
+        graph::graph(&mut out, g);
     }
     look::look(&mut out, &sys.look);
     look::surfaces(&mut out, sys);

@@ -1,4 +1,5 @@
-//! Diagnostic codes of the `.gft` front end (`E09xx`, `W09xx`).
+//! Diagnostic codes of the `.gft` front end (`E09xx`, `W09xx`; `E092x`
+//! for its `graph` blocks).
 
 use super::Code;
 
@@ -91,8 +92,95 @@ Example:
 Write:
     X -> Y(1)";
 
+    GRAPH_BAD_LINE = "E0920", "malformed graph line",
+"A line of a `graph { … }` block is one of
+    transform NAME = STEPS
+    axiom COUPLES
+    symbol NAMES
+    geometry SYMBOL = SHAPE
+    alternative SYMBOL [below PIXELS] = SHAPE
+    SYMBOL -> COUPLES
+(docs/gft.md §13). A rule rewrites one symbol; a transform's name is not
+one of the transform words (`translate`, `scale`, `rotate`, `shear`,
+`matrix`); nothing comes before the block's `{`.
+
+Example:
+    graph {
+      axoim A                   <- did you mean `axiom`?
+      A B -> h(A)               <- a rule rewrites one symbol
+    }";
+
+    GRAPH_UNKNOWN_TRANSFORM = "E0921", "unknown transform",
+"A transform written in steps (after `transform NAME =`, or between `[`
+and `]` before a couple's symbol) is composed of `translate P`, `scale S`
+or `scale (x, y, z)`, `rotate x|y|z ANGLE` or `rotate (ax, ay, az) ANGLE`,
+`shear x y F`, `matrix (…)`, and the names of transforms declared above.
+
+Example:
+    A -> [scal 0.5](A)          <- did you mean `scale`?";
+
+    GRAPH_BAD_VALUE = "E0922", "malformed number or point",
+"The values of a `graph` block are numbers (`0.5`, `-2`, `1/3`), points
+`(x, y, z)` (`(x, y)` is z = 0), angles in degrees (`30`, `30deg`) or
+radians (`0.52rad`), and matrices of three rows of four numbers, rows
+separated by commas: `matrix (0.5 0 0 1, 0 0.5 0 0, 0 0 0.5 0)`. `scale`
+takes one number or three; a rotation's axis is not zero; a shear moves
+one axis along another; `below` takes a number of pixels above zero.
+
+Example:
+    transform t = translate (1, 0, 0, 2)   <- a point has three coordinates";
+
+    GRAPH_BAD_SHAPE = "E0923", "malformed shape",
+"A `geometry` or `alternative` line gives one shape:
+    sphere CENTRE RADIUS
+    box MIN MAX
+    cylinder BASE TOP RADIUS
+    cone BASE TOP RADIUS [TOP-RADIUS]
+    disc CENTRE NORMAL RADIUS
+    triangle P Q R
+    polygon P Q R …
+then an optional colour `#rrggbb` and finish words `ambient X`,
+`diffuse X`, `specular X`, `shininess X`, each at most once.
+
+Example:
+    geometry B = sphere (0, 0, 0)          <- a sphere takes a radius";
+
+    GRAPH_UNKNOWN_SYMBOL = "E0924", "unknown symbol",
+"Each symbol of a `graph` block is introduced by a line of its own: a
+rule `A -> …`, a `geometry` or `alternative` line, or `symbol A`. A symbol
+that an axiom or a rule places but no line introduces is most often a
+misspelt one. (In a graph that has geometries, such a symbol is a
+terminal without a geometry: E1002 says so.)
+
+Example:
+    graph {
+      axiom A
+      A -> h(A) h(a)            <- did you mean `A`?
+    }";
+
+    GRAPH_DEFINED_TWICE = "E0925", "given twice in a graph",
+"In a `graph` block, a symbol has at most one rule, a transform name is
+declared once, the block has one `axiom`, and a symbol's `alternative`
+lines all give the same `below`: which one would hold is not obvious to a
+reader.
+
+Example:
+    A -> h(A)
+    A -> t(A)                   <- merge them: `A -> h(A) t(A)`";
+
+    GRAPH_UNKNOWN_NAME = "E0926", "unknown transform name",
+"A couple `NAME(B)` places `B` by the transform declared with `transform
+NAME = …`. The name is declared in the same `graph` block; a transform's
+definition may use only the transforms declared above it.
+
+Example:
+    transform h = scale 0.5
+    A -> g(A)                   <- did you mean `h`?";
+
     GFT_NO_AXIOM = "W0900", "no axiom",
-"A file without `axiom` derives the empty word: nothing is drawn.
+"A file without `axiom` (and without a `graph` block or a structure's
+`seed`, which give what is drawn) derives the empty word: nothing is
+drawn. A `graph` block without its `axiom` places nothing either.
 
 Example:
     F -> F+F        <- add `axiom F`";

@@ -8,10 +8,12 @@
 //! translation (`codes/translate.rs`), `E07xx` Fractint (`codes/fractint.rs`),
 //! `E080x`–`E082x` the cpfg preprocessor and side files (`codes/cpfg.rs`),
 //! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`), `E090x`
-//! graftal's own notation `.gft` (`codes/gft.rs`), `E097x` Smith
-//! (`codes/smith.rs`); `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx`
-//! STL, `W06xx` translation, `W07xx` Fractint, `W080x`–`W082x` cpfg, `W090x`
-//! `.gft`, `W097x` Smith.
+//! graftal's own notation `.gft` (`codes/gft.rs`) and `E092x` its `graph`
+//! blocks, `E097x` Smith (`codes/smith.rs`), `E10xx` the checks of
+//! object-instancing graphs that every front end reading one reports
+//! (`codes/graph.rs`); `W00xx` general and pfg warnings, `W04xx` LinF,
+//! `W05xx` STL, `W06xx` translation, `W07xx` Fractint, `W080x`–`W082x`
+//! cpfg, `W090x` `.gft`, `W097x` Smith, `W10xx` object-instancing graphs.
 //!
 //! A code nothing emits any more is retired: its entry goes and its number
 //! joins [`RETIRED`], never to be given again. `tests/it/stale_words.rs` holds
@@ -80,6 +82,7 @@ mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
 mod gft;
+mod graph;
 mod linf;
 mod smith;
 mod stl;
@@ -88,6 +91,7 @@ pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
 pub use gft::*;
+pub use graph::*;
 pub use linf::*;
 pub use smith::*;
 pub use stl::*;
@@ -109,6 +113,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
         .chain(smith::SMITH)
         .chain(gft::GFT)
+        .chain(graph::GRAPH)
 }
 
 codes! { GENERAL;

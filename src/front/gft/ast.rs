@@ -1,6 +1,7 @@
 //! The `.gft` syntax tree: items as written, words not yet split into
 //! symbols (that needs the file's declarations, see `lower`).
 
+use crate::ir::graph::{Affine, Shape};
 use crate::ir::Span;
 
 /// A file: its items in order.
@@ -44,6 +45,8 @@ pub enum Block {
     Statements(Vec<Stmt>),
     /// The lines of `outline`, `surface` and `contour`, as written.
     Lines(Vec<Vec<Arg>>),
+    /// The lines of `graph { … }`, each read (docs/gft.md §13).
+    Graph(Vec<GraphLine>),
 }
 
 impl Keyword {
@@ -154,4 +157,100 @@ pub enum Stmt {
     If(Expr, Vec<Stmt>, Vec<Stmt>),
     While(Expr, Vec<Stmt>),
     Do(Vec<Stmt>, Expr),
+}
+
+/// A name as written in a `graph` block (a symbol's or a transform's).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Name {
+    pub text: String,
+    pub span: Span,
+}
+
+/// One line of a `graph { … }` block.
+#[derive(Clone, Debug)]
+pub enum GraphLine {
+    /// `transform NAME = STEPS`.
+    Transform {
+        name: Name,
+        steps: Vec<Step>,
+        span: Span,
+    },
+    /// `axiom COUPLES`.
+    Axiom { couples: Vec<Couple>, span: Span },
+    /// `symbol NAMES`: symbols with no rule and no geometry.
+    Symbol { names: Vec<Name>, span: Span },
+    /// `NAME -> COUPLES`.
+    Rule {
+        symbol: Name,
+        couples: Vec<Couple>,
+        span: Span,
+    },
+    /// `geometry NAME = SHAPE`.
+    Geometry {
+        symbol: Name,
+        shape: Shape,
+        span: Span,
+    },
+    /// `alternative NAME [below N] = SHAPE`.
+    Alternative {
+        symbol: Name,
+        below: Option<(f64, Span)>,
+        shape: Shape,
+        span: Span,
+    },
+    /// A line that did not read (its error reported), with what it
+    /// would have introduced, so that the rest of the block does not
+    /// report its names again.
+    Unread {
+        /// The symbols it introduces (a rule's, a geometry's, `symbol`'s).
+        symbols: Vec<Name>,
+        /// The transform it declares.
+        transform: Option<Name>,
+        /// Whether it is a `geometry` or `alternative` line.
+        geometry: bool,
+        span: Span,
+    },
+}
+
+impl GraphLine {
+    /// The whole line.
+    pub fn span(&self) -> &Span {
+        match self {
+            GraphLine::Transform { span, .. }
+            | GraphLine::Axiom { span, .. }
+            | GraphLine::Symbol { span, .. }
+            | GraphLine::Rule { span, .. }
+            | GraphLine::Geometry { span, .. }
+            | GraphLine::Alternative { span, .. }
+            | GraphLine::Unread { span, .. } => span,
+        }
+    }
+}
+
+/// One step of a transform written in steps.
+#[derive(Clone, Debug)]
+pub enum Step {
+    /// `translate …`, `scale …`, `rotate …`, `shear …`, `matrix …`.
+    Affine(Affine, Span),
+    /// A transform declared with `transform NAME = …`.
+    Name(Name),
+}
+
+/// How a couple places its symbol.
+#[derive(Clone, Debug)]
+pub enum Placement {
+    /// `B`: the identity.
+    Identity,
+    /// `NAME(B)`.
+    Named(Name),
+    /// `[STEPS](B)`, with the span of the brackets.
+    Steps(Vec<Step>, Span),
+}
+
+/// A couple `w(B)` of an axiom or a rule.
+#[derive(Clone, Debug)]
+pub struct Couple {
+    pub placement: Placement,
+    pub symbol: Name,
+    pub span: Span,
 }

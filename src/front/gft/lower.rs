@@ -1,9 +1,11 @@
 //! Lowering a `.gft` syntax tree to the IR (docs/gft.md): declarations
 //! first (the turtle set, `NAME = OPERATION`, `symbol`, `silent`,
 //! rotations), so that words split by the longest declared name; then
-//! settings, the program, the axiom and the productions.
+//! settings, the program, the axiom and the productions; a `graph` block
+//! is lowered on its own (`graph`).
 
 mod declarations;
+mod graph;
 mod items;
 mod keywords;
 mod program;
@@ -126,8 +128,9 @@ pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
         }
     }
     cx.structure(file);
-    // A structure's seed gives the axiom.
-    if keyword("axiom").next().is_none() && cx.sys.structure.is_none() {
+    // A structure's seed gives the axiom; a graph has its own.
+    let graph = keyword("graph").next().is_some();
+    if keyword("axiom").next().is_none() && cx.sys.structure.is_none() && !graph {
         cx.diags.push(
             Diagnostic::global(codes::GFT_NO_AXIOM, "no axiom")
                 .with_help("add a line `axiom WORD`, e.g. `axiom F`"),

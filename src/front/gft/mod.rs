@@ -2,9 +2,11 @@
 //! language, which says everything the IR holds.
 //!
 //! `lexer` (logos) -> `parser` (logical lines; chumsky for expressions and
-//! statements, recovering line by line) -> `ast` -> `lower` (IR).
+//! statements, recovering line by line; `graph` for the lines of a
+//! `graph { … }` block) -> `ast` -> `lower` (IR).
 
 pub mod ast;
+pub mod graph;
 pub mod lexer;
 pub mod lower;
 pub mod parser;

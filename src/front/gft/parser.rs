@@ -252,7 +252,17 @@ fn keyword_item(
     };
     kw.args = args(&rest[..open]);
     let inner = &rest[open + 1..close.max(open + 1)];
-    kw.block = Some(if VALUE_BLOCKS.contains(&name) {
+    kw.block = Some(if name == "graph" {
+        if let (Some(first), Some(last)) = (kw.args.first(), kw.args.last()) {
+            let span = first.span().start..last.span().end;
+            diags.push(
+                Diagnostic::at(codes::GRAPH_BAD_LINE, span, "text before the graph's `{`")
+                    .with_label("nothing goes between `graph` and `{`")
+                    .with_help("write `graph {` and the graph's lines below it"),
+            );
+        }
+        Block::Graph(super::graph::block(inner, diags))
+    } else if VALUE_BLOCKS.contains(&name) {
         let lines = inner.split(|t| t.0 == Token::Newline);
         Block::Lines(lines.filter(|l| !l.is_empty()).map(args).collect())
     } else if matches!(name, "decomposition" | "homomorphism") {

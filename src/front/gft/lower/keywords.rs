@@ -141,6 +141,7 @@ impl Cx<'_> {
                 self.sys.cut = w.and_then(|w| w.symbols().first().copied());
             }
             "colours" => self.colours(k),
+            "graph" => self.graph(k),
             "decomposition" | "homomorphism" => self.phase(k),
             "start" | "start-each" | "end-each" | "end" => {
                 let Some(Block::Statements(s)) = &k.block else {
