@@ -44,7 +44,7 @@ impl Volume {
             }
             Volume::Box { min, max } => (*min, *max),
         };
-        std::array::from_fn(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+        super::box_corners(lo, hi)
     }
 
     /// A world box around its image under `w`.

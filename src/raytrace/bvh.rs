@@ -64,6 +64,11 @@ impl Bvh {
         Bvh { items, nodes }
     }
 
+    /// The items, in the hierarchy's order.
+    pub fn items(&self) -> &[Item] {
+        &self.items
+    }
+
     pub fn len(&self) -> usize {
         self.items.len()
     }

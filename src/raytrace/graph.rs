@@ -14,8 +14,8 @@
 
 use super::bounds::{Bounds, Key, Unbounded, Volume};
 use super::bvh::Item;
-use super::primitive::{intersect, slabs, sphere, Ray};
-use super::vec::{add, mul, normalize, V3};
+use super::primitive::{intersect, slabs, Ray};
+use super::vec::{add, dot, mul, normalize, sub, V3};
 use super::{Cut, Scene, Scratch, SurfaceHit};
 use crate::ir::graph::{Affine, Finish, InstancingGraph, Primitive, Shape};
 use std::cmp::Reverse;
@@ -97,12 +97,22 @@ impl<'g> GraphScene<'g> {
                 (t0, t1, n0)
             }
             Volume::Sphere { centre, radius } => {
-                let far = sphere(centre, radius, local, f64::NEG_INFINITY, f64::INFINITY)?;
-                let near = sphere(centre, radius, local, f64::NEG_INFINITY, far.t);
-                match near {
-                    Some(n) => (n.t, far.t, n.normal),
-                    None => (far.t, far.t, far.normal),
+                let oc = sub(local.origin, centre);
+                let a = dot(local.dir, local.dir);
+                let b = dot(oc, local.dir);
+                let disc = b * b - a * (dot(oc, oc) - radius * radius);
+                if disc < 0.0 || a == 0.0 {
+                    return None;
                 }
+                let root = disc.sqrt();
+                let (t0, t1) = ((-b - root) / a, (-b + root) / a);
+                // Only a graph without geometry shades by the volumes.
+                let n = if self.pure {
+                    sub(local.at(t0), centre)
+                } else {
+                    [0.0; 3]
+                };
+                (t0, t1, n)
             }
         };
         (t1 > t_min && t0 < t_max).then_some((t0.max(t_min), n))
@@ -217,11 +227,11 @@ impl<'g> GraphScene<'g> {
                 let inverse = self.edge_inverse[x][k].then_after(&c.inverse);
                 let local = local_ray(&inverse, ray);
                 if let Some((t, n)) = self.entry(y, &local, t_min, bound) {
-                    let own = normalize(normal_to_world(&inverse, n));
                     let normal = if self.pure {
+                        let own = normalize(normal_to_world(&inverse, n));
                         normalize(add(mul(c.normal, 0.5), own))
                     } else {
-                        own
+                        c.normal
                     };
                     let child = Couple {
                         inverse,
@@ -244,6 +254,11 @@ impl GraphScene<'_> {
 
     pub fn bounds(&self) -> &Bounds {
         &self.bounds
+    }
+
+    /// The size of a symbol's volume (0 for one that draws nothing).
+    fn size(&self, x: usize) -> f64 {
+        self.bounds.volumes[x].map_or(0.0, |v| v.size())
     }
 
     /// Whether no symbol has a geometry (the limit drawn as volumes).
@@ -331,9 +346,50 @@ pub(crate) fn normal_to_world(inverse: &Affine, n: V3) -> V3 {
     [0, 1, 2].map(|j| m[0][j] * n[0] + m[1][j] * n[1] + m[2][j] * n[2])
 }
 
+/// Couples a view is fitted to at most.
+const FIT_COUPLES: usize = 2048;
+
 impl Scene for GraphScene<'_> {
     fn world_box(&self) -> (V3, V3) {
         self.world
+    }
+
+    /// The corners of the volumes of the largest couples, expanded from the
+    /// axiom largest first until there are [`FIT_COUPLES`].
+    fn fit_points(&self) -> Vec<V3> {
+        let mut open: std::collections::BinaryHeap<(Key, Reverse<usize>)> = Default::default();
+        let mut couples: Vec<(usize, Affine, f64)> = Vec::new();
+        let forward = |inverse: &Affine| inverse.inverse_thickened();
+        for (i, &(x, inv, s)) in self.axiom.iter().enumerate() {
+            couples.push((x, forward(&inv), s));
+            open.push((Key(s * self.size(x)), Reverse(i)));
+        }
+        let mut leaves: Vec<usize> = Vec::new();
+        let mut points: Vec<V3> = Vec::new();
+        while let Some((_, Reverse(i))) = open.pop() {
+            let (x, w, s) = couples[i];
+            let rule = self.graph.successors(x);
+            if rule.is_empty() || open.len() + leaves.len() + rule.len() > FIT_COUPLES {
+                leaves.push(i);
+                continue;
+            }
+            for (k, e) in rule.iter().enumerate() {
+                if self.bounds.volumes[e.symbol].is_some() {
+                    let se = s * self.bounds.stretch[x][k];
+                    couples.push((e.symbol, w.then_after(&e.transform), se));
+                    open.push((Key(se * self.size(e.symbol)), Reverse(couples.len() - 1)));
+                }
+            }
+            let own = &self.graph.symbols[x].geometry;
+            let hull = own.iter().flat_map(|sh| sh.primitive.hull_points());
+            points.extend(hull.map(|p| w.apply(p)));
+        }
+        let volumes = leaves.iter().filter_map(|&i| {
+            let (x, w, _) = couples[i];
+            Some(self.bounds.volumes[x]?.corners().map(|p| w.apply(p)))
+        });
+        points.extend(volumes.flatten());
+        points
     }
 
     fn hit(

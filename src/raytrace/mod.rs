@@ -64,6 +64,13 @@ pub struct Scratch {
 pub trait Scene: Sync {
     /// A box holding everything.
     fn world_box(&self) -> (V3, V3);
+    /// Points whose hull holds everything, as tight as is cheap: what a
+    /// parallel view is fitted to (a box's corners stick out of most
+    /// figures, and off-centre them).
+    fn fit_points(&self) -> Vec<V3> {
+        let (lo, hi) = self.world_box();
+        box_corners(lo, hi).to_vec()
+    }
     /// The nearest hit with `t` in `(t_min, t_max)`.
     fn hit(
         &self,
@@ -139,7 +146,8 @@ pub(crate) struct RayCamera {
 }
 
 impl RayCamera {
-    pub(crate) fn new(eye: Eye, opts: &Options, world: (V3, V3)) -> RayCamera {
+    /// The camera of `eye`, a parallel one fitted to hold `points`.
+    pub(crate) fn new(eye: Eye, opts: &Options, points: &[V3]) -> RayCamera {
         let centre = [opts.width as f64 / 2.0, opts.height as f64 / 2.0];
         let (forward, up, eye_point, fov): (V3, V3, Option<V3>, Option<f64>) = match eye {
             Eye::View { azimuth, elevation } => {
@@ -166,10 +174,8 @@ impl RayCamera {
         };
         let right = normalize(cross(forward, up));
         let up = cross(right, forward);
-        let (lo, hi) = world;
-        let corners: Vec<V3> = (0..8)
-            .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
-            .collect();
+        let (lo, hi) = bounds::points_box(points.iter().copied());
+        let corners = points;
         let share = opts.scale.clamp(1.0, 100.0) / 100.0;
         let room = [
             opts.width as f64 * 0.9 * share,
@@ -272,7 +278,7 @@ pub(crate) fn lights_for(opts: &Options, cam: &RayCamera) -> Vec<Light> {
     vec![Light {
         vector: dir,
         directional: true,
-        ambient: [0.25; 3],
+        ambient: [1.0; 3],
         diffuse: [0.85; 3],
         specular: [0.6; 3],
     }]
@@ -351,7 +357,7 @@ const BAND: usize = 8;
 /// The picture: RGBA, row by row.
 pub fn trace(scene: &dyn Scene, opts: &Options) -> Vec<u8> {
     let (w, h) = (opts.width as usize, opts.height as usize);
-    let cam = RayCamera::new(opts.eye, opts, scene.world_box());
+    let cam = RayCamera::new(opts.eye, opts, &scene.fit_points());
     let lights = lights_for(opts, &cam);
     let offsets = sample_offsets(opts.samples);
     let bands = h.div_ceil(BAND);
@@ -425,11 +431,17 @@ pub fn png(rgba: Vec<u8>, width: u32, height: u32) -> Option<Vec<u8>> {
     tiny_skia::Pixmap::from_vec(rgba, size)?.encode_png().ok()
 }
 
-/// The world size of a pixel at the middle of the scene `world` seen as
-/// `opts` say: what widths given in pixels are made of.
-pub fn pixel_size(world: (V3, V3), opts: &Options) -> f64 {
-    let cam = RayCamera::new(opts.eye, opts, world);
-    let middle = mul(add(world.0, world.1), 0.5);
+/// The corners of a box.
+pub fn box_corners(lo: V3, hi: V3) -> [V3; 8] {
+    std::array::from_fn(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+}
+
+/// The world size of a pixel at the middle of a scene that `points` hold,
+/// seen as `opts` say: what widths given in pixels are made of.
+pub fn pixel_size(points: &[V3], opts: &Options) -> f64 {
+    let cam = RayCamera::new(opts.eye, opts, points);
+    let (lo, hi) = bounds::points_box(points.iter().copied());
+    let middle = mul(add(lo, hi), 0.5);
     let along = dot(sub(middle, cam.origin), cam.forward).max(0.0);
     cam.cut().at(along)
 }

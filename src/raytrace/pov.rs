@@ -113,8 +113,9 @@ fn shape(s: &Shape) -> Option<String> {
 }
 
 /// The camera, the lights and the background graftal's tracer uses.
-fn header(opts: &Options, world: (V3, V3)) -> String {
-    let cam = RayCamera::new(opts.eye, opts, world);
+fn header(opts: &Options, points: &[V3]) -> String {
+    let cam = RayCamera::new(opts.eye, opts, points);
+    let world = super::bounds::points_box(points.iter().copied());
     let (w, h) = (opts.width as f64, opts.height as f64);
     let mut out = String::from("// Written by graftal: a scene for POV-Ray 3.7.\n#version 3.7;\n");
     let lights = lights_for(opts, &cam);
@@ -166,8 +167,8 @@ fn header(opts: &Options, world: (V3, V3)) -> String {
 }
 
 /// A scene of what a turtle drew (world primitives).
-pub fn items_scene(items: &[Item], opts: &Options, world: (V3, V3)) -> String {
-    let mut out = header(opts, world);
+pub fn items_scene(items: &[Item], opts: &Options, points: &[V3]) -> String {
+    let mut out = header(opts, points);
     for item in items {
         if let Some(body) = primitive(&item.primitive) {
             let placed = item
@@ -186,9 +187,9 @@ pub fn items_scene(items: &[Item], opts: &Options, world: (V3, V3)) -> String {
 
 /// A scene of an instancing graph, its instancing kept.
 pub fn graph_scene(scene: &GraphScene, opts: &Options) -> String {
-    let world = super::Scene::world_box(scene);
-    let pixel = super::pixel_size(world, opts);
-    let mut out = header(opts, world);
+    let points = super::Scene::fit_points(scene);
+    let pixel = super::pixel_size(&points, opts);
+    let mut out = header(opts, &points);
     out.push_str(&scene.declarations(pixel, MAX_LEVELS));
     out
 }

@@ -153,7 +153,17 @@ fn an_instanced_graph_draws_what_its_expansion_draws_pixel_for_pixel() {
         "a trunk, and per branch itself, 2 leaves, a box"
     );
     let flat = Bvh::new(items);
-    for eye in [view(30.0, 20.0), view(-70.0, 45.0)] {
+    // A camera of its own: both pictures seen through the same lens (a
+    // parallel view is fitted to each scene's own hull).
+    let camera = |eye: [f64; 3]| {
+        Eye::Camera(graftal::ir::look::Camera {
+            eye,
+            target: [0.0, 1.2, 0.0],
+            up: [0.0, 1.0, 0.0],
+            perspective: Some(40.0),
+        })
+    };
+    for eye in [camera([3.0, 2.5, 4.0]), camera([-4.0, 3.5, -2.0])] {
         let opts = options(96, eye);
         let instanced = trace(&scene, &opts);
         let expanded = trace(&flat, &opts);
@@ -583,8 +593,8 @@ fn a_context_free_plant_is_traced_from_its_shared_subtrees_as_its_geometry_is() 
     let eye = view(0.0, 0.0);
     let bare = subtrees::graph(&mut inst, steps, 0.0, colour).unwrap();
     let opts = options(size, eye);
-    let world = graftal::raytrace::Scene::world_box(&GraphScene::new(&bare, [0.0; 3]).unwrap());
-    let pixel = graftal::raytrace::pixel_size(world, &opts);
+    let points = graftal::raytrace::Scene::fit_points(&GraphScene::new(&bare, [0.0; 3]).unwrap());
+    let pixel = graftal::raytrace::pixel_size(&points, &opts);
     let g = subtrees::graph(&mut inst, steps, pixel / sys.settings.step, colour).unwrap();
     let segments = 2usize * 4usize.pow(steps as u32);
     assert!(

@@ -4,6 +4,7 @@
 //! drawn as splines, more than one turtle position), spread over two
 //! dimensions.
 
+use graftal::driver::picture::{self, Format, Method, Quiet, Request, Target};
 use graftal::driver::{compile, derive_values, interpret, load, why_nothing_drawn, RunOptions};
 use graftal::stdlib::{Kind, ENTRIES};
 use graftal::turtle::{Geometry, Vec3};
@@ -47,6 +48,17 @@ fn every_entry_draws_at_its_defaults_or_is_a_schema() {
             .system
             .as_ref()
             .unwrap_or_else(|| panic!("{} compiles", e.name));
+        if sys.graph.is_some() {
+            // An instancing graph is drawn, never derived: a small picture
+            // shows it.
+            let mut req = Request::new(Target::Still(Format::Png));
+            (req.width, req.height) = (24, 24);
+            req.tracing.samples = 1;
+            let p = picture::draw_system(sys, &req, &mut Quiet).unwrap();
+            assert_eq!(p.method, Method::RayTraced, "{}", e.name);
+            assert!(inked(&p.bytes) > 20, "{} draws", e.name);
+            continue;
+        }
         let (word, values) = derive_values(sys, &opts, |_, _| {}).unwrap();
         let spline = e.kind() == Kind::Spline;
         let g = interpret(sys, &word, &values, &opts, spline).unwrap();
@@ -125,4 +137,14 @@ fn unknown_names_suggest_the_nearest_entries() {
     // A huge name is shown shortened, and not compared.
     let m = graftal::stdlib::unknown(&"koch".repeat(100_000));
     assert!(m.len() < 200 && !m.contains("did you mean"), "{m}");
+}
+
+/// Pixels of a PNG unlike its first (the background).
+fn inked(png_bytes: &[u8]) -> usize {
+    let decoder = png::Decoder::new(std::io::Cursor::new(png_bytes));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks(4).collect();
+    px.iter().filter(|p| **p != px[0]).count()
 }

@@ -219,6 +219,13 @@ fn every_stdlib_entry_translates_exactly_where_it_can_and_lossily_elsewhere() {
                 again.diagnostics
             );
             let (sa, sb) = (c.system.as_ref().unwrap(), again.system.as_ref().unwrap());
+            if sa.graph.is_some() {
+                // An instancing graph has no word to draw: it comes back
+                // the same graph.
+                sa.same_as(sb)
+                    .unwrap_or_else(|err| panic!("{} -> {to:?} -> back: {err}", e.name));
+                continue;
+            }
             same_drawing(&geometry(sa, 0), &geometry(sb, 0))
                 .unwrap_or_else(|err| panic!("{} -> {to:?} -> back: {err}\n{text}", e.name));
             // A symbol the target writes as several (a pfg pitch is a LinF

@@ -151,8 +151,7 @@ pub(super) fn shared(
     let Ok(bare_scene) = GraphScene::new(&bare, raytrace::linear(colour)) else {
         return Ok(None);
     };
-    let world = bare_scene.world_box();
-    let pixel = raytrace::pixel_size(world, &opts);
+    let pixel = raytrace::pixel_size(&bare_scene.fit_points(), &opts);
     let radius = line_radius(sys, ropts, pixel) / sys.settings.step.abs().max(f64::MIN_POSITIVE);
     let Some(g) = raytrace::subtrees::graph(&mut inst, steps, radius, colour) else {
         return Ok(None);
@@ -191,16 +190,18 @@ pub(super) fn geometry(
     // Widths given in pixels are a line unit each, as the rasteriser
     // draws them.
     let line_unit = (ropts.width.min(ropts.height) as f64 / 600.0).max(1.0);
-    let pixel = raytrace::pixel_size(world, &opts) * line_unit;
+    let corners = raytrace::box_corners(world.0, world.1);
+    let pixel = raytrace::pixel_size(&corners, &opts) * line_unit;
     let finish = Finish {
         specular: 0.2,
         ..Finish::default()
     };
     let items = bvh::from_geometry(g, pixel, finish);
-    if format == Format::Pov {
-        return Ok(raytrace::pov::items_scene(&items, &opts, world).into_bytes());
-    }
     let scene = bvh::Bvh::new(items);
+    if format == Format::Pov {
+        let points = scene.fit_points();
+        return Ok(raytrace::pov::items_scene(scene.items(), &opts, &points).into_bytes());
+    }
     encode(&scene, &opts, format, ropts, &String::new)
 }
 
