@@ -428,6 +428,26 @@ pub fn translate(
         e.exact("the whole system", None, "");
         return e.finish(text);
     }
+    if sys.graph.is_some() {
+        // Written without its graph, the system would draw nothing of it.
+        let mut diagnostics = crate::diagnostics::Diagnostics::default();
+        diagnostics.push(
+            crate::diagnostics::Diagnostic::global(
+                crate::diagnostics::codes::TR_GRAPH,
+                format!(
+                    "an object-instancing graph cannot be written in {}",
+                    req.target.name()
+                ),
+            )
+            .with_help("graftal writes graphs in its own notation only: `--to gft`"),
+        );
+        return Translation {
+            text: None,
+            mapping: Vec::new(),
+            names: Vec::new(),
+            diagnostics,
+        };
+    }
     if sys.rewrites_modules() {
         let mut diagnostics = crate::diagnostics::Diagnostics::default();
         diagnostics.push(
