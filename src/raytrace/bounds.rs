@@ -100,8 +100,9 @@ impl Bounds {
     pub fn of(graph: &InstancingGraph) -> Result<Bounds, Unbounded> {
         let stretch = graph.per_edge(|t| t.contraction() * (1.0 + 1e-12));
         let balls = guaranteed_balls(graph, &stretch)?;
+        let boxes = fixed_boxes(graph, &balls);
         let volumes = (0..graph.symbols.len())
-            .map(|x| balls[x].map(|_| tightened(graph, &stretch, &balls, x)))
+            .map(|x| balls[x].map(|_| tightened(graph, &stretch, &balls, &boxes, x)))
             .collect();
         Ok(Bounds { volumes, stretch })
     }
@@ -216,14 +217,64 @@ fn guaranteed_balls(graph: &InstancingGraph, stretch: &[Vec<f64>]) -> Result<Vec
 /// until the balls are small or the budget is spent; bound the shapes met
 /// and the balls left; keep the box or the sphere, whichever has the
 /// smaller average projected area.
-fn tightened(graph: &InstancingGraph, stretch: &[Vec<f64>], balls: &[Ball], x: usize) -> Volume {
+/// Boxes that hold each symbol's limit object, tighter than the balls'
+/// boxes: the operator `B_X ← box(X's shapes ∪ ⋃ w(B_Y))` maps boxes
+/// that hold the limit to boxes that do, so it is iterated from the
+/// balls' boxes, each result cut down by the one before, until it stops
+/// shrinking. For maps that scale and translate along the axes (a
+/// Sierpinski tetrahedron's) it ends at the limit's own box.
+fn fixed_boxes(graph: &InstancingGraph, balls: &[Ball]) -> Vec<Option<(V3, V3)>> {
+    let mut boxes: Vec<Option<(V3, V3)>> = balls
+        .iter()
+        .map(|b| b.map(|(c, r)| (sub(c, [r; 3]), add(c, [r; 3]))))
+        .collect();
+    let own: Vec<Option<(V3, V3)>> = (0..graph.symbols.len())
+        .map(|x| shapes_box(&own_shapes(graph, x)))
+        .collect();
+    for _ in 0..1000 {
+        let mut shrunk = 0.0f64;
+        for x in 0..graph.symbols.len() {
+            let Some((lo, hi)) = boxes[x] else { continue };
+            let rule = graph.symbols[x].rule.as_deref().unwrap_or(&[]);
+            if rule.is_empty() {
+                continue;
+            }
+            let images = rule.iter().filter_map(|e| {
+                let (a, b) = boxes[e.symbol]?;
+                Some(Volume::Box { min: a, max: b }.image_box(&e.transform))
+            });
+            let (a, b) = own[x].into_iter().chain(images).fold(
+                ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                |(lo, hi), (a, b)| (min(lo, a), max(hi, b)),
+            );
+            let (a, b) = (max(a, lo), min(b, hi));
+            if !(0..3).all(|k| a[k] <= b[k]) {
+                continue;
+            }
+            let size = length(sub(hi, lo)).max(f64::MIN_POSITIVE);
+            shrunk = shrunk.max(length(sub(a, lo)).max(length(sub(hi, b))) / size);
+            boxes[x] = Some((a, b));
+        }
+        if shrunk <= 1e-12 {
+            break;
+        }
+    }
+    boxes
+}
+
+fn tightened(
+    graph: &InstancingGraph,
+    stretch: &[Vec<f64>],
+    balls: &[Ball],
+    boxes: &[Option<(V3, V3)>],
+    x: usize,
+) -> Volume {
     let (_, root_r) = balls[x].expect("only symbols that draw are tightened");
     // Largest ball first; ties in the order met, so the result is fixed.
     let mut open = BinaryHeap::new();
     let mut met = 0u64;
     let mut couples: Vec<(usize, Affine, f64)> = vec![(x, Affine::IDENTITY, 1.0)];
     open.push((Key(root_r), Reverse(met), 0usize));
-    let mut leaves: Vec<(V3, f64)> = Vec::new();
     let mut points: Vec<V3> = Vec::new();
     let mut expanded = 0;
     while let Some((Key(r), _, i)) = open.pop() {
@@ -237,9 +288,10 @@ fn tightened(graph: &InstancingGraph, stretch: &[Vec<f64>], balls: &[Ball], x: u
                 .map(|p| w.apply(p)),
         );
         if stop {
-            let (c, ry) = balls[y].expect("only symbols that draw are opened");
             if !rule.is_empty() || (own.is_empty() && !graph.has_geometry()) {
-                leaves.push((w.apply(c), s * ry));
+                let (lo, hi) = boxes[y].expect("only symbols that draw are opened");
+                let corners = Volume::Box { min: lo, max: hi }.corners();
+                points.extend(corners.iter().map(|p| w.apply(*p)));
             }
             continue;
         }
@@ -253,15 +305,11 @@ fn tightened(graph: &InstancingGraph, stretch: &[Vec<f64>], balls: &[Ball], x: u
             }
         }
     }
-    let ball_corners = leaves
-        .iter()
-        .flat_map(|(c, r)| [sub(*c, [*r; 3]), add(*c, [*r; 3])]);
-    let (lo, hi) = points_box(points.iter().copied().chain(ball_corners));
+    let (lo, hi) = points_box(points.iter().copied());
     let centre = mul(add(lo, hi), 0.5);
     let reach = points
         .iter()
         .map(|p| length(sub(*p, centre)))
-        .chain(leaves.iter().map(|(c, r)| length(sub(*c, centre)) + r))
         .fold(0.0, f64::max);
     let e = sub(hi, lo);
     let box_area = (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) / 2.0;

@@ -12,13 +12,17 @@ use super::bounds::points_box;
 use super::primitive::{intersect, Ray};
 use super::vec::{max, min, sub, V3};
 use super::{Cut, Scene, Scratch, SurfaceHit};
-use crate::ir::graph::{Finish, Primitive};
+use crate::ir::graph::{Affine, Finish, Primitive};
 use crate::turtle::Geometry;
 
 /// One primitive with its look.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Item {
     pub primitive: Primitive,
+    /// A primitive placed by a transform: the inverse, world to its own
+    /// coordinates (an instance of a graph expanded); `None` when it is
+    /// given in world coordinates.
+    pub placed: Option<Affine>,
     pub colour: [f64; 3],
     pub finish: Finish,
 }
@@ -46,7 +50,7 @@ const LEAF: usize = 4;
 
 impl Bvh {
     pub fn new(items: Vec<Item>) -> Bvh {
-        let boxes: Vec<(V3, V3)> = items.iter().map(|i| item_box(&i.primitive)).collect();
+        let boxes: Vec<(V3, V3)> = items.iter().map(Item::world_box).collect();
         let mut order: Vec<u32> = (0..items.len() as u32).collect();
         let mut nodes = Vec::with_capacity(2 * items.len() / LEAF + 1);
         if !items.is_empty() {
@@ -108,13 +112,8 @@ impl Bvh {
                 let first = node.index as usize;
                 for item in &self.items[first..first + node.count as usize] {
                     let bound = best.as_ref().map_or(t_max, |b| b.t);
-                    if let Some(hit) = intersect(&item.primitive, ray, t_min, bound) {
-                        best = Some(SurfaceHit {
-                            t: hit.t,
-                            normal: hit.normal,
-                            colour: item.colour,
-                            finish: item.finish,
-                        });
+                    if let Some(hit) = item.hit(ray, t_min, bound) {
+                        best = Some(hit);
                         if any {
                             return best;
                         }
@@ -194,9 +193,50 @@ fn build(boxes: &[(V3, V3)], order: &mut [u32], offset: usize, nodes: &mut Vec<N
     me
 }
 
-/// The world box of a primitive.
-pub fn item_box(p: &Primitive) -> (V3, V3) {
-    points_box(p.hull_points().into_iter())
+impl Item {
+    /// A primitive in world coordinates.
+    pub fn world(primitive: Primitive, colour: [f64; 3], finish: Finish) -> Item {
+        Item {
+            primitive,
+            placed: None,
+            colour,
+            finish,
+        }
+    }
+
+    /// A box holding it in the world.
+    pub fn world_box(&self) -> (V3, V3) {
+        let hull = self.primitive.hull_points().into_iter();
+        match &self.placed {
+            None => points_box(hull),
+            Some(inverse) => {
+                let forward = inverse.inverse_thickened();
+                points_box(hull.map(|p| forward.apply(p)))
+            }
+        }
+    }
+
+    /// Where the ray meets it, as the graph tracer computes it for an
+    /// instance (the same arithmetic, so the two draw alike).
+    pub fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let (hit, normal) = match &self.placed {
+            None => {
+                let hit = intersect(&self.primitive, ray, t_min, t_max)?;
+                (hit, hit.normal)
+            }
+            Some(inverse) => {
+                let local = super::graph::local_ray(inverse, ray);
+                let hit = intersect(&self.primitive, &local, t_min, t_max)?;
+                (hit, super::graph::normal_to_world(inverse, hit.normal))
+            }
+        };
+        Some(SurfaceHit {
+            t: hit.t,
+            normal,
+            colour: self.colour,
+            finish: self.finish,
+        })
+    }
 }
 
 impl Scene for Bvh {
@@ -239,34 +279,34 @@ pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish) -> Vec<Item> {
         let colour = super::linear(s.colour);
         let r = radius(s.width);
         if last_end != Some(s.a) {
-            items.push(Item {
-                primitive: Primitive::Sphere {
+            items.push(Item::world(
+                Primitive::Sphere {
                     centre: s.a,
                     radius: r,
                 },
                 colour,
                 finish,
-            });
+            ));
         }
         if s.a != s.b {
-            items.push(Item {
-                primitive: Primitive::Cylinder {
+            items.push(Item::world(
+                Primitive::Cylinder {
                     base: s.a,
                     top: s.b,
                     radius: r,
                 },
                 colour,
                 finish,
-            });
+            ));
         }
-        items.push(Item {
-            primitive: Primitive::Sphere {
+        items.push(Item::world(
+            Primitive::Sphere {
                 centre: s.b,
                 radius: r,
             },
             colour,
             finish,
-        });
+        ));
         last_end = Some(s.b);
     }
     for path in &g.paths {
@@ -274,35 +314,35 @@ pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish) -> Vec<Item> {
         let r = radius(path.width);
         for pair in path.points.windows(2) {
             if pair[0] != pair[1] {
-                items.push(Item {
-                    primitive: Primitive::Cylinder {
+                items.push(Item::world(
+                    Primitive::Cylinder {
                         base: pair[0],
                         top: pair[1],
                         radius: r,
                     },
                     colour,
                     finish,
-                });
+                ));
             }
-            items.push(Item {
-                primitive: Primitive::Sphere {
+            items.push(Item::world(
+                Primitive::Sphere {
                     centre: pair[1],
                     radius: r,
                 },
                 colour,
                 finish,
-            });
+            ));
         }
     }
     for p in &g.polygons {
         let colour = super::linear(p.colour);
         if let Some((&first, rest)) = p.points.split_first() {
             for pair in rest.windows(2) {
-                items.push(Item {
-                    primitive: Primitive::Triangle([first, pair[0], pair[1]]),
+                items.push(Item::world(
+                    Primitive::Triangle([first, pair[0], pair[1]]),
                     colour,
                     finish,
-                });
+                ));
             }
         }
     }
@@ -312,14 +352,14 @@ pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish) -> Vec<Item> {
         } else {
             d.diameter
         } / 2.0;
-        items.push(Item {
-            primitive: Primitive::Sphere {
+        items.push(Item::world(
+            Primitive::Sphere {
                 centre: d.centre,
                 radius: r.abs().max(pixel * 0.5),
             },
-            colour: super::linear(d.colour),
+            super::linear(d.colour),
             finish,
-        });
+        ));
     }
     items
 }

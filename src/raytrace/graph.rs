@@ -13,10 +13,11 @@
 //! under the alternative's size in pixels.
 
 use super::bounds::{Bounds, Key, Unbounded, Volume};
+use super::bvh::Item;
 use super::primitive::{intersect, slabs, sphere, Ray};
 use super::vec::{add, mul, normalize, V3};
 use super::{Cut, Scene, Scratch, SurfaceHit};
-use crate::ir::graph::{Affine, InstancingGraph, Shape};
+use crate::ir::graph::{Affine, Finish, InstancingGraph, Primitive, Shape};
 use std::cmp::Reverse;
 use std::collections::HashMap;
 
@@ -236,7 +237,87 @@ impl<'g> GraphScene<'g> {
     }
 }
 
-fn local_ray(inverse: &Affine, ray: &Ray) -> Ray {
+impl GraphScene<'_> {
+    pub fn graph(&self) -> &InstancingGraph {
+        self.graph
+    }
+
+    pub fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+
+    /// Whether no symbol has a geometry (the limit drawn as volumes).
+    pub fn is_pure(&self) -> bool {
+        self.pure
+    }
+
+    /// The colour of the volumes of a graph without geometry.
+    pub fn colour(&self) -> [f64; 3] {
+        self.colour
+    }
+
+    /// The graph expanded as the tracer expands it under an orthographic
+    /// cut of `pixel` world units: every shape placed, and in a graph
+    /// without geometry every volume at the cut, as items of a flat
+    /// hierarchy, with the transforms composed in the tracer's order (so a
+    /// picture of them is the tracer's, pixel for pixel, where neither
+    /// cuts anything). `None` past `max_items`.
+    pub fn expand(&self, pixel: f64, max_items: usize) -> Option<Vec<Item>> {
+        let mut items = Vec::new();
+        let mut stack: Vec<(usize, Affine, f64)> = self.axiom.clone();
+        let shape_items = |shapes: &[Shape], inverse: &Affine, items: &mut Vec<Item>| {
+            items.extend(shapes.iter().map(|sh| Item {
+                primitive: sh.primitive.clone(),
+                placed: Some(*inverse),
+                colour: super::linear(sh.colour),
+                finish: sh.finish,
+            }));
+        };
+        while let Some((x, inverse, stretch)) = stack.pop() {
+            if items.len() > max_items {
+                return None;
+            }
+            let sym = &self.graph.symbols[x];
+            let Some(volume) = self.bounds.volumes[x] else {
+                continue;
+            };
+            let size = stretch * volume.size();
+            let rule = sym.rule.as_deref().unwrap_or(&[]);
+            if let Some(alt) = sym
+                .alternative
+                .as_ref()
+                .filter(|a| size <= a.below_pixels * pixel)
+            {
+                shape_items(&alt.shapes, &inverse, &mut items);
+                continue;
+            }
+            if (size <= pixel || rule.is_empty()) && self.pure {
+                let primitive = match volume {
+                    Volume::Box { min, max } => Primitive::Box { min, max },
+                    Volume::Sphere { centre, radius } => Primitive::Sphere { centre, radius },
+                };
+                items.push(Item {
+                    primitive,
+                    placed: Some(inverse),
+                    colour: self.colour,
+                    finish: Finish::default(),
+                });
+                continue;
+            }
+            shape_items(&sym.geometry, &inverse, &mut items);
+            if size <= pixel {
+                continue;
+            }
+            for (k, e) in rule.iter().enumerate() {
+                let child = self.edge_inverse[x][k].then_after(&inverse);
+                stack.push((e.symbol, child, stretch * self.bounds.stretch[x][k]));
+            }
+        }
+        Some(items)
+    }
+}
+
+pub(crate) fn local_ray(inverse: &Affine, ray: &Ray) -> Ray {
     Ray {
         origin: inverse.apply(ray.origin),
         dir: inverse.apply_vector(ray.dir),
@@ -245,7 +326,7 @@ fn local_ray(inverse: &Affine, ray: &Ray) -> Ray {
 
 /// A normal in a couple's coordinates taken to the world: by the
 /// transpose of the inverse.
-fn normal_to_world(inverse: &Affine, n: V3) -> V3 {
+pub(crate) fn normal_to_world(inverse: &Affine, n: V3) -> V3 {
     let m = &inverse.0;
     [0, 1, 2].map(|j| m[0][j] * n[0] + m[1][j] * n[1] + m[2][j] * n[2])
 }
@@ -398,7 +479,10 @@ mod tests {
         assert!(points.iter().all(|p| inside(*p)));
         // And it is tight: the box of the tetrahedron is [-1, 1]^3.
         if let Volume::Box { min, max } = v {
-            assert!((0..3).all(|k| min[k] > -1.03 && max[k] < 1.03), "{v:?}");
+            assert!(
+                (0..3).all(|k| min[k] > -1.0 - 1e-9 && max[k] < 1.0 + 1e-9),
+                "{v:?}"
+            );
         } else {
             panic!("a box has the smaller projected area here: {v:?}");
         }

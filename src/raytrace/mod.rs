@@ -12,7 +12,9 @@
 pub mod bounds;
 pub mod bvh;
 pub mod graph;
+pub mod pov;
 pub mod primitive;
+pub mod subtrees;
 pub mod vec;
 
 use crate::ir::graph::Finish;
@@ -123,7 +125,7 @@ impl Options {
 
 /// A camera's rays.
 #[derive(Clone, Copy, Debug)]
-struct RayCamera {
+pub(crate) struct RayCamera {
     origin: V3,
     right: V3,
     up: V3,
@@ -137,7 +139,7 @@ struct RayCamera {
 }
 
 impl RayCamera {
-    fn new(eye: Eye, opts: &Options, world: (V3, V3)) -> RayCamera {
+    pub(crate) fn new(eye: Eye, opts: &Options, world: (V3, V3)) -> RayCamera {
         let centre = [opts.width as f64 / 2.0, opts.height as f64 / 2.0];
         let (forward, up, eye_point, fov): (V3, V3, Option<V3>, Option<f64>) = match eye {
             Eye::View { azimuth, elevation } => {
@@ -238,7 +240,7 @@ impl RayCamera {
         }
     }
 
-    fn cut(&self) -> Cut {
+    pub(crate) fn cut(&self) -> Cut {
         if self.perspective {
             Cut {
                 base: 0.0,
@@ -261,7 +263,7 @@ pub fn linear(c: Rgb) -> [f64; 3] {
 
 /// The lights of a picture: the file's, else a white light over the
 /// viewer's left shoulder with a little ambient.
-fn lights_for(opts: &Options, cam: &RayCamera) -> Vec<Light> {
+pub(crate) fn lights_for(opts: &Options, cam: &RayCamera) -> Vec<Light> {
     if !opts.lights.is_empty() {
         return opts.lights.clone();
     }

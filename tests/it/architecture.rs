@@ -18,8 +18,9 @@
 //! * `layout` (layout shapes and outline growth, computations over the
 //!   IR) imports only `ir` and `number`;
 //! * the turtle imports neither render nor eval (nor anything above them);
-//! * the outputs of the turtle's geometry, render (pictures, animations)
-//!   and mesh (OBJ, PLY, glTF), stand on `ir` and the turtle: they import
+//! * the outputs of the turtle's geometry, render (pictures, animations),
+//!   mesh (OBJ, PLY, glTF) and raytrace (ray-traced pictures of instancing
+//!   graphs and of geometry), stand on `ir` and the turtle: they import
 //!   no front end, emitter, eval, driver, cli, language server or gallery;
 //! * the gallery draws through the driver, as a command would: it imports
 //!   no front end, emitter, cli or language server, and only cli calls it;
@@ -27,7 +28,7 @@
 //!   under the library's calls only for plain data of a request (a view, a
 //!   style, a mesh or animation format): never a way of drawing (the
 //!   raster, the streamed painter, shared subtrees, encoders, mesh
-//!   writers), the turtle or eval, which `driver::picture` chooses between;
+//!   writers, the ray tracer), the turtle or eval, which `driver::picture` chooses between;
 //! * `clap` only in `cli`, `ariadne` only in the diagnostics renderer,
 //!   `chumsky` and `logos` only in front ends;
 //! * a front end walks no turtle of its own;
@@ -332,14 +333,18 @@ fn external<'a>(code: &str, names: &[&'a str]) -> Vec<&'a str> {
 }
 
 const FRONT_ENDS_ARE: &str = "front";
-const NOT_FOR_FRONT_ENDS: &[&str] = &["back", "turtle", "render", "eval", "driver", "cli"];
-const ABOVE_THE_TURTLE: &[&str] = &["render", "eval", "front", "back", "driver", "cli"];
+const NOT_FOR_FRONT_ENDS: &[&str] = &[
+    "back", "turtle", "render", "raytrace", "eval", "driver", "cli",
+];
+const ABOVE_THE_TURTLE: &[&str] = &[
+    "render", "raytrace", "eval", "front", "back", "driver", "cli",
+];
 const NOT_FOR_OUTPUTS: &[&str] = &["front", "back", "eval", "driver", "cli", "lsp", "gallery"];
 const NOT_FOR_THE_GALLERY: &[&str] = &["front", "back", "cli", "lsp"];
 const THE_FACES: &[&str] = &["cli", "lsp", "gallery"];
 /// The layers under the library's calls, which a face reaches only for
 /// [`A_FACE_MAY_NAME`].
-const BENEATH_THE_FACES: &[&str] = &["render", "mesh", "turtle", "eval"];
+const BENEATH_THE_FACES: &[&str] = &["render", "mesh", "raytrace", "turtle", "eval"];
 /// Plain data a face puts in a request: a view, a style, a format.
 const A_FACE_MAY_NAME: &[&[&str]] = &[
     &["render", "View"],
@@ -397,7 +402,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "number" => target != "number",
                 "common" | "layout" => target != top && !matches!(target, "ir" | "number"),
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),
-                "render" | "mesh" => NOT_FOR_OUTPUTS.contains(&target),
+                "render" | "mesh" | "raytrace" => NOT_FOR_OUTPUTS.contains(&target),
                 "gallery" => NOT_FOR_THE_GALLERY.contains(&target),
                 _ => false,
             } || (target == "gallery" && !matches!(top.as_str(), "gallery" | "cli"))

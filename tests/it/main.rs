@@ -57,6 +57,7 @@ mod notation_guess;
 mod output_limits;
 mod picture;
 mod raster;
+mod raytrace;
 mod readme;
 mod render_style;
 mod robustness;

@@ -289,8 +289,9 @@ Put the file in the object's folder, or save it again with vlab's palette
 
     CPFG_VIEW_NOT_DRAWN = "W0807", "view command not drawn",
 "The view file asks for something that changes cpfg's picture and that
-graftal does not draw yet: a background scene, textures, rayshade
-surfaces (`tsurface:`) or shadows. The rest of the picture is drawn; this
+graftal does not draw yet: a background scene, textures or rayshade
+surfaces (`tsurface:`). (Shadows are drawn: `render mode: shadows` is ray
+traced, with no need of a `shadow map:`.) The rest of the picture is drawn; this
 part is left out.
 
 Example:

@@ -44,15 +44,18 @@ pub use traced::Tracing;
 pub enum Format {
     Png,
     Svg,
+    /// A scene for POV-Ray 3.7: what graftal ray traces, for another
+    /// renderer.
+    Pov,
 }
 
 impl Format {
     /// Every still format. A name is looked up here, so the help that
     /// lists them ([`Target::all`]) names every one that can be written.
-    pub const ALL: [Format; 2] = [Format::Png, Format::Svg];
+    pub const ALL: [Format; 3] = [Format::Png, Format::Svg, Format::Pov];
 
     /// The formats' names, as `render --to` takes them and as extensions.
-    pub const NAMES: &'static [&'static str] = &["png", "svg"];
+    pub const NAMES: &'static [&'static str] = &["png", "svg", "pov"];
 
     /// The format named `name` (`png`, `svg`; any case).
     pub fn from_name(name: &str) -> Option<Format> {
@@ -70,6 +73,7 @@ impl Format {
         match self {
             Format::Png => "png",
             Format::Svg => "svg",
+            Format::Pov => "pov",
         }
     }
 }
@@ -103,6 +107,7 @@ impl Target {
         match self {
             Target::Still(Format::Png) => "PNG",
             Target::Still(Format::Svg) => "SVG",
+            Target::Still(Format::Pov) => "POV-Ray scene",
             Target::Mesh(MeshFormat::Obj) => "OBJ",
             Target::Mesh(MeshFormat::Ply) => "PLY",
             Target::Mesh(MeshFormat::Glb) => "GLB",
@@ -248,6 +253,8 @@ pub enum DrawError {
     Encode { width: u32, height: u32 },
     /// The animation is refused: why (too many frames or pixels).
     Animation(String),
+    /// A POV-Ray scene was asked of a picture drawn flat.
+    NoScene,
 }
 
 impl std::fmt::Display for DrawError {
@@ -260,6 +267,9 @@ impl std::fmt::Display for DrawError {
                 write!(f, "cannot make a {width}x{height} PNG")
             }
             DrawError::Animation(why) => f.write_str(why),
+            DrawError::NoScene => {
+                f.write_str("a POV-Ray scene is written from 3D geometry, not from a flat picture")
+            }
         }
     }
 }
@@ -460,11 +470,15 @@ fn still_counted(
         let bytes = traced::graph(sys, g, format, &ropts, &how.tracing)?;
         return Ok((picture(bytes, Method::RayTraced), 0));
     }
-    let ray_traced = traced::wanted(sys, &how.tracing);
+    // A POV-Ray scene is what the tracer would draw.
+    let ray_traced = format == Format::Pov || traced::wanted(sys, &how.tracing);
     let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
     if ray_traced {
-        // Shared subtrees, streaming and lit bands draw lines; the tracer
-        // needs the geometry.
+        // A context-free system is traced from its shared subtrees; the
+        // rest needs the geometry (streaming and lit bands draw lines).
+        if let Some(bytes) = traced::shared(sys, run, format, &ropts, &how.tracing)? {
+            return Ok((picture(bytes, Method::RayTraced), 0));
+        }
     } else if let Some(bytes) = shared::draw(sys, run, format, ropts, &mut drawing)? {
         return Ok((picture(bytes, Method::SharedSubtrees), 0));
     }

@@ -27,6 +27,9 @@ pub fn render_bytes_with(
     mut opts: RenderOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<u8>, DrawError> {
+    if format == Format::Pov {
+        return super::traced::geometry(sys, g, format, &opts, &super::Tracing::default());
+    }
     apply_look(sys, &mut opts);
     opts.thin_dense = format == Format::Png;
     let lighting = sys.look.lighting.as_ref();
@@ -78,6 +81,9 @@ pub(super) fn encode(
     match format {
         Format::Svg => Ok(render::svg::write_with(pic, opts.detail).into_bytes()),
         Format::Png => render::png::encode_with(pic, progress).ok_or(too_large(opts)),
+        // A scene is written from the geometry (`render_bytes_with`), never
+        // from a flat picture.
+        Format::Pov => Err(DrawError::NoScene),
     }
 }
 /// The error for a picture too large to encode.

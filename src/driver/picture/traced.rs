@@ -6,10 +6,13 @@
 
 use super::stored::too_large;
 use super::{DrawError, Format};
+use crate::driver::derive::RunOptions;
+use crate::eval::tree::MAX_TREE_DEPTH;
 use crate::ir::graph::{Finish, InstancingGraph};
 use crate::ir::{Rgb, System};
 use crate::raytrace::{self, bvh, graph::GraphScene, Eye, Options, Scene};
 use crate::render::RenderOptions;
+use crate::turtle::instanced::Instanced;
 use crate::turtle::Geometry;
 
 /// How a ray-traced picture is asked for.
@@ -77,6 +80,22 @@ fn volume_colour(sys: &System) -> Rgb {
     sys.colours.first().copied().unwrap_or(Rgb(196, 180, 150))
 }
 
+/// Why a graph has no picture, as the error E0016.
+fn unbounded(why: raytrace::bounds::Unbounded) -> DrawError {
+    let message = match why {
+        raytrace::bounds::Unbounded::NotContractive => {
+            "the graph has no limit: a cycle of its rules does not contract (see `graftal check`)"
+        }
+        raytrace::bounds::Unbounded::Empty => {
+            "the graph draws nothing: no symbol the axiom reaches has a geometry"
+        }
+    };
+    DrawError::Stopped(Box::new(crate::diagnostics::Diagnostic::global(
+        crate::diagnostics::codes::GRAPH_UNBOUNDED,
+        message,
+    )))
+}
+
 /// A ray-traced picture of an instancing graph.
 pub(super) fn graph(
     sys: &System,
@@ -97,7 +116,64 @@ pub(super) fn graph(
             message,
         )))
     })?;
-    encode(&scene, &options(sys, ropts, tracing), format, ropts)
+    let opts = options(sys, ropts, tracing);
+    let pov = || raytrace::pov::graph_scene(&scene, &opts);
+    encode(&scene, &opts, format, ropts, &pov)
+}
+
+/// A ray-traced picture of a context-free system from its shared
+/// subtrees ([`raytrace::subtrees`]): the derivation tree is the
+/// instancing graph, traced without deriving the word. `Ok(None)` when
+/// the system is not one the shared subtrees draw (in one colour and
+/// width, with turns that repeat).
+pub(super) fn shared(
+    sys: &System,
+    run: &RunOptions,
+    format: Format,
+    ropts: &RenderOptions,
+    tracing: &Tracing,
+) -> Result<Option<Vec<u8>>, DrawError> {
+    let steps = run.derive_options(sys).steps;
+    if steps > MAX_TREE_DEPTH {
+        return Ok(None);
+    }
+    let Some(mut inst) = Instanced::new(sys) else {
+        return Ok(None);
+    };
+    let palette = super::stored::palette(sys);
+    let colour = palette[sys.settings.colour.min(palette.len() - 1)];
+    // The lines' width is in pixels (or world units): the picture's
+    // framing, found from the graph with lines of no width, says how wide.
+    let Some(bare) = raytrace::subtrees::graph(&mut inst, steps, 0.0, colour) else {
+        return Ok(None);
+    };
+    let opts = options(sys, ropts, tracing);
+    let Ok(bare_scene) = GraphScene::new(&bare, raytrace::linear(colour)) else {
+        return Ok(None);
+    };
+    let world = bare_scene.world_box();
+    let pixel = raytrace::pixel_size(world, &opts);
+    let radius = line_radius(sys, ropts, pixel) / sys.settings.step.abs().max(f64::MIN_POSITIVE);
+    let Some(g) = raytrace::subtrees::graph(&mut inst, steps, radius, colour) else {
+        return Ok(None);
+    };
+    let scene = GraphScene::new(&g, raytrace::linear(colour)).map_err(unbounded)?;
+    let pov = || raytrace::pov::graph_scene(&scene, &opts);
+    encode(&scene, &opts, format, ropts, &pov).map(Some)
+}
+
+/// The radius of a line of the system's initial width, in world units:
+/// widths in pixels are a line unit each, as the rasteriser draws them;
+/// at least half a pixel.
+fn line_radius(sys: &System, ropts: &RenderOptions, pixel: f64) -> f64 {
+    let width = sys.settings.width.abs();
+    let world = if sys.settings.world_widths {
+        width
+    } else {
+        let line_unit = (ropts.width.min(ropts.height) as f64 / 600.0).max(1.0);
+        width * line_unit * pixel
+    };
+    (world / 2.0).max(pixel / 2.0)
 }
 
 /// A ray-traced picture of what a turtle drew.
@@ -120,20 +196,29 @@ pub(super) fn geometry(
         specular: 0.2,
         ..Finish::default()
     };
-    let scene = bvh::Bvh::new(bvh::from_geometry(g, pixel, finish));
-    encode(&scene, &opts, format, ropts)
+    let items = bvh::from_geometry(g, pixel, finish);
+    if format == Format::Pov {
+        return Ok(raytrace::pov::items_scene(&items, &opts, world).into_bytes());
+    }
+    let scene = bvh::Bvh::new(items);
+    encode(&scene, &opts, format, ropts, &String::new)
 }
 
+/// The picture in `format`; a POV-Ray scene is `pov`'s.
 fn encode(
     scene: &dyn Scene,
     opts: &Options,
     format: Format,
     ropts: &RenderOptions,
+    pov: &dyn Fn() -> String,
 ) -> Result<Vec<u8>, DrawError> {
+    if format == Format::Pov {
+        return Ok(pov().into_bytes());
+    }
     let rgba = raytrace::trace(scene, opts);
     let png = raytrace::png(rgba, opts.width, opts.height).ok_or(too_large(ropts))?;
     Ok(match format {
-        Format::Png => png,
         Format::Svg => raytrace::svg_of_png(&png, opts.width, opts.height).into_bytes(),
+        Format::Png | Format::Pov => png,
     })
 }

@@ -224,11 +224,11 @@ const NOT_DRAWN: &[(&str, &str)] = &[
     ("background scene", "the scene files' objects are not drawn"),
     ("texture", "surfaces are drawn without their textures"),
     ("tsurface", "the rayshade surfaces are not drawn"),
-    ("shadow map", "no shadows are cast"),
 ];
 
 /// Commands cpfg knows that graftal reads and needs not use: interactive
-/// settings, fonts, and deprecated commands cpfg itself ignores.
+/// settings, fonts, deprecated commands cpfg itself ignores, and the
+/// shadow map a ray tracer does without.
 const UNUSED: &[&str] = &[
     "antialiasing",
     "concave polygons",
@@ -242,6 +242,8 @@ const UNUSED: &[&str] = &[
     "background color",
     "cue range",
     "interpretation step",
+    // Shadows (`render mode: shadows`) are ray traced: exact, no map.
+    "shadow map",
 ];
 
 const KNOWN: &[&str] = &[
