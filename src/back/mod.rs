@@ -428,21 +428,21 @@ pub fn translate(
         e.exact("the whole system", None, "");
         return e.finish(text);
     }
-    if sys.rewrites_modules() {
-        let mut diagnostics = crate::diagnostics::Diagnostics::default();
-        diagnostics.push(
-            crate::diagnostics::Diagnostic::global(
-                crate::diagnostics::codes::TR_PARAMETRIC,
-                "parametric cpfg L-systems cannot be translated yet",
-            )
-            .with_help("graftal translates pfg, LinF and STL systems, and Fractint entries"),
+    if sys.graph.is_some() {
+        // Written without its graph, the system would draw nothing of it.
+        let what = "an object-instancing graph cannot be written in";
+        return refused(
+            crate::diagnostics::codes::TR_GRAPH,
+            format!("{what} {}", req.target.name()),
+            "graftal writes graphs in its own notation only: `--to gft`",
         );
-        return Translation {
-            text: None,
-            mapping: Vec::new(),
-            names: Vec::new(),
-            diagnostics,
-        };
+    }
+    if sys.rewrites_modules() {
+        return refused(
+            crate::diagnostics::codes::TR_PARAMETRIC,
+            "parametric cpfg L-systems cannot be translated yet".into(),
+            "graftal translates pfg, LinF and STL systems, and Fractint entries",
+        );
     }
     let target = req.target;
     if sys.structure.is_some() {
@@ -467,6 +467,18 @@ pub fn translate(
     }
     let text = target.write(&mut e);
     e.finish(text)
+}
+
+/// A translation not written, for the one reason `code` says.
+fn refused(code: crate::diagnostics::Code, message: String, help: &str) -> Translation {
+    let mut diagnostics = crate::diagnostics::Diagnostics::default();
+    diagnostics.push(crate::diagnostics::Diagnostic::global(code, message).with_help(help));
+    Translation {
+        text: None,
+        mapping: Vec::new(),
+        names: Vec::new(),
+        diagnostics,
+    }
 }
 
 /// A system with a growth structure, for a target without one: the

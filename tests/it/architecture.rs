@@ -845,3 +845,37 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
     ]);
     assert!(cycle(&graph).is_some());
 }
+
+/// The checks of an object-instancing graph are worded in one room that
+/// every front end reading a graph shares (`front/graph.rs`: it imports
+/// nothing but the IR, the diagnostics and `number`), so that `.gft` and
+/// any other notation report them alike; no other module words them.
+#[test]
+fn the_graph_checks_are_worded_in_one_shared_room() {
+    let files = sources();
+    let room = files
+        .iter()
+        .find(|f| f.path == "front/graph.rs")
+        .expect("front/graph.rs");
+    let module = module_of(&room.path);
+    for path in crate_paths(&module, &room.code) {
+        let allowed = matches!(path[0].as_str(), "ir" | "diagnostics" | "number")
+            || path.get(1).is_some_and(|m| m == "graph");
+        assert!(allowed, "front/graph.rs imports crate::{}", path.join("::"));
+    }
+    let checks = [
+        "GRAPH_DIVERGENT",
+        "GRAPH_BARE_TERMINAL",
+        "GRAPH_SINGULAR",
+        "GRAPH_UNREACHABLE",
+    ];
+    for f in &files {
+        if f.path == "front/graph.rs" || f.path.starts_with("diagnostics/") {
+            continue;
+        }
+        for code in checks {
+            assert!(!f.code.contains(code), "{} words {code} itself", f.path);
+        }
+    }
+    assert!(checks.iter().all(|c| room.code.contains(c)));
+}

@@ -843,3 +843,22 @@ fn the_collection_folder_names_its_entries() {
     assert!(stdlib::get("gft/bekaert/tree").is_none());
     assert!(stdlib::get("bekaert/tree.gft").is_some());
 }
+
+#[test]
+fn a_graph_is_refused_by_every_other_notation() {
+    let c = driver::compile(driver::load("std:bekaert/fern").unwrap());
+    let sys = c.system.as_ref().unwrap();
+    for to in ["pfg", "linf", "stl"] {
+        for lossy in [false, true] {
+            let req = Request {
+                target: back::by_name(to).unwrap(),
+                lossy,
+                steps: None,
+            };
+            let t = driver::translate(&c, sys, &req);
+            assert!(t.text.is_none(), "{to}");
+            let codes: Vec<&str> = t.diagnostics.iter().map(|d| d.code.0).collect();
+            assert_eq!(codes, ["E0616"], "{to}");
+        }
+    }
+}

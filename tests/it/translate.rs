@@ -123,8 +123,11 @@ fn check_translation(name: &str, c: &Compiled, to: Target, seed: u64) -> Option<
             let errors = t.diagnostics.len();
             let lossy = translate(c, to, true);
             // A parametric system (std:gft/stochastic-tree) is refused even
-            // under --lossy: no emitter but gft's writes one yet.
-            if lossy.text.is_none() && lossy.diagnostics.iter().any(|d| d.code.0 == "E0615") {
+            // under --lossy: no emitter but gft's writes one yet; so is an
+            // object-instancing graph (std:bekaert/…), which only gft says.
+            let refused =
+                |d: &graftal::diagnostics::Diagnostic| matches!(d.code.0, "E0615" | "E0616");
+            if lossy.text.is_none() && lossy.diagnostics.iter().any(refused) {
                 return None;
             }
             let text = lossy.text.as_ref().unwrap_or_else(|| {

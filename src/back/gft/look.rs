@@ -235,9 +235,10 @@ pub fn look(out: &mut String, look: &Look) {
         LineStyle::Cylinder => "cylinder",
     };
     let tapered = if l.tapered { " tapered" } else { "" };
+    let shadows = if l.shadows { " shadows" } else { "" };
     let _ = writeln!(
         out,
-        "lighting {shading} line-style {style}{tapered} index-shift {} surface-ambient {} surface-diffuse {}",
+        "lighting {shading} line-style {style}{tapered}{shadows} index-shift {} surface-ambient {} surface-diffuse {}",
         num(l.index_shift),
         num(l.surface_ambient),
         num(l.surface_diffuse)

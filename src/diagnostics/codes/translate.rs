@@ -144,6 +144,16 @@ each step (expressions, conditions, variables), which no other notation
 graftal writes can express: the translation is not written. pfg, LinF,
 STL and Fractint systems, and cpfg ones without parameters, translate.";
 
+    TR_GRAPH = "E0616", "an object-instancing graph cannot be translated",
+"An object-instancing graph (a `.gft` `graph { … }` block: symbols placed
+by affine transforms, Bekaert & Willems' IFS codes with restrictions) is
+never expanded into a word, and no notation graftal writes but its own
+says what a graph says: the translation is not written, even with
+`--lossy`, rather than written without the graph. `--to gft` writes it.
+
+Example:
+    graftal translate std:bekaert/fern --to linf     <- write `--to gft`";
+
     TR_CONTEXT_APPROX = "W0601", "context dropped",
 "`--lossy` dropped the context of a production that the target cannot
 express (see E0601): the production applies wherever its predecessor

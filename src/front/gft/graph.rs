@@ -912,3 +912,136 @@ fn rgb(text: &str) -> Rgb {
     let h = |i: usize| u8::from_str_radix(&text[i..i + 2], 16).unwrap_or(0);
     Rgb(h(1), h(3), h(5))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::front::gft::lexer::lex;
+
+    /// The lines of a block's inner text, and the codes of its problems.
+    fn read(inner: &str) -> (Vec<GraphLine>, Vec<&'static str>) {
+        let mut d = Diagnostics::default();
+        let toks = lex(inner, &mut d);
+        let lines = block(&toks, &mut d);
+        (lines, d.iter().map(|d| d.code.0).collect())
+    }
+
+    fn steps_of(line: &GraphLine) -> Vec<Affine> {
+        let GraphLine::Transform { steps, .. } = line else {
+            panic!("not a transform: {line:?}")
+        };
+        steps
+            .iter()
+            .map(|s| match s {
+                Step::Affine(a, _) => *a,
+                Step::Name(n) => panic!("a name: {n:?}"),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn numbers_are_signed_fractions_and_angles_degrees_unless_radians() {
+        let (lines, codes) = read(
+            "transform a = translate (-1/4, +2, 1e1) rotate z 30deg rotate z 0.5rad rotate z -90 scale 1/3",
+        );
+        assert!(codes.is_empty(), "{codes:?}");
+        let s = steps_of(&lines[0]);
+        assert_eq!(s[0], Affine::translate([-0.25, 2.0, 10.0]));
+        let z = [0.0, 0.0, 1.0];
+        assert_eq!(s[1], Affine::rotate(z, 30f64.to_radians()).unwrap());
+        assert_eq!(s[2], Affine::rotate(z, 0.5).unwrap());
+        assert_eq!(s[3], Affine::rotate(z, (-90f64).to_radians()).unwrap());
+        assert_eq!(s[4], Affine::scale([1.0 / 3.0; 3]));
+        // `-0` is negative zero, kept to the bit.
+        let (lines, _) = read("transform z = translate (-0, 0)");
+        let t = steps_of(&lines[0])[0];
+        assert!(t.0[0][3].is_sign_negative() && !t.0[1][3].is_sign_negative());
+    }
+
+    #[test]
+    fn lines_end_outside_brackets_and_go_on_before_a_bracket() {
+        let (lines, codes) = read(
+            "axiom A\nA -> [translate (1,\n 0, 0) scale 0.5](A)\n   [scale 0.5](A)\ngeometry A = sphere (0, 0, 0) 1\n",
+        );
+        assert!(codes.is_empty(), "{codes:?}");
+        assert_eq!(lines.len(), 3);
+        let GraphLine::Rule { couples, .. } = &lines[1] else {
+            panic!("{:?}", lines[1])
+        };
+        assert_eq!(couples.len(), 2);
+    }
+
+    #[test]
+    fn couples_are_a_symbol_a_name_or_steps_in_brackets() {
+        let (lines, codes) = read("axiom A h(B) [scale 0.5 h](`c d`)");
+        assert!(codes.is_empty(), "{codes:?}");
+        let GraphLine::Axiom { couples, .. } = &lines[0] else {
+            panic!()
+        };
+        assert!(matches!(couples[0].placement, Placement::Identity));
+        assert!(matches!(&couples[1].placement, Placement::Named(n) if n.text == "h"));
+        let Placement::Steps(steps, span) = &couples[2].placement else {
+            panic!()
+        };
+        assert_eq!(steps.len(), 2);
+        assert!(matches!(&steps[1], Step::Name(n) if n.text == "h"));
+        assert_eq!(span.clone(), 13..26);
+        assert_eq!(couples[2].symbol.text, "c d");
+    }
+
+    #[test]
+    fn a_line_that_does_not_read_still_says_what_it_introduces() {
+        let (lines, codes) =
+            read("transform t = scale (1, 2)\ngeometry B = cube\nA B -> x\nsymbol C 3\n");
+        assert_eq!(codes, ["E0922", "E0923", "E0920", "E0920"]);
+        let unread: Vec<(Vec<&str>, Option<&str>, bool)> = lines
+            .iter()
+            .map(|l| match l {
+                GraphLine::Unread {
+                    symbols,
+                    transform,
+                    geometry,
+                    ..
+                } => (
+                    symbols.iter().map(|n| n.text.as_str()).collect(),
+                    transform.as_ref().map(|n| n.text.as_str()),
+                    *geometry,
+                ),
+                l => panic!("read: {l:?}"),
+            })
+            .collect();
+        assert_eq!(
+            unread,
+            [
+                (vec![], Some("t"), false),
+                (vec!["B"], None, true),
+                (vec!["A", "B"], None, false),
+                (vec!["C"], None, false),
+            ]
+        );
+    }
+
+    #[test]
+    fn shapes_take_their_points_numbers_colour_and_finish() {
+        let (lines, codes) =
+            read("geometry A = cone (0, 0) (0, 1, 0) 0.5 0.25 #ff8000 shininess 5");
+        assert!(codes.is_empty(), "{codes:?}");
+        let GraphLine::Geometry { shape, .. } = &lines[0] else {
+            panic!()
+        };
+        assert_eq!(
+            shape.primitive,
+            Primitive::Cone {
+                base: [0.0; 3],
+                top: [0.0, 1.0, 0.0],
+                base_radius: 0.5,
+                top_radius: 0.25
+            }
+        );
+        assert_eq!(shape.colour, Rgb(255, 128, 0));
+        assert_eq!(shape.finish.shininess, 5.0);
+        assert_eq!(shape.finish.diffuse, Finish::default().diffuse);
+        let (_, codes) = read("geometry A = polygon (0, 0) (1, 0)");
+        assert_eq!(codes, ["E0923"]);
+    }
+}

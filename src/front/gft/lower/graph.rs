@@ -432,3 +432,40 @@ impl Cx<'_> {
         None
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::diagnostics::Diagnostics;
+    use crate::front::gft::read;
+
+    fn codes(text: &str) -> Vec<&'static str> {
+        let mut d = Diagnostics::default();
+        read(text, &mut d);
+        d.iter().map(|d| d.code.0).collect()
+    }
+
+    #[test]
+    fn a_transform_uses_only_those_declared_above_it() {
+        let above = "graph {\n  transform h = scale 0.5\n  transform t = h translate (1, 0, 0)\n  axiom A\n  A -> t(A) h(A)\n}\n";
+        assert!(codes(above).is_empty());
+        let below = "graph {\n  transform t = h translate (1, 0, 0)\n  transform h = scale 0.5\n  axiom A\n  A -> t(A) h(A)\n}\n";
+        // Reported once: `t`, which failed, is not reported again where used.
+        assert_eq!(codes(below), ["E0926"]);
+    }
+
+    #[test]
+    fn a_line_that_does_not_read_is_not_reported_again_where_it_is_used() {
+        // The broken `transform`, `geometry` and rule lines introduce their
+        // names: no E0926 for `h`, no E0924 for `B` or `C`.
+        let text = "graph {\n  transform h = scale (1, 2)\n  axiom A\n  A -> h(A) B C\n  geometry B = cube\n  C D -> h(C)\n}\n";
+        assert_eq!(codes(text), ["E0922", "E0923", "E0920"]);
+    }
+
+    #[test]
+    fn the_graph_checks_wait_for_a_block_without_errors() {
+        // A rule dropped for its error would leave `B` unreached (W1004).
+        let text =
+            "graph {\n  axiom A\n  A -> [scale 0.5](A) [scal 0.5](B)\n  B -> [scale 0.5](B)\n}\n";
+        assert_eq!(codes(text), ["E0921"]);
+    }
+}

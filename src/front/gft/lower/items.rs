@@ -288,6 +288,7 @@ impl Cx<'_> {
         let shading = f.word("", &["filled", "wireframe", "flat", "smooth"]);
         let style = f.word("line-style", &["pixel", "polygon", "cylinder"]);
         let tapered = f.has("tapered");
+        let shadows = f.has("shadows");
         let shift = f.number("index-shift");
         let ambient = f.number("surface-ambient");
         let diffuse = f.number("surface-diffuse");
@@ -306,10 +307,10 @@ impl Cx<'_> {
                 "polygon" => LineStyle::Polygon,
                 _ => LineStyle::Cylinder,
             };
-            (l.tapered, l.index_shift) = (tapered, shift);
+            (l.tapered, l.shadows, l.index_shift) = (tapered, shadows, shift);
             (l.surface_ambient, l.surface_diffuse) = (a, d);
         }
-        self.malformed(f, k, "lighting flat line-style cylinder [tapered] index-shift 10 surface-ambient 0.15 surface-diffuse 0.75");
+        self.malformed(f, k, "lighting flat line-style cylinder [tapered] [shadows] index-shift 10 surface-ambient 0.15 surface-diffuse 0.75");
     }
 
     fn light(&mut self, k: &Keyword) {
