@@ -408,7 +408,7 @@ fn render_help_and_a_bad_extension_name_every_format_written() {
     assert_eq!(bad.status, 2, "{}", bad.stderr);
     assert!(bad.stderr.contains("help:"), "{}", bad.stderr);
     let targets: Vec<Target> = Target::all().collect();
-    assert_eq!(targets.len(), 7, "PNG, SVG, OBJ, PLY, GLB, GIF, APNG");
+    assert_eq!(targets.len(), 8, "PNG, SVG, POV, OBJ, PLY, GLB, GIF, APNG");
     for t in targets {
         let named = format!("{} (.{}", t.name(), t.extension());
         assert!(help.stdout.contains(&named), "{named}: {}", help.stdout);

@@ -163,7 +163,7 @@ fn an_instanced_graph_draws_what_its_expansion_draws_pixel_for_pixel() {
             perspective: Some(40.0),
         })
     };
-    for eye in [camera([3.0, 2.5, 4.0]), camera([-4.0, 3.5, -2.0])] {
+    for eye in [camera([1.8, 1.9, 2.4]), camera([-2.4, 2.4, -1.2])] {
         let opts = options(96, eye);
         let instanced = trace(&scene, &opts);
         let expanded = trace(&flat, &opts);
