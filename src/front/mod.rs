@@ -23,6 +23,7 @@ pub mod declared;
 pub mod depth;
 pub mod fractint;
 pub mod gft;
+pub mod library;
 pub mod linf;
 pub mod names;
 pub mod parse;
