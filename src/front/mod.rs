@@ -23,6 +23,7 @@ pub mod declared;
 pub mod depth;
 pub mod fractint;
 pub mod gft;
+pub mod ifs;
 pub mod library;
 pub mod linf;
 pub mod names;
@@ -54,6 +55,7 @@ pub static FRONTS: &[&dyn Front] = &[
     &fractint::Fractint,
     &smith::Smith,
     &gft::Gft,
+    &ifs::Ifs,
 ];
 
 /// How sure a front end is that a text is in its notation.

@@ -9,9 +9,10 @@
 //! `E080x`–`E082x` the cpfg preprocessor and side files (`codes/cpfg.rs`),
 //! `E083x` the cpfg L-system language (`codes/cpfg_lsystem.rs`), `E090x`
 //! graftal's own notation `.gft` (`codes/gft.rs`), `E097x` Smith
-//! (`codes/smith.rs`); `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx`
-//! STL, `W06xx` translation, `W07xx` Fractint, `W080x`–`W082x` cpfg, `W090x`
-//! `.gft`, `W097x` Smith.
+//! (`codes/smith.rs`), `E11xx` Fractint's IFS libraries (`codes/ifs.rs`);
+//! `W00xx` general and pfg warnings,
+//! `W04xx` LinF, `W05xx` STL, `W06xx` translation, `W07xx` Fractint,
+//! `W080x`–`W082x` cpfg, `W090x` `.gft`, `W097x` Smith, `W11xx` IFS.
 //!
 //! A code nothing emits any more is retired: its entry goes and its number
 //! joins [`RETIRED`], never to be given again. `tests/it/stale_words.rs` holds
@@ -80,6 +81,7 @@ mod cpfg;
 mod cpfg_lsystem;
 mod fractint;
 mod gft;
+mod ifs;
 mod linf;
 mod smith;
 mod stl;
@@ -88,6 +90,7 @@ pub use cpfg::*;
 pub use cpfg_lsystem::*;
 pub use fractint::*;
 pub use gft::*;
+pub use ifs::*;
 pub use linf::*;
 pub use smith::*;
 pub use stl::*;
@@ -109,6 +112,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(cpfg_lsystem::CPFG_LSYSTEM)
         .chain(smith::SMITH)
         .chain(gft::GFT)
+        .chain(ifs::IFS)
 }
 
 codes! { GENERAL;
@@ -384,6 +388,14 @@ e.g. `a --> b`, `b --> a` for a billion steps.
 
 Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
+
+    GRAPH_NO_WORD = "E0305", "an instancing graph has no word",
+"The system is an object-instancing graph (an IFS code, or Bekaert and
+Willems' IFS code with restrictions): a figure made of transformed copies
+of itself. It is never rewritten into a word of symbols, so there is
+nothing for `derive` to print or for `stats` to count: draw it with
+`graftal render FILE -o OUT.png`, and `graftal check FILE` checks its
+maps.";
 
     DERIVE_WOULD_EXCEED_SYMBOLS = "W0301", "`derive` would stop at the symbol limit",
 "`graftal check` derives the file as `graftal derive` would, and the word
