@@ -219,6 +219,7 @@ fn instanced(inst: &mut Instanced, steps: u64, symbols: Count, segments: Count) 
 /// depth, not the word). Any other system is derived (within the symbol
 /// limit), then interpreted.
 pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
+    super::derive::refuse_graph(sys)?;
     let t0 = Instant::now();
     let dopts = opts.derive_options(sys);
     let steps = dopts.steps;

@@ -12,9 +12,12 @@
 //! a still picture is drawn from shared subtrees where the system and the
 //! view allow (`shared.rs`), else streamed segment by segment (`streamed.rs`),
 //! else lit straight from the turtle (`lit.rs`), else from stored geometry
-//! (`stored.rs`); meshes in `mesh.rs`, animations in `animate.rs`.
+//! (`stored.rs`); meshes in `mesh.rs`, animations in `animate.rs`. A
+//! system that is an instancing graph (an IFS) is drawn by its attractor
+//! at pixel resolution (`attractor.rs`).
 
 mod animate;
+mod attractor;
 mod lit;
 mod mesh;
 mod shared;
@@ -187,6 +190,9 @@ pub enum Method {
     Mesh,
     /// The frames of an animation, each drawn as its still is.
     Animation,
+    /// The attractor of a planar instancing graph (a 2D IFS), pixel by
+    /// pixel.
+    Attractor,
 }
 
 impl Method {
@@ -199,6 +205,7 @@ impl Method {
             Method::InstancedMesh => "instanced mesh",
             Method::Mesh => "mesh",
             Method::Animation => "animation",
+            Method::Attractor => "attractor",
         }
     }
 }
@@ -238,6 +245,9 @@ pub enum DrawError {
     Encode { width: u32, height: u32 },
     /// The animation is refused: why (too many frames or pixels).
     Animation(String),
+    /// The system is not drawn as asked: why (a 3D instancing graph,
+    /// which is ray traced).
+    NotDrawable(String),
 }
 
 impl std::fmt::Display for DrawError {
@@ -249,7 +259,7 @@ impl std::fmt::Display for DrawError {
             DrawError::Encode { width, height } => {
                 write!(f, "cannot make a {width}x{height} PNG")
             }
-            DrawError::Animation(why) => f.write_str(why),
+            DrawError::Animation(why) | DrawError::NotDrawable(why) => f.write_str(why),
         }
     }
 }
@@ -356,6 +366,16 @@ fn draw_subject(
     progress: &mut dyn Progress,
 ) -> Result<Picture, DrawError> {
     let ropts = render_options(req, s.sys, s.file);
+    if let Some(graph) = &s.sys.graph {
+        let bytes = attractor::draw(s.sys, graph, req.target, ropts)?;
+        return Ok(Picture {
+            bytes,
+            side_files: Vec::new(),
+            method: Method::Attractor,
+            warnings: Vec::new(),
+            mesh: None,
+        });
+    }
     match req.target {
         Target::Still(format) => {
             still_counted(s, &req.run, format, ropts, req.layout, progress).map(|(p, _)| p)
