@@ -13,7 +13,7 @@
 
 use crate::diagnostics::{codes, nearest, Code, Diagnostic, Diagnostics};
 use crate::front::{Declaration, DeclarationKind, EntryInfo, Library};
-use crate::ir::{Lowered, Span};
+use crate::ir::Span;
 use logos::Logos;
 use std::collections::HashMap;
 
@@ -305,16 +305,17 @@ pub struct Reading {
 /// diagnostics `file_diags`): every entry is lowered with `lower` (so
 /// each one's problems are its own); the diagnostics kept are the chosen
 /// entry's and the file's, or every entry's when none is chosen. Linear
-/// in the number of entries: only the chosen entry's system is kept. The
-/// library's summary is left for the notation to write.
-pub fn read<L>(
+/// in the number of entries: only the chosen entry's lowering is kept (a
+/// system, or what a notation makes one of). The library's summary is
+/// left for the notation to write.
+pub fn read<L, T>(
     entries: &[Entry<L>],
     file_diags: Diagnostics,
     entry: Option<&str>,
     how: &Reading,
-    mut lower: impl FnMut(&Entry<L>, &mut Diagnostics) -> Lowered,
+    mut lower: impl FnMut(&Entry<L>, &mut Diagnostics) -> T,
     diags: &mut Diagnostics,
-) -> (Library, Option<Lowered>) {
+) -> (Library, Option<T>) {
     report_duplicates(entries, how.duplicate, diags);
     let mut lib = Library {
         chosen: choose(entries, entry, diags),

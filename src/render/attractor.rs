@@ -23,8 +23,9 @@
 //!    points; each point's images under every map are computed once, and
 //!    an image whose cell is already set goes no further. Each cell is set
 //!    at most once, so the work is bounded by cells times maps (Fractint's
-//!    64 at most), and every pixel set holds a point of A. A pixel is set
-//!    when one of its cells is.
+//!    64 at most; past a budget the cells are made coarser), and every
+//!    pixel set holds a point of A. A pixel is set when one of its cells
+//!    is.
 //!
 //! Nothing depends on threads or the clock: the same graph and options
 //! give the same bytes.
@@ -115,6 +116,8 @@ pub enum NotDrawn {
     NotContractive,
     /// The axiom's transform flattens the plane, or the numbers overflow.
     Degenerate,
+    /// More pixels than a grid of cells is made for (4 billion).
+    TooLarge,
 }
 
 impl std::fmt::Display for NotDrawn {
@@ -125,6 +128,7 @@ impl std::fmt::Display for NotDrawn {
             }
             NotDrawn::NotContractive => "a map of the IFS does not shrink: it has no attractor",
             NotDrawn::Degenerate => "the IFS's numbers flatten or overflow the plane",
+            NotDrawn::TooLarge => "the picture has too many pixels for an attractor",
         })
     }
 }
@@ -214,12 +218,15 @@ impl Ord for Node {
     }
 }
 
-/// The most couples split to find one side of the attractor's extent;
-/// past it the extent is the highest bound left, still one that holds A.
-const MAX_SPLITS: usize = 200_000;
+/// The most couples made (a map applied to a couple), and kept to be
+/// split, to find one side of the attractor's extent: a few milliseconds
+/// and megabytes. Past them the extent is the highest bound left, still
+/// one that holds A (an IFS of maps that shrink by 0.999 gets there).
+const MAX_MADE: usize = 1_000_000;
+const MAX_KEPT: usize = 200_000;
 
 /// How far along `d` (a unit vector) the attractor reaches: at least the
-/// true extent, and within `tolerance` of it unless [`MAX_SPLITS`] ran out.
+/// true extent, and within `tolerance` of it unless [`MAX_MADE`] ran out.
 fn support(
     maps: &[Map2],
     disc: ([f64; 2], f64),
@@ -238,28 +245,35 @@ fn support(
         order,
         map: Map2::IDENTITY,
     });
-    for _ in 0..MAX_SPLITS {
+    // The highest bound of the couples not kept (past MAX_KEPT).
+    let mut dropped = f64::NEG_INFINITY;
+    for _ in 0..MAX_MADE / maps.len().max(1) {
         let Some(top) = heap.pop() else {
-            return best;
+            return best.max(dropped);
         };
         if top.bound - best <= tolerance {
-            return top.bound;
+            return top.bound.max(dropped);
         }
         for m in maps {
             let child = top.map.after(m);
             best = best.max(dot(child.apply(point)));
             let b = bound(&child);
-            if b > best {
+            if b <= best {
+                continue;
+            }
+            if heap.len() < MAX_KEPT {
                 order += 1;
                 heap.push(Node {
                     bound: b,
                     order,
                     map: child,
                 });
+            } else {
+                dropped = dropped.max(b);
             }
         }
     }
-    heap.peek().map_or(best, |n| n.bound.max(best))
+    heap.peek().map_or(best, |n| n.bound.max(best)).max(dropped)
 }
 
 /// The extent is found within this share of the attractor's size: a
@@ -358,39 +372,54 @@ pub fn pixels(maps: &[Map2], opts: &RenderOptions) -> Result<Pixels, NotDrawn> {
     let (w, h) = (opts.width, opts.height);
     let to_px = frame(maps, opts)?;
     let area = u64::from(w) * u64::from(h);
-    let k = [4u32, 2, 1]
+    let mut k = [4u32, 2, 1]
         .into_iter()
         .find(|k| area * u64::from(k * k) <= MOST_CELLS)
         .unwrap_or(1);
-    let k = f64::from(k);
-    let b = BORDER as f64;
-    let to_grid = Map2([[k, 0.0, b], [0.0, k, b]]).after(&to_px);
-    let from_grid = to_grid.inverse().ok_or(NotDrawn::Degenerate)?;
-    let grid_maps: Vec<Map2> = maps
-        .iter()
-        .map(|m| to_grid.after(m).after(&from_grid))
-        .collect();
-    let cols = (f64::from(w) * k) as i64 + 2 * BORDER;
-    let rows = (f64::from(h) * k) as i64 + 2 * BORDER;
-    let cells = plot(&grid_maps, cols, rows);
-    let k = k as i64;
-    let mut set = vec![false; w as usize * h as usize];
-    for (i, px) in set.iter_mut().enumerate() {
-        let (x, y) = ((i % w as usize) as i64, (i / w as usize) as i64);
-        *px = (0..k * k).any(|j| {
-            let (cx, cy) = (BORDER + x * k + j % k, BORDER + y * k + j / k);
-            cells
-                .get((cy * cols + cx) as usize)
-                .copied()
-                .unwrap_or(false)
+    loop {
+        let kf = f64::from(k);
+        let b = BORDER as f64;
+        let to_grid = Map2([[kf, 0.0, b], [0.0, kf, b]]).after(&to_px);
+        let from_grid = to_grid.inverse().ok_or(NotDrawn::Degenerate)?;
+        let grid_maps: Vec<Map2> = maps
+            .iter()
+            .map(|m| to_grid.after(m).after(&from_grid))
+            .collect();
+        let cols = i64::from(w) * i64::from(k) + 2 * BORDER;
+        let rows = i64::from(h) * i64::from(k) + 2 * BORDER;
+        if cols.saturating_mul(rows) > i64::from(u32::MAX) {
+            return Err(NotDrawn::TooLarge);
+        }
+        // Split pixels only while the work stays within its budget.
+        let budget = if k > 1 { MOST_WORK } else { u64::MAX };
+        let Some(cells) = plot(&grid_maps, cols, rows, budget) else {
+            k /= 2;
+            continue;
+        };
+        let k = i64::from(k);
+        let mut set = vec![false; w as usize * h as usize];
+        for (i, px) in set.iter_mut().enumerate() {
+            let (x, y) = ((i % w as usize) as i64, (i / w as usize) as i64);
+            *px = (0..k * k).any(|j| {
+                let (cx, cy) = (BORDER + x * k + j % k, BORDER + y * k + j / k);
+                cells
+                    .get((cy * cols + cx) as usize)
+                    .copied()
+                    .unwrap_or(false)
+            });
+        }
+        return Ok(Pixels {
+            width: w,
+            height: h,
+            set,
         });
     }
-    Ok(Pixels {
-        width: w,
-        height: h,
-        set,
-    })
 }
+
+/// The most maps applied to points while pixels are split into cells
+/// (about half a second): an attractor that fills its picture under many
+/// maps (Fractint's 64) is plotted in coarser cells instead.
+const MOST_WORK: u64 = 1 << 27;
 
 /// A point of the attractor in the grid: its cell, and where it is in
 /// the cell in 65536ths (8 bytes, as fine everywhere in the grid).
@@ -402,8 +431,9 @@ struct Point {
 }
 
 /// The minimal plotting algorithm on a `cols` x `rows` grid: the cells
-/// that points of the attractor of `maps` (in grid units) fall in.
-fn plot(maps: &[Map2], cols: i64, rows: i64) -> Vec<bool> {
+/// that points of the attractor of `maps` (in grid units) fall in; `None`
+/// when that takes more than `budget` maps applied.
+fn plot(maps: &[Map2], cols: i64, rows: i64, budget: u64) -> Option<Vec<bool>> {
     let mut set = vec![false; (cols * rows).max(0) as usize];
     let mut stack: Vec<Point> = Vec::new();
     let visit = |p: [f64; 2], set: &mut Vec<bool>, stack: &mut Vec<Point>| {
@@ -427,7 +457,12 @@ fn plot(maps: &[Map2], cols: i64, rows: i64) -> Vec<bool> {
             visit(p, &mut set, &mut stack);
         }
     }
+    let mut work = 0u64;
     while let Some(q) = stack.pop() {
+        work += maps.len() as u64;
+        if work > budget {
+            return None;
+        }
         let cell = i64::from(q.cell);
         let p = [
             (cell % cols) as f64 + (f64::from(q.fx) + 0.5) / 65536.0,
@@ -437,7 +472,7 @@ fn plot(maps: &[Map2], cols: i64, rows: i64) -> Vec<bool> {
             visit(m.apply(p), &mut set, &mut stack);
         }
     }
-    set
+    Some(set)
 }
 
 /// The pixels as a PNG: `ink` where set, else the background of `opts`.

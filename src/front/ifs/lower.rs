@@ -12,7 +12,7 @@
 
 use super::ast::{Entry, Line, Number};
 use crate::diagnostics::{codes, Diagnostic, Diagnostics};
-use crate::ir::graph::{Affine, GraphSymbol, Instance, InstancingGraph};
+use crate::ir::graph::{stretch_2d, Affine, GraphSymbol, Instance, InstancingGraph};
 use crate::ir::{Lowered, Span, SpanTable, System};
 
 /// The most maps Fractint 19.6 reads in an entry (`NUMIFS`).
@@ -31,6 +31,8 @@ pub const SYMBOL: &str = "A";
 /// One map of an entry.
 struct Map<'e> {
     transform: Affine,
+    /// The most it stretches a length (its largest singular value).
+    stretch: f64,
     probability: &'e Number,
     /// From the first number to the last of its linear part.
     linear: Span,
@@ -48,6 +50,23 @@ pub fn is_3d(src: &str, e: &Entry) -> bool {
 /// Lowers the entry `e` of the library `src` into a system whose graph is
 /// its IFS.
 pub fn lower_entry(src: &str, e: &Entry, diags: &mut Diagnostics) -> Lowered {
+    lowered(lower_graph(src, e, diags))
+}
+
+/// The system of an IFS's graph.
+pub fn lowered(graph: InstancingGraph) -> Lowered {
+    let mut system = System::new();
+    system.graph = Some(graph);
+    Lowered {
+        system,
+        spans: SpanTable::default(),
+    }
+}
+
+/// The IFS of the entry `e` of the library `src`, with its checks: what
+/// [`lower_entry`] makes a system of (a library checks every entry, and
+/// makes a system of the one chosen).
+pub fn lower_graph(src: &str, e: &Entry, diags: &mut Diagnostics) -> InstancingGraph {
     let three_d = is_3d(src, e);
     let mut maps = Vec::new();
     let mut bad_lines = false;
@@ -93,13 +112,16 @@ pub fn lower_entry(src: &str, e: &Entry, diags: &mut Diagnostics) -> Lowered {
     if !bad_lines && !maps.is_empty() {
         probabilities(e, &maps, diags);
     }
-    let graph = graph(&maps);
-    for cycle in graph.divergent_cycles() {
-        let Some(&(_, k)) = cycle.edges.first() else {
+    // The cycles of the graph are its loops, one a map: each must shrink,
+    // as `InstancingGraph::divergent_cycles` says (at its threshold), found
+    // here in closed form for a 2D map (a library may hold thousands).
+    for (k, m) in maps.iter().enumerate() {
+        let stretch = m.stretch;
+        if !(stretch.is_nan() || stretch >= 1.0 - 1e-12) {
             continue;
-        };
-        let factor = if cycle.factor.is_finite() {
-            crate::number::readable(cycle.factor)
+        }
+        let factor = if stretch.is_finite() {
+            crate::number::readable(stretch)
         } else {
             "more than floating point holds".into()
         };
@@ -116,12 +138,7 @@ pub fn lower_entry(src: &str, e: &Entry, diags: &mut Diagnostics) -> Lowered {
             ),
         );
     }
-    let mut system = System::new();
-    system.graph = Some(graph);
-    Lowered {
-        system,
-        spans: SpanTable::default(),
-    }
+    graph(&maps)
 }
 
 /// The graph of the maps: one symbol, its rule every map.
@@ -154,18 +171,23 @@ fn map(line: &Line, three_d: bool) -> Result<Map<'_>, Diagnostic> {
     match (three_d, n.len()) {
         (false, NUMBERS_2D) => Ok(Map {
             transform: Affine::planar([[v(0), v(1), v(4)], [v(2), v(3), v(5)]]),
+            stretch: stretch_2d(v(0), v(1), v(2), v(3)),
             probability: &n[6],
             linear: n[0].span.start..n[3].span.end,
         }),
-        (true, NUMBERS_3D) => Ok(Map {
-            transform: Affine([
+        (true, NUMBERS_3D) => {
+            let transform = Affine([
                 [v(0), v(1), v(2), v(9)],
                 [v(3), v(4), v(5), v(10)],
                 [v(6), v(7), v(8), v(11)],
-            ]),
-            probability: &n[12],
-            linear: n[0].span.start..n[8].span.end,
-        }),
+            ]);
+            Ok(Map {
+                transform,
+                stretch: transform.contraction(),
+                probability: &n[12],
+                linear: n[0].span.start..n[8].span.end,
+            })
+        }
         (_, count) => Err(wrong_count(line, three_d, count)),
     }
 }

@@ -104,14 +104,14 @@ fn read_library(
         no_entries: codes::IFS_NO_ENTRIES,
         duplicate: codes::IFS_DUPLICATE_ENTRY,
     };
-    let lower = |e: &ast::Entry, d: &mut Diagnostics| lower_entry(text, e, d);
-    let (mut lib, lowered) = library::read(&ast.entries, file_diags, entry, &how, lower, diags);
+    let lower = |e: &ast::Entry, d: &mut Diagnostics| lower::lower_graph(text, e, d);
+    let (mut lib, graph) = library::read(&ast.entries, file_diags, entry, &how, lower, diags);
     let three_d = ast.entries.iter().filter(|e| is_3d(text, e)).count();
     lib.summary = format!(
         "Fractint IFS, {}; {three_d} of them 3D)",
         library::entries_summary(&lib)
     );
-    (lib, lowered)
+    (lib, graph.map(lower::lowered))
 }
 
 /// Reads the first entry of an IFS text that must be free of errors (for
