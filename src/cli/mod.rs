@@ -507,6 +507,13 @@ fn stats(io: &mut Io<'_>, a: &DeriveArgs) -> i32 {
                     "steps      {}\nsymbols    {}\nsegments   {}\npolygons   {}\nbbox       {bbox}\nmax depth  {}\nmethod     {}\ntime       parse {:.6}s, derive {:.6}s, interpret {:.6}s",
                     s.steps, s.symbols, s.segments, s.polygons, s.max_depth, s.method, s.time.parse, s.time.derive, s.time.interpret
                 );
+                if let Some(n) = s.instances {
+                    let side = crate::driver::GRAPH_STATS_PIXELS;
+                    let _ = writeln!(
+                        io.stdout,
+                        "instances  {n} (primitives placed, down to the pixels of a {side}x{side} picture)"
+                    );
+                }
             }
         }
         Ok(0)

@@ -3,7 +3,7 @@
 //! they were derived, or written straight to a stream.
 
 use super::interpret::{answer_queries, MAX_MOVES};
-use crate::diagnostics::Diagnostic;
+use crate::diagnostics::{codes, Diagnostic};
 use crate::eval::parametric::Globals;
 use crate::eval::tree::{Tree, MAX_TREE_DEPTH};
 use crate::eval::{self, DeriveOptions, Deriver, DEFAULT_MAX_SYMBOLS};
@@ -25,6 +25,7 @@ pub fn write_derived(
     out: &mut dyn std::io::Write,
     mut progress: impl FnMut(u64, usize),
 ) -> Result<(), Diagnostic> {
+    refuse_graph(sys)?;
     let dopts = opts.derive_options(sys);
     let by_name = front.spells_words_by_name();
     let tree = match by_name && dopts.steps <= MAX_TREE_DEPTH {
@@ -59,6 +60,29 @@ pub fn write_derived(
     let _ = out.write_all(b"\n");
     let _ = out.flush();
     Ok(())
+}
+
+/// E0305 for a system that is an instancing graph: it has no word to
+/// derive, print or count.
+pub(super) fn refuse_graph(sys: &System) -> Result<(), Diagnostic> {
+    let Some(graph) = &sys.graph else {
+        return Ok(());
+    };
+    let maps: usize = graph
+        .symbols
+        .iter()
+        .map(|s| s.rule.as_ref().map_or(0, Vec::len))
+        .sum();
+    Err(Diagnostic::global(
+        codes::GRAPH_NO_WORD,
+        format!(
+            "this system is an instancing graph ({} symbol{}, {maps} transform{}): it has no word",
+            graph.symbols.len(),
+            if graph.symbols.len() == 1 { "" } else { "s" },
+            if maps == 1 { "" } else { "s" },
+        ),
+    )
+    .with_help("draw it with `graftal render FILE -o OUT.png`; `graftal check FILE` checks it"))
 }
 
 /// Writes the symbols' names one after the other, stopping at the first

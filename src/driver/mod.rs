@@ -37,5 +37,5 @@ pub use load::{
     LoadError,
 };
 pub use picture::{render_bytes, Format};
-pub use stats::{stats, StageTimes, Stats};
+pub use stats::{stats, StageTimes, Stats, GRAPH_STATS_PIXELS};
 pub use translate::{translate, COMPARE_MAX_SYMBOLS};

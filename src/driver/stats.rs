@@ -39,6 +39,11 @@ pub struct Stats {
     pub derivation: &'static str,
     /// Seconds per stage.
     pub time: StageTimes,
+    /// An instancing graph's primitive instances expanded to the pixels of
+    /// a 1024x1024 picture of it (its shapes placed, or, without shapes,
+    /// the volumes at the pixel cut); `None` for an L-system.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub instances: Option<u128>,
     /// What could not be given, and why.
     #[serde(skip)]
     pub warnings: Vec<Diagnostic>,
@@ -127,8 +132,55 @@ impl Measured {
             derivation,
             time,
             warnings,
+            instances: None,
         }
     }
+}
+
+/// The side of the picture [`graph_stats`] counts instances for.
+pub const GRAPH_STATS_PIXELS: u32 = 1024;
+
+/// What `stats` says of an instancing graph: no word (0 steps, symbols,
+/// segments), its box, and how many primitive instances a 1024x1024
+/// picture of it expands to, counted without expanding them.
+fn graph_stats(
+    sys: &System,
+    graph: &crate::ir::graph::InstancingGraph,
+) -> Result<Stats, Diagnostic> {
+    use crate::raytrace::{self, graph::GraphScene, Eye, Options, Scene};
+    let t0 = Instant::now();
+    let scene = GraphScene::new(graph, [0.5; 3]).map_err(|_| {
+        Diagnostic::global(
+            codes::GRAPH_UNBOUNDED,
+            "the graph has no limit to count (see `graftal check`)",
+        )
+    })?;
+    let (azimuth, elevation) = sys.settings.view.unwrap_or((0.0, 0.0));
+    let opts = Options::new(
+        GRAPH_STATS_PIXELS,
+        GRAPH_STATS_PIXELS,
+        Eye::View { azimuth, elevation },
+    );
+    let pixel = raytrace::pixel_size(&scene.fit_points(), &opts);
+    let instances = raytrace::graph::count_instances(graph, scene.bounds(), pixel);
+    let (lo, hi) = scene.world_box();
+    Ok(Stats {
+        steps: 0,
+        symbols: Count::from(0u128),
+        segments: Count::from(0u128),
+        polygons: Count::from(0u128),
+        bbox: Some([lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]),
+        max_depth: 0,
+        method: "instancing graph",
+        derivation: "none",
+        time: StageTimes {
+            parse: 0.0,
+            derive: 0.0,
+            interpret: t0.elapsed().as_secs_f64(),
+        },
+        warnings: Vec::new(),
+        instances: Some(instances),
+    })
 }
 
 /// `b`, or the warning that it is beyond `f64` when a bound is not finite.
@@ -219,6 +271,9 @@ fn instanced(inst: &mut Instanced, steps: u64, symbols: Count, segments: Count) 
 /// depth, not the word). Any other system is derived (within the symbol
 /// limit), then interpreted.
 pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
+    if let Some(graph) = &sys.graph {
+        return graph_stats(sys, graph);
+    }
     let t0 = Instant::now();
     let dopts = opts.derive_options(sys);
     let steps = dopts.steps;

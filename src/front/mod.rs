@@ -24,6 +24,8 @@ pub mod depth;
 pub mod fractint;
 pub mod gft;
 pub mod graph;
+pub mod ifs;
+pub mod library;
 pub mod linf;
 pub mod names;
 pub mod parse;
@@ -54,6 +56,7 @@ pub static FRONTS: &[&dyn Front] = &[
     &fractint::Fractint,
     &smith::Smith,
     &gft::Gft,
+    &ifs::Ifs,
 ];
 
 /// How sure a front end is that a text is in its notation.

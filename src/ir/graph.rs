@@ -561,3 +561,28 @@ impl Affine {
         bits(self) == bits(other)
     }
 }
+
+impl Affine {
+    /// The map of the plane `x' = a x + b y + e`, `y' = c x + d y + f`
+    /// (rows `[a b e]`, `[c d f]`) as a map of space that keeps the plane
+    /// z = 0 and scales z by the largest singular value of its 2x2 part,
+    /// so that it shrinks in space exactly as much as it does in the
+    /// plane.
+    pub fn planar(rows: [[f64; 3]; 2]) -> Affine {
+        let [[a, b, e], [c, d, f]] = rows;
+        Affine([
+            [a, b, 0.0, e],
+            [c, d, 0.0, f],
+            [0.0, 0.0, stretch_2d(a, b, c, d), 0.0],
+        ])
+    }
+}
+
+/// The largest singular value of the 2x2 matrix `[[a, b], [c, d]]`, in
+/// closed form.
+pub fn stretch_2d(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let sum = a * a + b * b + c * c + d * d;
+    let det = a * d - b * c;
+    let root = (sum * sum - 4.0 * det * det).max(0.0).sqrt();
+    ((sum + root) / 2.0).sqrt()
+}

@@ -1,7 +1,7 @@
 //! # The graftal IR: one representation for every notation
 //!
 //! This module is the specification of graftal's semantics. Every front end
-//! ([`crate::front`]: pfg, LinF, STL, cpfg, Fractint, Smith, `.gft`) *lowers*
+//! ([`crate::front`]: pfg, LinF, STL, cpfg, Fractint, Smith, `.gft`, IFS) *lowers*
 //! its AST into a [`System`]; everything downstream — derivation ([`crate::eval`]), turtle
 //! interpretation ([`crate::turtle`]), rendering and the emitters
 //! ([`crate::back`]) — reads only this type. No field says which notation a

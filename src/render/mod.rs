@@ -4,6 +4,7 @@
 //! a z-buffer with lights for systems whose look is lit) or SVG ([`svg`]).
 
 pub mod animate;
+pub mod attractor;
 pub mod axes;
 pub mod camera;
 pub mod coverage;

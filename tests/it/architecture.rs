@@ -823,6 +823,58 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
             "use crate::driver::picture::{draw, Request};",
             false,
         ),
+        // The IFS front end, the library rooms the library notations share,
+        // and the attractor drawer.
+        (
+            "front/ifs/lower.rs",
+            "use crate::render::attractor::pixels;",
+            true,
+        ),
+        (
+            "front/ifs/parser.rs",
+            "use crate::front::fractint::parse;",
+            true,
+        ),
+        (
+            "front/ifs/parser.rs",
+            "use crate::front::library::{self, Tok};",
+            false,
+        ),
+        (
+            "front/library.rs",
+            "use crate::front::fractint::ast::Entry;",
+            true,
+        ),
+        (
+            "front/fractint/mod.rs",
+            "use crate::front::ifs::is_3d;",
+            true,
+        ),
+        (
+            "render/attractor.rs",
+            "use crate::front::ifs::lower_entry;",
+            true,
+        ),
+        (
+            "render/attractor.rs",
+            "use crate::driver::picture::Request;",
+            true,
+        ),
+        (
+            "render/attractor.rs",
+            "use crate::ir::graph::{stretch_2d, Affine};",
+            false,
+        ),
+        (
+            "driver/picture/attractor.rs",
+            "use crate::render::{self, attractor};",
+            false,
+        ),
+        (
+            "cli/mod.rs",
+            "let p = crate::render::attractor::pixels(m, o);",
+            true,
+        ),
         // Comments, strings and the test module are not imports.
         (
             "ir/mod.rs",
@@ -878,4 +930,62 @@ fn the_graph_checks_are_worded_in_one_shared_room() {
         }
     }
     assert!(checks.iter().all(|c| room.code.contains(c)));
+}
+
+/// What the IFS work added stands where the house rules put it: the
+/// attractor drawer on the IR and render alone, the library rooms on the
+/// diagnostics, the IR and the front ends' shared rooms, the IFS front end
+/// on no other notation, and only `driver::picture` choosing the
+/// attractor as a way of drawing.
+#[test]
+fn the_ifs_front_end_the_library_rooms_and_the_attractor_stand_in_their_layers() {
+    let files = sources();
+    let notations = notations();
+    assert!(notations.contains("ifs"), "{notations:?}");
+    let imports = |path: &str| {
+        let f = files
+            .iter()
+            .find(|f| f.path == path)
+            .unwrap_or_else(|| panic!("no file {path}"));
+        crate_paths(&module_of(path), &f.code)
+    };
+    for path in imports("render/attractor.rs") {
+        assert!(
+            matches!(path[0].as_str(), "ir" | "render"),
+            "render/attractor.rs imports crate::{}",
+            path.join("::")
+        );
+    }
+    for path in imports("front/library.rs") {
+        let ok = match path[0].as_str() {
+            "diagnostics" | "ir" => true,
+            "front" => path.get(1).is_none_or(|n| !notations.contains(n)),
+            _ => false,
+        };
+        assert!(ok, "front/library.rs imports crate::{}", path.join("::"));
+    }
+    for f in files.iter().filter(|f| f.path.starts_with("front/ifs/")) {
+        for path in crate_paths(&module_of(&f.path), &f.code) {
+            let other_notation = path[0] == "front"
+                && path
+                    .get(1)
+                    .is_some_and(|n| notations.contains(n) && n != "ifs");
+            assert!(
+                !other_notation && !NOT_FOR_FRONT_ENDS.contains(&path[0].as_str()),
+                "{} imports crate::{}",
+                f.path,
+                path.join("::")
+            );
+        }
+    }
+    let drawers: Vec<&str> = files
+        .iter()
+        .filter(|f| {
+            crate_paths(&module_of(&f.path), &f.code)
+                .iter()
+                .any(|p| p.len() >= 2 && p[0] == "render" && p[1] == "attractor")
+        })
+        .map(|f| f.path.as_str())
+        .collect();
+    assert_eq!(drawers, ["driver/picture/attractor.rs"]);
 }

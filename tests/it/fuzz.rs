@@ -98,6 +98,8 @@ struct Settings {
     shrink: bool,
     /// Where findings are written (emptied first).
     findings: PathBuf,
+    /// The notations whose mutants run (`GRAFTAL_FUZZ_NOTATION`: one).
+    notations: Vec<Notation>,
 }
 
 fn env_number<T: std::str::FromStr>(name: &str) -> Option<T> {
@@ -126,6 +128,11 @@ impl Settings {
             timeout: Duration::from_secs_f64(env_number("GRAFTAL_FUZZ_TIMEOUT").unwrap_or(10.0)),
             shrink: env_number::<u8>("GRAFTAL_FUZZ_SHRINK") == Some(1),
             findings: PathBuf::new(),
+            notations: match std::env::var("GRAFTAL_FUZZ_NOTATION") {
+                Ok(name) => vec![Notation::from_name(&name)
+                    .unwrap_or_else(|| panic!("GRAFTAL_FUZZ_NOTATION={name:?}: no such notation"))],
+                Err(_) => NOTATIONS.to_vec(),
+            },
         }
     }
 }
@@ -186,15 +193,17 @@ enum Notation {
     Cpfg,
     Fractint,
     Gft,
+    Ifs,
 }
 
-const NOTATIONS: [Notation; 6] = [
+const NOTATIONS: [Notation; 7] = [
     Notation::Pfg,
     Notation::Linf,
     Notation::Stl,
     Notation::Cpfg,
     Notation::Fractint,
     Notation::Gft,
+    Notation::Ifs,
 ];
 
 impl Notation {
@@ -207,6 +216,7 @@ impl Notation {
             Notation::Cpfg => "cpfg",
             Notation::Fractint => "fractint",
             Notation::Gft => "gft",
+            Notation::Ifs => "ifs",
         }
     }
 
@@ -223,6 +233,7 @@ impl Notation {
             Notation::Cpfg => CPFG_FRAGMENTS,
             Notation::Fractint => FRACTINT_FRAGMENTS,
             Notation::Gft => GFT_FRAGMENTS,
+            Notation::Ifs => IFS_FRAGMENTS,
         }
     }
 }
@@ -282,6 +293,14 @@ const GFT_FRAGMENTS: &[&str] = &[
     "`", "?", "0.5?", ":", "<", ">", "rotation t = (0, [0 2*pi])\n", "+t = frenet t\n",
     "decomposition depth 99999 {\nA -> AA\n}\n", "start { n = 0; }\n", "globals n\n",
     "symbol Apex\n", "X = turn 1e308deg\n", "colours #000000\n", "/*", "*/", "ring\n", "cut %\n",
+];
+
+#[rustfmt::skip]
+const IFS_FRAGMENTS: &[&str] = &[
+    "Name {\n", "Name (3D) {\n", "(3D)", "}\n", "{", "}", ";", ".5 0 0 .5 0 0 .5\n",
+    ".5 0 0 0 .5 0 0 0 .5 0 0 1 .5\n", "0 0 0 0 0 0 1\n", "1 0 0 1 0 0 1\n",
+    ".999 -.01 .01 .999 .001 0 .5\n", "0 1 -1 0 0 0 .5\n", "1e-300 0 0 1e300 0 0 1\n", " .5", " 0",
+    " -1", " 1e308", ",", "=",
 ];
 
 /// Fragments of every notation: numbers at the edges, odd characters.
@@ -380,6 +399,7 @@ fn notation_of(name: &str, text: &[u8]) -> Option<Notation> {
         "linf" => Some(Notation::Linf),
         "gft" => Some(Notation::Gft),
         "stl" => Some(Notation::Stl),
+        "ifs" => Some(Notation::Ifs),
         "l" => {
             Notation::from_name(graftal::front::detect("l", &String::from_utf8_lossy(text)).name())
         }
@@ -409,6 +429,13 @@ fn load_seeds() -> Vec<Vec<Input>> {
                 seeds[n as usize].push(Input::file(name, text));
             }
         }
+    }
+    // Each entry of the IFS library alone, as a file of one entry.
+    let ifs = std::fs::read_to_string(repo("tests/corpus/fractint/fractint.ifs")).unwrap();
+    let file = graftal::front::ifs::parse(&ifs, &mut Default::default());
+    for e in &file.entries {
+        let name = format!("{}.ifs", e.name);
+        seeds[Notation::Ifs as usize].push(Input::file(name, &ifs[e.span.clone()]));
     }
     for path in files_in(&repo("tests/corpus/fractint/history")) {
         let name = format!("{}.l", file_name(&path).replace('.', "-"));
@@ -471,7 +498,7 @@ fn golden_seeds() -> Vec<Input> {
 fn mutant(seeds: &[Vec<Input>], notation: Notation, index: usize, seed: u64) -> Input {
     let mut rng = Rng::new(&[seed, notation as u64, index as u64]);
     let mut input = rng.pick(&seeds[notation as usize]).clone();
-    if notation == Notation::Fractint && rng.chance(80) {
+    if matches!(notation, Notation::Fractint | Notation::Ifs) && rng.chance(80) {
         input.text = some_entries(&input.text, &mut rng);
     }
     let edits = 1 + if rng.chance(20) {
@@ -683,9 +710,13 @@ const SMALL_STEPS: &[&str] = &["0", "1", "2", "3", "4", "5"];
 const HUGE_STEPS: &[&str] = &["1000", "100000", "99999999999"];
 
 /// The names of the entries (`Name {` lines) of an input graftal reads as
-/// a Fractint library (none for other inputs).
+/// a Fractint library, of L-systems or IFS codes (none for other inputs).
 fn entry_names(input: &Input) -> Vec<String> {
-    if input.link.is_some() || notation_of(&input.name, &input.text) != Some(Notation::Fractint) {
+    let library = matches!(
+        notation_of(&input.name, &input.text),
+        Some(Notation::Fractint | Notation::Ifs)
+    );
+    if input.link.is_some() || !library {
         return Vec::new();
     }
     String::from_utf8_lossy(&input.text)
@@ -1566,7 +1597,8 @@ fn mutants_of_every_notation_run_without_a_finding() {
     let seeds = load_seeds();
     let start = Instant::now();
     let report = run_tasks(&settings, |t| {
-        let (notation, index) = (NOTATIONS[t % NOTATIONS.len()], t / NOTATIONS.len());
+        let n = settings.notations.len();
+        let (notation, index) = (settings.notations[t % n], t / n);
         let done = match settings.until {
             Some(until) => Instant::now() >= until,
             None => index >= settings.cases,

@@ -28,7 +28,7 @@ struct Grammar {
     range: Option<&'static str>,
 }
 
-const GRAMMARS: [Grammar; 6] = [
+const GRAMMARS: [Grammar; 7] = [
     Grammar {
         file: "pfg.ebnf",
         ext: "l",
@@ -58,6 +58,12 @@ const GRAMMARS: [Grammar; 6] = [
         ext: "smith",
         starts: &["file", "entry", "rule string", "image", "axiom"],
         range: Some("097"),
+    },
+    Grammar {
+        file: "ifs.ebnf",
+        ext: "ifs",
+        starts: &["file", "entry", "map line", "map 2d", "map 3d", "number"],
+        range: Some("11"),
     },
     Grammar {
         file: "graftal.ebnf",

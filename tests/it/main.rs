@@ -45,6 +45,7 @@ mod gft_hub;
 mod gft_models;
 mod gft_roundtrip;
 mod grammar;
+mod ifs;
 mod json_records;
 mod library_derivations;
 mod linf;

@@ -11,9 +11,10 @@
 //! graftal's own notation `.gft` (`codes/gft.rs`) and `E092x` its `graph`
 //! blocks, `E097x` Smith (`codes/smith.rs`), `E10xx` the checks of
 //! object-instancing graphs that every front end reading one reports
-//! (`codes/graph.rs`); `W00xx` general and pfg warnings, `W04xx` LinF,
-//! `W05xx` STL, `W06xx` translation, `W07xx` Fractint, `W080x`–`W082x`
-//! cpfg, `W090x` `.gft`, `W097x` Smith, `W10xx` object-instancing graphs.
+//! (`codes/graph.rs`), `E11xx` Fractint's IFS libraries (`codes/ifs.rs`);
+//! `W00xx` general and pfg warnings, `W04xx` LinF, `W05xx` STL, `W06xx`
+//! translation, `W07xx` Fractint, `W080x`–`W082x` cpfg, `W090x` `.gft`,
+//! `W097x` Smith, `W10xx` object-instancing graphs, `W11xx` IFS.
 //!
 //! A code nothing emits any more is retired: its entry goes and its number
 //! joins [`RETIRED`], never to be given again. `tests/it/stale_words.rs` holds
@@ -83,6 +84,7 @@ mod cpfg_lsystem;
 mod fractint;
 mod gft;
 mod graph;
+mod ifs;
 mod linf;
 mod smith;
 mod stl;
@@ -92,6 +94,7 @@ pub use cpfg_lsystem::*;
 pub use fractint::*;
 pub use gft::*;
 pub use graph::*;
+pub use ifs::*;
 pub use linf::*;
 pub use smith::*;
 pub use stl::*;
@@ -114,6 +117,7 @@ pub fn all() -> impl Iterator<Item = &'static CodeInfo> {
         .chain(smith::SMITH)
         .chain(gft::GFT)
         .chain(graph::GRAPH)
+        .chain(ifs::IFS)
 }
 
 codes! { GENERAL;
@@ -405,6 +409,14 @@ e.g. `a --> b`, `b --> a` for a billion steps.
 
 Use fewer steps (`-n`). A word that stops changing ends the derivation
 early by itself.";
+
+    GRAPH_NO_WORD = "E0305", "an instancing graph has no word",
+"The system is an object-instancing graph (an IFS code, or Bekaert and
+Willems' IFS code with restrictions): a figure made of transformed copies
+of itself. It is never rewritten into a word of symbols, so there is
+nothing for `derive` to print or for `stats` to count: draw it with
+`graftal render FILE -o OUT.png`, and `graftal check FILE` checks its
+maps.";
 
     DERIVE_WOULD_EXCEED_SYMBOLS = "W0301", "`derive` would stop at the symbol limit",
 "`graftal check` derives the file as `graftal derive` would, and the word

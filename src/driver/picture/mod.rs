@@ -12,9 +12,12 @@
 //! a still picture is drawn from shared subtrees where the system and the
 //! view allow (`shared.rs`), else streamed segment by segment (`streamed.rs`),
 //! else lit straight from the turtle (`lit.rs`), else from stored geometry
-//! (`stored.rs`); meshes in `mesh.rs`, animations in `animate.rs`.
+//! (`stored.rs`); meshes in `mesh.rs`, animations in `animate.rs`. A
+//! system that is an instancing graph (an IFS) is drawn by its attractor
+//! at pixel resolution (`attractor.rs`).
 
 mod animate;
+mod attractor;
 mod lit;
 mod mesh;
 mod shared;
@@ -201,6 +204,9 @@ pub enum Method {
     /// Ray traced: an instancing graph without expanding it, or the
     /// turtle's geometry through a bounding volume hierarchy.
     RayTraced,
+    /// The attractor of a planar instancing graph (a 2D IFS), pixel by
+    /// pixel.
+    Attractor,
 }
 
 impl Method {
@@ -214,6 +220,7 @@ impl Method {
             Method::Mesh => "mesh",
             Method::Animation => "animation",
             Method::RayTraced => "ray traced",
+            Method::Attractor => "attractor",
         }
     }
 }
@@ -255,6 +262,9 @@ pub enum DrawError {
     Animation(String),
     /// A POV-Ray scene was asked of a picture drawn flat.
     NoScene,
+    /// The system is not drawn as asked: why (a 3D instancing graph,
+    /// which is ray traced).
+    NotDrawable(String),
 }
 
 impl std::fmt::Display for DrawError {
@@ -266,7 +276,7 @@ impl std::fmt::Display for DrawError {
             DrawError::Encode { width, height } => {
                 write!(f, "cannot make a {width}x{height} PNG")
             }
-            DrawError::Animation(why) => f.write_str(why),
+            DrawError::Animation(why) | DrawError::NotDrawable(why) => f.write_str(why),
             DrawError::NoScene => {
                 f.write_str("a POV-Ray scene is written from 3D geometry, not from a flat picture")
             }
@@ -376,6 +386,31 @@ fn draw_subject(
     progress: &mut dyn Progress,
 ) -> Result<Picture, DrawError> {
     let ropts = render_options(req, s.sys, s.file);
+    if let Some(graph) = &s.sys.graph {
+        // A plane IFS is drawn flat, pixel by pixel, unless a ray-traced
+        // picture (or a scene for one) is asked for; every other graph is
+        // ray traced (`still_counted`).
+        if let Target::Still(format) = req.target {
+            let traced = format == Format::Pov
+                || traced::wanted(s.sys, &req.tracing)
+                || !attractor::draws(graph);
+            if traced {
+                let how = How {
+                    layout: req.layout,
+                    tracing: req.tracing,
+                };
+                return still_counted(s, &req.run, format, ropts, how, progress).map(|(p, _)| p);
+            }
+        }
+        let bytes = attractor::draw(s.sys, graph, req.target, ropts)?;
+        return Ok(Picture {
+            bytes,
+            side_files: Vec::new(),
+            method: Method::Attractor,
+            warnings: Vec::new(),
+            mesh: None,
+        });
+    }
     match req.target {
         Target::Still(format) => {
             let how = How {

@@ -9,18 +9,8 @@ pub struct File {
     pub entries: Vec<Entry>,
 }
 
-/// One entry `Name { … }`.
-#[derive(Clone, Debug)]
-pub struct Entry {
-    /// As written (Fractint compares names without regard to case).
-    pub name: String,
-    pub name_span: Span,
-    /// From the name to the closing `}` (or to where the entry was cut off).
-    pub span: Span,
-    /// Whether a line starting with `}` closed it.
-    pub closed: bool,
-    pub lines: Vec<Line>,
-}
+/// One entry `Name { … }` and its lines.
+pub type Entry = crate::front::library::Entry<Line>;
 
 /// A string (axiom or rule body): lowercased, as Fractint reads it.
 #[derive(Clone, Debug, PartialEq)]

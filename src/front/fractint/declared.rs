@@ -2,22 +2,10 @@
 //! with its first lines.
 
 use crate::diagnostics::Diagnostics;
-use crate::front::{Declaration, DeclarationKind};
+use crate::front::Declaration;
 
 /// The entries `text` declares.
 pub fn entries(text: &str) -> Vec<Declaration> {
     let file = super::parser::parse(text, &mut Diagnostics::default());
-    (file.entries.into_iter())
-        .filter(|e| !e.name.is_empty())
-        .map(|e| {
-            let lines = (e.span.end - e.span.start).min(300);
-            let shown = text.get(e.span.start..e.span.start + lines).unwrap_or("");
-            Declaration {
-                about: format!("Fractint entry `{}`\n\n```\n{shown}\n```", e.name),
-                name: e.name,
-                span: e.name_span,
-                kind: DeclarationKind::Module,
-            }
-        })
-        .collect()
+    crate::front::library::declarations(text, file.entries, "Fractint entry")
 }

@@ -2,70 +2,18 @@
 //!
 //! [`Token`] cuts a file into what its structure needs: line ends, `;`
 //! comments (to the end of the line), `{`, `}`, `=` and runs of other
-//! characters. Fractint separates words by spaces and tabs only, so a
-//! run is anything else. Control characters are errors.
+//! characters; every library notation shares it
+//! ([`crate::front::library`]).
 //!
 //! [`Command`] cuts an axiom or rule body (already lowercased, as Fractint
 //! lowercases every line) into commands: `/ \ @ c < >` take a number with up
 //! to two `q` (square root) or `i` (inverse) prefixes, `@iq2` is one
 //! command; every other character is a command or a plain symbol of its own.
 
-use crate::diagnostics::Diagnostics;
 use crate::ir::Span;
 use logos::Logos;
 
-#[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]
-#[logos(skip r"[ \t\x0b\x0c]+")]
-pub enum Token<'src> {
-    /// LF, CR LF, or a lone CR.
-    #[regex(r"\r\n|\n|\r")]
-    Newline,
-    #[regex(r";[^\r\n]*", allow_greedy = true)]
-    Comment,
-    #[token("{")]
-    Open,
-    #[token("}")]
-    Close,
-    #[token("=")]
-    Eq,
-    #[regex(r"[^ \t\x0b\x0c\r\n;{}=\x00-\x08\x0e-\x1f\x7f]+")]
-    Text(&'src str),
-}
-
-impl std::fmt::Display for Token<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Token::Newline => f.write_str("end of line"),
-            Token::Comment => f.write_str("comment"),
-            Token::Open => f.write_str("`{`"),
-            Token::Close => f.write_str("`}`"),
-            Token::Eq => f.write_str("`=`"),
-            Token::Text(s) => write!(f, "`{s}`"),
-        }
-    }
-}
-
-/// The tokens of `src` without comments; invalid characters are reported
-/// (E0001) and left out.
-pub fn lex<'src>(src: &'src str, diags: &mut Diagnostics) -> Vec<(Token<'src>, Span)> {
-    let mut out = Vec::new();
-    for (tok, span) in Token::lexer(src).spanned() {
-        match tok {
-            Ok(Token::Comment) => {}
-            Ok(t) => out.push((t, span)),
-            Err(()) => diags.push_invalid_character(src, span),
-        }
-    }
-    out
-}
-
-/// The spans of `src`'s `;` comments, as [`Token`] finds them.
-pub fn comment_spans(src: &str) -> Vec<Span> {
-    (Token::lexer(src).spanned())
-        .filter(|(t, _)| *t == Ok(Token::Comment))
-        .map(|(_, span)| span)
-        .collect()
-}
+pub use crate::front::library::{comment_spans, lex, Token};
 
 /// One command of a body.
 #[derive(Logos, Clone, Copy, Debug, PartialEq, Eq)]

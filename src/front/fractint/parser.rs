@@ -14,152 +14,50 @@
 //! after the string is extra text. So `x=-FX`, `axiom=FX` and `Angle 6`
 //! read, and `x = -FX` gives the string `=` and extra text.
 
-use super::ast::{Body, Entry, File, Line, LineKind};
-use super::lexer::{lex, Token};
-use crate::diagnostics::{codes, Diagnostic, Diagnostics};
+use super::ast::{Body, File, Line, LineKind};
+use crate::diagnostics::{codes, Code, Diagnostic, Diagnostics};
+use crate::front::library::{self, Tok, Token};
 use crate::ir::Span;
-
-type Tok<'src> = (Token<'src>, Span);
 
 /// The keywords of an entry.
 pub const KEYWORDS: [&str; 2] = ["axiom", "angle"];
 
 /// Parses a Fractint library. Never fails: problems are pushed to `diags`.
 pub fn parse(src: &str, diags: &mut Diagnostics) -> File {
-    let tokens: Vec<Tok<'_>> = lex(src, diags);
-    // The lines are slices of the tokens: nothing is allocated per line, so
-    // a library of 100,000 entries reads in a fraction of a second.
-    build(src, tokens.split(|t| t.0 == Token::Newline), diags)
+    let scanned = library::scan(src, &mut EntryLines, diags);
+    File {
+        entries: scanned.entries,
+    }
 }
 
-enum State {
-    Outside,
-    Block,
-    Entry(Entry),
-}
+/// An L-system entry's lines, for the library scanner.
+struct EntryLines;
 
-/// The name of a line that opens a block (`None` when no `{` opens one),
-/// with its span and the index of the `{`.
-fn opening(line: &[Tok<'_>]) -> Option<(String, Span, usize)> {
-    let open = line.iter().position(|t| t.0 == Token::Open)?;
-    match line.first() {
-        Some((Token::Text(t), span)) if open > 0 => {
-            let name = t.split('(').next().unwrap_or("");
-            let span = span.start..span.start + name.len();
-            Some((name.to_string(), span, open))
+impl library::Lines for EntryLines {
+    type Line = Line;
+    const UNCLOSED: Code = codes::FR_UNCLOSED_ENTRY;
+
+    /// A line naming something of more than one character, not a keyword,
+    /// with no `=` before its `{`.
+    fn opens_entry(&self, name: &str, line: &[Tok<'_>]) -> bool {
+        let open = line.iter().position(|t| t.0 == Token::Open);
+        name.chars().count() > 1
+            && !KEYWORDS.contains(&name.to_ascii_lowercase().as_str())
+            && !line[..open.unwrap_or(0)].iter().any(|t| t.0 == Token::Eq)
+    }
+
+    fn line(
+        &mut self,
+        src: &str,
+        span: Span,
+        first: bool,
+        diags: &mut Diagnostics,
+    ) -> Option<Line> {
+        if !first {
+            long_line(src, span.start, diags);
         }
-        _ => Some((String::new(), 0..0, open)),
+        parse_line(src, span.start, span.end)
     }
-}
-
-/// Whether a line inside an entry opens the next entry (its `}` missing).
-fn opens_entry(line: &[Tok<'_>]) -> bool {
-    let Some((name, _, open)) = opening(line) else {
-        return false;
-    };
-    name.chars().count() > 1
-        && !KEYWORDS.contains(&name.to_ascii_lowercase().as_str())
-        && !line[..open].iter().any(|t| t.0 == Token::Eq)
-}
-
-fn build<'t, 's: 't>(
-    src: &str,
-    lines: impl Iterator<Item = &'t [Tok<'s>]>,
-    diags: &mut Diagnostics,
-) -> File {
-    let mut file = File::default();
-    let mut state = State::Outside;
-    let mut last_end = 0;
-    for line in lines {
-        let (Some(first), Some(last)) = (line.first(), line.last()) else {
-            continue;
-        };
-        let (start, end) = (first.1.start, last.1.end);
-        state = match state {
-            State::Block => {
-                if line.iter().any(|t| t.0 == Token::Close) {
-                    State::Outside
-                } else {
-                    State::Block
-                }
-            }
-            State::Entry(mut e) if first.0 == Token::Close => {
-                e.closed = true;
-                e.span.end = first.1.end;
-                file.entries.push(e);
-                State::Outside
-            }
-            State::Entry(e) if opens_entry(line) => {
-                let d = unclosed(&e)
-                    .with_secondary(start..end, "the next entry starts here")
-                    .with_help("end the entry with a line `}`");
-                cut_off(e, last_end, d, &mut file, diags);
-                open_block(src, line, &mut file)
-            }
-            State::Entry(mut e) => {
-                long_line(src, start, diags);
-                e.lines.extend(parse_line(src, start, end));
-                State::Entry(e)
-            }
-            State::Outside => open_block(src, line, &mut file),
-        };
-        last_end = end;
-    }
-    if let State::Entry(e) = state {
-        let d = unclosed(&e).with_help("the file ends first: end the entry with a line `}`");
-        cut_off(e, last_end, d, &mut file, diags);
-    }
-    file
-}
-
-/// E0701 for an entry without its `}`.
-fn unclosed(e: &Entry) -> Diagnostic {
-    Diagnostic::at(
-        codes::FR_UNCLOSED_ENTRY,
-        e.name_span.clone(),
-        format!("the entry `{}` is not closed with `}}`", e.name),
-    )
-    .with_label("this entry has no `}`")
-}
-
-/// Ends an unclosed entry at `end`, reporting `d`.
-fn cut_off(mut e: Entry, end: usize, d: Diagnostic, file: &mut File, diags: &mut Diagnostics) {
-    diags.push(d);
-    e.span.end = end;
-    file.entries.push(e);
-}
-
-/// A line outside entries: opens an entry, a block, or is ignored (as
-/// Fractint's scanner ignores lines without `{`).
-fn open_block(src: &str, line: &[Tok<'_>], file: &mut File) -> State {
-    let Some((name, name_span, open)) = opening(line) else {
-        return State::Outside;
-    };
-    if name.is_empty() || name.eq_ignore_ascii_case("comment") {
-        return if line[open..].iter().any(|t| t.0 == Token::Close) {
-            State::Outside
-        } else {
-            State::Block
-        };
-    }
-    let mut e = Entry {
-        name,
-        span: name_span.start..line[open].1.end,
-        name_span,
-        closed: false,
-        lines: Vec::new(),
-    };
-    // The rest of the line after `{` is the entry's first line.
-    if let (Some(a), Some(b)) = (line.get(open + 1), line.last()) {
-        if a.0 == Token::Close && line.len() == open + 2 {
-            e.closed = true;
-            e.span.end = a.1.end;
-            file.entries.push(e);
-            return State::Outside;
-        }
-        e.lines.extend(parse_line(src, a.1.start, b.1.end));
-    }
-    State::Entry(e)
 }
 
 /// Fractint's limit: lines of 160 characters and more are cut (W0704).
