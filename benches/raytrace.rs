@@ -7,7 +7,8 @@
 //!   takes seconds): `std:bekaert/tree` and `std:bekaert/fern` at 1024²
 //!   with shadows and 4 samples a pixel, and a cpfg plant of about 10⁵
 //!   cylinders (`PLANT`, a parametric ternary tree: flat hierarchy), each
-//!   with 1 and 2 threads. Baseline: one thread.
+//!   with 1 and 2 threads. Baseline: one thread. `GRAFTAL_BENCH_QUICK=1`
+//!   leaves them out.
 //! * `raytrace/tetrahedron` (sampled): Sierpinski's tetrahedron at 256²,
 //!   one sample a pixel, traced from the graph, against a flat hierarchy
 //!   over the graph expanded to the same pixel cut (262 144 boxes): rays a
@@ -34,12 +35,12 @@ fn load(spec: &str) -> System {
         .unwrap_or_else(|| panic!("{spec} does not compile"))
 }
 
-/// A cpfg plant of 3^10 + … ≈ 88 573 internodes drawn as cylinders with
+/// A cpfg plant of 1 + 3 + … + 3^10 = 88 573 internodes drawn as cylinders with
 /// round joints (≈ 1.8 × 10⁵ primitives): parametric, so it is traced
 /// through the flat hierarchy.
-const PLANT: &str = "#define N 10
+const PLANT: &str = "#define N 11
 Lsystem: 1
-derivation length: 1
+derivation length: N
 Axiom: A(N)
 A(n) : n > 0 --> !(n*0.4) F(n*0.3) [ &(35) A(n-1) ] [ /(120) &(35) A(n-1) ] [ /(240) &(35) A(n-1) ]
 endlsystem
@@ -73,6 +74,10 @@ fn one_shot(name: &str, sys: &System, size: u32) {
 }
 
 fn bench_one_shots(_: &mut Criterion) {
+    // Minutes in all: `GRAFTAL_BENCH_QUICK=1` leaves them out.
+    if std::env::var_os("GRAFTAL_BENCH_QUICK").is_some() {
+        return;
+    }
     one_shot("std:bekaert/fern", &load("std:bekaert/fern"), 1024);
     one_shot("std:bekaert/tree", &load("std:bekaert/tree"), 1024);
     let plant = driver::compile(graftal::source::SourceFile::new("plant.l", PLANT))
