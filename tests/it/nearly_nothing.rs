@@ -23,6 +23,11 @@ fn every_stdlib_entry_but_a_few_draws_more_than_a_line() {
     let names: Vec<&str> = graftal::stdlib::names().collect();
     assert!(names.len() > 60, "{}", names.len());
     for &name in &names {
+        // An instancing graph is ray traced, never drawn as lines.
+        let c = graftal::driver::compile(graftal::driver::load(&format!("std:{name}")).unwrap());
+        if c.system.as_ref().is_some_and(|s| s.graph.is_some()) {
+            continue;
+        }
         if !w0009(&format!("std:{name}"), &[]).is_empty() {
             flagged.push(name);
         }
