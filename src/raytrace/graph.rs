@@ -19,7 +19,7 @@ use super::vec::{add, dot, mul, normalize, sub, V3};
 use super::{Cut, Scene, Scratch, SurfaceHit};
 use crate::ir::graph::{Affine, Finish, InstancingGraph, Primitive, Shape};
 use std::cmp::Reverse;
-use std::collections::HashMap;
+use std::collections::{BinaryHeap, HashMap};
 
 /// A graph ready to be traced.
 pub struct GraphScene<'g> {
@@ -37,15 +37,39 @@ pub struct GraphScene<'g> {
     world: (V3, V3),
 }
 
-/// One couple on a ray's list.
+/// One couple on a ray's list: the ray taken into the couple's
+/// coordinates (each child's from its parent's by the edge's inverse, so
+/// a couple costs one transform of a ray, not a product of matrices),
+/// and where it came from, to rebuild the couple's whole transform for
+/// the one hit that needs it.
 #[derive(Clone, Copy, Debug)]
 pub struct Couple {
-    inverse: Affine,
+    local: Ray,
     stretch: f64,
     symbol: u32,
+    /// The index on the ray's list of the couple this one was opened
+    /// from, or [`ROOT`] for an axiom couple.
+    parent: u32,
+    /// The edge of the parent's rule (or the axiom's couple) it stands for.
+    edge: u32,
     /// A graph without geometry shades a volume by the normals of the
-    /// volumes that led to it, each level weighing half the next.
+    /// volumes that led to it: the volume's normal where the ray enters,
+    /// in the couple's coordinates.
+    entry_normal: V3,
+}
+
+/// The parent of an axiom couple.
+const ROOT: u32 = u32::MAX;
+
+/// The nearest surface met so far on a ray, in the coordinates of the
+/// couple (its index on the list) whose shape it is.
+#[derive(Clone, Copy)]
+struct Found {
+    t: f64,
     normal: V3,
+    colour: [f64; 3],
+    finish: Finish,
+    couple: u32,
 }
 
 /// Pops allowed per ray: a ray that grazes a dense part stops here with
@@ -92,9 +116,15 @@ impl<'g> GraphScene<'g> {
     /// volume's normal there in those coordinates.
     fn entry(&self, symbol: usize, local: &Ray, t_min: f64, t_max: f64) -> Option<(f64, V3)> {
         let (t0, t1, n) = match self.bounds.volumes[symbol]? {
-            Volume::Box { min, max } => {
+            Volume::Box { min, max } if self.pure => {
                 let (t0, t1, n0, _) = slabs(min, max, local)?;
                 (t0, t1, n0)
+            }
+            // Only a graph without geometry shades by the volumes: the
+            // span alone, without the branches that pick a face.
+            Volume::Box { min, max } => {
+                let (t0, t1) = slab_span(min, max, local)?;
+                (t0, t1, [0.0; 3])
             }
             Volume::Sphere { centre, radius } => {
                 let oc = sub(local.origin, centre);
@@ -118,133 +148,258 @@ impl<'g> GraphScene<'g> {
         (t1 > t_min && t0 < t_max).then_some((t0.max(t_min), n))
     }
 
+    /// The shapes met by the ray (in their couple's coordinates) before
+    /// the nearest found so far.
     fn shapes_hit(
         shapes: &[Shape],
-        inverse: &Affine,
-        ray: &Ray,
-        t_min: f64,
-        best: &mut Option<SurfaceHit>,
+        local: &Ray,
+        (t_min, t_max): (f64, f64),
+        couple: u32,
+        best: &mut Option<Found>,
     ) {
-        if shapes.is_empty() {
-            return;
-        }
-        let local = local_ray(inverse, ray);
         for shape in shapes {
-            let t_max = best.as_ref().map_or(f64::INFINITY, |b| b.t);
-            if let Some(hit) = intersect(&shape.primitive, &local, t_min, t_max) {
-                *best = Some(SurfaceHit {
+            let t_max = best.as_ref().map_or(t_max, |b| b.t);
+            if let Some(hit) = intersect(&shape.primitive, local, t_min, t_max) {
+                *best = Some(Found {
                     t: hit.t,
-                    normal: normal_to_world(inverse, hit.normal),
+                    normal: hit.normal,
                     colour: super::linear(shape.colour),
                     finish: shape.finish,
+                    couple,
                 });
             }
         }
     }
 
-    fn trace(
+    /// The axiom's couples the ray enters, each with its entry.
+    fn roots(&self, ray: &Ray, t_min: f64, t_max: f64, mut emit: impl FnMut(Couple, f64)) {
+        for (k, &(symbol, inverse, stretch)) in self.axiom.iter().enumerate() {
+            let local = local_ray(&inverse, ray);
+            if let Some((t, n)) = self.entry(symbol, &local, t_min, t_max) {
+                let c = Couple {
+                    local,
+                    stretch,
+                    symbol: symbol as u32,
+                    parent: ROOT,
+                    edge: k as u32,
+                    entry_normal: n,
+                };
+                emit(c, t);
+            }
+        }
+    }
+
+    /// Takes a couple (at `index` on the ray's list) off the list, entered
+    /// at `t_entry`: meets its geometry (or its alternative below the
+    /// alternative's size) into `best`, and hands each child whose volume
+    /// the ray enters before `best` (or `t_max`) to `emit`. A couple under
+    /// the pixel draws only its geometry; in a graph without geometry it
+    /// is the surface itself, and `true` says the search ends there.
+    #[allow(clippy::too_many_arguments)]
+    fn open(
+        &self,
+        (c, index): (&Couple, u32),
+        t_entry: f64,
+        range: (f64, f64),
+        cut: Cut,
+        best: &mut Option<Found>,
+        mut emit: impl FnMut(Couple, f64),
+    ) -> bool {
+        let x = c.symbol as usize;
+        let sym = &self.graph.symbols[x];
+        let size = c.stretch * self.size(x);
+        let pixel = cut.at(t_entry);
+        if let Some(alt) = &sym.alternative {
+            if size <= alt.below_pixels * pixel {
+                Self::shapes_hit(&alt.shapes, &c.local, range, index, best);
+                return false;
+            }
+        }
+        let rule = sym.rule.as_deref().unwrap_or(&[]);
+        if self.pure && (size <= pixel || rule.is_empty()) {
+            return true;
+        }
+        Self::shapes_hit(&sym.geometry, &c.local, range, index, best);
+        if size <= pixel {
+            return false;
+        }
+        let bound = best.as_ref().map_or(range.1, |b| b.t);
+        for (k, e) in rule.iter().enumerate() {
+            let y = e.symbol;
+            if self.bounds.volumes[y].is_none() {
+                continue;
+            }
+            let local = local_ray(&self.edge_inverse[x][k], &c.local);
+            if let Some((t, n)) = self.entry(y, &local, range.0, bound) {
+                let child = Couple {
+                    local,
+                    stretch: c.stretch * self.bounds.stretch[x][k],
+                    symbol: y as u32,
+                    parent: index,
+                    edge: k as u32,
+                    entry_normal: n,
+                };
+                emit(child, t);
+            }
+        }
+        false
+    }
+
+    /// The whole inverse transform of the couple at `index`, composed from
+    /// the axiom down as [`GraphScene::expand`] composes it, and (in a
+    /// graph without geometry) the normal of its volume blended with its
+    /// ancestors', each level weighing half the next.
+    fn placed(&self, couples: &[Couple], index: u32, chain: &mut Vec<u32>) -> (Affine, V3) {
+        chain.clear();
+        let mut i = index;
+        while i != ROOT {
+            chain.push(i);
+            i = couples[i as usize].parent;
+        }
+        let mut inverse = Affine::IDENTITY;
+        let mut normal = [0.0; 3];
+        for (depth, &i) in chain.iter().rev().enumerate() {
+            let c = &couples[i as usize];
+            if depth == 0 {
+                inverse = self.axiom[c.edge as usize].1;
+            } else {
+                let parent = couples[c.parent as usize].symbol as usize;
+                inverse = self.edge_inverse[parent][c.edge as usize].then_after(&inverse);
+            }
+            if self.pure {
+                let own = normalize(normal_to_world(&inverse, c.entry_normal));
+                normal = if depth == 0 {
+                    own
+                } else {
+                    normalize(add(mul(normal, 0.5), own))
+                };
+            }
+        }
+        (inverse, normal)
+    }
+
+    /// The nearest hit: the paper's list, nearest entry first, ended once
+    /// the nearest entry lies beyond the nearest hit found.
+    fn nearest(
         &self,
         ray: &Ray,
         t_min: f64,
         t_max: f64,
         cut: Cut,
-        any: bool,
         scratch: &mut Scratch,
     ) -> Option<SurfaceHit> {
-        let Scratch { couples, heap, .. } = scratch;
+        let Scratch {
+            couples,
+            heap,
+            stack: chain,
+            ..
+        } = scratch;
         couples.clear();
         heap.clear();
-        let mut seq = 0u64;
-        let mut push = |couples: &mut Vec<Couple>,
-                        heap: &mut std::collections::BinaryHeap<_>,
-                        c: Couple,
-                        t: f64| {
-            seq += 1;
+        // Ties in entry are taken in the order the couples were made, so
+        // the search (and the picture) is the same on every run.
+        let push = |couples: &mut Vec<Couple>, heap: &mut BinaryHeap<_>, c: Couple, t: f64| {
+            heap.push(Reverse(entry_key(t, couples.len())));
             couples.push(c);
-            heap.push((Reverse(Key(t)), Reverse(seq), couples.len() - 1));
         };
-        for &(symbol, inverse, stretch) in &self.axiom {
-            let local = local_ray(&inverse, ray);
-            if let Some((t, n)) = self.entry(symbol, &local, t_min, t_max) {
-                let normal = normalize(normal_to_world(&inverse, n));
-                let c = Couple {
-                    inverse,
-                    stretch,
-                    symbol: symbol as u32,
-                    normal,
-                };
-                push(couples, heap, c, t);
-            }
-        }
-        let mut best: Option<SurfaceHit> = None;
-        let mut pops = 0;
-        while let Some((Reverse(Key(t_entry)), _, i)) = heap.pop() {
-            let bound = best.as_ref().map_or(t_max, |b| b.t);
-            pops += 1;
-            if t_entry >= bound || pops > MAX_POPS {
+        self.roots(ray, t_min, t_max, |c, t| push(couples, heap, c, t));
+        let mut best: Option<Found> = None;
+        for _ in 0..MAX_POPS {
+            let Some(Reverse(key)) = heap.pop() else {
+                break;
+            };
+            let (t_entry, i) = entry_of(key);
+            if t_entry >= best.as_ref().map_or(t_max, |b| b.t) {
                 break;
             }
             let c = couples[i];
-            let x = c.symbol as usize;
-            let sym = &self.graph.symbols[x];
-            let size = c.stretch * self.bounds.volumes[x].map_or(0.0, |v| v.size());
-            let pixel = cut.at(t_entry);
-            if let Some(alt) = &sym.alternative {
-                if size <= alt.below_pixels * pixel {
-                    Self::shapes_hit(&alt.shapes, &c.inverse, ray, t_min, &mut best);
-                    if any && best.is_some() {
-                        return best;
-                    }
-                    continue;
-                }
-            }
-            let rule = sym.rule.as_deref().unwrap_or(&[]);
-            if size <= pixel || rule.is_empty() {
-                if self.pure {
-                    return Some(SurfaceHit {
-                        t: t_entry,
-                        normal: c.normal,
-                        colour: self.colour,
-                        finish: Default::default(),
-                    });
-                }
-                Self::shapes_hit(&sym.geometry, &c.inverse, ray, t_min, &mut best);
-                if any && best.is_some() {
-                    return best;
-                }
-                continue;
-            }
-            Self::shapes_hit(&sym.geometry, &c.inverse, ray, t_min, &mut best);
-            if any && best.is_some() {
-                return best;
-            }
-            let bound = best.as_ref().map_or(t_max, |b| b.t);
-            for (k, e) in rule.iter().enumerate() {
-                let y = e.symbol;
-                if self.bounds.volumes[y].is_none() {
-                    continue;
-                }
-                let inverse = self.edge_inverse[x][k].then_after(&c.inverse);
-                let local = local_ray(&inverse, ray);
-                if let Some((t, n)) = self.entry(y, &local, t_min, bound) {
-                    let normal = if self.pure {
-                        let own = normalize(normal_to_world(&inverse, n));
-                        normalize(add(mul(c.normal, 0.5), own))
-                    } else {
-                        c.normal
-                    };
-                    let child = Couple {
-                        inverse,
-                        stretch: c.stretch * self.bounds.stretch[x][k],
-                        symbol: y as u32,
-                        normal,
-                    };
-                    push(couples, heap, child, t);
-                }
+            let mut children = |c: Couple, t: f64| push(couples, heap, c, t);
+            let range = (t_min, t_max);
+            if self.open(
+                (&c, i as u32),
+                t_entry,
+                range,
+                cut,
+                &mut best,
+                &mut children,
+            ) {
+                let (_, normal) = self.placed(couples, i as u32, chain);
+                return Some(SurfaceHit {
+                    t: t_entry,
+                    normal,
+                    colour: self.colour,
+                    finish: Default::default(),
+                });
             }
         }
-        best
+        let found = best?;
+        let (inverse, _) = self.placed(couples, found.couple, chain);
+        Some(SurfaceHit {
+            t: found.t,
+            normal: normal_to_world(&inverse, found.normal),
+            colour: found.colour,
+            finish: found.finish,
+        })
     }
+
+    /// Whether anything lies on the ray before `t_max` (a shadow ray):
+    /// depth first, the nearer child first, so the search reaches the cut
+    /// in a few dozen couples where the ray is blocked, instead of opening
+    /// every large volume near the ray's start as the nearest-first list
+    /// does. Any hit ends it.
+    fn any(&self, ray: &Ray, t_min: f64, t_max: f64, cut: Cut, scratch: &mut Scratch) -> bool {
+        let Scratch {
+            pending, children, ..
+        } = scratch;
+        pending.clear();
+        children.clear();
+        self.roots(ray, t_min, t_max, |c, t| children.push((c, t)));
+        let mut best: Option<Found> = None;
+        for _ in 0..MAX_POPS {
+            // The farthest child goes on the stack first.
+            children.sort_by(|a, b| b.1.total_cmp(&a.1));
+            pending.append(children);
+            let Some((c, t_entry)) = pending.pop() else {
+                return false;
+            };
+            // No couple's whole transform is wanted: its place is unused.
+            let emit = |c: Couple, t: f64| children.push((c, t));
+            let range = (t_min, t_max);
+            if self.open((&c, ROOT), t_entry, range, cut, &mut best, emit) || best.is_some() {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Where a ray is inside a box, as [`slabs`] finds it (the same
+/// divisions), without the faces.
+fn slab_span(min: V3, max: V3, ray: &Ray) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+    for k in 0..3 {
+        let (o, d) = (ray.origin[k], ray.dir[k]);
+        if d == 0.0 {
+            if o < min[k] || o > max[k] {
+                return None;
+            }
+            continue;
+        }
+        let (a, b) = ((min[k] - o) / d, (max[k] - o) / d);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    (t0 <= t1).then_some((t0, t1))
+}
+
+/// A heap key ordering couples by entry, then by the order they were made:
+/// an entry is never negative, so its bits order as it does.
+fn entry_key(t: f64, index: usize) -> u128 {
+    (u128::from((t + 0.0).to_bits()) << 64) | index as u128
+}
+
+fn entry_of(key: u128) -> (f64, usize) {
+    (f64::from_bits((key >> 64) as u64), key as u64 as usize)
 }
 
 impl GraphScene<'_> {
@@ -400,11 +555,11 @@ impl Scene for GraphScene<'_> {
         cut: Cut,
         scratch: &mut Scratch,
     ) -> Option<SurfaceHit> {
-        self.trace(ray, t_min, t_max, cut, false, scratch)
+        self.nearest(ray, t_min, t_max, cut, scratch)
     }
 
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, cut: Cut, scratch: &mut Scratch) -> bool {
-        self.trace(ray, t_min, t_max, cut, true, scratch).is_some()
+        self.any(ray, t_min, t_max, cut, scratch)
     }
 }
 
@@ -556,5 +711,70 @@ mod tests {
             count_instances(&g, &b, size / 1024.0 * 1.000001),
             4u128.pow(10)
         );
+    }
+
+    /// A tree of the tetrahedron's kind with geometry: a ball at each
+    /// node and a smaller one as the leaf, so rays meet shapes, not volumes.
+    fn balls() -> InstancingGraph {
+        let mut g = tetrahedron();
+        let ball = |radius: f64| Shape {
+            primitive: Primitive::Sphere {
+                centre: [0.0; 3],
+                radius,
+            },
+            colour: crate::ir::Rgb(200, 100, 50),
+            finish: Finish::default(),
+        };
+        g.symbols[0].geometry = vec![ball(0.3)];
+        g.symbols[0].alternative = Some(crate::ir::graph::Alternative {
+            shapes: vec![ball(0.5)],
+            below_pixels: 3.0,
+        });
+        g
+    }
+
+    /// Rays from a grid of origins in many directions.
+    fn rays() -> Vec<Ray> {
+        let mut out = Vec::new();
+        for i in 0..24 {
+            for j in 0..24 {
+                let origin = [-1.2 + 0.1 * i as f64, -1.2 + 0.1 * j as f64, -4.0];
+                let dir = [0.13 * (j as f64 - 12.0) / 12.0, 0.2, 1.0];
+                out.push(Ray { origin, dir });
+            }
+        }
+        out
+    }
+
+    /// The depth-first search of shadow rays finds something exactly where
+    /// the nearest-first search finds a hit before the end of the ray.
+    #[test]
+    fn shadow_rays_are_blocked_exactly_where_the_nearest_search_hits() {
+        for g in [tetrahedron(), balls()] {
+            let scene = GraphScene::new(&g, [0.5; 3]).unwrap();
+            let cut = Cut {
+                base: 0.02,
+                per_unit: 0.0,
+            };
+            let mut scratch = Scratch::default();
+            let (mut blocked, mut open) = (0, 0);
+            for ray in rays() {
+                let nearest = scene.hit(&ray, 0.0, f64::INFINITY, cut, &mut scratch);
+                for t_max in [3.0, 4.5, f64::INFINITY] {
+                    let hit = nearest.as_ref().is_some_and(|h| h.t < t_max);
+                    let any = scene.occluded(&ray, 0.0, t_max, cut, &mut scratch);
+                    assert_eq!(any, hit, "{ray:?} up to {t_max}: {nearest:?}");
+                    (blocked, open) = if any {
+                        (blocked + 1, open)
+                    } else {
+                        (blocked, open + 1)
+                    };
+                }
+            }
+            assert!(
+                blocked > 100 && open > 100,
+                "{blocked} blocked, {open} open"
+            );
+        }
     }
 }

@@ -20,7 +20,6 @@ pub mod vec;
 use crate::ir::graph::Finish;
 use crate::ir::look::{Camera, Light};
 use crate::ir::Rgb;
-use bounds::Key;
 use primitive::Ray;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -55,8 +54,15 @@ impl Cut {
 /// A thread's working memory, reused ray after ray.
 #[derive(Default)]
 pub struct Scratch {
+    /// A ray's list of couples, in the order they were made.
     pub(crate) couples: Vec<graph::Couple>,
-    pub(crate) heap: BinaryHeap<(Reverse<Key>, Reverse<u64>, usize)>,
+    /// The couples not yet opened, nearest entry first.
+    pub(crate) heap: BinaryHeap<Reverse<u128>>,
+    /// A shadow ray's couples still to open, nearest last.
+    pub(crate) pending: Vec<(graph::Couple, f64)>,
+    /// The children of the couple just opened.
+    pub(crate) children: Vec<(graph::Couple, f64)>,
+    /// Nodes of a hierarchy still to visit; a couple's ancestors.
     pub(crate) stack: Vec<u32>,
 }
 
