@@ -19,6 +19,7 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("colour-step", false),
     ("view", false),
     ("seed", false),
+    ("random", false),
     ("choose", false),
     ("ignore", false),
     ("consider", false),

@@ -13,8 +13,9 @@ use super::DeriveOptions;
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::look::{Contour, ContourRole};
 use crate::ir::program::{truth, BinOp, Builtin, Expr, Place, Program, Stmt, Var};
+use crate::ir::Randomness;
 use crate::ir::{Alternative, Formals, Production, RulePolicy, SymbolId, System, Word};
-use crate::random::{Rng, Stream};
+use crate::random::{Lcg48, Rng, Stream};
 
 /// Why evaluation stopped early.
 #[derive(Debug)]
@@ -51,6 +52,17 @@ impl Globals {
     }
 }
 
+/// The state of cpfg's `nran` between calls.
+#[derive(Clone, Copy, Debug)]
+enum Spare {
+    /// Before any `srand`: cpfg's flag starts neither clear nor set, and
+    /// its first call returns the (zero) kept deviate.
+    Unstarted,
+    /// No deviate kept: the next call draws a pair.
+    None,
+    Kept(f64),
+}
+
 /// Variables, arrays, the random stream and the work budget.
 struct Machine<'p> {
     par: &'p Program,
@@ -59,6 +71,16 @@ struct Machine<'p> {
     globals: Vec<f64>,
     arrays: Vec<Vec<f64>>,
     rng: Rng,
+    /// cpfg's stream for choosing among productions (`drand48`), apart
+    /// from `rng`; graftal's own choices draw from `rng`.
+    choice: Option<Lcg48>,
+    /// The number a cpfg module's choice uses, drawn before its
+    /// productions are tried: cpfg draws one for every module of a
+    /// stochastic step, whether a production applies or not.
+    drawn: Option<f64>,
+    /// cpfg's `nran` keeps the second deviate of each pair; `None` until
+    /// `srand` (cpfg's first `nran` before any `srand` returns the mean).
+    spare: Spare,
     run_seed: u64,
     work: u64,
     max_work: u64,
@@ -75,15 +97,25 @@ impl<'p> Machine<'p> {
     fn new(sys: &'p System, seed: u64, max_work: u64) -> Self {
         let par = &sys.program;
         let Globals { globals, arrays } = Globals::initial(par);
+        let file_seed = seed.wrapping_add(sys.settings.seed.unwrap_or(0));
+        // cpfg: `seed:` seeds only the choice of productions; expressions
+        // draw from a stream `srand48(0)` started (the run's seed moves both).
+        let (rng, choice) = match sys.settings.randomness {
+            Randomness::Graftal => (Rng::new(file_seed, Stream::Derivation), None),
+            Randomness::Cpfg => (
+                Rng::Cpfg(Lcg48::srand48(seed as u32)),
+                Some(Lcg48::cpfg_choice(file_seed)),
+            ),
+        };
         Machine {
             par,
             contours: &sys.contours,
             globals,
             arrays,
-            rng: Rng::new(
-                seed.wrapping_add(sys.settings.seed.unwrap_or(0)),
-                Stream::Derivation,
-            ),
+            rng,
+            choice,
+            drawn: None,
+            spare: Spare::Unstarted,
             run_seed: seed,
             work: 0,
             max_work,
@@ -188,19 +220,30 @@ impl<'p> Machine<'p> {
         }
         match f {
             Builtin::Srand => {
-                self.rng = Rng::new(
-                    (x as i64 as u64).wrapping_add(self.run_seed),
-                    Stream::Derivation,
-                );
+                let seed = (x as i64 as u64).wrapping_add(self.run_seed);
+                self.rng = match self.rng {
+                    Rng::Cpfg(_) => Rng::Cpfg(Lcg48::srand48(seed as u32)),
+                    Rng::Portable(_) => Rng::new(seed, Stream::Derivation),
+                };
+                self.spare = Spare::None;
                 0.0
             }
             Builtin::Ran => x * self.rng.next_f64(),
+            Builtin::Nran if matches!(self.rng, Rng::Cpfg(_)) => x + y * self.cpfg_normal(),
             Builtin::Nran => x + y * self.normal(),
+            Builtin::Bran if matches!(self.rng, Rng::Cpfg(_)) => self.cheng_beta(x, y),
             Builtin::Bran => self.beta(x, y),
             Builtin::Biran => {
                 let trials = x.clamp(0.0, 1e6) as u64;
                 let _ = self.charge(trials);
-                (0..trials).filter(|_| self.rng.next_f64() < y).count() as f64
+                // cpfg counts the draws at or under p; graftal's own, under.
+                let cpfg = matches!(self.rng, Rng::Cpfg(_));
+                (0..trials)
+                    .filter(|_| {
+                        let u = self.rng.next_f64();
+                        u < y || (cpfg && u == y)
+                    })
+                    .count() as f64
             }
             Builtin::Func => {
                 let id = x as i64;
@@ -258,6 +301,57 @@ impl<'p> Machine<'p> {
         let u1 = 1.0 - self.rng.next_f64();
         let u2 = self.rng.next_f64();
         (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+    }
+
+    /// cpfg's standard normal deviate (`utility.c`): Marsaglia's polar
+    /// method, the second deviate of each pair kept for the next call.
+    fn cpfg_normal(&mut self) -> f64 {
+        match std::mem::replace(&mut self.spare, Spare::None) {
+            Spare::Unstarted => return 0.0,
+            Spare::Kept(g) => return g,
+            Spare::None => {}
+        }
+        for _ in 0..1000 {
+            let v1 = 2.0 * self.rng.next_f64() - 1.0;
+            let v2 = 2.0 * self.rng.next_f64() - 1.0;
+            let rsq = v1 * v1 + v2 * v2;
+            if rsq < 1.0 && rsq != 0.0 {
+                let fac = (-2.0 * rsq.ln() / rsq).sqrt();
+                self.spare = Spare::Kept(v1 * fac);
+                return v2 * fac;
+            }
+        }
+        0.0
+    }
+
+    /// cpfg's Beta(a, b) deviate (`utility.c`): Cheng's algorithm BA.
+    fn cheng_beta(&mut self, a: f64, b: f64) -> f64 {
+        if !(a > 0.0 && b > 0.0) {
+            return self.rng.next_f64();
+        }
+        let s = a + b;
+        let lambda = if a.min(b) <= 1.0 {
+            a.min(b)
+        } else {
+            ((2.0 * a * b - s) / (s - 2.0)).sqrt()
+        };
+        let u = a + lambda;
+        let nonzero = |rng: &mut Rng| loop {
+            let x = rng.next_f64();
+            if x != 0.0 {
+                break x;
+            }
+        };
+        for _ in 0..10_000 {
+            let u1 = nonzero(&mut self.rng);
+            let u2 = nonzero(&mut self.rng);
+            let v = (u1 / (1.0 - u1)).ln() / lambda;
+            let y = a * v.exp();
+            if s * (s / (b + y)).ln() + u * v - 4f64.ln() >= (u1 * u1 * u2).ln() {
+                return y / (b + y);
+            }
+        }
+        a / s
     }
 
     /// A Beta(a, b) deviate (Jöhnk's method; uniform for bad parameters).
@@ -656,6 +750,11 @@ impl Engine<'_> {
         }
         let weights: Vec<f64> = applicable.iter().map(|a| a.2).collect();
         let pick = self.pick(&weights);
+        if pick >= applicable.len() {
+            // cpfg: rounding left the draw above every probability; the
+            // module stays as it is.
+            return Ok(None);
+        }
         let (k, a, _, mut locals) = applicable.swap_remove(pick);
         let p = &group.prods[k as usize];
         self.emit(p, &p.alternatives[a], &mut locals, out)?;
@@ -665,6 +764,10 @@ impl Engine<'_> {
     /// An index drawn with probability proportional to `weights` (the
     /// last when they add up to nothing usable).
     fn pick(&mut self, weights: &[f64]) -> usize {
+        if let Some(lcg) = &mut self.m.choice {
+            let u = self.m.drawn.take().unwrap_or_else(|| lcg.next_f64());
+            return Self::cpfg_pick_of(weights, u).unwrap_or(usize::MAX);
+        }
         let total: f64 = weights.iter().sum();
         if total > 0.0 && total.is_finite() {
             let r = self.m.rng.next_f64() * total;
@@ -679,6 +782,22 @@ impl Engine<'_> {
         weights.len() - 1
     }
 
+    /// cpfg's choice among the applicable productions (`generate.c`'s
+    /// `SelectProd`), in single precision as cpfg computes it: `r = total ·
+    /// u`, then the first production whose probability, taken from `r`,
+    /// leaves `r ≤ 0`; none when rounding leaves `r` above 0.
+    fn cpfg_pick_of(weights: &[f64], u: f64) -> Option<usize> {
+        let total: f32 = weights.iter().map(|&w| w as f32).sum();
+        let mut r = (f64::from(total) * u) as f32;
+        for (n, &w) in weights.iter().enumerate() {
+            r -= w as f32;
+            if r <= 0.0 {
+                return Some(n);
+            }
+        }
+        None
+    }
+
     /// The alternative of a production chosen first-match: its only one,
     /// or one drawn by the fixed weights.
     fn alternative<'p>(&mut self, p: &'p Production) -> &'p Alternative {
@@ -686,7 +805,7 @@ impl Engine<'_> {
             return &p.alternatives[0];
         }
         let weights: Vec<f64> = p.alternatives.iter().map(|a| a.weight).collect();
-        &p.alternatives[self.pick(&weights)]
+        &p.alternatives[self.pick(&weights).min(weights.len() - 1)]
     }
 
     fn emit(
@@ -713,8 +832,14 @@ impl Engine<'_> {
     fn step(&mut self, group: &Group<'_>, word: &Word, choice: RulePolicy) -> Result<Word, Halt> {
         let mut out = Word::new();
         let mut i = 0;
+        let draw_each = choice == RulePolicy::Weighted;
         while i < word.len() {
-            match self.apply(group, (word, i), (word, i), choice, &mut out)? {
+            if let (Some(lcg), true) = (&mut self.m.choice, draw_each) {
+                self.m.drawn = Some(lcg.next_f64());
+            }
+            let applied = self.apply(group, (word, i), (word, i), choice, &mut out)?;
+            self.m.drawn = None;
+            match applied {
                 Some(n) => i += n.max(1),
                 None => {
                     out.push(word.0[i], word.args(i));
@@ -1002,7 +1127,14 @@ pub fn homomorphism(
     let seed = phase.seed.unwrap_or(0).wrapping_add(opts.seed);
     let mut m = Machine::new(sys, seed, opts.max_work);
     m.set_values(values);
-    m.rng = Rng::new(seed, Stream::Homomorphism);
+    m.rng = match sys.settings.randomness {
+        Randomness::Graftal => Rng::new(seed, Stream::Homomorphism),
+        // cpfg seeds a homomorphism's own stream with its `seed:` on every
+        // drawing; without one, `ran` there continues the derivation's
+        // stream across cpfg's passes over the word (a count of passes no
+        // file says), which graftal starts afresh.
+        Randomness::Cpfg => Rng::Cpfg(Lcg48::srand48(seed as u32)),
+    };
     let mut e = Engine {
         m,
         matcher: matcher(sys),

@@ -874,8 +874,23 @@ pub struct Settings {
     pub world_widths: bool,
     /// The file's own seed, added to the run's (cpfg `seed:`).
     pub seed: Option<u64>,
+    /// The generator the system's random numbers come from.
+    pub randomness: Randomness,
     /// Tropisms bending every step (cpfg `tropism:`; none elsewhere).
     pub tropisms: Vec<look::Tropism>,
+}
+
+/// Where a system's random numbers come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub enum Randomness {
+    /// graftal's portable streams (ChaCha8), one per purpose.
+    #[default]
+    Graftal,
+    /// cpfg's: `drand48` for choosing among productions, seeded from
+    /// `seed:`, and a second 48-bit stream for `ran`, `nran`, `bran`,
+    /// `biran` and `srand`, drawn in cpfg's order with cpfg's formulas, so a
+    /// seeded cpfg model grows the plant cpfg grows.
+    Cpfg,
 }
 
 impl Settings {
@@ -904,6 +919,7 @@ impl Default for Settings {
             width_step: 1.0,
             world_widths: false,
             seed: None,
+            randomness: Randomness::Graftal,
             tropisms: Vec::new(),
         }
     }

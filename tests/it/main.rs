@@ -29,6 +29,7 @@ mod cpfg_frame;
 mod cpfg_gencyl;
 mod cpfg_icons;
 mod cpfg_objects;
+mod cpfg_random;
 mod cpfg_shapes;
 mod depth;
 mod diagnostics;

@@ -116,6 +116,9 @@ fn settings(out: &mut String, s: &Settings, steps: Option<u64>) {
     if let Some(seed) = s.seed {
         let _ = writeln!(out, "seed {seed}");
     }
+    if s.randomness == crate::ir::Randomness::Cpfg {
+        out.push_str("random cpfg\n");
+    }
     for t in &s.tropisms {
         look::tropism(out, t);
     }

@@ -109,6 +109,12 @@ impl Cx<'_> {
                     } = v;
                 }
             }
+            "random" => {
+                self.sys.settings.randomness = match k.args.first().map(Arg::text) {
+                    Some("cpfg") => crate::ir::Randomness::Cpfg,
+                    _ => crate::ir::Randomness::Graftal,
+                }
+            }
             "widths" => {
                 self.sys.settings.world_widths = k.args.first().is_some_and(|a| a.text() == "world")
             }
