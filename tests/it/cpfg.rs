@@ -883,3 +883,37 @@ fn warnings_of_a_long_view_file_name_their_lines_quickly() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A `surface:` line naming a `.s` file the folder does not have is a
+/// warning at that line of the view file (cpfg reads a surface only when
+/// its file exists); the module that would draw it draws nothing and
+/// leaves the turtle where it is, and the rest draws (11-CPFG-Sedge's
+/// `female.v` names `bract.s`, which the object lacks).
+#[test]
+fn a_missing_surface_file_warns_at_its_view_line_and_draws_nothing() {
+    let dir = common::temp("object");
+    std::fs::create_dir_all(&dir).unwrap();
+    let l = dir.join("plant.l");
+    std::fs::write(
+        &l,
+        "Lsystem: 1\nderivation length: 0\nAxiom: F ~b(2) F\nendlsystem\n",
+    )
+    .unwrap();
+    let view = "angle factor: 8\nsurface: b bract.s 1.5 3 3\n";
+    std::fs::write(dir.join("plant.v"), view).unwrap();
+    let c = driver::compile(SourceFile::read(&l).unwrap());
+    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
+    assert_eq!(codes, ["W0813"], "{:#?}", c.diagnostics);
+    let d = c.diagnostics.iter().next().unwrap();
+    let side = d.side.as_ref().expect("in the view file");
+    assert!(side.name.ends_with("plant.v"), "{}", side.name);
+    let span = d.span.clone().unwrap();
+    assert_eq!(&side.text[span], "surface: b bract.s 1.5 3 3");
+    let sys = c.system.expect("the rest is drawn");
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    assert_eq!(g.segments.len(), 2);
+    assert!(g.polygons.is_empty(), "no surface is drawn");
+    // `~b` did not move the turtle: the second segment starts where the
+    // first ends.
+    assert_eq!(g.segments[0].b, g.segments[1].a);
+}

@@ -364,4 +364,17 @@ Example:
 
 Write:
     Axiom: E/ / /T(0)FFFA(0)";
+
+    CPFG_MISSING_SURFACE = "W0813", "surface file missing: its module draws nothing",
+"A `surface:` (or `line:`) line of the view file names a `.s` file the
+object's folder does not have. cpfg reads a surface only when its file
+exists and says nothing otherwise; the module that would draw it then
+draws nothing and leaves the turtle where it is. graftal does the same and
+says so at the view file's line.
+
+Example (female.v):
+    surface: b bract.s 1.5 3 3     <- no bract.s in the folder
+
+Put the file in the object's folder, or take the line out (and `~b` out of
+the L-system).";
 }

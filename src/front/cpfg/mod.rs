@@ -314,8 +314,9 @@ impl<'a> Beside<'a> {
             }
         };
         let text = read_lossy(&p).unwrap_or_default();
-        let (v, d) = view::read_view(&text);
+        let (mut v, d) = view::read_view(&text);
         push_side_file(diags, &d, &p, &text);
+        v.source = Some((p, text));
         v
     }
 
@@ -540,7 +541,12 @@ impl<'a> Beside<'a> {
 
     /// Surfaces: `~id` draws surface `id` of the view file.
     fn add_surfaces(&self, sys: &mut System, view: &view::View, diags: &mut Diagnostics) {
+        let mut missing = Diagnostics::default();
         for r in &view.surfaces {
+            if self.is_missing(&r.file) {
+                missing.push(missing_surface(r));
+                continue;
+            }
             let Some(surface) = self.read_with(&r.file, "surface", surface::read_surface, diags)
             else {
                 continue;
@@ -555,6 +561,17 @@ impl<'a> Beside<'a> {
                 sys.set_interpretation(id, crate::ir::TurtleOp::Surface(index));
             }
         }
+        if let Some((path, text)) = &view.source {
+            push_side_file(diags, &missing, path, text);
+        }
+    }
+
+    /// Whether the side file `name` would lie in the object's folder but
+    /// is not there (cpfg checks a surface's file exists before reading it).
+    fn is_missing(&self, name: &str) -> bool {
+        self.dir
+            .and_then(|d| inside(d, name))
+            .is_some_and(|p| !p.exists())
     }
 }
 
@@ -839,6 +856,24 @@ fn no_view(l_name: &str, why: view::NoView) -> Diagnostic {
             view::defaults_said()
         ))
         .with_help(help)
+}
+
+/// The warning for a `surface:` line whose file is not in the folder.
+fn missing_surface(r: &view::SurfaceRef) -> Diagnostic {
+    Diagnostic::at(
+        crate::diagnostics::codes::CPFG_MISSING_SURFACE,
+        r.line.clone(),
+        format!(
+            "the surface file `{}` is not in the object's folder: `~{}` draws nothing",
+            r.file, r.id
+        ),
+    )
+    .with_label("named here")
+    .with_note("cpfg skips a surface whose file is missing, draws the rest, and leaves the turtle where it is at the module")
+    .with_help(format!(
+        "put `{}` in the object's folder, or take this line out",
+        r.file
+    ))
 }
 
 fn missing_file(name: &str, what: &str, named_in: &str) -> crate::diagnostics::Diagnostic {

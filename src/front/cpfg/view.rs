@@ -60,6 +60,8 @@ pub struct SurfaceRef {
     pub s_divisions: u32,
     pub t_divisions: u32,
     pub texture: Option<String>,
+    /// The view file's line that names it.
+    pub line: Span,
 }
 
 /// A `contour:` (`contour: id file.con`, a cross-section of generalized
@@ -168,6 +170,9 @@ pub struct View {
     /// Commands read but not used by graftal (lights, textures, fonts, …),
     /// with the span of each line.
     pub unused: Vec<(String, Span)>,
+    /// The view file read, and its text, for what is found wrong with the
+    /// files it names after it was read.
+    pub source: Option<(PathBuf, String)>,
 }
 
 impl Default for View {
@@ -214,6 +219,7 @@ impl Default for View {
             surface_ambient: 0.15,
             surface_diffuse: 0.75,
             unused: Vec::new(),
+            source: None,
         }
     }
 }
@@ -661,7 +667,7 @@ fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
             Some(f) => v.function_sets.push(f.to_string()),
             None => c.bad(d, "a file name"),
         },
-        "surface" | "line" => match surface_ref(c.value) {
+        "surface" | "line" => match surface_ref(c.value, c.span.clone()) {
             Some(s) if c.name == "surface" => v.surfaces.push(s),
             Some(s) => v.lines.push(s),
             None => c.bad(d, "`id file.s scale`"),
@@ -837,7 +843,7 @@ fn tropism(value: &str) -> Option<Tropism> {
     (has_t && pulls).then_some(t)
 }
 
-fn surface_ref(value: &str) -> Option<SurfaceRef> {
+fn surface_ref(value: &str, line: Span) -> Option<SurfaceRef> {
     let w: Vec<&str> = value.split_whitespace().collect();
     let mut id_chars = w.first()?.chars();
     let id = id_chars.next()?;
@@ -856,6 +862,7 @@ fn surface_ref(value: &str) -> Option<SurfaceRef> {
         s_divisions: s.map_or(0, |x| x.max(0.0) as u32),
         t_divisions: t.map_or(0, |x| x.max(0.0) as u32),
         texture: w.get(texture_at).map(|x| x.to_string()),
+        line,
     })
 }
 
@@ -1105,6 +1112,11 @@ mod tests {
                    tropism direction: 0.2,1.0,0.0\ninitial elasticity: 0.15\nelasticity increment: -0.06\n";
         let (v, d) = read_view(src);
         assert!(d.is_empty(), "{d:?}");
+        let leaf = src.find("surface: l").unwrap();
+        assert_eq!(
+            v.surfaces[0].line,
+            leaf..leaf + "surface: l leaf.s 1 8 4".len()
+        );
         assert_eq!(v.functions, ["internode.func", "leaf.func"]);
         assert_eq!(v.function_samples, [Some(100), None]);
         assert_eq!(v.function_sets, ["functions.fset"]);
@@ -1116,7 +1128,8 @@ mod tests {
                 scale: 1.0,
                 s_divisions: 8,
                 t_divisions: 4,
-                texture: None
+                texture: None,
+                line: leaf..leaf + 23,
             }
         );
         assert_eq!((v.surfaces[1].scale, v.surfaces[1].s_divisions), (2.75, 0));
