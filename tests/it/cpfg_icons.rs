@@ -356,7 +356,13 @@ const NOT_COMPARABLE: &[(&str, &str)] = &[
     ),
     (
         "11-CPFG-DragonCurve",
-        "the thumbnail is the mirror image of what cpfg's rules draw (an older cpfg)",
+        "the thumbnail is the left-right mirror of what the file's rules draw under cpfg's frame \
+         (IoU 0.76 mirrored, 0.31 as is, at the file's 8 steps): cpfg's source starts the turtle \
+         with H = +y, L = -x and turns H towards L on `+` (interpret.c, InitializeTurtle and \
+         change_dir), and its default view puts +x right and +y up (control.c, SetView), which \
+         is what graftal draws; quadratic-Koch's thumbnail, as asymmetric, agrees with graftal \
+         as is (IoU 0.79, 0.26 mirrored). The rules were changed after the thumbnail \
+         (description: updated 2020-11-08)",
     ),
 ];
 
@@ -382,7 +388,11 @@ const KNOWN_GAPS: &[(&str, &str)] = &[
     ),
     (
         "06-Enviro-sensitive-query-position",
-        "the spheres are smaller than cpfg's; cause not found",
+        "the thumbnail's spheres are about twice graftal's (here and in 04-Signaling-04-florigen, \
+         2.1 to 2.4 times, measured against the stem); cpfg's source draws `@O(d)` with diameter \
+         d (blackbox.c: the parameter times the turtle's scale; irisGL.c, iGlSphere: radius = \
+         diameter / 2 on a unit sphere), as graftal does: the rule behind the thumbnails is \
+         not found",
     ),
 ];
 
