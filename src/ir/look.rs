@@ -171,8 +171,10 @@ pub struct Camera {
 
 impl Camera {
     /// A camera at `eye` looking at `target`, world y up (z when looking
-    /// along y), the picture turned by `twist_degrees` about the line of
-    /// sight.
+    /// along y), the picture turned clockwise on the screen by
+    /// `twist_degrees` about the line of sight (cpfg's `twist:`, whose up
+    /// vector `ReadViewData` turns counter-clockwise about the view normal,
+    /// so that what was up leans to the right).
     pub fn aimed(
         eye: [f64; 3],
         target: [f64; 3],
@@ -189,7 +191,7 @@ impl Camera {
             .unwrap_or([1.0, 0.0, 0.0]);
         let up0 = cross(right, d);
         let (s, c) = twist_degrees.to_radians().sin_cos();
-        let up = [0, 1, 2].map(|k| up0[k] * c + right[k] * s);
+        let up = [0, 1, 2].map(|k| up0[k] * c - right[k] * s);
         Camera {
             eye,
             target,

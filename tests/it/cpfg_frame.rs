@@ -141,3 +141,47 @@ fn a_surface_lies_along_cpfgs_up() {
         "{points:?}"
     );
 }
+
+/// cpfg's `twist: N` turns the picture N/10 degrees clockwise on the
+/// screen (`ReadViewData` turns the view's up vector about the view normal
+/// by +N/10 degrees, `rot_by_quat` being q⁻¹vq with a negated half-angle,
+/// then `gluLookAt`): at `twist: 900` a segment along +y points right.
+#[test]
+fn a_positive_twist_turns_the_picture_clockwise() {
+    let dir = crate::common::temp("object");
+    std::fs::create_dir_all(&dir).unwrap();
+    let l = dir.join("plant.l");
+    std::fs::write(
+        &l,
+        "Lsystem: 1\nderivation length: 0\nAxiom: F(1)\nendlsystem\n",
+    )
+    .unwrap();
+    for (twist, right) in [(900, true), (-900, false), (2700, false)] {
+        std::fs::write(
+            dir.join("plant.v"),
+            format!("viewpoint: 0,0,1\nview reference point: 0,0,0\ntwist: {twist}\n"),
+        )
+        .unwrap();
+        let sys = driver::compile(SourceFile::read(&l).unwrap())
+            .system
+            .unwrap();
+        let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+        let svg = String::from_utf8(
+            driver::render_bytes(&sys, &g, driver::Format::Svg, Default::default()).unwrap(),
+        )
+        .unwrap();
+        // The one segment's path: `M x0 y0 L x1 y1`.
+        let d = svg.split("d=\"M").nth(1).expect("a path");
+        let numbers: Vec<f64> = d
+            .split(['L', ' ', '"'])
+            .take(4)
+            .map(|n| n.parse().unwrap())
+            .collect();
+        let (dx, dy) = (numbers[2] - numbers[0], numbers[3] - numbers[1]);
+        assert!(
+            dy.abs() < 1e-6 * dx.abs().max(1.0),
+            "horizontal at {twist}: {d}"
+        );
+        assert_eq!(dx > 0.0, right, "twist {twist}: {d}");
+    }
+}

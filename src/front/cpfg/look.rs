@@ -246,10 +246,11 @@ mod tests {
         let cam = camera(&v);
         assert_eq!(cam.up, [0.0, 1.0, 0.0]);
         assert_eq!(cam.perspective, None);
-        // 900 tenths of a degree: a quarter turn.
+        // 900 tenths of a degree: a quarter turn, clockwise on the screen
+        // (cpfg's up becomes -x, so world +y points right).
         v.twist = 900.0;
         let up = camera(&v).up;
-        assert!(up[1].abs() < 1e-9 && (up[0].abs() - 1.0).abs() < 1e-9);
+        assert!(up[1].abs() < 1e-9 && (up[0] + 1.0).abs() < 1e-9, "{up:?}");
         // Looking straight down y.
         v.viewpoint = [0.0, 10.0, 0.0];
         v.twist = 0.0;
