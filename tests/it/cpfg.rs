@@ -741,14 +741,11 @@ fn golden_derivations_of_corpus_files() {
 
 #[test]
 fn check_says_the_dialect() {
-    let dir = std::env::temp_dir().join(format!("graftal-cpfg-check-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("leaf.l");
-    std::fs::write(
-        &path,
+    let path = common::object_file(
+        "object",
+        "leaf.l",
         "Lsystem: 1\nderivation length: 2\nAxiom: A\nA --> I[+A]A\nhomomorphism\nI --> F\nendlsystem\n",
-    )
-    .unwrap();
+    );
     let mut out = Vec::new();
     let mut err = Vec::new();
     let mut io = graftal::cli::Io {
@@ -764,7 +761,6 @@ fn check_says_the_dialect() {
         out.contains("dialect: cpfg, 1 productions, 0 decomposition, 1 homomorphism"),
         "{out}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Side files resolve inside the object's folder: a view file naming a
@@ -891,14 +887,12 @@ fn warnings_of_a_long_view_file_name_their_lines_quickly() {
 /// `female.v` names `bract.s`, which the object lacks).
 #[test]
 fn a_missing_surface_file_warns_at_its_view_line_and_draws_nothing() {
-    let dir = common::temp("object");
-    std::fs::create_dir_all(&dir).unwrap();
-    let l = dir.join("plant.l");
-    std::fs::write(
-        &l,
+    let l = common::object_file(
+        "object",
+        "plant.l",
         "Lsystem: 1\nderivation length: 0\nAxiom: F ~b(2) F\nendlsystem\n",
-    )
-    .unwrap();
+    );
+    let dir = l.parent().unwrap();
     let view = "angle factor: 8\nsurface: b bract.s 1.5 3 3\n";
     std::fs::write(dir.join("plant.v"), view).unwrap();
     let c = driver::compile(SourceFile::read(&l).unwrap());

@@ -148,14 +148,12 @@ fn a_surface_lies_along_cpfgs_up() {
 /// then `gluLookAt`): at `twist: 900` a segment along +y points right.
 #[test]
 fn a_positive_twist_turns_the_picture_clockwise() {
-    let dir = crate::common::temp("object");
-    std::fs::create_dir_all(&dir).unwrap();
-    let l = dir.join("plant.l");
-    std::fs::write(
-        &l,
+    let l = crate::common::object_file(
+        "object",
+        "plant.l",
         "Lsystem: 1\nderivation length: 0\nAxiom: F(1)\nendlsystem\n",
-    )
-    .unwrap();
+    );
+    let dir = l.parent().unwrap();
     for (twist, right) in [(900, true), (-900, false), (2700, false)] {
         std::fs::write(
             dir.join("plant.v"),

@@ -78,6 +78,18 @@ pub fn temp(name: &str) -> std::path::PathBuf {
     dir.join(name)
 }
 
+/// A file `name` holding `text`, written in a folder of its own in the
+/// calling test's temporary directory (a cpfg object's folder, for a
+/// file with side files beside it); returns the file's path.
+#[track_caller]
+pub fn object_file(folder: &str, name: &str, text: &str) -> std::path::PathBuf {
+    let dir = temp(folder);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 /// Whether this run rewrites golden files instead of checking them:
 /// `GRAFTAL_BLESS=1` (any other value, or none, checks).
 pub fn blessing() -> bool {
