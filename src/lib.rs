@@ -28,6 +28,7 @@ pub mod number;
 pub mod random;
 pub mod raytrace;
 pub mod render;
+pub mod scene;
 pub mod source;
 pub mod stdlib;
 pub mod turtle;

@@ -48,6 +48,7 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("light", false),
     ("material", false),
     ("surface", true),
+    ("backdrop", true),
     ("contour", true),
     ("graph", true),
 ];

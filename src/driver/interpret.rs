@@ -94,6 +94,22 @@ pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Dia
     Ok((word, g))
 }
 
+/// What is drawn beside the turtle's geometry, added to `g`: the look's
+/// scene (cpfg's background scenes, drawn after the model as cpfg draws
+/// them), and with `layout` an STL system's layout ([`add_layout`]).
+pub fn add_fixed(sys: &System, g: &mut Geometry, layout: bool) {
+    if layout {
+        add_layout(sys, g);
+    }
+    let scene = sys.look.scene.iter().map(|p| turtle::Polygon {
+        points: p.points.clone(),
+        colour: p.colour,
+        index: p.index,
+        surface: false,
+    });
+    g.polygons.extend(scene);
+}
+
 /// Adds an STL system's layout shapes to `g` as filled polygons drawn
 /// first, so the tree is drawn over them (PNG and SVG draw polygons before
 /// segments). Systems without a layout are left as they are.

@@ -31,7 +31,7 @@ pub use derive::{
     derive, derive_symbols, derive_values, derive_with_progress, write_derived, RunOptions,
 };
 pub use empty::{nearly_nothing_drawn, nothing_drawn, why_nothing_drawn, NEARLY_NOTHING};
-pub use interpret::{add_layout, geometry, interpret, MAX_MOVES};
+pub use interpret::{add_fixed, add_layout, geometry, interpret, MAX_MOVES};
 pub use load::{
     choose_entry, compile, compile_as, compile_entry, load, notations, split_entry, Compiled,
     LoadError,

@@ -23,6 +23,19 @@ pub struct Look {
     /// Where the picture is seen from; `None` is the default view (or
     /// [`super::Settings::view`]).
     pub camera: Option<Camera>,
+    /// A scene drawn with the model, fixed in the world (cpfg's
+    /// `background scene:` files).
+    pub scene: Vec<ScenePolygon>,
+}
+
+/// A polygon of a [`Look::scene`], in world coordinates, with the colour
+/// it has unlit and the colour index (a material of [`Lighting`]) it is
+/// lit with.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScenePolygon {
+    pub points: Vec<[f64; 3]>,
+    pub colour: Rgb,
+    pub index: u16,
 }
 
 /// How lines are drawn when the look is lit.

@@ -400,7 +400,9 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "back" => matches!(target, "front" | "turtle"),
                 "ir" => !matches!(target, "ir" | "number"),
                 "number" => target != "number",
-                "common" | "layout" => target != top && !matches!(target, "ir" | "number"),
+                "common" | "layout" | "scene" => {
+                    target != top && !matches!(target, "ir" | "number")
+                }
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),
                 "render" | "mesh" | "raytrace" => NOT_FOR_OUTPUTS.contains(&target),
                 "gallery" => NOT_FOR_THE_GALLERY.contains(&target),

@@ -911,3 +911,50 @@ fn a_missing_surface_file_warns_at_its_view_line_and_draws_nothing() {
     // first ends.
     assert_eq!(g.segments[0].b, g.segments[1].a);
 }
+
+/// 11-CPFG-BackgroundScene's `background scene: background.dat` is drawn
+/// with the plant: its materials come after the plant's, its shapes are
+/// polygons fixed in the world, and a picture of the object shows them
+/// (many more pixels than the plant's alone), in PNG and SVG.
+#[test]
+fn a_background_scene_is_drawn_with_the_model() {
+    let dir =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/cpfg/11-CPFG-BackgroundScene");
+    let c = driver::compile(SourceFile::read(&dir.join("plant.l")).unwrap());
+    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
+    assert!(!codes.contains(&"W0807"), "{codes:?}");
+    let sys = c.system.unwrap();
+    let scene = &sys.look.scene;
+    // A prism (6), a sphere, cylinders and a cone, polygons, a mesh, …
+    assert!(scene.len() > 100, "{}", scene.len());
+    let lighting = sys.look.lighting.as_ref().unwrap();
+    assert!(scene.iter().all(|p| usize::from(p.index) >= 256));
+    assert!(scene
+        .iter()
+        .all(|p| lighting.materials[usize::from(p.index)].is_some()));
+    // The ground: `polygon -4 0 -4 …` in the scene's fourth material.
+    assert!(scene.iter().any(|p| p.points.len() == 4
+        && p.points
+            .iter()
+            .all(|q| q[1] == 0.0 && q[0].abs() == 4.0 && q[2].abs() == 4.0)));
+    let drawn = |sys: &graftal::ir::System, format| {
+        let mut req =
+            graftal::driver::picture::Request::new(graftal::driver::picture::Target::Still(format));
+        (req.width, req.height) = (96, 96);
+        graftal::driver::picture::draw_system(sys, &req, &mut graftal::driver::picture::Quiet)
+            .unwrap()
+            .bytes
+    };
+    let inked = |png: &[u8]| {
+        let pixels = common::rgba_pixels(png);
+        pixels.iter().filter(|p| **p != pixels[0]).count()
+    };
+    let with = inked(&drawn(&sys, graftal::driver::picture::Format::Png));
+    let mut bare = sys.clone();
+    bare.look.scene.clear();
+    let without = inked(&drawn(&bare, graftal::driver::picture::Format::Png));
+    assert!(with > 4 * without.max(1), "{with} pixels against {without}");
+    let svg = String::from_utf8(drawn(&sys, graftal::driver::picture::Format::Svg)).unwrap();
+    let bare_svg = String::from_utf8(drawn(&bare, graftal::driver::picture::Format::Svg)).unwrap();
+    assert!(svg.matches("<path").count() > bare_svg.matches("<path").count() + 100);
+}

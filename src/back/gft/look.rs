@@ -280,7 +280,18 @@ pub fn look(out: &mut String, look: &Look) {
 }
 
 /// Surfaces, one triangle per line, then contours, four points a line.
+/// The look's scene: one `backdrop` block a polygon.
+fn scene(out: &mut String, look: &Look) {
+    for p in &look.scene {
+        let _ = writeln!(out, "backdrop {} {} {{", hex(p.colour), p.index);
+        let points: Vec<String> = p.points.iter().map(|q| triple(*q)).collect();
+        let _ = writeln!(out, "  {}", points.join(" "));
+        out.push_str("}\n");
+    }
+}
+
 pub fn surfaces(out: &mut String, sys: &System) {
+    scene(out, &sys.look);
     for s in &sys.surfaces {
         let _ = writeln!(out, "surface {} {{", s.name);
         for t in &s.triangles {

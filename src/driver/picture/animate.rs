@@ -7,7 +7,7 @@ use super::stored::{apply_look, render_bytes};
 use super::{streamed, DrawError, Format, Method, Picture, Progress, Request, Stage, Subject};
 use crate::diagnostics::codes;
 use crate::driver::derive::{derive_values, RunOptions};
-use crate::driver::interpret::{add_layout, check_moves_up_front, interpret};
+use crate::driver::interpret::{add_fixed, add_layout, check_moves_up_front, interpret};
 use crate::ir::System;
 use crate::render::animate::{Animation, Container, Frame};
 use crate::render::{self, RenderOptions};
@@ -175,9 +175,7 @@ fn frame_geometry(
     let (word, values) = derive_values(sys, &at, |_, _| {})?;
     let mut g = interpret(sys, &word, &values, &at, ropts.spline)
         .map_err(|d| in_animation(d.into(), opts.max_moves))?;
-    if layout {
-        add_layout(sys, &mut g);
-    }
+    add_fixed(sys, &mut g, layout);
     Ok(g)
 }
 

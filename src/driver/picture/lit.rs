@@ -24,6 +24,8 @@ pub(super) fn streams_lit(
         && sys.look.lighting.is_some()
         && !ropts.spline
         && !(layout && has_outline(sys))
+        // A scene is geometry beside the word's: drawn from what is stored.
+        && sys.look.scene.is_empty()
 }
 
 /// Draws a lit system's word to a PNG straight from the turtle

@@ -3,7 +3,7 @@
 
 use super::{DrawError, Method, Picture, Progress, Request, SideFile, Stage};
 use crate::driver::derive::derive_values;
-use crate::driver::interpret::{add_layout, check_moves_up_front, interpret};
+use crate::driver::interpret::{add_fixed, check_moves_up_front, interpret};
 use crate::eval::tree::MAX_TREE_DEPTH;
 use crate::ir::System;
 use crate::mesh::{MeshFormat, Scene};
@@ -22,7 +22,9 @@ pub(super) fn draw(
 ) -> Result<Picture, DrawError> {
     let opts = &req.run;
     let steps = opts.derive_options(sys).steps;
-    let shared = (format == MeshFormat::Glb && steps <= MAX_TREE_DEPTH)
+    // A scene beside the word is drawn from the stored geometry.
+    let instanced = format == MeshFormat::Glb && sys.look.scene.is_empty();
+    let shared = (instanced && steps <= MAX_TREE_DEPTH)
         .then(|| Instanced::new(sys).filter(|i| i.fits(steps)))
         .flatten()
         .and_then(|mut inst| crate::mesh::instanced::scene(sys, &mut inst, steps));
@@ -36,9 +38,7 @@ pub(super) fn draw(
             check_moves_up_front(sys, opts)?;
             let (word, values) = derive_values(sys, opts, |k, n| progress.derived(k, steps, n))?;
             let mut g = interpret(sys, &word, &values, opts, false)?;
-            if req.layout {
-                add_layout(sys, &mut g);
-            }
+            add_fixed(sys, &mut g, req.layout);
             let lighting = sys.look.lighting.as_ref();
             let mut meshing = |done, total| progress.advanced(Stage::Meshing, done, total);
             Scene::single(crate::mesh::of_geometry(&g, lighting, &mut meshing))

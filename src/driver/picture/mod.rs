@@ -27,7 +27,7 @@ mod traced;
 
 use super::derive::{derive_symbols, derive_values, RunOptions};
 use super::empty::{nearly_nothing_drawn, nothing_drawn};
-use super::interpret::{add_layout, check_moves_up_front, interpret};
+use super::interpret::{add_fixed, check_moves_up_front, interpret};
 use super::load::{compile_as, load, split_entry, Compiled, LoadError};
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::front::Front;
@@ -536,9 +536,7 @@ fn still_counted(
         }
     }
     let mut g = interpret(sys, &word, &values, run, ropts.spline)?;
-    if layout {
-        add_layout(sys, &mut g);
-    }
+    add_fixed(sys, &mut g, layout);
     let warning = if g.is_empty() {
         Some(nothing_drawn(sys, &word, s.file, run, s.diagnostics))
     } else {

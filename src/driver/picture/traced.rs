@@ -134,7 +134,8 @@ pub(super) fn shared(
     tracing: &Tracing,
 ) -> Result<Option<Vec<u8>>, DrawError> {
     let steps = run.derive_options(sys).steps;
-    if steps > MAX_TREE_DEPTH {
+    // A scene beside the word is traced from the stored geometry.
+    if steps > MAX_TREE_DEPTH || !sys.look.scene.is_empty() {
         return Ok(None);
     }
     let Some(mut inst) = Instanced::new(sys) else {

@@ -125,6 +125,7 @@ pub fn look(v: &View, palette: &[Rgb], materials: &[Option<Material>]) -> Look {
         None => palette.first().copied().unwrap_or(Rgb(0, 0, 0)),
     };
     Look {
+        scene: Vec::new(),
         background: Some(background),
         lighting: Some(lighting(v, materials)),
         camera: Some(camera(v)),

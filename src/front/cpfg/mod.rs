@@ -23,6 +23,7 @@ pub mod look;
 pub mod lower;
 pub mod parser;
 pub mod preprocess;
+pub mod scene;
 pub mod surface;
 mod tropisms;
 pub mod view;
@@ -146,6 +147,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     tropisms::add_tropisms(&mut lowered, &view, diags);
     apply_view(&mut lowered.system, &view);
     beside.add_look(&mut lowered.system, path, &view, diags);
+    beside.add_scenes(&mut lowered.system, &view, diags);
     lowered.system.program.functions = functions.functions;
     lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
@@ -459,6 +461,53 @@ impl<'a> Beside<'a> {
         }
         sys.look = look::look(view, &palette, &materials);
         sys.colours = palette;
+    }
+
+    /// The view's background scenes, drawn with the model. A scene's
+    /// materials (or, with a colour map, their diffuse colours) take the
+    /// colour indices after the ones the object's files use, so that they
+    /// never stand in for the plant's.
+    fn add_scenes(&self, sys: &mut System, view: &view::View, diags: &mut Diagnostics) {
+        for (name, _) in &view.scenes {
+            let Some(text) = self.read(name) else {
+                diags.push(self.unreadable(name, "background scene", "the view file"));
+                continue;
+            };
+            let pre = preprocess::preprocess(&text, &mut |n| self.read(n));
+            let lighting = sys.look.lighting.as_mut();
+            let materials = lighting.as_ref().map_or(0, |l| l.materials.len());
+            let first = sys.colours.len().max(materials).max(256);
+            let Ok(first) = u16::try_from(first) else {
+                continue;
+            };
+            let tapered = lighting.as_ref().is_none_or(|l| l.tapered);
+            let mut found = Diagnostics::default();
+            let scene = scene::read_scene(&pre.text, first, tapered, &mut found);
+            let located = found.iter().map(|d| {
+                let mut d = d.clone();
+                d.span = d.span.map(|s| pre.map.locate(s).0);
+                d
+            });
+            let located = Diagnostics(located.collect());
+            let path = self
+                .dir
+                .map_or(Path::new(name).to_path_buf(), |d| d.join(name));
+            push_side_file(diags, &located, &path, &text);
+            let colours = scene.materials.iter().map(look::flat_colour);
+            sys.colours
+                .resize(usize::from(first), crate::ir::Rgb(0, 0, 0));
+            sys.colours.extend(colours);
+            if let Some(l) = sys
+                .look
+                .lighting
+                .as_mut()
+                .filter(|l| !l.materials.is_empty())
+            {
+                l.materials.resize(usize::from(first), None);
+                l.materials.extend(scene.materials.into_iter().map(Some));
+            }
+            sys.look.scene.extend(scene.polygons);
+        }
     }
 
     /// The colour files of a folder with no `specifications` (L-studio's

@@ -173,6 +173,8 @@ pub struct View {
     /// The view file read, and its text, for what is found wrong with the
     /// files it names after it was read.
     pub source: Option<(PathBuf, String)>,
+    /// `background scene:` files, each with its line.
+    pub scenes: Vec<(String, Span)>,
 }
 
 impl Default for View {
@@ -220,6 +222,7 @@ impl Default for View {
             surface_diffuse: 0.75,
             unused: Vec::new(),
             source: None,
+            scenes: Vec::new(),
         }
     }
 }
@@ -227,7 +230,6 @@ impl Default for View {
 /// Commands that change cpfg's picture and that graftal does not draw:
 /// each is a warning at its line.
 const NOT_DRAWN: &[(&str, &str)] = &[
-    ("background scene", "the scene files' objects are not drawn"),
     ("texture", "surfaces are drawn without their textures"),
     ("tsurface", "the rayshade surfaces are not drawn"),
 ];
@@ -680,6 +682,18 @@ fn add_file(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
                     file: f.to_string(),
                 }),
                 _ => c.bad(d, "`id file.con`"),
+            }
+        }
+        "background scene" => {
+            let names = c
+                .value
+                .split([' ', '\t', ',', ';'])
+                .filter(|n| !n.is_empty());
+            let before = v.scenes.len();
+            v.scenes
+                .extend(names.map(|n| (n.to_string(), c.span.clone())));
+            if v.scenes.len() == before {
+                c.bad(d, "a file name");
             }
         }
         "curve" => match c.value.split_whitespace().next() {
@@ -1190,13 +1204,16 @@ mod tests {
         assert_eq!(v.render_mode, RenderMode::Wireframe);
         let (_, d) = read_view("shade mode: 9\n");
         assert_eq!(codes_of(&d), ["W0808"]);
-        let src = "font: x\nbackground scene: scene.dat\n";
+        let src = "font: x\ntexture: T: bark.png\n";
         let (_, d) = read_view(src);
         assert_eq!(codes_of(&d), ["W0807"]);
-        assert_eq!(
-            &src[d.0[0].span.clone().unwrap()],
-            "background scene: scene.dat"
-        );
+        assert_eq!(&src[d.0[0].span.clone().unwrap()], "texture: T: bark.png");
+        // Scenes are read: several files on one line.
+        let src = "background scene: a.dat, b.dat;c.dat\n";
+        let (v, d) = read_view(src);
+        assert!(d.is_empty(), "{d:?}");
+        let names: Vec<&str> = v.scenes.iter().map(|s| s.0.as_str()).collect();
+        assert_eq!(names, ["a.dat", "b.dat", "c.dat"]);
     }
 
     #[test]

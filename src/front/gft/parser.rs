@@ -23,7 +23,7 @@ type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>>>;
 
 /// Block items whose block holds lines of values, not productions or
 /// statements.
-const VALUE_BLOCKS: &[&str] = &["outline", "surface", "contour"];
+const VALUE_BLOCKS: &[&str] = &["outline", "surface", "contour", "backdrop"];
 
 /// Keywords whose value is an expression (`angle 360/7`).
 const EXPRESSION_KEYWORDS: &[&str] = &[

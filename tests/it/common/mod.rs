@@ -90,6 +90,20 @@ pub fn object_file(folder: &str, name: &str, text: &str) -> std::path::PathBuf {
     path
 }
 
+/// The pixels of an 8-bit RGBA PNG (graftal's pictures).
+pub fn rgba_pixels(png_bytes: &[u8]) -> Vec<[u8; 4]> {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(png_bytes))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgba, "an RGBA picture");
+    buf[..info.buffer_size()]
+        .chunks_exact(4)
+        .map(|p| [p[0], p[1], p[2], p[3]])
+        .collect()
+}
+
 /// Whether this run rewrites golden files instead of checking them:
 /// `GRAFTAL_BLESS=1` (any other value, or none, checks).
 pub fn blessing() -> bool {

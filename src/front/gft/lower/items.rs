@@ -236,6 +236,7 @@ impl Cx<'_> {
             "light" => self.light(k),
             "material" => self.material(k),
             "contour" => self.contour(k),
+            "backdrop" => self.backdrop(k),
             "function" => self.function(k),
             "tropism" => self.tropism(k),
             // Read before the symbols' operations, which name surfaces.
@@ -400,6 +401,36 @@ impl Cx<'_> {
             }
         }
         Some(points)
+    }
+
+    /// `backdrop #rrggbb INDEX { points }`: a polygon of the look's scene.
+    fn backdrop(&mut self, k: &Keyword) {
+        let mut f = Fields::new(k);
+        let colour = f.colour("");
+        let index = f.second::<u16>("");
+        let points = self.block_points(k);
+        if let (Some(colour), Some(index), Some(points)) = (colour, index, points) {
+            if points.len() < 3 {
+                self.diags.push(err(
+                    codes::GFT_BAD_VALUE,
+                    &k.line,
+                    "a backdrop polygon has three points or more",
+                    "fewer than three points",
+                    "write its corners as `(x, y, z)`",
+                ));
+                return;
+            }
+            self.sys.look.scene.push(crate::ir::look::ScenePolygon {
+                points,
+                colour,
+                index,
+            });
+        }
+        self.malformed(
+            f,
+            k,
+            "backdrop #rrggbb INDEX { (x, y, z) (x, y, z) (x, y, z) }",
+        );
     }
 
     /// `surface NAME { triangles }`.
