@@ -29,6 +29,9 @@ pub struct Frame {
     /// From the eye towards the target.
     forward: Vec3,
     perspective: bool,
+    /// Perspective: the tangent of half the view angle, which spans the
+    /// picture's height (`gluPerspective`'s).
+    half_tan: f64,
     /// Perspective: nearer than this (along `forward`) is not drawn.
     near: f64,
 }
@@ -78,6 +81,7 @@ impl Frame {
             up,
             forward,
             perspective: angle.is_some(),
+            half_tan: angle.map_or(1.0, |a| (a.min(179.0).to_radians() / 2.0).tan()),
             near: (distance.abs() * 1e-3).max(1e-9),
         }
     }
@@ -146,8 +150,10 @@ impl Projector {
     }
 
     /// The fit of picture-plane points `pts` into the picture of `opts`: a
-    /// parallel projection centres what is drawn (cpfg's auto-centring), a
-    /// perspective keeps the target (the view axis) at the centre.
+    /// parallel projection centres what is drawn (cpfg's auto-centring); a
+    /// perspective is its camera's alone, nothing fitted: the view axis at
+    /// the centre and the view angle across the picture's height, as
+    /// cpfg's `gluPerspective` (and graftal's ray tracer) has it.
     pub(crate) fn fit(&self, pts: &[[f64; 2]], opts: &RenderOptions) -> Fit {
         self.fit_padded(pts, opts, 0.0)
     }
@@ -155,17 +161,13 @@ impl Projector {
     /// [`Projector::fit`] keeping `pad` more pixels within an asked-for
     /// margin ([`Fit::padded`]).
     pub(crate) fn fit_padded(&self, pts: &[[f64; 2]], opts: &RenderOptions, pad: f64) -> Fit {
-        if !self.perspective() {
-            return Fit::padded(pts.iter(), opts, pad);
+        match self {
+            Projector::Camera(f) if f.perspective => {
+                let scale = opts.height.max(1) as f64 / 2.0 / f.half_tan;
+                Fit::around([0.0, 0.0], scale, opts, pad)
+            }
+            _ => Fit::padded(pts.iter(), opts, pad),
         }
-        let (mut mx, mut my) = (0.0f64, 0.0f64);
-        for p in pts {
-            mx = mx.max(p[0].abs());
-            my = my.max(p[1].abs());
-        }
-        // All four corners: a rotated fit holds the turned rectangle.
-        let corners = [[-mx, -my], [mx, -my], [mx, my], [-mx, my]];
-        Fit::padded(corners.iter(), opts, pad)
     }
 }
 

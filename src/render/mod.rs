@@ -743,19 +743,36 @@ impl Fit {
         if !s.is_finite() {
             s = 1.0;
         }
-        let base = Some(opts.base_width.abs()).filter(|b| b.is_finite() && *b > 0.0);
+        let centre = [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0];
         Fit {
-            scale: s,
-            centre: [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0],
-            width: w,
-            height: h,
-            line_unit: (w.min(h) / 600.0).max(1.0),
-            turn,
-            stroke_per_width: opts.style.stroke_width.map(|sw| sw / base.unwrap_or(1.0)),
-            thin: 1.0,
             framing: Framing {
                 lo: min,
                 hi: max,
+                pad,
+            },
+            ..Fit::around(centre, s, opts, pad)
+        }
+    }
+
+    /// The fit with `scale` pixels a picture-plane unit and `centre` at the
+    /// middle of the picture of `opts`.
+    pub(crate) fn around(centre: [f64; 2], scale: f64, opts: &RenderOptions, pad: f64) -> Self {
+        let (w, h) = (opts.width as f64, opts.height as f64);
+        let (sin, cos) = opts.style.rotate.to_radians().sin_cos();
+        let base = Some(opts.base_width.abs()).filter(|b| b.is_finite() && *b > 0.0);
+        let half = [w / 2.0 / scale, h / 2.0 / scale];
+        Fit {
+            scale,
+            centre,
+            width: w,
+            height: h,
+            line_unit: (w.min(h) / 600.0).max(1.0),
+            turn: (cos, sin),
+            stroke_per_width: opts.style.stroke_width.map(|sw| sw / base.unwrap_or(1.0)),
+            thin: 1.0,
+            framing: Framing {
+                lo: [centre[0] - half[0], centre[1] - half[1]],
+                hi: [centre[0] + half[0], centre[1] + half[1]],
                 pad,
             },
         }

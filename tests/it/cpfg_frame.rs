@@ -142,6 +142,31 @@ fn a_surface_lies_along_cpfgs_up() {
     );
 }
 
+/// The first segment an object's SVG draws, `[x0, y0, x1, y1]` in
+/// pixels of a `size`² picture, drawn with `view` as its view file.
+fn first_segment_on_screen(l: &std::path::Path, view: &str, size: u32) -> [f64; 4] {
+    std::fs::write(l.with_extension("v"), view).unwrap();
+    let sys = driver::compile(SourceFile::read(l).unwrap())
+        .system
+        .unwrap();
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    let ropts = graftal::render::RenderOptions {
+        width: size,
+        height: size,
+        ..Default::default()
+    };
+    let svg = driver::render_bytes(&sys, &g, driver::Format::Svg, ropts).unwrap();
+    let svg = String::from_utf8(svg).unwrap();
+    // The path: `M x0 y0 L x1 y1`.
+    let d = svg.split("d=\"M").nth(1).expect("a path");
+    let n: Vec<f64> = d
+        .split(['L', ' ', '"'])
+        .take(4)
+        .map(|x| x.parse().unwrap())
+        .collect();
+    [n[0], n[1], n[2], n[3]]
+}
+
 /// cpfg's `twist: N` turns the picture N/10 degrees clockwise on the
 /// screen (`ReadViewData` turns the view's up vector about the view normal
 /// by +N/10 degrees, `rot_by_quat` being q⁻¹vq with a negated half-angle,
@@ -153,33 +178,34 @@ fn a_positive_twist_turns_the_picture_clockwise() {
         "plant.l",
         "Lsystem: 1\nderivation length: 0\nAxiom: F(1)\nendlsystem\n",
     );
-    let dir = l.parent().unwrap();
     for (twist, right) in [(900, true), (-900, false), (2700, false)] {
-        std::fs::write(
-            dir.join("plant.v"),
-            format!("viewpoint: 0,0,1\nview reference point: 0,0,0\ntwist: {twist}\n"),
-        )
-        .unwrap();
-        let sys = driver::compile(SourceFile::read(&l).unwrap())
-            .system
-            .unwrap();
-        let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
-        let svg = String::from_utf8(
-            driver::render_bytes(&sys, &g, driver::Format::Svg, Default::default()).unwrap(),
-        )
-        .unwrap();
-        // The one segment's path: `M x0 y0 L x1 y1`.
-        let d = svg.split("d=\"M").nth(1).expect("a path");
-        let numbers: Vec<f64> = d
-            .split(['L', ' ', '"'])
-            .take(4)
-            .map(|n| n.parse().unwrap())
-            .collect();
-        let (dx, dy) = (numbers[2] - numbers[0], numbers[3] - numbers[1]);
-        assert!(
-            dy.abs() < 1e-6 * dx.abs().max(1.0),
-            "horizontal at {twist}: {d}"
+        let view = format!("viewpoint: 0,0,1\nview reference point: 0,0,0\ntwist: {twist}\n");
+        let [x0, y0, x1, y1] = first_segment_on_screen(&l, &view, 200);
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        assert!(dy.abs() < 1e-6 * dx.abs().max(1.0), "horizontal at {twist}");
+        assert_eq!(dx > 0.0, right, "twist {twist}: {dx}");
+    }
+}
+
+/// `projection: perspective` fits nothing: cpfg's `gluPerspective` spans
+/// the picture's height with the viewing angle, and `scale factor` moves
+/// the eye to vrp + (viewpoint − vrp) / scale. A segment from y = −5 to 5
+/// seen from 10 away under 90° spans half the picture; at scale factor 2
+/// (the eye 5 away) the whole of it.
+#[test]
+fn a_perspective_is_the_view_files_alone() {
+    let l = crate::common::object_file(
+        "object",
+        "plant.l",
+        "Lsystem: 1\nderivation length: 0\nAxiom: f(-5) F(10)\nendlsystem\n",
+    );
+    for (scale, span) in [(1.0, 100.0), (2.0, 200.0)] {
+        let view = format!(
+            "viewpoint: 0,0,10\nview reference point: 0,0,0\nprojection: perspective\n\
+             viewing angle: 90\nscale factor: {scale}\nfront distance: 0.1\nback distance: 100\n"
         );
-        assert_eq!(dx > 0.0, right, "twist {twist}: {d}");
+        let [x0, y0, x1, y1] = first_segment_on_screen(&l, &view, 200);
+        assert!((y0 - y1 - span).abs() < 1e-6, "scale {scale}: {y0} to {y1}");
+        assert!((x0 - 100.0).abs() < 1e-6 && x1 == x0 && ((y0 + y1) / 2.0 - 100.0).abs() < 1e-6);
     }
 }

@@ -175,12 +175,15 @@ fn lighting(v: &View, materials: &[Option<Material>]) -> Lighting {
 /// manual §8.1.2).
 fn camera(v: &View) -> Camera {
     let perspective = (v.projection == view::Projection::Perspective).then_some(v.viewing_angle);
-    Camera::aimed(
-        v.viewpoint,
-        v.view_reference_point,
-        v.twist / 10.0,
-        perspective,
-    )
+    // A perspective zooms by moving the eye: cpfg's SetView puts it at
+    // vrp + (viewpoint − vrp) / scale factor.
+    let zoom = match perspective {
+        Some(_) if v.scale_factor > 0.0 && v.scale_factor.is_finite() => v.scale_factor,
+        _ => 1.0,
+    };
+    let (vp, vrp) = (v.viewpoint, v.view_reference_point);
+    let eye = [0, 1, 2].map(|k| vrp[k] + (vp[k] - vrp[k]) / zoom);
+    Camera::aimed(eye, v.view_reference_point, v.twist / 10.0, perspective)
 }
 
 #[cfg(test)]
