@@ -180,6 +180,17 @@ impl<'a> Scene<'a> {
         }
     }
 
+    /// How opaque polygon `p` is drawn: 1 but for a material with a
+    /// transparency, and only where materials are lit (cpfg blends only
+    /// with GL lighting on).
+    fn opacity(&self, p: &crate::turtle::Polygon) -> f32 {
+        let lit = matches!(self.lighting.shading, Shading::Flat | Shading::Smooth);
+        match self.lighting.material(p.index) {
+            Some(m) if lit && self.palette.is_none() => (1.0 - m.transparency).clamp(0.0, 1.0),
+            _ => 1.0,
+        }
+    }
+
     /// The paint of segment `s`, the `i`th drawn: its own, or the style's.
     fn segment_paint(&self, s: &Segment, i: usize) -> Paint {
         Palette::paint_of(self.palette, s, i, self.segments, self.max_depth)

@@ -23,6 +23,8 @@ pub(super) struct Painter<'s, 'p> {
     scene: &'s Scene<'s>,
     target: Target,
     run: Vec<Polygon>,
+    /// Polygons of translucent materials, drawn after everything else.
+    translucent: Vec<Polygon>,
     /// Scratch for a run: the shared normals, the polygons shown and their
     /// corners in samples (kept to save allocating them each run).
     normals: Normals,
@@ -49,6 +51,7 @@ impl<'s, 'p> Painter<'s, 'p> {
             scene,
             target,
             run: Vec::new(),
+            translucent: Vec::new(),
             normals: Normals::default(),
             shown: Vec::new(),
             corners: Vec::new(),
@@ -123,11 +126,18 @@ impl<'s, 'p> Painter<'s, 'p> {
         self.scene.segment(&mut self.target, &s, paint, end_width);
     }
 
-    /// The band, with everything drawn.
+    /// The band, with everything drawn: the opaque, then the translucent
+    /// blended over it one by one, in the order they came.
     pub(super) fn finish(mut self) -> Target {
         self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
         self.flush_run();
         self.draw_held(None);
+        for p in std::mem::take(&mut self.translucent) {
+            self.target.opacity = Some(self.scene.opacity(&p));
+            self.run.push(p);
+            self.flush_run();
+        }
+        self.target.opacity = None;
         self.target
     }
 }
@@ -140,6 +150,10 @@ impl Sink for Painter<'_, '_> {
         self.tick();
     }
     fn polygon(&mut self, p: Polygon) {
+        if self.scene.opacity(&p) < 1.0 {
+            self.translucent.push(p);
+            return self.tick();
+        }
         self.run.push(p);
         if self.run.len() >= MAX_RUN {
             self.flush_run();

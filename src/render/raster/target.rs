@@ -30,12 +30,29 @@ pub(super) struct Target {
     share: i64,
     pub(super) colour: Vec<u32>,
     depth: Vec<f32>,
+    /// While translucent things are drawn (after everything opaque), their
+    /// opacity: each sample in front is mixed over what is there, and the
+    /// depth kept (OpenGL's blending with depth writes off, as cpfg draws
+    /// translucent materials).
+    pub(super) opacity: Option<f32>,
+}
+
+/// The colour of a packed opaque sample.
+fn unpack(c: u32) -> Colour {
+    [16, 8, 0].map(|s| ((c >> s) & 0xff) as f32 / 255.0)
 }
 
 /// An opaque colour as `0xAARRGGBB`.
 fn pack(c: Colour) -> u32 {
     let q = |x: f32| (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u32;
     (255 << 24) | (q(c[0]) << 16) | (q(c[1]) << 8) | q(c[2])
+}
+
+/// Whether samples on the edge from `a` to `b` belong to the triangle
+/// that runs it this way (its neighbour runs it the other way).
+fn owns_edge(a: &SVert, b: &SVert) -> bool {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    dy > 0.0 || (dy == 0.0 && dx < 0.0)
 }
 
 /// Twice the signed area of (a, b, p); swapping a and b negates it exactly,
@@ -62,6 +79,7 @@ impl Target {
             share,
             colour: Vec::new(),
             depth: Vec::new(),
+            opacity: None,
         };
         let held = (0..rows).filter(|r| t.owns(y0 + r)).count();
         let n = held * width.max(0) as usize;
@@ -97,8 +115,17 @@ impl Target {
         let i = (self.local(y) * self.width + x) as usize;
         let z = z as f32;
         if z < self.depth[i] {
-            self.depth[i] = z;
-            self.colour[i] = pack(c);
+            match self.opacity {
+                None => {
+                    self.depth[i] = z;
+                    self.colour[i] = pack(c);
+                }
+                Some(a) => {
+                    let under = unpack(self.colour[i]);
+                    let mixed = [0, 1, 2].map(|k| a * c[k] + (1.0 - a) * under[k]);
+                    self.colour[i] = pack(mixed) & 0x00ff_ffff | self.colour[i] & 0xff00_0000;
+                }
+            }
         }
     }
 
@@ -142,6 +169,16 @@ impl Target {
                 let w1 = edge(&v[2], &v[0], xc, yc);
                 let w2 = edge(&v[0], &v[1], xc, yc);
                 if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                    continue;
+                }
+                // A sample on an edge two blended triangles share is
+                // theirs once: the one that runs the edge one way owns it.
+                let on = [(w0, 1, 2), (w1, 2, 0), (w2, 0, 1)];
+                if self.opacity.is_some()
+                    && on
+                        .iter()
+                        .any(|&(w, a, b)| w == 0.0 && !owns_edge(&v[a], &v[b]))
+                {
                     continue;
                 }
                 let (b0, b1, b2) = (w0 / area, w1 / area, w2 / area);

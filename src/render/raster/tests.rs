@@ -449,3 +449,54 @@ fn ear_clipping_covers_a_concave_polygon_once() {
         .sum();
     assert!((area - 10.0).abs() < 1e-9, "{area}");
 }
+
+/// A translucent material is blended over what lies behind it, after
+/// everything opaque and whatever the order (cpfg's second pass, depth
+/// kept); what lies in front of it still covers it; with the same material
+/// opaque the front square is all there is.
+#[test]
+fn translucent_materials_blend_over_what_is_behind() {
+    let emissive = |c: [f32; 3], transparency: f32| Material {
+        ambient: [0.0; 3],
+        diffuse: [0.0; 3],
+        specular: [0.0; 3],
+        emission: c,
+        shininess: 0.0,
+        transparency,
+    };
+    let mut l = lighting(Shading::Flat, LineStyle::Cylinder);
+    let glass = |t| {
+        let mut p = square(0.0, 1.0, 1);
+        p.index = 1;
+        (p, t)
+    };
+    let mut behind = square(-1.0, 2.0, 2);
+    behind.index = 2;
+    let mut front = square(1.0, 0.25, 3);
+    front.index = 3;
+    for (transparency, expected) in [(0.5f32, [128, 0, 127]), (0.0, [255, 0, 0])] {
+        l.materials = vec![
+            None,
+            Some(emissive([1.0, 0.0, 0.0], glass(transparency).1)),
+            Some(emissive([0.0, 0.0, 1.0], 0.0)),
+            Some(emissive([0.0, 1.0, 0.0], 0.0)),
+        ];
+        let orders = [
+            vec![glass(transparency).0, behind.clone(), front.clone()],
+            vec![front.clone(), behind.clone(), glass(transparency).0],
+        ];
+        for polygons in orders {
+            let g = Geometry {
+                polygons,
+                ..Geometry::default()
+            };
+            let pm = draw(&g, &l, &small(60));
+            let mixed = rgb(&pm, 20, 20);
+            assert!(
+                (0..3).all(|k| (i32::from(mixed[k]) - expected[k]).abs() <= 2),
+                "transparency {transparency}: {mixed:?}"
+            );
+            assert_eq!(rgb(&pm, 30, 30), [0, 255, 0], "the opaque square in front");
+        }
+    }
+}
