@@ -87,10 +87,12 @@ pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, op
     }
 }
 
-/// Derives and interprets: the geometry of the system.
+/// Derives and interprets: the geometry of the system, with its look's
+/// scene ([`add_fixed`]).
 pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {
     let (word, values) = derive_values(sys, opts, |_, _| {})?;
-    let g = interpret(sys, &word, &values, opts, false)?;
+    let mut g = interpret(sys, &word, &values, opts, false)?;
+    add_fixed(sys, &mut g, false);
     Ok((word, g))
 }
 
