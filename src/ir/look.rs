@@ -87,6 +87,17 @@ pub struct Lighting {
 }
 
 impl Lighting {
+    /// How opaque what is drawn with colour index `index` is: 1 but for a
+    /// material with a transparency, and only where materials are lit
+    /// (cpfg blends only with OpenGL's lighting on).
+    pub fn opacity(&self, index: u16) -> f32 {
+        let lit = matches!(self.shading, Shading::Flat | Shading::Smooth);
+        match self.material(index) {
+            Some(m) if lit => (1.0 - m.transparency).clamp(0.0, 1.0),
+            _ => 1.0,
+        }
+    }
+
     /// The material colour index `index` is lit with, as the renderer
     /// picks it: in material mode the index's material, or cpfg's default
     /// ([`Material::CPFG_DEFAULT`]) for an index the file leaves out;

@@ -209,10 +209,18 @@ impl Scene<'_> {
         let px: Vec<[f64; 2]> = pts.iter().map(|(xy, _)| self.fit.to_px(*xy)).collect();
         polyline(&mut d, &px);
         d.push('Z');
+        // Translucent materials show what lies behind (drawn first, as the
+        // items are painted farthest first).
+        let opacity = self.lighting.map_or(1.0, |l| l.opacity(p.index));
+        let opacity = if opacity < 1.0 {
+            format!(r#" fill-opacity="{opacity}""#)
+        } else {
+            String::new()
+        };
         Some(Item {
             depth: pts.iter().map(|r| r.1).sum::<f64>() / pts.len() as f64,
             svg: format!(
-                r#"<path d="{d}" fill="{}" fill-rule="evenodd"/>"#,
+                r#"<path d="{d}" fill="{}" fill-rule="evenodd"{opacity}/>"#,
                 hex(self.colour(Kind::of(p), Paint::own(p.colour, p.index), mid, n))
             ),
         })

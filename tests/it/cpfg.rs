@@ -957,4 +957,7 @@ fn a_background_scene_is_drawn_with_the_model() {
     let svg = String::from_utf8(drawn(&sys, graftal::driver::picture::Format::Svg)).unwrap();
     let bare_svg = String::from_utf8(drawn(&bare, graftal::driver::picture::Format::Svg)).unwrap();
     assert!(svg.matches("<path").count() > bare_svg.matches("<path").count() + 100);
+    // The scene's translucent materials (alpha 0.5) show what is behind.
+    assert!(svg.contains(r#"fill-opacity="0.5""#));
+    assert!(!bare_svg.contains("fill-opacity"));
 }

@@ -180,14 +180,12 @@ impl<'a> Scene<'a> {
         }
     }
 
-    /// How opaque polygon `p` is drawn: 1 but for a material with a
-    /// transparency, and only where materials are lit (cpfg blends only
-    /// with GL lighting on).
+    /// How opaque polygon `p` is drawn ([`Lighting::opacity`]).
     fn opacity(&self, p: &crate::turtle::Polygon) -> f32 {
-        let lit = matches!(self.lighting.shading, Shading::Flat | Shading::Smooth);
-        match self.lighting.material(p.index) {
-            Some(m) if lit && self.palette.is_none() => (1.0 - m.transparency).clamp(0.0, 1.0),
-            _ => 1.0,
+        match self.palette {
+            // A style's palette paints its own colours.
+            Some(_) => 1.0,
+            None => self.lighting.opacity(p.index),
         }
     }
 
