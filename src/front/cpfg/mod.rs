@@ -474,13 +474,13 @@ impl<'a> Beside<'a> {
                 continue;
             };
             let pre = preprocess::preprocess(&text, &mut |n| self.read(n));
-            let lighting = sys.look.lighting.as_mut();
-            let materials = lighting.as_ref().map_or(0, |l| l.materials.len());
+            let lighting = sys.look.lighting.as_ref();
+            let materials = lighting.map_or(0, |l| l.materials.len());
             let first = sys.colours.len().max(materials).max(256);
             let Ok(first) = u16::try_from(first) else {
                 continue;
             };
-            let tapered = lighting.as_ref().is_none_or(|l| l.tapered);
+            let tapered = lighting.is_none_or(|l| l.tapered);
             let mut found = Diagnostics::default();
             let scene = scene::read_scene(&pre.text, first, tapered, &mut found);
             let located = found.iter().map(|d| {
