@@ -121,7 +121,9 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::Elasticity { .. }
         | TurtleOp::Untwist
         | TurtleOp::KeepTwist
-        | TurtleOp::SetContour => Does::Cpfg,
+        | TurtleOp::SetContour
+        | TurtleOp::SubLsystemCall
+        | TurtleOp::SubLsystemReturn => Does::Cpfg,
     }
 }
 
