@@ -15,6 +15,7 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("width-factor", false),
     ("width-step", false),
     ("widths", false),
+    ("cpfg-polygons", false),
     ("colour", false),
     ("colour-step", false),
     ("view", false),

@@ -927,6 +927,11 @@ pub struct Settings {
     /// Whether line widths are in turtle units (cpfg `line style: polygon`
     /// or `cylinder`) rather than pixels.
     pub world_widths: bool,
+    /// Whether polygons (`{` … `}`) are made as cpfg makes them: a drawn
+    /// step inside one draws its segment as well as adding a vertex
+    /// (`interpret.c` passes every `F` to the renderer), and the vertices
+    /// are only those the steps and `.` add, not the turtle's place at `{`.
+    pub cpfg_polygons: bool,
     /// The file's own seed, added to the run's (cpfg `seed:`).
     pub seed: Option<u64>,
     /// The generator the system's random numbers come from.
@@ -973,6 +978,7 @@ impl Default for Settings {
             colour_step: 1.0,
             width_step: 1.0,
             world_widths: false,
+            cpfg_polygons: false,
             seed: None,
             randomness: Randomness::Graftal,
             tropisms: Vec::new(),

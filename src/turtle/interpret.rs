@@ -202,9 +202,14 @@ impl<'a> Turtle<'a> {
             TurtleOp::Pop => self.pop(),
             // cpfg `{(n)`: a generalized cylinder, not a polygon.
             TurtleOp::PolygonBegin if args.get(0).is_some() => self.start_cylinder(),
-            TurtleOp::PolygonBegin => self
-                .open_polygons
-                .push((vec![self.state.pos], self.state.colour)),
+            TurtleOp::PolygonBegin => {
+                let first = if self.sys.settings.cpfg_polygons {
+                    Vec::new()
+                } else {
+                    vec![self.state.pos]
+                };
+                self.open_polygons.push((first, self.state.colour))
+            }
             TurtleOp::PolygonEnd if args.get(0).is_some() => self.cylinder_point(4, true),
             TurtleOp::PolygonEnd => self.end_polygon(),
             TurtleOp::PolygonVertex => self.polygon_vertex(args),
@@ -302,9 +307,14 @@ impl Turtle<'_> {
         let b = add_scaled(a, direction, step);
         self.state.pos = b;
         self.record_position();
-        if let Some((points, _)) = self.open_polygons.last_mut() {
-            points.push(b);
-        } else if draw {
+        let in_polygon = match self.open_polygons.last_mut() {
+            Some((points, _)) => {
+                points.push(b);
+                true
+            }
+            None => false,
+        };
+        if draw && (!in_polygon || self.sys.settings.cpfg_polygons) {
             let colour = self.colour();
             self.sink.segment(Segment {
                 a,
@@ -693,21 +703,34 @@ impl Turtle<'_> {
 
     /// cpfg `;` / `,`: the colour index given, or one colour step up or
     /// down.
+    /// cpfg `;` / `,`: the colour index given (truncated, as cpfg casts
+    /// it to an int), or one colour step up or down; an index past either
+    /// end of cpfg's 256 colours wraps once to the other end (`interpret.c`),
+    /// then stays within the palette.
     fn colour_index(&mut self, up: bool, args: Args) {
         let step = self.sys.settings.colour_step;
         let c = match args.get(0) {
-            Some(v) => v,
+            Some(v) => v.trunc(),
             None if up => self.state.colour as f64 + step,
             None => self.state.colour as f64 - step,
         };
-        self.state.colour = c.round().clamp(0.0, (self.palette.len() - 1) as f64) as usize;
+        let wrapped = if c < 0.0 {
+            c + 256.0
+        } else if c > 255.0 {
+            c - 256.0
+        } else {
+            c
+        };
+        let last = (self.palette.len() - 1) as f64;
+        self.state.colour = wrapped.round().clamp(0.0, last) as usize;
     }
 
-    /// cpfg `#` / `!`: the line width given, or one width step up or down.
+    /// cpfg `#` / `!`: the line width given, or one width step up or down,
+    /// each times the turtle's scale (cpfg multiplies by `scale_factor`).
     fn line_width(&mut self, up: bool, args: Args) {
-        let step = self.sys.settings.width_step;
+        let step = self.sys.settings.width_step * self.state.scale;
         self.state.width = match args.get(0) {
-            Some(v) => v.max(0.0),
+            Some(v) => (v * self.state.scale).max(0.0),
             None if up => self.state.width + step,
             None => (self.state.width - step).max(0.0),
         };

@@ -961,3 +961,28 @@ fn a_background_scene_is_drawn_with_the_model() {
     assert!(svg.contains(r#"fill-opacity="0.5""#));
     assert!(!bare_svg.contains("fill-opacity"));
 }
+
+/// cpfg's `;` and `,` wrap once around its 256 colours (`interpret.c`:
+/// an index below the map's start gains 256, one past its end loses
+/// 256) and truncate a parameter; a drawn `F` inside `{ }` draws its
+/// segment as well as adding a vertex (cpfg passes every `F` to the
+/// renderer), an `f` there adds the vertex only, and the turtle's place
+/// at `{` is no vertex (04-Signaling-10-mycelis-realistic's heads and
+/// pappus).
+#[test]
+fn colour_steps_wrap_and_polygon_steps_draw_their_edges() {
+    let text = "Lsystem: 1\nderivation length: 0\n\
+                Axiom: ;(0),F ;(255);F ;(7.9)F {.F f F} \nendlsystem\n";
+    let l = common::object_file("wrap", "plant.l", text);
+    std::fs::write(l.parent().unwrap().join("plant.v"), "angle factor: 4\n").unwrap();
+    let c = driver::compile(SourceFile::read(&l).unwrap());
+    let sys = c.system.expect("compiles");
+    assert!(sys.settings.cpfg_polygons);
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    let indices: Vec<u16> = g.segments.iter().map(|s| s.index).collect();
+    // 0 - 1 wraps to 255, 255 + 1 to 0, 7.9 is 7; in the polygon the two
+    // `F` are drawn, the `f` is not.
+    assert_eq!(indices, [255, 0, 7, 7, 7]);
+    assert_eq!(g.polygons.len(), 1);
+    assert_eq!(g.polygons[0].points.len(), 4, "{:?}", g.polygons[0].points);
+}

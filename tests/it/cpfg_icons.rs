@@ -307,8 +307,9 @@ fn compare(dir: &Path, report: bool) -> Result<Figures, String> {
 }
 
 /// Thumbnails that show what the object's files do not say, each with the
-/// reason. They are still drawn (an error fails the test), and each must
-/// still miss the thresholds: one that starts to pass leaves this list.
+/// reason and its evidence. They are still drawn (an error fails the
+/// test), and each must still miss the thresholds: one that starts to pass
+/// leaves this list. Every other object must pass.
 const NOT_COMPARABLE: &[(&str, &str)] = &[
     (
         "07-Open-01-ulam-collide",
@@ -372,36 +373,27 @@ const NOT_COMPARABLE: &[(&str, &str)] = &[
          below them; its male spike is brown from `sedge.map2`, which `specifications` names \
          and the object lacks (W0806)",
     ),
+    (
+        "06-Enviro-sensitive-query-position",
+        "the thumbnail was drawn with other `#define` values, which `specifications` sets through \
+         `panel panel.l | awkped plant.l` and the object lacks panel.l: its side branches droop \
+         (about 37°, 21°, 4°, then below horizontal), which the file's `TROPISM 0` cannot do \
+         (`@Ts(1,0)`), its ellipse is 1.72:1 where a = 5, b = 10 give 2:1, and its stem has 16 \
+         internodes where the file gives 20; its spheres and rings keep the file's ratio (9.0 : \
+         3.3 px = 2.7, `@O(0.8)` : `@c(0.3)` = 2.67). With a 3, b 5, l 0.7, TROPISM -0.3 graftal's \
+         picture reaches overlap 0.96 and colour 52",
+    ),
+    (
+        "06-Enviro-sensitive-ellipse",
+        "the thumbnail is a smooth downscale of a larger grab of cpfg's window (vlab's snapicon \
+         scales with Qt's SmoothTransformation): it has 1793 colours where 1:1 grabs of pixel \
+         lines have a handful, and the file's 3-pixel lines cover 0.69 to 0.72 pixel across, a \
+         scale of about 0.24; no file of the object gives the window's size",
+    ),
 ];
 
 /// What `draw` says of an object graftal refuses.
 const REFUSED: &str = "not read";
-
-/// Where graftal's picture still differs from cpfg's for a reason of
-/// graftal's own: work left, each with what is known of the cause. Like
-/// `NOT_COMPARABLE`, each must still miss the thresholds.
-const KNOWN_GAPS: &[(&str, &str)] = &[
-    (
-        "04-Signaling-10-mycelis-realistic",
-        "fewer flower heads open than in cpfg's picture; cause not found",
-    ),
-    (
-        "05-Quantitative-info-flow-03-Borcher-Honda",
-        "labels (@L) are not drawn, and widths under a pixel stay hairlines where cpfg's trunk is thick",
-    ),
-    (
-        "06-Enviro-sensitive-ellipse",
-        "lines a few pixels wide fill a thumbnail-sized picture; cpfg's thumbnail was shrunk from a larger window",
-    ),
-    (
-        "06-Enviro-sensitive-query-position",
-        "the thumbnail's spheres are about twice graftal's (here and in 04-Signaling-04-florigen, \
-         2.1 to 2.4 times, measured against the stem); cpfg's source draws `@O(d)` with diameter \
-         d (blackbox.c: the parameter times the turtle's scale; irisGL.c, iGlSphere: radius = \
-         diameter / 2 on a unit sphere), as graftal does: the rule behind the thumbnails is \
-         not found",
-    ),
-];
 
 #[test]
 fn every_object_looks_like_cpfgs_thumbnail() {
@@ -418,10 +410,7 @@ fn every_object_looks_like_cpfgs_thumbnail() {
     let mut passed = 0;
     for dir in &dirs {
         let name = dir.file_name().unwrap().to_string_lossy().into_owned();
-        let exempt = NOT_COMPARABLE
-            .iter()
-            .chain(KNOWN_GAPS)
-            .find(|(n, _)| *n == name);
+        let exempt = NOT_COMPARABLE.iter().find(|(n, _)| *n == name);
         let f = match (compare(dir, report), exempt) {
             (Ok(f), _) => f,
             // Refused with its error: a gap that must be listed.
@@ -448,15 +437,22 @@ fn every_object_looks_like_cpfgs_thumbnail() {
         match (f.passes(), exempt) {
             (false, None) => failures.push(f.to_string()),
             (true, Some((_, why))) => failures.push(format!(
-                "{f}: passes now; take it out of NOT_COMPARABLE or KNOWN_GAPS (it was: {why})"
+                "{f}: passes now; take it out of NOT_COMPARABLE (it was: {why})"
             )),
             _ => {}
         }
     }
+    let comparable = dirs.len() - NOT_COMPARABLE.len();
     if report {
-        println!("{passed} of {} pass", dirs.len());
+        println!(
+            "{passed} of {} pass; {passed} of the {comparable} comparable ({:.0}%)",
+            dirs.len(),
+            100.0 * passed as f64 / comparable as f64
+        );
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // The goal of issue 34: at least 85% of the comparable objects alike.
+    assert!(passed * 100 >= comparable * 85, "{passed} of {comparable}");
 }
 
 /// The measures themselves: a picture matches itself, and a picture

@@ -108,6 +108,9 @@ fn settings(out: &mut String, s: &Settings, steps: Option<u64>) {
     if s.world_widths {
         out.push_str("widths world\n");
     }
+    if s.cpfg_polygons {
+        out.push_str("cpfg-polygons\n");
+    }
     if s.colour != d.colour {
         let _ = writeln!(out, "colour {}", s.colour);
     }

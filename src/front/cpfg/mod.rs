@@ -813,6 +813,7 @@ fn apply_view(sys: &mut System, view: &view::View) {
     st.width = view.initial_line_width;
     st.width_step = view.line_width_increment;
     st.world_widths = view.line_width_unit == view::WidthUnit::World;
+    st.cpfg_polygons = true;
     st.randomness = crate::ir::Randomness::Cpfg;
     st.colour = view.initial_color as usize;
     st.colour_step = view.color_increment as f64;

@@ -445,8 +445,9 @@ fn set_drawing(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
     true
 }
 
-/// `initial line width: w [unit]`: the unit, when given, also sets the line
-/// style, as cpfg does.
+/// `initial line width: w [style]`: as cpfg's `ReadViewData` reads it, the
+/// style is a polygon in world units unless the word after the width
+/// starts with `p` (pixels) or `s` (shaded cylinders, world units).
 fn set_line_width(v: &mut View, c: &Command, d: &mut Diagnostics) {
     let Some(w) = num(c.value) else {
         c.bad(d, "a number");
@@ -459,18 +460,17 @@ fn set_line_width(v: &mut View, c: &Command, d: &mut Diagnostics) {
         .nth(1)
         .unwrap_or("")
         .to_ascii_lowercase();
-    match unit.as_str() {
-        "" => {}
-        "p" | "pixel" | "pixels" => {
-            v.line_width_unit = WidthUnit::Pixels;
-            v.line_style = LineStyle::Pixel;
+    let (unit, style) = match unit.chars().next() {
+        Some('p') => (WidthUnit::Pixels, LineStyle::Pixel),
+        Some('s') => (WidthUnit::World, LineStyle::Cylinder),
+        None => (WidthUnit::World, LineStyle::Polygon),
+        Some(_) => {
+            c.bad(d, "a width and `pixels` or `shaded`");
+            (WidthUnit::World, LineStyle::Polygon)
         }
-        "s" | "shaded" | "polygon" | "polygons" => {
-            v.line_width_unit = WidthUnit::World;
-            v.line_style = LineStyle::Cylinder;
-        }
-        _ => c.bad(d, "a width and `pixels` or `shaded`"),
-    }
+    };
+    v.line_width_unit = unit;
+    v.line_style = style;
 }
 
 /// Tropisms, torques and elasticity (manual §8.1.8).
@@ -1087,11 +1087,19 @@ mod tests {
         assert_eq!(v.angle, 30.0);
         let (v, _) = read_view("angle increment: 30\nangle factor: 8\n");
         assert_eq!(v.angle, 45.0);
-        let (v, _) = read_view("initial line width: 0.1 s\n");
-        assert_eq!(
-            (v.line_width_unit, v.line_style),
-            (WidthUnit::World, LineStyle::Cylinder)
-        );
+        // cpfg's `ReadViewData`: a polygon in world units unless the word
+        // after the width starts with `p` (pixels) or `s` (cylinders).
+        for (line, unit, style) in [
+            ("0.1 s", WidthUnit::World, LineStyle::Cylinder),
+            ("0.1 shaded", WidthUnit::World, LineStyle::Cylinder),
+            (".1", WidthUnit::World, LineStyle::Polygon),
+            ("3 pixels", WidthUnit::Pixels, LineStyle::Pixel),
+            ("3 p", WidthUnit::Pixels, LineStyle::Pixel),
+        ] {
+            let (v, d) = read_view(&format!("initial line width: {line}\n"));
+            assert!(d.is_empty(), "{line}: {d:?}");
+            assert_eq!((v.line_width_unit, v.line_style), (unit, style), "{line}");
+        }
     }
 
     #[test]

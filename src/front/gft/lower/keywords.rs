@@ -113,6 +113,7 @@ impl Cx<'_> {
                     _ => crate::ir::Randomness::Graftal,
                 }
             }
+            "cpfg-polygons" => self.sys.settings.cpfg_polygons = true,
             "widths" => {
                 self.sys.settings.world_widths = k.args.first().is_some_and(|a| a.text() == "world")
             }
