@@ -123,7 +123,8 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::KeepTwist
         | TurtleOp::SetContour
         | TurtleOp::SubLsystemCall
-        | TurtleOp::SubLsystemReturn => Does::Cpfg,
+        | TurtleOp::SubLsystemReturn
+        | TurtleOp::Label => Does::Cpfg,
     }
 }
 

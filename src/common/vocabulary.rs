@@ -65,7 +65,7 @@ const STL: &[&str] = &["[", "]", "F", "L", "R", "+", "-"];
 const CPFG: &[&str] = &[
     "[", "]", "F", "G", "f", "g", "+", "-", "&", "^", "\\", "/", "|", ";", ",", "#", "!", "{", "}",
     ".", "@O", "@o", "@c", "@M", "@R", "@v", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@#", "@Ts", "@Ti",
-    "@T", "@Td", "@Tp", "@Tf", "?P", "?H", "?L", "?U", "?", "$",
+    "@T", "@Td", "@Tp", "@Tf", "?P", "?H", "?L", "?U", "?", "$", "@L",
 ];
 const FRACTINT: &[&str] = &["[", "]", "+", "-", "|", "!", "f", "g", "d", "m"];
 
@@ -190,6 +190,7 @@ fn cpfg(name: &str) -> Option<TurtleOp> {
         "?U" => TurtleOp::Query(QueryKind::Up),
         "?" => TurtleOp::SubLsystemCall,
         "$" => TurtleOp::SubLsystemReturn,
+        "@L" => TurtleOp::Label,
         _ => return brackets(name),
     })
 }

@@ -71,6 +71,8 @@ struct Machine<'p> {
     par: &'p Program,
     /// The curves `curveX` and `curveGAL` read.
     contours: &'p [Contour],
+    /// The value of each string literal: its index among the system's.
+    strings: std::collections::HashMap<&'p str, f64>,
     globals: Vec<f64>,
     arrays: Vec<Vec<f64>>,
     rng: Rng,
@@ -110,9 +112,11 @@ impl<'p> Machine<'p> {
                 Some(Lcg48::cpfg_choice(file_seed)),
             ),
         };
+        let strings = sys.strings().into_iter().enumerate();
         Machine {
             par,
             contours: &sys.contours,
+            strings: strings.map(|(k, s)| (s, k as f64)).collect(),
             globals,
             arrays,
             rng,
@@ -177,7 +181,7 @@ impl<'p> Machine<'p> {
     fn eval(&mut self, e: &Expr, locals: &mut [f64]) -> Result<f64, Halt> {
         Ok(match e {
             Expr::Num(v) => *v,
-            Expr::Str(_) => 0.0,
+            Expr::Str(s) => self.strings.get(s.as_str()).copied().unwrap_or(0.0),
             Expr::Var(Var::Local(i)) => locals.get(*i as usize).copied().unwrap_or(0.0),
             Expr::Var(Var::Global(i)) => self.globals.get(*i as usize).copied().unwrap_or(0.0),
             Expr::Element(a, subs) => match self.element(*a, subs, locals)? {

@@ -646,6 +646,10 @@ pub enum TurtleOp {
     /// cpfg `$`: back to the L-system and the scale before the matching
     /// call.
     SubLsystemReturn,
+    /// cpfg `@L("format", p1, …)`: the text printf makes of the format (a
+    /// string literal, [`System::strings`]) and the values, written at the
+    /// turtle's place in the current colour (`@L("label")`: the label).
+    Label,
 }
 
 /// How [`TurtleOp::Elasticity`] changes an elasticity by its value `v`,
@@ -1307,6 +1311,46 @@ impl System {
             || self.cut.is_some()
             || self.policy == RulePolicy::Weighted
             || !self.sub_lsystems.is_empty()
+    }
+
+    /// Whether any symbol writes a label ([`TurtleOp::Label`]).
+    pub fn writes_labels(&self) -> bool {
+        self.interpretation.contains(&Some(TurtleOp::Label))
+    }
+
+    /// The string literals of the system's successors and axiom, each once,
+    /// in the order first met (the axiom, then the productions, the
+    /// phases and the sub-L-systems' in order). A literal's value in an
+    /// expression is its index here: what a [`TurtleOp::Label`] formats.
+    pub fn strings(&self) -> Vec<&str> {
+        fn walk<'s>(e: &'s Expr, out: &mut Vec<&'s str>) {
+            match e {
+                Expr::Str(s) if !out.contains(&s.as_str()) => out.push(s),
+                Expr::Element(_, xs) | Expr::Call(_, xs) => xs.iter().for_each(|x| walk(x, out)),
+                Expr::Unary(_, a) => walk(a, out),
+                Expr::Binary(_, a, b) => {
+                    walk(a, out);
+                    walk(b, out)
+                }
+                Expr::Cond(c, a, b) => [c, a, b].into_iter().for_each(|x| walk(x, out)),
+                _ => {}
+            }
+        }
+        let mut out = Vec::new();
+        let phases = [&self.decomposition, &self.homomorphism];
+        let subs = self.sub_lsystems.iter().flat_map(|s| {
+            (s.productions.iter())
+                .chain(&s.decomposition.productions)
+                .chain(&s.homomorphism.productions)
+        });
+        let productions = (self.productions.iter())
+            .chain(phases.iter().flat_map(|p| &p.productions))
+            .chain(subs);
+        let successors = productions.flat_map(|p| p.alternatives.iter().flat_map(|a| &a.args));
+        for e in self.axiom_args.iter().chain(successors).flatten() {
+            walk(e, &mut out);
+        }
+        out
     }
 
     /// Whether a right context reads past `id` ([`ContextFilter`]):

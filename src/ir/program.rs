@@ -96,7 +96,9 @@ pub enum Builtin {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Expr {
     Num(f64),
-    /// A string literal (an argument of the I/O functions): its value is 0.
+    /// A string literal (a label's format, an argument of the I/O
+    /// functions): its value is its index among the system's literals
+    /// ([`super::System::strings`]).
     Str(String),
     Var(Var),
     /// An array element: array index, subscripts.
@@ -265,8 +267,8 @@ impl Expr {
     pub fn constant(&self) -> Option<f64> {
         Some(match self {
             Expr::Num(v) => *v,
-            Expr::Str(_) => 0.0,
-            Expr::Var(_) | Expr::Element(..) => return None,
+            // Its value is its place among the system's literals.
+            Expr::Str(_) | Expr::Var(_) | Expr::Element(..) => return None,
             Expr::Unary(op, a) => op.apply(a.constant()?),
             Expr::Binary(op, x, y) => op.apply(x.constant()?, y.constant()?),
             Expr::Cond(c, x, y) => {

@@ -14,6 +14,7 @@ mod shade;
 pub mod shared;
 pub mod simplify;
 pub mod svg;
+pub mod text;
 
 use crate::ir::look::Camera;
 use crate::ir::Rgb;
@@ -308,6 +309,8 @@ pub struct Picture {
     pub background_alpha: u8,
     pub runs: Vec<Run>,
     pub polygons: Vec<(Rgb, Vec<[f64; 2]>)>,
+    /// Text written over the rest (cpfg labels).
+    pub labels: Vec<text::Placed>,
 }
 
 /// How near `p` is to the viewer (larger is nearer): the coordinate along
@@ -576,6 +579,17 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         };
         polygons.push((colour, disc_outline(fit.to_px(c), r)));
     }
+    let labels = g
+        .labels
+        .iter()
+        .filter_map(|l| {
+            Some(text::Placed {
+                at: fit.to_px(proj.project(l.at)?.0),
+                text: l.text.clone(),
+                colour: l.colour,
+            })
+        })
+        .collect();
     Picture {
         width: opts.width,
         height: opts.height,
@@ -583,6 +597,7 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         background_alpha: opts.background_alpha,
         runs,
         polygons,
+        labels,
     }
 }
 

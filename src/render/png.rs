@@ -92,6 +92,10 @@ pub fn draw_with(pic: &Picture, progress: &mut dyn FnMut(u64, u64)) -> Option<Pi
         drawn += count as u64;
         progress(drawn, total);
     }
+    // Opaque label pixels are the same premultiplied.
+    for l in &pic.labels {
+        super::text::write(pixmap.data_mut(), pic.width, 0, l);
+    }
     Some(pixmap)
 }
 
@@ -138,6 +142,7 @@ mod tests {
                     lines: vec![vec![[10.0, 16.0], [22.0, 16.0]]],
                 }],
                 polygons: Vec::new(),
+                labels: Vec::new(),
             };
             let pixmap = draw(&pic).unwrap();
             let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();

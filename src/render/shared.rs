@@ -51,6 +51,7 @@ pub fn picture(
             lines: pen.lines,
         }],
         polygons: Vec::new(),
+        labels: Vec::new(),
     }
 }
 

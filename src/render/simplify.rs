@@ -215,6 +215,7 @@ mod tests {
                 lines,
             }],
             polygons: Vec::new(),
+            labels: Vec::new(),
         }
     }
 

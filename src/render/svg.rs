@@ -153,6 +153,10 @@ pub fn write_with(pic: &Picture, detail: Detail) -> String {
             num(run.width)
         );
     }
+    for l in &pic.labels {
+        out.push_str(&super::text::svg(l));
+        out.push('\n');
+    }
     out.push_str("</svg>\n");
     out
 }
@@ -316,6 +320,17 @@ pub fn write_scene(
     for item in items {
         out.push_str(&item.svg);
         out.push('\n');
+    }
+    for l in &g.labels {
+        if let Some((xy, _)) = scene.proj.project(l.at) {
+            let placed = super::text::Placed {
+                at: scene.fit.to_px(xy),
+                text: l.text.clone(),
+                colour: l.colour,
+            };
+            out.push_str(&super::text::svg(&placed));
+            out.push('\n');
+        }
     }
     out.push_str("</svg>\n");
     out

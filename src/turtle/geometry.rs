@@ -63,12 +63,23 @@ pub struct Disc {
     pub index: u16,
 }
 
+/// Text written at a point, facing the viewer (a cpfg label `@L`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Label {
+    pub at: Vec3,
+    pub text: String,
+    pub colour: Rgb,
+    pub index: u16,
+}
+
 /// What the turtle drew.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Geometry {
     pub segments: Vec<Segment>,
     pub polygons: Vec<Polygon>,
     pub discs: Vec<Disc>,
+    /// Labels, drawn over everything else as cpfg writes them.
+    pub labels: Vec<Label>,
     /// Whether segment widths are in turtle units rather than pixels
     /// ([`crate::ir::Settings::world_widths`]).
     pub world_widths: bool,
@@ -151,6 +162,8 @@ pub trait Sink {
     fn segment(&mut self, s: Segment);
     fn polygon(&mut self, p: Polygon);
     fn disc(&mut self, d: Disc);
+    /// A label; only the pictures that write text keep it.
+    fn label(&mut self, _l: Label) {}
 }
 
 impl Sink for Geometry {
@@ -165,6 +178,9 @@ impl Sink for Geometry {
     fn disc(&mut self, d: Disc) {
         self.note(Drawn::Disc);
         self.discs.push(d);
+    }
+    fn label(&mut self, l: Label) {
+        self.labels.push(l);
     }
 }
 

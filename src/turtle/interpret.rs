@@ -89,6 +89,8 @@ struct Turtle<'a> {
     /// innermost last (cpfg's sub-L-system stack, apart from the turtle's:
     /// `]` does not leave a call).
     sub_scales: Vec<f64>,
+    /// The system's string literals, found at the first label.
+    strings: Option<Vec<String>>,
     /// Arena of the colour histories: (previous entry, colour).
     history: Vec<(u32, usize)>,
     /// The polygons being collected, innermost last: vertices and colour.
@@ -144,6 +146,7 @@ impl<'a> Turtle<'a> {
             state,
             stack: Vec::new(),
             sub_scales: Vec::new(),
+            strings: None,
             history: Vec::new(),
             open_polygons: Vec::new(),
             learned: Learned::default(),
@@ -260,6 +263,7 @@ impl<'a> Turtle<'a> {
             TurtleOp::SetContour => self.set_contour(args),
             TurtleOp::SubLsystemCall => self.enter_sub_lsystem(args),
             TurtleOp::SubLsystemReturn => self.leave_sub_lsystem(),
+            TurtleOp::Label => self.label(args),
         }
     }
 
@@ -619,6 +623,30 @@ impl Turtle<'_> {
 
 /// Colours, widths and lengths.
 impl Turtle<'_> {
+    /// cpfg `@L("format", p1, …)`: the format is the string literal the
+    /// first parameter stands for ([`System::strings`]), printf'd with the
+    /// rest; a label without a format writes nothing.
+    fn label(&mut self, args: Args) {
+        let Some(k) = args.get(0) else { return };
+        let strings = self.strings.get_or_insert_with(|| {
+            (self.sys.strings().into_iter())
+                .map(str::to_string)
+                .collect()
+        });
+        let Some(format) = strings.get(k as usize).filter(|_| k >= 0.0) else {
+            return;
+        };
+        let values: Vec<f64> = (1..).map_while(|i| args.get(i)).collect();
+        let text = super::label::printf(format, &values);
+        let colour = self.colour();
+        self.sink.label(super::Label {
+            at: self.state.pos,
+            text,
+            colour,
+            index: index_of(self.state.colour),
+        });
+    }
+
     /// cpfg `?(n, s)`: the scale becomes the enclosing call's times `s`,
     /// and the line width follows it (`interpret.c`,
     /// `UpdateCurrentLsystem`). Without parameters it is not a call.

@@ -23,13 +23,17 @@ mod gencyl;
 mod geometry;
 pub mod instanced;
 mod interpret;
+mod label;
 mod run;
 mod state;
 mod tropism;
 
 pub use cost::drawn_cost;
 pub(crate) use geometry::index_of;
-pub use geometry::{grow_box, Disc, Drawn, Geometry, Origins, Polygon, Segment, Sink, TurtlePath};
+pub use geometry::{
+    grow_box, Disc, Drawn, Geometry, Label, Origins, Polygon, Segment, Sink, TurtlePath,
+};
+pub use label::printf;
 pub use run::{run, Learned, Run, WordSymbols};
 pub(crate) use state::{cross, dot};
 

@@ -986,3 +986,41 @@ fn colour_steps_wrap_and_polygon_steps_draw_their_edges() {
     assert_eq!(g.polygons.len(), 1);
     assert_eq!(g.polygons[0].points.len(), 4, "{:?}", g.polygons[0].points);
 }
+
+/// cpfg's `@L("format", …)` writes the text printf makes of its format
+/// and values at the turtle's place, in the turtle's colour, over the
+/// picture: in the geometry, in SVG as `<text>`, in PNG as pixels of
+/// that colour (05-Quantitative-info-flow-03-Borcher-Honda's counts).
+#[test]
+fn labels_are_written_where_the_turtle_stands() {
+    let text = "Lsystem: 1\nderivation length: 1\nAxiom: A(7)\n\
+                A(n) --> F(2);(3)@L(\"n=%d, %.1f\", n, n/2);(1)F\nendlsystem\n";
+    let l = common::object_file("label", "plant.l", text);
+    let dir = l.parent().unwrap();
+    std::fs::write(dir.join("plant.v"), "initial color: 1\n").unwrap();
+    let c = driver::compile(SourceFile::read(&l).unwrap());
+    assert!(
+        c.diagnostics.iter().all(|d| d.code.0 != "W0823"),
+        "{:#?}",
+        c.diagnostics
+    );
+    let sys = c.system.expect("compiles");
+    assert!(sys.writes_labels());
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    assert_eq!(g.labels.len(), 1);
+    assert_eq!(g.labels[0].text, "n=7, 3.5");
+    assert_eq!(g.labels[0].at, g.segments[0].b, "where the first F ended");
+    let colour = g.labels[0].colour;
+    let svg = common::graftal(&["render", l.to_str().unwrap(), "-o", "-", "--to", "svg"]);
+    assert!(svg.stdout.contains(">n=7, 3.5</text>"), "{}", svg.stdout);
+    let png = common::temp("label.png");
+    let out = common::graftal(&["render", l.to_str().unwrap(), "-o", png.to_str().unwrap()]);
+    assert_eq!(out.status, 0, "{}", out.stderr);
+    let pixels = common::rgba_pixels(&std::fs::read(&png).unwrap());
+    let written = pixels
+        .iter()
+        .filter(|p| [p[0], p[1], p[2]] == [colour.0, colour.1, colour.2])
+        .count();
+    // Only the label is drawn in its colour (the F after it is colour 1).
+    assert!(written > 20, "{written} pixels of the label's colour");
+}

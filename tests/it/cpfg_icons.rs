@@ -390,6 +390,14 @@ const NOT_COMPARABLE: &[(&str, &str)] = &[
          lines have a handful, and the file's 3-pixel lines cover 0.69 to 0.72 pixel across, a \
          scale of about 0.24; no file of the object gives the window's size",
     ),
+    (
+        "05-Quantitative-info-flow-03-Borcher-Honda",
+        "the thumbnail is a smooth downscale of cpfg's window: its labels (`@L` in colour 5, \
+         255,255,0 in tree.map, in the view's 10-pixel font) are 4 to 5 pixels tall and half \
+         as bright (117 to 137, 117 to 137, 0), among 403 colours; cpfg writes labels in \
+         pixels, unscaled, as graftal does (8-pixel glyphs in the full colour), and at the \
+         thumbnail's size those cover the plant; no file of the object gives the window's size",
+    ),
 ];
 
 /// What `draw` says of an object graftal refuses.

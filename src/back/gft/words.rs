@@ -344,6 +344,7 @@ pub fn operation(sys: &System, op: TurtleOp) -> String {
         TurtleOp::KeepTwist => "keep-twist".into(),
         TurtleOp::SubLsystemCall => "sub-lsystem-call".into(),
         TurtleOp::SubLsystemReturn => "sub-lsystem-return".into(),
+        TurtleOp::Label => "write-label".into(),
     }
 }
 

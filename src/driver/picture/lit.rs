@@ -24,8 +24,10 @@ pub(super) fn streams_lit(
         && sys.look.lighting.is_some()
         && !ropts.spline
         && !(layout && has_outline(sys))
-        // A scene is geometry beside the word's: drawn from what is stored.
+        // A scene is geometry beside the word's, and labels are written
+        // over the picture: drawn from what is stored.
         && sys.look.scene.is_empty()
+        && !sys.writes_labels()
 }
 
 /// Draws a lit system's word to a PNG straight from the turtle

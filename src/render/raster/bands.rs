@@ -37,6 +37,7 @@ pub(super) fn png_in_bands(
     let mut stream = writer.stream_writer().ok()?;
     let drawn = AtomicU64::new(0);
     let stripe = i64::from(STRIPE_PIXELS * ss);
+    let labels = scene.placed_labels(drawing);
     for i in 0..bands.count() {
         let (row, rows) = bands.band(i);
         let share_of = |share: usize| {
@@ -64,13 +65,17 @@ pub(super) fn png_in_bands(
                 .chain(others.into_iter().map(|t| t.join().unwrap_or_default()))
                 .collect()
         });
-        let pixels = interleave(
+        let mut pixels = interleave(
             &shares,
             (w * 4) as usize,
             rows as usize,
             STRIPE_PIXELS as usize,
-        );
-        std::io::Write::write_all(&mut stream, &pixels?).ok()?;
+        )?;
+        // Labels over everything, as cpfg writes its bitmaps.
+        for l in &labels {
+            crate::render::text::write(&mut pixels, w, row, l);
+        }
+        std::io::Write::write_all(&mut stream, &pixels).ok()?;
     }
     progress(total, total);
     stream.finish().ok()?;

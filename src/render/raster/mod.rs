@@ -64,6 +64,15 @@ enum Source<'d> {
 }
 
 impl<'d> Drawing<'d> {
+    /// The labels of a stored drawing (a replayed one has none: a system
+    /// with labels is drawn from what is stored).
+    fn labels(&self) -> &'d [crate::turtle::Label] {
+        match self.source {
+            Source::Stored(g) => &g.labels,
+            Source::Replayed(_) => &[],
+        }
+    }
+
     pub fn stored(g: &'d Geometry) -> Self {
         Drawing {
             source: Source::Stored(g),
@@ -200,6 +209,20 @@ impl<'a> Scene<'a> {
         let px = self.fit.to_px(xy);
         let depth = if self.proj.perspective() { -1.0 / z } else { z };
         Some([px[0] * self.ss, px[1] * self.ss, depth])
+    }
+
+    /// The drawing's labels placed in the picture's pixels.
+    fn placed_labels(&self, drawing: &Drawing<'_>) -> Vec<crate::render::text::Placed> {
+        (drawing.labels().iter())
+            .filter_map(|l| {
+                let [x, y, _] = self.to_samples(l.at)?;
+                Some(crate::render::text::Placed {
+                    at: [x / self.ss, y / self.ss],
+                    text: l.text.clone(),
+                    colour: l.colour,
+                })
+            })
+            .collect()
     }
 
     fn vert(&self, p: Vec3, c: Colour) -> Option<SVert> {

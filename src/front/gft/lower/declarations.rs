@@ -45,6 +45,7 @@ const SIMPLE_OPERATIONS: &[(&str, TurtleOp)] = &[
     ("keep-twist", TurtleOp::KeepTwist),
     ("sub-lsystem-call", TurtleOp::SubLsystemCall),
     ("sub-lsystem-return", TurtleOp::SubLsystemReturn),
+    ("write-label", TurtleOp::Label),
 ];
 
 /// The operations that take arguments.
