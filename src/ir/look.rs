@@ -26,6 +26,9 @@ pub struct Look {
     /// A scene drawn with the model, fixed in the world (cpfg's
     /// `background scene:` files).
     pub scene: Vec<ScenePolygon>,
+    /// Textures, numbered from 1 by the modules that choose them (cpfg's
+    /// `@Tx(n)` takes `textures[n - 1]`).
+    pub textures: Vec<super::texture::Texture>,
 }
 
 /// A polygon of a [`Look::scene`], in world coordinates, with the colour

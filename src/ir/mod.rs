@@ -216,6 +216,7 @@ pub mod graph;
 pub mod look;
 pub mod program;
 mod same;
+pub mod texture;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};

@@ -129,6 +129,7 @@ pub fn look(v: &View, palette: &[Rgb], materials: &[Option<Material>]) -> Look {
         background: Some(background),
         lighting: Some(lighting(v, materials)),
         camera: Some(camera(v)),
+        textures: Vec::new(),
     }
 }
 
