@@ -121,7 +121,8 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::Elasticity { .. }
         | TurtleOp::Untwist
         | TurtleOp::KeepTwist
-        | TurtleOp::SetContour => Does::Cpfg,
+        | TurtleOp::SetContour
+        | TurtleOp::SetTexture => Does::Cpfg,
     }
 }
 

@@ -20,6 +20,17 @@ pub fn translate(c: &Compiled, sys: &System, req: &back::Request) -> back::Trans
         angle_divisions: c.front.angle_divisions(sys),
     };
     let mut t = back::translate(sys, &c.spans, &c.file.text, &origin, req);
+    if !sys.look.textures().is_empty() {
+        // No target notation says textures yet (gft included): the
+        // translation draws untextured, and says so.
+        t.diagnostics.push(Diagnostic::global(
+            codes::TR_TEXTURES_DROPPED,
+            format!(
+                "the {} texture(s) of the source are not written: the translation draws untextured",
+                sys.look.textures().len()
+            ),
+        ));
+    }
     if req.lossy && !t.diagnostics.is_empty() {
         compare_pictures(sys, req, &mut t);
     }

@@ -638,6 +638,10 @@ pub enum TurtleOp {
     /// follow is contour `id` of [`System::contours`]; 0 or no parameter:
     /// the default circle.
     SetContour,
+    /// cpfg `@Tx(n)`: what the turtle draws next wears texture `n` of
+    /// [`look::Look::textures`] (counted from 1); 0 or no parameter: no
+    /// texture.
+    SetTexture,
 }
 
 /// How [`TurtleOp::Elasticity`] changes an elasticity by its value `v`,
@@ -1148,10 +1152,21 @@ pub struct Lowered {
 }
 
 /// A surface the turtle can place (a cpfg `~id`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct SurfaceMesh {
     pub name: String,
     pub triangles: Vec<[[f64; 3]; 3]>,
+    /// Per triangle, its corners' texture coordinates as a texture laid
+    /// once on each patch takes them (the patch's own parameters); empty
+    /// when the surface has none (it is then drawn untextured).
+    pub patch_uvs: Vec<[[f64; 2]; 3]>,
+    /// The same for a texture laid once across the whole surface (cpfg's
+    /// `S:`): the surface's x and y across its extent.
+    pub surface_uvs: Vec<[[f64; 2]; 3]>,
+    /// The texture the surface always wears (a cpfg `surface:` line's
+    /// texture file), an index of [`look::Look::textures`]; it takes
+    /// precedence over the turtle's.
+    pub texture: Option<u16>,
 }
 
 impl Default for System {

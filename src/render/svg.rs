@@ -333,6 +333,7 @@ mod tests {
             colour: Rgb(grey, grey, grey),
             index: 0,
             surface: false,
+            texture: None,
         };
         let g = Geometry {
             polygons: vec![square(1.0, 1), square(-1.0, 2)],

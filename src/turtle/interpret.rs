@@ -7,7 +7,7 @@ use super::run::{Learned, Record, Run};
 use super::state::{
     add_scaled, dot, hermite, Cylinder, State, DEFAULT_TANGENTS, NO_HISTORY, RENORMALISE_EVERY,
 };
-use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, TurtlePath, Vec3};
+use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, Textured, TurtlePath, Vec3};
 use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, SymbolId, System, TurtleOp};
 use crate::random::{Rng, Stream};
@@ -128,6 +128,7 @@ impl<'a> Turtle<'a> {
             cylinder: None,
             real: 0.0,
             contour: 0,
+            texture: None,
             tangents: DEFAULT_TANGENTS,
             radius_tangents: [[0.0; 2]; 2],
             scale_radius_tangents: false,
@@ -247,6 +248,7 @@ impl<'a> Turtle<'a> {
                 }
             }
             TurtleOp::SetContour => self.set_contour(args),
+            TurtleOp::SetTexture => self.set_texture(args),
         }
     }
 
@@ -440,6 +442,7 @@ impl Turtle<'_> {
                     colour,
                     index,
                     surface: false,
+                    texture: None,
                 });
             }
         }
@@ -563,6 +566,7 @@ impl Turtle<'_> {
                 colour,
                 index,
                 surface: false,
+                texture: None,
             });
         }
     }
@@ -615,6 +619,14 @@ impl Turtle<'_> {
                     && id >= 1.0
             })
             .map_or(0, |k| (k + 1).min(u16::MAX as usize) as u16);
+    }
+
+    /// `@Tx(n)`: texture `n` (from 1) of the look; 0, no parameter or a
+    /// number the look has no texture for: none.
+    fn set_texture(&mut self, args: Args) {
+        let n = args.get(0).unwrap_or(0.0);
+        let count = self.sys.look.textures().len() as f64;
+        self.state.texture = (n >= 1.0 && n <= count).then(|| (n as u16).saturating_sub(1));
     }
 
     /// Fractint's `<n` / `>n`: the colour `by` places up or down the
@@ -707,6 +719,7 @@ impl Turtle<'_> {
             colour,
             index: index_of(st.colour),
             surface: false,
+            texture: None,
         });
     }
 
@@ -723,7 +736,16 @@ impl Turtle<'_> {
         };
         let colour = self.colour();
         let st = &self.state;
-        for tri in &mesh.triangles {
+        let texture = mesh.texture.or(st.texture);
+        let per_surface = texture
+            .and_then(|t| self.sys.look.textures().get(usize::from(t)))
+            .is_some_and(|t| t.per_surface);
+        let uvs = if per_surface {
+            &mesh.surface_uvs
+        } else {
+            &mesh.patch_uvs
+        };
+        for (k, tri) in mesh.triangles.iter().enumerate() {
             let points = tri
                 .iter()
                 .map(|p| {
@@ -738,6 +760,10 @@ impl Turtle<'_> {
                 colour,
                 index: index_of(st.colour),
                 surface: true,
+                texture: texture.zip(uvs.get(k)).map(|(texture, uv)| Textured {
+                    texture,
+                    uvs: uv.to_vec(),
+                }),
             });
         }
     }

@@ -29,7 +29,9 @@ mod tropism;
 
 pub use cost::drawn_cost;
 pub(crate) use geometry::index_of;
-pub use geometry::{grow_box, Disc, Drawn, Geometry, Origins, Polygon, Segment, Sink, TurtlePath};
+pub use geometry::{
+    grow_box, Disc, Drawn, Geometry, Origins, Polygon, Segment, Sink, Textured, TurtlePath,
+};
 pub use run::{run, Learned, Run, WordSymbols};
 pub(crate) use state::{cross, dot};
 
@@ -73,6 +75,7 @@ mod tests {
             colour: Rgb(0, 0, 0),
             index: 0,
             surface: false,
+            texture: None,
         };
         let line = || Segment {
             a: [0.0; 3],

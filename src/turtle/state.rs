@@ -29,6 +29,9 @@ pub(super) struct State {
     /// The cross-section of generalized cylinders: an index into
     /// [`System::contours`] plus one, 0 for the default circle.
     pub(super) contour: u16,
+    /// The texture what is drawn wears (cpfg `@Tx`): an index of the
+    /// look's textures, `None` for none. Branches keep their own.
+    pub(super) texture: Option<u16>,
     /// The tangent factors a control point set here gets (cpfg `@Gt`): for
     /// the piece of cylinder arriving at it, and the one leaving it.
     pub(super) tangents: (f64, f64),

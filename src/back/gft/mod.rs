@@ -417,6 +417,7 @@ mod tests {
         s.surfaces.push(SurfaceMesh {
             name: "leaf".into(),
             triangles: vec![[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]],
+            ..Default::default()
         });
         s.contours.push(Contour {
             id: 1,

@@ -123,6 +123,11 @@ symbols than pfg has characters, the translation is not written.
 
 Translate with fewer steps (`-n`).";
 
+    TR_TEXTURES_DROPPED = "W0615", "textures not translated",
+"The source maps images on its surfaces (cpfg `texture:` lines and
+`@Tx`). No target notation writes textures yet, `.gft` included: the
+translation draws the same shapes in their own colours, untextured.";
+
     TR_PICTURE_DIFFERS = "W0614", "the approximated translation draws another picture",
 "After a `--lossy` translation, graftal draws the source and the
 translation (with the same steps, within small limits) and compares the

@@ -129,7 +129,6 @@ pub fn look(v: &View, palette: &[Rgb], materials: &[Option<Material>]) -> Look {
         background: Some(background),
         lighting: Some(lighting(v, materials)),
         camera: Some(camera(v)),
-        textures: Vec::new(),
     }
 }
 
@@ -168,6 +167,7 @@ fn lighting(v: &View, materials: &[Option<Material>]) -> Lighting {
         surface_ambient: v.surface_ambient,
         surface_diffuse: v.surface_diffuse,
         shadows: v.render_mode == view::RenderMode::Shadows,
+        textures: Vec::new(),
     }
 }
 

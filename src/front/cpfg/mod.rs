@@ -25,6 +25,7 @@ pub mod parser;
 pub mod preprocess;
 pub mod scene;
 pub mod surface;
+mod textures;
 mod tropisms;
 pub mod view;
 
@@ -148,6 +149,7 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     apply_view(&mut lowered.system, &view);
     beside.add_look(&mut lowered.system, path, &view, diags);
     beside.add_scenes(&mut lowered.system, &view, diags);
+    beside.add_textures(&mut lowered.system, &view, diags);
     lowered.system.program.functions = functions.functions;
     lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
@@ -601,9 +603,11 @@ impl<'a> Beside<'a> {
                 continue;
             };
             let name = format!("~{}", r.id);
+            let texture = self.surface_texture(sys, r, &mut missing);
             sys.surfaces.push(crate::ir::SurfaceMesh {
                 name: name.clone(),
-                triangles: surface_triangles(r, &surface),
+                texture,
+                ..surface_mesh(r, &surface)
             });
             let index = (sys.surfaces.len() - 1) as u16;
             if let Some(id) = sys.symbols.get(&name) {
@@ -829,8 +833,11 @@ fn apply_view(sys: &mut System, view: &view::View) {
 }
 
 /// The triangles of a surface placed as `r` says, in turtle coordinates,
-/// with no more than [`MAX_SURFACE_TRIANGLES`].
-fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[f64; 3]; 3]> {
+/// with no more than [`MAX_SURFACE_TRIANGLES`], and their texture
+/// coordinates: per patch its parameters, across the surface its x and y
+/// (cpfg's, along the turtle's L and H) over their extent, as cpfg's
+/// `set_texture_coordinates` lays a texture in the plane z = 0.
+fn surface_mesh(r: &view::SurfaceRef, surface: &surface::Surface) -> crate::ir::SurfaceMesh {
     let mut div = r.s_divisions.max(r.t_divisions).clamp(1, 8);
     while div > 1 && surface.patches.len() * 2 * (div * div) as usize > MAX_SURFACE_TRIANGLES {
         div -= 1;
@@ -843,16 +850,44 @@ fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[
     } else {
         r.scale
     };
-    surface
-        .triangles(div)
+    let (triangles, patch_uvs): (Vec<_>, Vec<_>) = surface
+        .triangles_with_parameters(div)
         .into_iter()
-        .map(|t| {
-            t.map(|p| {
+        .map(|(t, uv)| {
+            let placed = t.map(|p| {
                 let [h, l, u] = surface.to_turtle(p);
                 [l * scale, h * scale, u * scale]
-            })
+            });
+            (placed, uv)
         })
-        .collect()
+        .unzip();
+    let mut low = [f64::INFINITY; 2];
+    let mut high = [f64::NEG_INFINITY; 2];
+    for p in triangles.iter().flatten() {
+        for k in 0..2 {
+            low[k] = low[k].min(p[k]);
+            high[k] = high[k].max(p[k]);
+        }
+    }
+    // A surface flat along x or y spreads the texture's edge texel over it.
+    let across = |p: &[f64; 3], k: usize| {
+        let span = high[k] - low[k];
+        if span > 0.0 {
+            (p[k] - low[k]) / span
+        } else {
+            0.0
+        }
+    };
+    let surface_uvs = triangles
+        .iter()
+        .map(|t| t.map(|p| [across(&p, 0), across(&p, 1)]))
+        .collect();
+    crate::ir::SurfaceMesh {
+        triangles,
+        patch_uvs,
+        surface_uvs,
+        ..Default::default()
+    }
 }
 
 /// A `~` module whose surface the view file does not define: the rest of

@@ -450,7 +450,11 @@ impl Cx<'_> {
                 return;
             }
             let triangles = points.chunks(3).map(|t| [t[0], t[1], t[2]]).collect();
-            self.sys.surfaces.push(SurfaceMesh { name, triangles });
+            self.sys.surfaces.push(SurfaceMesh {
+                name,
+                triangles,
+                ..Default::default()
+            });
         }
         self.malformed(f, k, "surface NAME { (x, y, z) (x, y, z) (x, y, z) }");
     }
