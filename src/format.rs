@@ -145,7 +145,12 @@ fn items(text: &str) -> Vec<(Key, usize)> {
                 };
                 *count += 1;
                 out.push((Key::Keyword(k.name.clone(), which), k.line.start));
-                if let Some(Block::Productions(ps)) = &k.block {
+                let productions = match &k.block {
+                    Some(Block::Productions(ps)) => Some(ps),
+                    Some(Block::Lsystem { productions, .. }) => Some(productions),
+                    _ => None,
+                };
+                if let Some(ps) = productions {
                     for (i, p) in ps.iter().enumerate() {
                         out.push((Key::Production(k.name.clone(), i), p.span.start));
                     }

@@ -122,7 +122,9 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::Untwist
         | TurtleOp::KeepTwist
         | TurtleOp::SetContour
-        | TurtleOp::SetTexture => Does::Cpfg,
+        | TurtleOp::SetTexture
+        | TurtleOp::SubLsystemCall
+        | TurtleOp::SubLsystemReturn => Does::Cpfg,
     }
 }
 

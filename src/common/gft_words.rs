@@ -32,6 +32,8 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("array", false),
     ("decomposition", true),
     ("homomorphism", true),
+    ("label", false),
+    ("sub-lsystem", true),
     ("start", true),
     ("start-each", true),
     ("end-each", true),

@@ -16,6 +16,7 @@ mod bound;
 pub mod count;
 pub use bound::fewest_at;
 pub mod parametric;
+mod sub_lsystems;
 
 mod table;
 pub mod tree;

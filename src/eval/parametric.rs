@@ -9,12 +9,15 @@
 //! work (modules rewritten, loop iterations, recursion) by
 //! [`DeriveOptions::max_work`], so no model runs without end.
 
+use super::sub_lsystems::Lsystems;
 use super::DeriveOptions;
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::look::{Contour, ContourRole};
 use crate::ir::program::{truth, BinOp, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::Randomness;
-use crate::ir::{Alternative, Formals, Production, RulePolicy, SymbolId, System, Word};
+use crate::ir::{
+    Alternative, ContextFilter, Formals, Production, RulePolicy, SymbolId, System, Word,
+};
 use crate::random::{Lcg48, Rng, Stream};
 
 /// Why evaluation stopped early.
@@ -631,13 +634,13 @@ impl Matcher {
 }
 
 /// The productions of a group, indexed by their first predecessor symbol.
-struct Group<'p> {
-    prods: &'p [Production],
+pub(super) struct Group<'p> {
+    pub(super) prods: &'p [Production],
     by_first: Vec<Vec<u32>>,
 }
 
 impl<'p> Group<'p> {
-    fn new(prods: &'p [Production], symbols: usize) -> Self {
+    pub(super) fn new(prods: &'p [Production], symbols: usize) -> Self {
         let mut by_first = vec![Vec::new(); symbols];
         for (k, p) in prods.iter().enumerate() {
             if let Some(first) = p.predecessor.first() {
@@ -652,7 +655,10 @@ impl<'p> Group<'p> {
 
 struct Engine<'a> {
     m: Machine<'a>,
-    matcher: Matcher,
+    /// Each L-system's context matching ([`Lsystems::labels`]' order).
+    matchers: Vec<Matcher>,
+    /// The L-system rewriting now.
+    current: usize,
     max_symbols: usize,
     locals: Vec<f64>,
 }
@@ -684,11 +690,12 @@ impl Engine<'_> {
             ctx_i + 1
         };
         let left = (p.left.as_slice(), p.formals.left.as_slice());
-        if !p.left.is_empty() && !self.matcher.left(ctx, ctx_i, left, &mut self.locals) {
+        let matcher = &self.matchers[self.current];
+        if !p.left.is_empty() && !matcher.left(ctx, ctx_i, left, &mut self.locals) {
             return false;
         }
         let right = (p.right.as_slice(), p.formals.right.as_slice());
-        !(!p.right.is_empty() && !self.matcher.right(ctx, ctx_end, right, &mut self.locals))
+        !(!p.right.is_empty() && !matcher.right(ctx, ctx_end, right, &mut self.locals))
     }
 
     /// Tries the productions of `group` at module `i` of `word` (contexts
@@ -828,24 +835,36 @@ impl Engine<'_> {
         Ok(())
     }
 
-    /// One parallel rewriting of `word` with `group`.
-    fn step(&mut self, group: &Group<'_>, word: &Word, choice: RulePolicy) -> Result<Word, Halt> {
+    /// One parallel rewriting of `word`, each module by the productions
+    /// of the L-system it belongs to (`groups`, [`Lsystems`]' order).
+    fn step(
+        &mut self,
+        lsystems: &Lsystems,
+        groups: &[Group<'_>],
+        word: &Word,
+        choice: RulePolicy,
+    ) -> Result<Word, Halt> {
         let mut out = Word::new();
         let mut i = 0;
         let draw_each = choice == RulePolicy::Weighted;
+        let mut calls = lsystems.calls();
         while i < word.len() {
             if let (Some(lcg), true) = (&mut self.m.choice, draw_each) {
                 self.m.drawn = Some(lcg.next_f64());
             }
+            self.current = calls.current();
+            let group = &groups[self.current];
             let applied = self.apply(group, (word, i), (word, i), choice, &mut out)?;
             self.m.drawn = None;
-            match applied {
-                Some(n) => i += n.max(1),
+            let consumed = match applied {
+                Some(n) => n.max(1),
                 None => {
                     out.push(word.0[i], word.args(i));
-                    i += 1;
+                    1
                 }
-            }
+            };
+            calls.pass(word, i, i + consumed);
+            i += consumed;
             if out.len() > self.max_symbols {
                 return Err(Halt::Work);
             }
@@ -853,23 +872,27 @@ impl Engine<'_> {
         Ok(out)
     }
 
-    /// Rewrites each module of `word` with `group` recursively, up to
-    /// `depth` times (decomposition, homomorphism). Contexts are matched in
-    /// `word`. `origins`, when given, receives for each output module the
-    /// index of the module of `word` it came from.
+    /// Rewrites each module of `word` recursively (decomposition,
+    /// homomorphism) with the productions of the L-system it belongs to,
+    /// up to that phase's depth (`phases`, [`Lsystems`]' order). Contexts
+    /// are matched in `word`. `origins`, when given, receives for each
+    /// output module the index of the module of `word` it came from.
     fn recursive(
         &mut self,
-        group: &Group<'_>,
+        lsystems: &Lsystems,
+        phases: &[(Group<'_>, u32)],
         word: &Word,
-        depth: u32,
         choice: RulePolicy,
         mut origins: Option<&mut Vec<u32>>,
     ) -> Result<Word, Halt> {
         let mut out = Word::new();
         let mut i = 0;
         let mut scratch = Word::new();
+        let mut calls = lsystems.calls();
         while i < word.len() {
             scratch.clear();
+            self.current = calls.current();
+            let (group, depth) = (&phases[self.current].0, phases[self.current].1);
             let consumed = match self.apply(group, (word, i), (word, i), choice, &mut scratch)? {
                 Some(n) => {
                     let sub =
@@ -888,6 +911,7 @@ impl Engine<'_> {
                     1
                 }
             };
+            calls.pass(word, i, i + consumed);
             i += consumed;
             if out.len() > self.max_symbols {
                 return Err(Halt::Work);
@@ -1000,17 +1024,24 @@ fn halt_error(h: Halt, opts: &DeriveOptions, len: usize) -> Diagnostic {
     }
 }
 
-fn matcher(sys: &System) -> Matcher {
-    let table = |skips: &dyn Fn(SymbolId) -> bool| {
-        (0..sys.symbols.len())
-            .map(|i| skips(SymbolId(i as u32)))
-            .collect()
+/// The context matching of each L-system of `sys` ([`Lsystems`]' order).
+fn matchers(sys: &System) -> Vec<Matcher> {
+    let matcher = |filter: &ContextFilter| {
+        let table = |skips: &dyn Fn(SymbolId) -> bool| {
+            (0..sys.symbols.len())
+                .map(|i| skips(SymbolId(i as u32)))
+                .collect()
+        };
+        Matcher {
+            ignored: table(&|s| filter.skips(s)),
+            ignored_on_the_right: table(&|s| filter.skips_on_the_right(s)),
+            ring: sys.ring,
+        }
     };
-    Matcher {
-        ignored: table(&|s| sys.is_ignored(s)),
-        ignored_on_the_right: table(&|s| sys.is_ignored_on_the_right(s)),
-        ring: sys.ring,
-    }
+    std::iter::once(&sys.context)
+        .chain(sys.sub_lsystems.iter().map(|s| &s.context))
+        .map(matcher)
+        .collect()
 }
 
 /// The axiom with its parameters evaluated (after the start block ran).
@@ -1040,12 +1071,18 @@ pub fn derive(
 ) -> Result<(Word, Globals), Diagnostic> {
     super::refuse_early(sys, opts)?;
     let n = sys.symbols.len();
-    let main = Group::new(&sys.productions, n);
-    let decomposition = Group::new(&sys.decomposition.productions, n);
+    let lsystems = Lsystems::of(sys);
+    let productions: Vec<Group> = std::iter::once(&sys.productions)
+        .chain(sys.sub_lsystems.iter().map(|s| &s.productions))
+        .map(|p| Group::new(p, n))
+        .collect();
+    let decomposition = Lsystems::phases(sys, |s| &s.decomposition, |s| &s.decomposition);
+    let decomposes = decomposition.iter().any(|(g, _)| !g.prods.is_empty());
     let choice = sys.policy;
     let mut e = Engine {
         m: Machine::new(sys, opts.seed, opts.max_work),
-        matcher: matcher(sys),
+        matchers: matchers(sys),
+        current: 0,
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
     };
@@ -1074,15 +1111,9 @@ pub fn derive(
             if let Some(c) = cut_symbol {
                 cut(&mut word, c);
             }
-            let mut next = e.step(&main, &word, choice)?;
-            if !sys.decomposition.productions.is_empty() {
-                next = e.recursive(
-                    &decomposition,
-                    &next,
-                    sys.decomposition.depth.max(1),
-                    choice,
-                    None,
-                )?;
+            let mut next = e.step(&lsystems, &productions, &word, choice)?;
+            if decomposes {
+                next = e.recursive(&lsystems, &decomposition, &next, choice, None)?;
             }
             word = next;
             len = word.len();
@@ -1120,10 +1151,10 @@ pub fn homomorphism(
     opts: &DeriveOptions,
 ) -> Result<(Word, Vec<u32>), Diagnostic> {
     let phase = &sys.homomorphism;
-    if phase.productions.is_empty() {
+    let phases = Lsystems::phases(sys, |s| &s.homomorphism, |s| &s.homomorphism);
+    if phases.iter().all(|(g, _)| g.prods.is_empty()) {
         return Ok((word.clone(), (0..word.len() as u32).collect()));
     }
-    let group = Group::new(&phase.productions, sys.symbols.len());
     let seed = phase.seed.unwrap_or(0).wrapping_add(opts.seed);
     let mut m = Machine::new(sys, seed, opts.max_work);
     m.set_values(values);
@@ -1137,16 +1168,17 @@ pub fn homomorphism(
     };
     let mut e = Engine {
         m,
-        matcher: matcher(sys),
+        matchers: matchers(sys),
+        current: 0,
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
     };
     let mut origins = Vec::new();
     let out = e
         .recursive(
-            &group,
+            &Lsystems::of(sys),
+            &phases,
             word,
-            phase.depth.max(1),
             sys.policy,
             Some(&mut origins),
         )

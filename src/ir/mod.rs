@@ -642,6 +642,15 @@ pub enum TurtleOp {
     /// [`look::Look::textures`] (counted from 1); 0 or no parameter: no
     /// texture.
     SetTexture,
+    /// cpfg `?(n, s)`: the modules that follow, up to the matching
+    /// [`TurtleOp::SubLsystemReturn`], belong to sub-L-system `n`
+    /// ([`System::sub_lsystems`]); the turtle's scale (step lengths,
+    /// sizes) and its line width are multiplied by `s` (1 without).
+    /// Without parameters it does nothing.
+    SubLsystemCall,
+    /// cpfg `$`: back to the L-system and the scale before the matching
+    /// call.
+    SubLsystemReturn,
 }
 
 /// How [`TurtleOp::Elasticity`] changes an elasticity by its value `v`,
@@ -834,6 +843,23 @@ pub struct Phase {
     pub seed: Option<u64>,
 }
 
+/// A cpfg sub-L-system (an `lsystem: n` block after the file's first):
+/// the productions, decomposition, homomorphism and context filter that
+/// rewrite and draw the modules between a [`TurtleOp::SubLsystemCall`]
+/// naming it and the matching [`TurtleOp::SubLsystemReturn`] (cpfg's
+/// `?(n, s)` … `$`). cpfg ignores a called L-system's axiom and
+/// derivation length; its blocks run with the system's own
+/// ([`System::program`]).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SubLsystem {
+    /// The number a call names it by.
+    pub label: u32,
+    pub productions: Vec<Production>,
+    pub decomposition: Phase,
+    pub homomorphism: Phase,
+    pub context: ContextFilter,
+}
+
 /// Which symbols context matching sees. The brackets keep their meaning
 /// in a left context always, and in a right context unless the filter
 /// skips them: cpfg's `consider:` skips every symbol it does not list,
@@ -846,6 +872,35 @@ pub enum ContextFilter {
     Ignore(Vec<SymbolId>),
     /// See only these symbols (cpfg `#consider`).
     Consider(Vec<SymbolId>),
+}
+
+impl ContextFilter {
+    /// Whether context matching skips `id` (brackets aside: they open and
+    /// close branches, never skipped).
+    pub fn skips(&self, id: SymbolId) -> bool {
+        match self {
+            ContextFilter::Ignore(set) => set.contains(&id),
+            ContextFilter::Consider(set) => {
+                id != SymbolId::OPEN && id != SymbolId::CLOSE && !set.contains(&id)
+            }
+        }
+    }
+
+    /// Whether a right context reads past `id`: as [`Self::skips`], and
+    /// the brackets too when a `Consider` filter does not list them.
+    pub fn skips_on_the_right(&self, id: SymbolId) -> bool {
+        match self {
+            ContextFilter::Ignore(set) => set.contains(&id),
+            ContextFilter::Consider(set) => !set.contains(&id),
+        }
+    }
+}
+
+impl Default for ContextFilter {
+    /// Nothing skipped.
+    fn default() -> Self {
+        ContextFilter::Ignore(Vec::new())
+    }
 }
 
 /// Derivation and drawing settings.
@@ -1141,6 +1196,12 @@ pub struct System {
     pub contours: Vec<look::Contour>,
     /// Background, light, materials and camera of its pictures.
     pub look: look::Look,
+    /// The number sub-L-system calls name this system by (cpfg's
+    /// `lsystem: n` of the file's first L-system; 1 by default).
+    pub label: u32,
+    /// The L-systems that rewrite and draw the parts of the word the calls
+    /// hand them ([`SubLsystem`]).
+    pub sub_lsystems: Vec<SubLsystem>,
 }
 
 /// What a front end makes of a source: the system and where its parts
@@ -1199,6 +1260,8 @@ impl System {
             surfaces: Vec::new(),
             contours: Vec::new(),
             look: look::Look::default(),
+            label: 1,
+            sub_lsystems: Vec::new(),
         };
         sys.set_interpretation(SymbolId::OPEN, TurtleOp::Push);
         sys.set_interpretation(SymbolId::CLOSE, TurtleOp::Pop);
@@ -1253,27 +1316,20 @@ impl System {
             || self.ring
             || self.cut.is_some()
             || self.policy == RulePolicy::Weighted
+            || !self.sub_lsystems.is_empty()
     }
 
     /// Whether a right context reads past `id` ([`ContextFilter`]):
     /// as [`System::is_ignored`], and the brackets too when a
     /// `Consider` filter does not list them.
     pub fn is_ignored_on_the_right(&self, id: SymbolId) -> bool {
-        match &self.context {
-            ContextFilter::Ignore(set) => set.contains(&id),
-            ContextFilter::Consider(set) => !set.contains(&id),
-        }
+        self.context.skips_on_the_right(id)
     }
 
     /// Whether context matching skips `id` (brackets aside: they open and
     /// close branches, never skipped).
     pub fn is_ignored(&self, id: SymbolId) -> bool {
-        match &self.context {
-            ContextFilter::Ignore(set) => set.contains(&id),
-            ContextFilter::Consider(set) => {
-                id != SymbolId::OPEN && id != SymbolId::CLOSE && !set.contains(&id)
-            }
-        }
+        self.context.skips(id)
     }
 }
 

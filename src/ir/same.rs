@@ -9,7 +9,7 @@
 //! two floats print alike exactly when their bits agree, NaN payloads
 //! aside).
 
-use super::{Phase, Production, SeedItem, SymbolId, System, Word};
+use super::{ContextFilter, Phase, Production, SeedItem, SymbolId, System, Word};
 use std::collections::BTreeMap;
 use std::fmt::Debug;
 
@@ -33,7 +33,9 @@ impl System {
         let cut = |s: &System| s.cut.map(|c| label(s, c));
         debug("cut", &cut(self), &cut(other))?;
         debug("policy", &self.policy, &other.policy)?;
-        same.context()?;
+        same.context("context", &self.context, &other.context)?;
+        debug("label", &self.label, &other.label)?;
+        same.sub_lsystems()?;
         debug("settings", &self.settings, &other.settings)?;
         debug("rotations", &self.rotations, &other.rotations)?;
         debug("colours", &self.colours, &other.colours)?;
@@ -283,19 +285,41 @@ impl Same<'_> {
 
     /// The filter's kind and its symbols as a set (the order of a list of
     /// ignored symbols means nothing).
-    fn context(&self) -> Result<(), String> {
-        use super::ContextFilter::{Consider, Ignore};
-        let set = |s: &System| {
-            let (kind, ids) = match &s.context {
-                Ignore(ids) => ("ignore", ids),
-                Consider(ids) => ("consider", ids),
+    fn context(&self, path: &str, a: &ContextFilter, b: &ContextFilter) -> Result<(), String> {
+        let set = |s: &System, f: &ContextFilter| {
+            let (kind, ids) = match f {
+                ContextFilter::Ignore(ids) => ("ignore", ids),
+                ContextFilter::Consider(ids) => ("consider", ids),
             };
             let mut names: Vec<String> = ids.iter().map(|&i| label(s, i)).collect();
             names.sort();
             names.dedup();
             (kind, names)
         };
-        debug("context", &set(self.a), &set(self.b))
+        debug(path, &set(self.a, a), &set(self.b, b))
+    }
+
+    /// Each sub-L-system, in order, as the main one is compared.
+    fn sub_lsystems(&self) -> Result<(), String> {
+        let (a, b) = (&self.a.sub_lsystems, &self.b.sub_lsystems);
+        debug("sub_lsystems.len()", &a.len(), &b.len())?;
+        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+            let at = format!("sub_lsystems[{i}]");
+            debug(format!("{at}.label"), &x.label, &y.label)?;
+            self.productions(&format!("{at}.productions"), &x.productions, &y.productions)?;
+            self.phase(
+                &format!("{at}.decomposition"),
+                &x.decomposition,
+                &y.decomposition,
+            )?;
+            self.phase(
+                &format!("{at}.homomorphism"),
+                &x.homomorphism,
+                &y.homomorphism,
+            )?;
+            self.context(&format!("{at}.context"), &x.context, &y.context)?;
+        }
+        Ok(())
     }
 
     /// Seed items: words by their symbols' names, terms field by field.
@@ -364,7 +388,14 @@ impl System {
         };
         add(&self.axiom.0);
         let phases = [&self.decomposition, &self.homomorphism];
-        let all = (self.productions.iter()).chain(phases.iter().flat_map(|p| &p.productions));
+        let subs = self.sub_lsystems.iter().flat_map(|s| {
+            (s.productions.iter())
+                .chain(&s.decomposition.productions)
+                .chain(&s.homomorphism.productions)
+        });
+        let all = (self.productions.iter())
+            .chain(phases.iter().flat_map(|p| &p.productions))
+            .chain(subs);
         for p in all {
             add(&p.left);
             add(&p.predecessor);

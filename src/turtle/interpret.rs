@@ -85,6 +85,10 @@ struct Turtle<'a> {
     state: State,
     /// The states of the enclosing branches.
     stack: Vec<State>,
+    /// The scale in force inside each sub-L-system call the turtle is in,
+    /// innermost last (cpfg's sub-L-system stack, apart from the turtle's:
+    /// `]` does not leave a call).
+    sub_scales: Vec<f64>,
     /// Arena of the colour histories: (previous entry, colour).
     history: Vec<(u32, usize)>,
     /// The polygons being collected, innermost last: vertices and colour.
@@ -132,6 +136,7 @@ impl<'a> Turtle<'a> {
             tangents: DEFAULT_TANGENTS,
             radius_tangents: [[0.0; 2]; 2],
             scale_radius_tangents: false,
+            scale: 1.0,
         };
         let mut turtle = Turtle {
             sys,
@@ -139,6 +144,7 @@ impl<'a> Turtle<'a> {
             rng: Rng::new(seed, Stream::Turtle),
             state,
             stack: Vec::new(),
+            sub_scales: Vec::new(),
             history: Vec::new(),
             open_polygons: Vec::new(),
             learned: Learned::default(),
@@ -249,6 +255,8 @@ impl<'a> Turtle<'a> {
             }
             TurtleOp::SetContour => self.set_contour(args),
             TurtleOp::SetTexture => self.set_texture(args),
+            TurtleOp::SubLsystemCall => self.enter_sub_lsystem(args),
+            TurtleOp::SubLsystemReturn => self.leave_sub_lsystem(),
         }
     }
 
@@ -292,7 +300,8 @@ impl Turtle<'_> {
     #[inline(always)]
     fn forward(&mut self, direction: Vec3, draw: bool, args: Args) {
         let a = self.state.pos;
-        let b = add_scaled(a, direction, args.get(0).unwrap_or(self.state.length));
+        let step = args.get(0).unwrap_or(self.state.length) * self.state.scale;
+        let b = add_scaled(a, direction, step);
         self.state.pos = b;
         self.record_position();
         if let Some((points, _)) = self.open_polygons.last_mut() {
@@ -604,6 +613,39 @@ impl Turtle<'_> {
 
 /// Colours, widths and lengths.
 impl Turtle<'_> {
+    /// cpfg `?(n, s)`: the scale becomes the enclosing call's times `s`,
+    /// and the line width follows it (`interpret.c`,
+    /// `UpdateCurrentLsystem`). Without parameters it is not a call.
+    fn enter_sub_lsystem(&mut self, args: Args) {
+        if args.get(0).is_none() {
+            return;
+        }
+        let outer = self.sub_scales.last().copied().unwrap_or(1.0);
+        let inner = outer * args.get(1).unwrap_or(1.0);
+        self.sub_scales.push(inner);
+        self.rescale(outer, inner);
+    }
+
+    /// cpfg `$`: back to the enclosing call's scale; an unmatched `$` is
+    /// ignored, as cpfg ignores it.
+    fn leave_sub_lsystem(&mut self) {
+        let Some(inner) = self.sub_scales.pop() else {
+            return;
+        };
+        let outer = self.sub_scales.last().copied().unwrap_or(1.0);
+        self.rescale(inner, outer);
+    }
+
+    /// The turtle's scale goes from `from` to `to`, and its line width by
+    /// the same ratio (a zero scale leaves the width as it is rather than
+    /// dividing by it).
+    fn rescale(&mut self, from: f64, to: f64) {
+        self.state.scale = to;
+        if from != 0.0 && (to / from).is_finite() {
+            self.state.width *= to / from;
+        }
+    }
+
     /// cpfg `@#(id)`: the contour of that id becomes the cross-section of
     /// generalized cylinders; 0, no parameter or an id no contour has: the
     /// circle.
@@ -690,7 +732,7 @@ impl Turtle<'_> {
     /// units), else of the line width.
     fn disc(&mut self, args: Args) {
         let (diameter, pixels) = match args.get(0) {
-            Some(d) => (d.abs(), false),
+            Some(d) => (d.abs() * self.state.scale, false),
             None => (self.state.width, !self.sys.settings.world_widths),
         };
         let colour = self.colour();
@@ -706,7 +748,7 @@ impl Turtle<'_> {
     /// `@c`: a circle in the plane of H and L, as a 24-gon.
     fn circle(&mut self, args: Args) {
         let st = &self.state;
-        let r = args.get(0).unwrap_or(st.width).abs() / 2.0;
+        let r = args.get(0).map_or(st.width, |d| d * st.scale).abs() / 2.0;
         let points = (0..24)
             .map(|k| {
                 let (s, c) = (k as f64 * std::f64::consts::TAU / 24.0).sin_cos();
@@ -729,10 +771,11 @@ impl Turtle<'_> {
         let Some(mesh) = self.sys.surfaces.get(k as usize) else {
             return;
         };
+        let k = self.state.scale;
         let scale: Vec3 = match (args.get(0), args.get(1), args.get(2)) {
-            (Some(x), Some(y), Some(z)) => [x, y, z],
-            (Some(s), _, _) => [s, s, s],
-            _ => [1.0, 1.0, 1.0],
+            (Some(x), Some(y), Some(z)) => [x * k, y * k, z * k],
+            (Some(s), _, _) => [s * k; 3],
+            _ => [k; 3],
         };
         let colour = self.colour();
         let st = &self.state;

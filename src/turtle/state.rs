@@ -41,6 +41,10 @@ pub(super) struct State {
     /// Whether the radius parts of the tangents are scaled by the distance
     /// between control points (cpfg `@Gr(s)`).
     pub(super) scale_radius_tangents: bool,
+    /// What step lengths and sizes are multiplied by: the product of the
+    /// scales of the sub-L-system calls the turtle is in (cpfg's
+    /// `scale_factor`), 1 outside them.
+    pub(super) scale: f64,
 }
 
 #[derive(Clone, Copy, Debug)]

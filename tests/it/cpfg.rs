@@ -312,9 +312,9 @@ fn all_but_three_corpus_objects_render() {
         }
     }
     eprintln!("{drawn}/95 drawn; refused:\n{}", refused.join("\n"));
-    // The three: an exercise left with `?` blanks, Sedge's sub-L-systems,
-    // and Sierpinski, whose growth only its environment program decides.
-    assert!(drawn >= 92, "{drawn}/95 drawn:\n{}", refused.join("\n"));
+    // The two: an exercise left with `?` blanks, and Sierpinski, whose
+    // growth only its environment program decides.
+    assert_eq!(drawn, 93, "{drawn}/95 drawn:\n{}", refused.join("\n"));
 }
 
 /// Damaged cpfg files (bytes cut, doubled or replaced at random, from

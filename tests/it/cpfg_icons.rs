@@ -364,6 +364,14 @@ const NOT_COMPARABLE: &[(&str, &str)] = &[
          as is (IoU 0.79, 0.26 mirrored). The rules were changed after the thumbnail \
          (description: updated 2020-11-08)",
     ),
+    (
+        "11-CPFG-Sedge",
+        "the thumbnail is framed by hand on the top of the plant: the rules branch at two nodes \
+         (`A(a,t)` with t == 10, at a = 10 and 21), each with a leaf and a female spike, and the \
+         thumbnail shows one leaf and one spike rising from its bottom edge, which cuts the stem \
+         below them; its male spike is brown from `sedge.map2`, which `specifications` names \
+         and the object lacks (W0806)",
+    ),
 ];
 
 /// What `draw` says of an object graftal refuses.
@@ -373,7 +381,6 @@ const REFUSED: &str = "not read";
 /// graftal's own: work left, each with what is known of the cause. Like
 /// `NOT_COMPARABLE`, each must still miss the thresholds.
 const KNOWN_GAPS: &[(&str, &str)] = &[
-    ("11-CPFG-Sedge", "refused: sub-L-systems are not supported (E0839)"),
     (
         "04-Signaling-10-mycelis-realistic",
         "fewer flower heads open than in cpfg's picture; cause not found",

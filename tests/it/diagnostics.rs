@@ -272,7 +272,7 @@ fn each_linf_problem_has_its_code_and_all_errors_come_in_one_run() {
 #[test]
 fn cpfg_refusals_have_codes_of_their_own() {
     let src = "lsystem: 1\nderivation length: 2\naxiom: A(1)\n\
-               A(x) --> ?(1, 2) B(curveX(1, x))\nB(x) -o> A(x)\nendlsystem\n";
+               A(x) --> ?(3, 2) B(curveX(1, x))\nB(x) -o> A(x)\nendlsystem\n";
     let c = compile(SourceFile::new("refusals.l", src));
     let found: Vec<&str> = c.diagnostics.iter().map(|d| d.code.0).collect();
     let expected = [
@@ -352,7 +352,7 @@ fn cpfg_mistakes_made_in_silence_are_each_said() {
     assert_eq!(key, "derivaton length");
     assert_eq!(d.fix.unwrap().replacement, "derivation length");
     assert_eq!(at("W0827", 0).0, "A(1,2)");
-    let (dollar, d) = at("E0839", 0);
+    let (dollar, d) = at("W0825", 0);
     assert_eq!(
         (dollar.as_str(), d.fix.unwrap().replacement.as_str()),
         ("$", "@v")

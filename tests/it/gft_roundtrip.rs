@@ -166,7 +166,7 @@ fn every_cpfg_object_that_compiles_reads_back_exactly() {
     });
     let t = check_all(systems);
     eprintln!("cpfg: {t:?}");
-    assert_eq!(t.exact, 93, "{t:?}");
+    assert_eq!(t.exact, 94, "{t:?}");
 }
 
 /// LinF files with intervals, guards, named rotations and length factors.

@@ -31,6 +31,7 @@ mod cpfg_icons;
 mod cpfg_objects;
 mod cpfg_random;
 mod cpfg_shapes;
+mod cpfg_sub_lsystems;
 mod depth;
 mod diagnostics;
 mod evaluation;

@@ -70,6 +70,7 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     }
     phase(&mut out, sys, &sp, "decomposition", &sys.decomposition);
     phase(&mut out, sys, &sp, "homomorphism", &sys.homomorphism);
+    sub_lsystems(&mut out, sys, &sp);
     if let Some(st) = &sys.structure {
         look::structure(&mut out, sys, &sp, st);
     }
@@ -129,13 +130,7 @@ fn rewriting(out: &mut String, sys: &System, sp: &Spelling) {
     if sys.policy == crate::ir::RulePolicy::Weighted {
         out.push_str("choose weighted\n");
     }
-    let (key, ids) = match &sys.context {
-        crate::ir::ContextFilter::Ignore(ids) => ("ignore", ids),
-        crate::ir::ContextFilter::Consider(ids) => ("consider", ids),
-    };
-    if key == "consider" || !ids.is_empty() {
-        let _ = writeln!(out, "{key} {}", sp.symbols(ids).trim_end());
-    }
+    context(out, sp, &sys.context, "");
     if sys.ring {
         out.push_str("ring\n");
     }
@@ -291,6 +286,11 @@ fn phase(out: &mut String, sys: &System, sp: &Spelling, key: &str, ph: &Phase) {
         return;
     }
     let _ = write!(out, "{key} depth {}", ph.depth);
+    phase_rest(out, sys, sp, ph);
+}
+
+/// A phase's seed and block, after its key and depth.
+fn phase_rest(out: &mut String, sys: &System, sp: &Spelling, ph: &Phase) {
     if let Some(seed) = ph.seed {
         let _ = write!(out, " seed {seed}");
     }
@@ -299,6 +299,42 @@ fn phase(out: &mut String, sys: &System, sp: &Spelling, key: &str, ph: &Phase) {
         production(out, sys, sp, p, "  ");
     }
     out.push_str("}\n");
+}
+
+/// An `ignore` or `consider` line, none for an empty `ignore`.
+fn context(out: &mut String, sp: &Spelling, filter: &crate::ir::ContextFilter, indent: &str) {
+    let (key, ids) = match filter {
+        crate::ir::ContextFilter::Ignore(ids) => ("ignore", ids),
+        crate::ir::ContextFilter::Consider(ids) => ("consider", ids),
+    };
+    if key == "consider" || !ids.is_empty() {
+        let _ = writeln!(out, "{indent}{key} {}", sp.symbols(ids).trim_end());
+    }
+}
+
+/// The main L-system's label (when not 1) and each sub-L-system: its
+/// block, then its phases (docs/gft.md §5).
+fn sub_lsystems(out: &mut String, sys: &System, sp: &Spelling) {
+    if sys.label != 1 {
+        let _ = writeln!(out, "label {}", sys.label);
+    }
+    for sub in &sys.sub_lsystems {
+        let _ = writeln!(out, "sub-lsystem {} {{", sub.label);
+        context(out, sp, &sub.context, "  ");
+        for p in &sub.productions {
+            production(out, sys, sp, p, "  ");
+        }
+        out.push_str("}\n");
+        for (key, ph) in [
+            ("decomposition", &sub.decomposition),
+            ("homomorphism", &sub.homomorphism),
+        ] {
+            if *ph != Phase::default() {
+                let _ = write!(out, "{key} lsystem {} depth {}", sub.label, ph.depth);
+                phase_rest(out, sys, sp, ph);
+            }
+        }
+    }
 }
 
 #[cfg(test)]

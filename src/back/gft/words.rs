@@ -343,6 +343,8 @@ pub fn operation(sys: &System, op: TurtleOp) -> String {
         TurtleOp::Elasticity { tropism, change } => elasticity(tropism, change),
         TurtleOp::Untwist => "untwist".into(),
         TurtleOp::KeepTwist => "keep-twist".into(),
+        TurtleOp::SubLsystemCall => "sub-lsystem-call".into(),
+        TurtleOp::SubLsystemReturn => "sub-lsystem-return".into(),
     }
 }
 

@@ -9,18 +9,22 @@ codes! { CPFG_LSYSTEM;
     CPFG_UNSUPPORTED = "E0830", "object productions are not supported",
 "graftal reads the cpfg dialect of `.l`, but not object productions
 (`A -o> …`): cpfg builds them as instanced objects, which graftal does
-not have. Sub-L-systems (E0839) and missing curves (E0840) have codes of
-their own. The rest of the file is still checked.
+not have. Missing curves (E0840) have a code of their own. The rest of the file is still checked.
 
 Example:
     A -o> F[+F]F     <- write `A --> F[+F]F`";
 
-    CPFG_SUB_LSYSTEM = "E0839", "sub-L-systems are not supported",
-"A sub-L-system call (`?(n, s)`) starts L-system n of the file at run
-time, and `$` returns from it. graftal reads only the first L-system of a
-file and has no run-time calls, so a file that uses them is not drawn.
-The error is given once per file. Write the sub-L-system's productions
-into the main L-system.";
+    CPFG_SUB_LSYSTEM = "E0839", "a sub-L-system call names no L-system",
+"A sub-L-system call `?(n, s)` hands the modules after it, up to the
+matching `$`, to the L-system labelled n (`lsystem: n`): its productions
+rewrite them and its homomorphism draws them, at s times the size. No
+L-system of this file (its own `#include`s counted) has the label the
+call names.
+
+Example:
+    lsystem: 1
+    A --> ?(2, 0.5)B$      <- needs an `lsystem: 2` block with B's productions
+    endlsystem";
 
     CPFG_NO_CURVE = "E0840", "curve not loaded",
 "`curveX`, `curveY`, `curveZ` and `curveGAL` read a curve that the view
@@ -101,10 +105,14 @@ past cpfg's ten. The rest of the picture is drawn as cpfg draws it.";
 `seed:` statement, so it is deterministic and cpfg ignores the probability.
 Add `seed: n` after `lsystem:` to make it stochastic.";
 
-    CPFG_LATER_LSYSTEM = "W0825", "a later L-system is not read",
-"The file holds more than one `lsystem:`. The first is the model; the
-others are sub-L-systems, which only `?(n,s)` modules call. graftal reads
-the first and reports sub-L-system calls as unsupported.";
+    CPFG_STRAY_RETURN = "W0825", "`$` returns from no sub-L-system",
+"In cpfg, `$` ends a sub-L-system call `?(n, s)`: the modules after it
+belong to the calling L-system again. This file has a single L-system, so
+the `$` returns from nothing and cpfg ignores it. A `$` is more often
+pfg's and LinF's roll to horizontal, which cpfg writes `@v`.
+
+Example:
+    A --> F$F      <- cpfg's roll to horizontal is `@v`: A --> F@vF";
 
     CPFG_NO_USER_FUNCTION = "W0828", "user function not given",
 "`func(id, x)` reads user function `id` (counted from 1) among the

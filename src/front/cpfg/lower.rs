@@ -11,8 +11,8 @@ use crate::front::repeats::Repeats;
 use crate::front::suggest::Suggester;
 use crate::ir::program::{ArrayDecl, Builtin, Expr, Place, Program, Stmt, Var};
 use crate::ir::{
-    Alternative, ContextFilter, Formals, Phase, Production, RulePolicy, Span, SpanTable, SymbolId,
-    System, TurtleOp, Word,
+    Alternative, ContextFilter, Formals, Phase, Production, RulePolicy, Span, SpanTable,
+    SubLsystem, SymbolId, System, TurtleOp, Word,
 };
 use std::collections::HashMap;
 
@@ -54,11 +54,14 @@ struct Lowerer<'d> {
     /// The input and output functions warned about (W0822), each once.
     warned_io: std::collections::HashSet<String>,
     warned_env: bool,
-    /// Whether a sub-L-system call was reported: one error says the file
-    /// needs them, not one per call.
-    warned_sub: bool,
-    /// The first `lsystem:` after the first L-system's end.
-    later_lsystem: Option<Span>,
+    /// The sub-L-system calls whose label is a number, with their spans:
+    /// each must name an L-system of the file.
+    calls: Vec<(f64, Span)>,
+    /// The first `$`: without sub-L-systems and calls it returns from
+    /// nothing.
+    first_return: Option<Span>,
+    /// Whether any module is a call `?(…)`.
+    called: bool,
     /// The first `@#` and whether any `@Gs` starts a generalized
     /// cylinder: contours are drawn only on those.
     first_contour: Option<Span>,
@@ -100,9 +103,12 @@ impl Lowerer<'_> {
             "@Gs" => self.cylinder_started = true,
             _ => {}
         }
-        if m.name == "$" || (m.name == "?" && !m.args.is_empty()) {
-            if !std::mem::replace(&mut self.warned_sub, true) {
-                self.diags.push(sub_lsystem(m));
+        if m.name == "$" {
+            self.first_return.get_or_insert(m.span.clone());
+        } else if m.name == "?" {
+            self.called |= !m.args.is_empty();
+            if let Some(ExprKind::Num(label)) = m.args.first().map(|a| &a.kind) {
+                self.calls.push((*label, m.span.clone()));
             }
         } else if m.name == "?E" && !self.warned_env {
             self.warned_env = true;
@@ -608,28 +614,22 @@ impl Lowerer<'_> {
     }
 }
 
-/// The error for the first sub-L-system module `m` (`?(n, s)` or `$`) of
-/// a file. A `$` is more often pfg's and LinF's roll to horizontal, which
-/// cpfg writes `@v`: the help says so and the fix writes it.
-fn sub_lsystem(m: &ast::Module) -> Diagnostic {
-    let d = Diagnostic::at(
-        codes::CPFG_SUB_LSYSTEM,
-        m.span.clone(),
-        "sub-L-systems are not supported",
+/// The warning for the first `$` of a file that has no sub-L-system: it
+/// returns from nothing (cpfg ignores it). Such a `$` is more often pfg's
+/// and LinF's roll to horizontal, which cpfg writes `@v`: the fix writes it.
+fn stray_return(span: Span) -> Diagnostic {
+    Diagnostic::at(
+        codes::CPFG_STRAY_RETURN,
+        span.clone(),
+        "`$` returns from no sub-L-system",
     )
-    .with_note("reported here once for every `?(n, s)` and `$` of the file");
-    if m.name == "$" {
-        d.with_label("`$` returns from a sub-L-system in cpfg")
-            .with_note("to use a sub-L-system, write its productions into this L-system")
-            .with_fix(
-                m.span.clone(),
-                "@v".into(),
-                "for the roll to horizontal (`$` in pfg and LinF), cpfg writes `@v`".into(),
-            )
-    } else {
-        d.with_label("`?(n, s)` calls sub-L-system n")
-            .with_help("write the sub-L-system's productions into this L-system")
-    }
+    .with_label("`$` ends a sub-L-system call `?(n, s)` in cpfg")
+    .with_note("the file has one L-system: cpfg ignores this `$`")
+    .with_fix(
+        span,
+        "@v".into(),
+        "for the roll to horizontal (`$` in pfg and LinF), cpfg writes `@v`".into(),
+    )
 }
 
 /// `d` with a help naming the nearest of `candidates` to `name`, when one
@@ -675,6 +675,9 @@ struct Gathered {
     /// `seed:`: the system chooses among productions by weight, with this
     /// added to the run's seed.
     seed: Option<u64>,
+    /// `ignore:` or `consider:`, for a sub-L-system (the main one's goes
+    /// straight into the system).
+    context: Option<ContextFilter>,
 }
 
 impl Gathered {
@@ -691,12 +694,10 @@ impl Gathered {
         sys.productions = self.productions;
         sys.decomposition = self.decomposition;
         sys.homomorphism = self.homomorphism;
-        let phases = [&mut sys.decomposition, &mut sys.homomorphism];
-        let all =
-            (sys.productions.iter_mut()).chain(phases.into_iter().flat_map(|p| &mut p.productions));
-        for p in all {
-            p.tidy();
-        }
+        tidy(
+            &mut sys.productions,
+            [&mut sys.decomposition, &mut sys.homomorphism],
+        );
         sys.program = self.program;
         sys.ring = self.ring;
         sys.settings.seed = self.seed;
@@ -704,6 +705,14 @@ impl Gathered {
             sys.policy = RulePolicy::Weighted;
         }
         sys.cut = sys.symbols.get("%");
+    }
+}
+
+/// Tidies every production of an L-system and of its phases.
+fn tidy(productions: &mut [Production], phases: [&mut Phase; 2]) {
+    let all = (productions.iter_mut()).chain(phases.into_iter().flat_map(|p| &mut p.productions));
+    for p in all {
+        p.tidy();
     }
 }
 
@@ -724,6 +733,10 @@ struct Reading {
     lsystem_span: Option<Span>,
     axiom_seen: bool,
     par: Gathered,
+    /// Whether this is a sub-L-system (not the file's first).
+    sub: bool,
+    /// The number `lsystem:` gives it (1 when it gives none).
+    label: u32,
 }
 
 /// The stages an item may stand in, and where it stands.
@@ -767,8 +780,9 @@ impl<'d> Lowerer<'d> {
             warned_not_drawn: Default::default(),
             warned_io: Default::default(),
             warned_env: false,
-            warned_sub: false,
-            later_lsystem: None,
+            calls: Vec::new(),
+            first_return: None,
+            called: false,
             first_contour: None,
             cylinder_started: false,
             repeats: Repeats::default(),
@@ -780,24 +794,32 @@ impl<'d> Lowerer<'d> {
 }
 
 impl Lowerer<'_> {
-    /// The items of the file's first L-system; a later one is reported.
-    fn first_lsystem<'f>(&mut self, file: &'f ast::File) -> &'f [Item] {
-        let first_end = file
-            .items
-            .iter()
-            .position(|i| matches!(i, Item::EndLsystem(_)))
-            .map_or(file.items.len(), |p| p + 1);
-        if let Some(Item::Lsystem { span, .. }) = file.items[first_end..]
-            .iter()
-            .find(|i| matches!(i, Item::Lsystem { .. }))
-        {
-            self.later_lsystem = Some(span.clone());
+    /// The items of each L-system of the file, the first (the main one)
+    /// from the file's start: what stands before its `lsystem:` is
+    /// reported there.
+    fn lsystems(file: &ast::File) -> Vec<&[Item]> {
+        let mut out = Vec::new();
+        let mut start = 0;
+        while start < file.items.len() {
+            let end = file.items[start..]
+                .iter()
+                .position(|i| matches!(i, Item::EndLsystem(_)))
+                .map_or(file.items.len(), |p| start + p + 1);
+            out.push(&file.items[start..end]);
+            start = match file.items[end..]
+                .iter()
+                .position(|i| matches!(i, Item::Lsystem { .. }))
+            {
+                Some(p) => end + p,
+                None => break,
+            };
         }
-        &file.items[..first_end]
+        if out.is_empty() {
+            out.push(&file.items[..]);
+        }
+        out
     }
 
-    /// A later L-system is reported unless the sub-L-system calls were:
-    /// that error already says the file needs what graftal lacks.
     /// cpfg also sweeps a contour along plain `F` cylinders; graftal only
     /// along generalized cylinders (`@Gs` … `@Ge`), so a file that sets
     /// contours and starts none draws round lines where cpfg does not.
@@ -815,16 +837,31 @@ impl Lowerer<'_> {
         }
     }
 
-    fn report_later_lsystem(&mut self) {
-        match self.later_lsystem.take() {
-            Some(span) if !self.warned_sub => self.diags.push(
-                Diagnostic::at(
-                    codes::CPFG_LATER_LSYSTEM,
-                    span,
-                    "only the first L-system of a file is read",
-                )
-                .with_label("a sub-L-system"),
-            ),
+    /// Reports each call naming no L-system of the file, and a `$` in a
+    /// file without sub-L-systems or calls (it returns from nothing).
+    fn report_calls(&mut self) {
+        let labels: Vec<u32> = std::iter::once(self.sys.label)
+            .chain(self.sys.sub_lsystems.iter().map(|s| s.label))
+            .collect();
+        let named = |v: f64| labels.iter().any(|&l| f64::from(l) == v.trunc());
+        for (label, span) in std::mem::take(&mut self.calls) {
+            if !named(label) {
+                let list: Vec<String> = labels.iter().map(u32::to_string).collect();
+                self.report(codes::CPFG_SUB_LSYSTEM, || {
+                    Diagnostic::at(
+                        codes::CPFG_SUB_LSYSTEM,
+                        span,
+                        format!("no L-system of this file is labelled {label}"),
+                    )
+                    .with_label("calls a sub-L-system")
+                    .with_help(format!("the file's L-systems: {}", list.join(", ")))
+                });
+            }
+        }
+        match self.first_return.take() {
+            Some(span) if self.sys.sub_lsystems.is_empty() && !self.called => {
+                self.diags.push(stray_return(span))
+            }
             _ => {}
         }
     }
@@ -927,8 +964,9 @@ impl Lowerer<'_> {
     /// Reads one item in its stage.
     fn item(&mut self, item: &Item, rd: &mut Reading) {
         match item {
-            Item::Lsystem { span, .. } => {
+            Item::Lsystem { span, label } => {
                 rd.lsystem_span = Some(span.clone());
+                rd.label = label.trim().parse().unwrap_or(1);
                 rd.stage = Stage::Header;
             }
             Item::Seed(e, _) => {
@@ -942,9 +980,12 @@ impl Lowerer<'_> {
                 }
             }
             Item::DerivationLength(e, _) => {
-                self.sys.settings.steps = self
+                let steps = self
                     .constant(e, "the derivation length", MAX_DEPTH)
                     .map(|v| v as u64);
+                if !rd.sub {
+                    self.sys.settings.steps = steps;
+                }
             }
             Item::MaximumDepth(e, _) => {
                 let d = self
@@ -956,17 +997,29 @@ impl Lowerer<'_> {
                     rd.par.homomorphism.depth = d;
                 }
             }
-            Item::Ignore(v) => self.sys.context = ContextFilter::Ignore(self.context_symbols(v)),
-            Item::Consider(v) => {
-                self.sys.context = ContextFilter::Consider(self.context_symbols(v))
+            Item::Ignore(v) | Item::Consider(v) => {
+                let symbols = self.context_symbols(v);
+                let filter = if matches!(item, Item::Ignore(_)) {
+                    ContextFilter::Ignore(symbols)
+                } else {
+                    ContextFilter::Consider(symbols)
+                };
+                if rd.sub {
+                    rd.par.context = Some(filter);
+                } else {
+                    self.sys.context = filter;
+                }
             }
             Item::Axiom(mods, _) => {
                 let mut scope = Scope {
                     locals: Vec::new(),
                     global_block: false,
                 };
-                rd.par.axiom = self.calls(&mut scope, mods);
-                self.spans.axiom = mods.iter().map(|m| m.span.clone()).collect();
+                let axiom = self.calls(&mut scope, mods);
+                if !rd.sub {
+                    rd.par.axiom = axiom;
+                    self.spans.axiom = mods.iter().map(|m| m.span.clone()).collect();
+                }
                 rd.axiom_seen = true;
                 rd.stage = Stage::Productions;
             }
@@ -1058,6 +1111,54 @@ impl Lowerer<'_> {
     }
 }
 
+impl Lowerer<'_> {
+    /// Reads the items of one L-system into `par`; a sub-L-system's
+    /// (`sub`) axiom and derivation length are checked and not used, as
+    /// cpfg uses them only when the L-system runs alone.
+    fn read_lsystem(&mut self, items: &[Item], par: Gathered, sub: bool) -> Reading {
+        let mut rd = Reading {
+            stage: Stage::Before,
+            lsystem_span: None,
+            axiom_seen: false,
+            par,
+            sub,
+            label: 1,
+        };
+        for item in items {
+            if self.in_order(item, rd.stage) {
+                self.item(item, &mut rd);
+                self.repeats.end_item(self.diags, "on this line");
+            }
+        }
+        self.check_complete(&rd);
+        rd
+    }
+
+    /// A sub-L-system read into `rd`: its productions and phases as a
+    /// [`SubLsystem`], its blocks run after the main L-system's (cpfg runs
+    /// every L-system's).
+    fn add_sub_lsystem(&mut self, rd: Reading) {
+        let par = rd.par;
+        let program = &mut self.sys.program;
+        program.start.extend(par.program.start);
+        program.start_each.extend(par.program.start_each);
+        program.end_each.extend(par.program.end_each);
+        program.end.extend(par.program.end);
+        let mut sub = SubLsystem {
+            label: rd.label,
+            productions: par.productions,
+            decomposition: par.decomposition,
+            homomorphism: par.homomorphism,
+            context: par.context.unwrap_or_default(),
+        };
+        tidy(
+            &mut sub.productions,
+            [&mut sub.decomposition, &mut sub.homomorphism],
+        );
+        self.sys.sub_lsystems.push(sub);
+    }
+}
+
 /// Lowers `file` to a parametric [`System`].
 pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
     lower_with_curves(file, &[], diags)
@@ -1068,24 +1169,19 @@ pub fn lower(file: &ast::File, diags: &mut Diagnostics) -> Lowered {
 pub fn lower_with_curves(file: &ast::File, curves: &[u32], diags: &mut Diagnostics) -> Lowered {
     let mut l = Lowerer::new(diags);
     l.curves = curves.to_vec();
-    let items = l.first_lsystem(file);
-    let mut rd = Reading {
-        stage: Stage::Before,
-        lsystem_span: None,
-        axiom_seen: false,
-        par: Gathered::default(),
-    };
-    l.declare_globals(items, &mut rd.par.program);
-    for item in items {
-        if l.in_order(item, rd.stage) {
-            l.item(item, &mut rd);
-            l.repeats.end_item(l.diags, "on this line");
-        }
-    }
-    l.check_complete(&rd);
-    l.report_later_lsystem();
-    l.report_contours_without_cylinders();
+    let lsystems = Lowerer::lsystems(file);
+    let mut main = Gathered::default();
+    // Every L-system's arrays and globals are the file's.
+    l.declare_globals(&file.items, &mut main.program);
+    let rd = l.read_lsystem(lsystems[0], main, false);
     rd.par.into_system(&mut l.sys);
+    l.sys.label = rd.label;
+    for items in &lsystems[1..] {
+        let rd = l.read_lsystem(items, Gathered::default(), true);
+        l.add_sub_lsystem(rd);
+    }
+    l.report_calls();
+    l.report_contours_without_cylinders();
     Lowered {
         system: l.sys,
         spans: l.spans,

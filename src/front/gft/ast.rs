@@ -42,6 +42,12 @@ pub struct Keyword {
 #[derive(Clone, Debug)]
 pub enum Block {
     Productions(Vec<Production>),
+    /// `sub-lsystem N { … }`: its productions, and its `ignore` or
+    /// `consider` line (the keyword and the word) when it has one.
+    Lsystem {
+        productions: Vec<Production>,
+        context: Option<(String, Word)>,
+    },
     Statements(Vec<Stmt>),
     /// The lines of `outline`, `surface` and `contour`, as written.
     Lines(Vec<Vec<Arg>>),

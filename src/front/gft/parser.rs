@@ -37,6 +37,7 @@ const EXPRESSION_KEYWORDS: &[&str] = &[
     "colour",
     "colour-step",
     "seed",
+    "label",
 ];
 /// Keywords followed by a word.
 const WORD_KEYWORDS: &[&str] = &["axiom", "ignore", "consider", "cut"];
@@ -273,10 +274,34 @@ fn keyword_item(
             }
         }
         Block::Productions(ps)
+    } else if name == "sub-lsystem" {
+        lsystem_block(inner, diags)
     } else {
         Block::Statements(statements(inner, diags))
     });
     Some(kw)
+}
+
+/// The lines of `sub-lsystem N { … }`: productions, and an `ignore` or
+/// `consider` line (a line without `->` that starts with either).
+fn lsystem_block(inner: &[Tok<'_>], diags: &mut Diagnostics) -> Block {
+    let mut productions = Vec::new();
+    let mut context = None;
+    for l in inner.split(|t| t.0 == Token::Newline) {
+        match l {
+            [] => {}
+            [(Token::Ident(k @ ("ignore" | "consider")), _), rest @ ..]
+                if top_level(l, |t| *t == Token::Arrow).is_none() =>
+            {
+                context = Some((k.to_string(), word(rest, diags)));
+            }
+            _ => productions.extend(production(l, diags)),
+        }
+    }
+    Block::Lsystem {
+        productions,
+        context,
+    }
 }
 
 /// Whether a `seed` line is an STL seed (docs/gft.md §8), not the file's

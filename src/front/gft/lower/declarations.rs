@@ -44,6 +44,8 @@ const SIMPLE_OPERATIONS: &[(&str, TurtleOp)] = &[
     ("move-real", TurtleOp::ForwardReal { draw: false }),
     ("untwist", TurtleOp::Untwist),
     ("keep-twist", TurtleOp::KeepTwist),
+    ("sub-lsystem-call", TurtleOp::SubLsystemCall),
+    ("sub-lsystem-return", TurtleOp::SubLsystemReturn),
 ];
 
 /// The operations that take arguments.

@@ -6,13 +6,9 @@ use super::{err, groups, Cx, Locals};
 use crate::diagnostics::codes;
 use crate::front::gft::ast::{Arg, Block, Keyword};
 use crate::ir::program::ArrayDecl;
-use crate::ir::{ContextFilter, Rgb, RulePolicy};
+use crate::ir::{ContextFilter, Rgb, RulePolicy, SubLsystem};
 
 impl Cx<'_> {
-    fn once(&mut self, k: &Keyword) -> bool {
-        self.once_as(k, &k.name)
-    }
-
     /// Whether `k` is the first item under `key` (else reported, E0905).
     fn once_as(&mut self, k: &Keyword, key: &str) -> bool {
         if let Some(first) = self.settings.get(key) {
@@ -79,7 +75,9 @@ impl Cx<'_> {
             self.once_as(k, "structure seed");
             return;
         }
-        if !repeated.contains(&k.name.as_str()) && !self.once(k) || self.look_item(k) {
+        if !repeated.contains(&k.name.as_str()) && !self.once_as(k, &once_key(k))
+            || self.look_item(k)
+        {
             return;
         }
         match k.name.as_str() {
@@ -149,6 +147,12 @@ impl Cx<'_> {
             "colours" => self.colours(k),
             "graph" => self.graph(k),
             "decomposition" | "homomorphism" => self.phase(k),
+            "label" => {
+                if let Some(v) = self.whole(k) {
+                    self.sys.label = v.min(u64::from(u32::MAX)) as u32;
+                }
+            }
+            "sub-lsystem" => self.sub_lsystem(k),
             "start" | "start-each" | "end-each" | "end" => {
                 let Some(Block::Statements(s)) = &k.block else {
                     return;
@@ -270,10 +274,12 @@ impl Cx<'_> {
         let g = groups(&k.args);
         let mut depth = 0;
         let mut seed = None;
+        let mut lsystem = None;
         for pair in g.windows(2) {
             match (pair[0].0.as_str(), pair[1].0.parse::<u64>()) {
                 ("depth", Ok(v)) => depth = v.min(u32::MAX as u64) as u32,
                 ("seed", Ok(v)) => seed = Some(v),
+                ("lsystem", Ok(v)) => lsystem = Some(v.min(u64::from(u32::MAX)) as u32),
                 _ => {}
             }
         }
@@ -283,14 +289,75 @@ impl Cx<'_> {
                 ps.extend(self.production(p));
             }
         }
-        let phase = if k.name == "decomposition" {
-            &mut self.sys.decomposition
-        } else {
-            &mut self.sys.homomorphism
+        let decomposition = k.name == "decomposition";
+        let phase = match lsystem {
+            Some(label) => {
+                let sub = self.sub_named(label);
+                if decomposition {
+                    &mut sub.decomposition
+                } else {
+                    &mut sub.homomorphism
+                }
+            }
+            None if decomposition => &mut self.sys.decomposition,
+            None => &mut self.sys.homomorphism,
         };
         phase.productions = ps;
         phase.depth = depth;
         phase.seed = seed;
+    }
+
+    /// The sub-L-system labelled `label`, added when it is new (its
+    /// phases may come before its block).
+    fn sub_named(&mut self, label: u32) -> &mut SubLsystem {
+        let subs = &mut self.sys.sub_lsystems;
+        let at = match subs.iter().position(|s| s.label == label) {
+            Some(at) => at,
+            None => {
+                subs.push(SubLsystem {
+                    label,
+                    ..SubLsystem::default()
+                });
+                subs.len() - 1
+            }
+        };
+        &mut subs[at]
+    }
+
+    /// `sub-lsystem N { … }`: its productions and context filter.
+    fn sub_lsystem(&mut self, k: &Keyword) {
+        let Some(label) = k.args.first().and_then(|a| a.text().parse::<u32>().ok()) else {
+            self.diags.push(err(
+                codes::GFT_BAD_VALUE,
+                &k.line,
+                "`sub-lsystem` takes the L-system's number".to_string(),
+                "expected a whole number before `{`",
+                "write e.g. `sub-lsystem 2 { … }`",
+            ));
+            return;
+        };
+        let Some(Block::Lsystem {
+            productions,
+            context,
+        }) = &k.block
+        else {
+            return;
+        };
+        let ps: Vec<_> = productions
+            .iter()
+            .filter_map(|p| self.production(p))
+            .collect();
+        let filter = context.as_ref().map(|(key, w)| {
+            let ids = self.word(w, &mut Locals(Vec::new())).0.symbols().to_vec();
+            if key == "ignore" {
+                ContextFilter::Ignore(ids)
+            } else {
+                ContextFilter::Consider(ids)
+            }
+        });
+        let sub = self.sub_named(label);
+        sub.productions = ps;
+        sub.context = filter.unwrap_or_default();
     }
 
     pub(super) fn axiom(&mut self, k: &Keyword) {
@@ -299,5 +366,23 @@ impl Cx<'_> {
         self.sys.axiom = word;
         self.sys.axiom_args = args;
         self.spans.axiom = spans;
+    }
+}
+
+/// The key a keyword may be given once under: a phase or block of a
+/// sub-L-system is once per L-system.
+fn once_key(k: &Keyword) -> String {
+    let label = match k.name.as_str() {
+        "sub-lsystem" => k.args.first().map(|a| a.text().to_string()),
+        "decomposition" | "homomorphism" => k
+            .args
+            .windows(2)
+            .find(|w| w[0].text() == "lsystem")
+            .map(|w| w[1].text().to_string()),
+        _ => None,
+    };
+    match label {
+        Some(n) => format!("{} lsystem {n}", k.name),
+        None => k.name.clone(),
     }
 }
