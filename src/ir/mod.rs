@@ -1230,6 +1230,37 @@ pub struct SurfaceMesh {
     pub texture: Option<u16>,
 }
 
+impl SurfaceMesh {
+    /// The texture coordinates of a texture laid once across a surface of
+    /// `triangles` (cpfg's `set_texture_coordinates` lays it in the plane
+    /// z = 0): each corner's x and y over the surface's extent in them. A
+    /// surface flat along x or y spreads the texture's edge texel over
+    /// it. The `.gft` reader derives [`SurfaceMesh::surface_uvs`] so, as
+    /// the cpfg front end computes them.
+    pub fn extent_uvs(triangles: &[[[f64; 3]; 3]]) -> Vec<[[f64; 2]; 3]> {
+        let mut low = [f64::INFINITY; 2];
+        let mut high = [f64::NEG_INFINITY; 2];
+        for p in triangles.iter().flatten() {
+            for k in 0..2 {
+                low[k] = low[k].min(p[k]);
+                high[k] = high[k].max(p[k]);
+            }
+        }
+        let across = |p: &[f64; 3], k: usize| {
+            let span = high[k] - low[k];
+            if span > 0.0 {
+                (p[k] - low[k]) / span
+            } else {
+                0.0
+            }
+        };
+        triangles
+            .iter()
+            .map(|t| t.map(|p| [across(&p, 0), across(&p, 1)]))
+            .collect()
+    }
+}
+
 impl Default for System {
     fn default() -> Self {
         System::new()

@@ -41,29 +41,47 @@ impl System {
         debug("colours", &self.colours, &other.colours)?;
         same.structure()?;
         debug("graph", &self.graph, &other.graph)?;
-        let (a, b) = (untextured(self), untextured(other));
-        debug("surfaces", &a.surfaces, &b.surfaces)?;
+        debug("surfaces", &self.surfaces, &other.surfaces)?;
         debug("contours", &self.contours, &other.contours)?;
+        same_images(self, other)?;
+        let (a, b) = (without_images(self), without_images(other));
         debug("look", &a.look, &b.look)
     }
 }
 
-/// The surfaces and look of `sys` without texture data: no notation
-/// writes textures yet (a translation warns, W0615), so systems are the
-/// same whatever textures they carry.
-fn untextured(sys: &System) -> System {
+/// The decoded images of the textures, where both systems have them: an
+/// image is what its file held where the system was read (a `.gft` read
+/// in another folder than its source's may find none, W0904), so the
+/// texture's file name and settings say the system; but two decoded
+/// images of one texture must be the same pixels.
+fn same_images(a: &System, b: &System) -> Result<(), String> {
+    let (ta, tb) = (a.look.textures(), b.look.textures());
+    for (i, (x, y)) in ta.iter().zip(tb).enumerate() {
+        if let (Some(p), Some(q)) = (&x.image, &y.image) {
+            if p != q {
+                return Err(format!(
+                    "look.textures[{i}].image: {}×{} and {}×{} pixels differ",
+                    p.width(),
+                    p.height(),
+                    q.width(),
+                    q.height()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The look of `sys` without its textures' decoded images.
+fn without_images(sys: &System) -> System {
     let mut s = System {
-        surfaces: sys.surfaces.clone(),
         look: sys.look.clone(),
         ..System::new()
     };
-    for m in &mut s.surfaces {
-        m.patch_uvs.clear();
-        m.surface_uvs.clear();
-        m.texture = None;
-    }
     if let Some(l) = s.look.lighting.as_mut() {
-        l.textures.clear();
+        for t in &mut l.textures {
+            t.image = None;
+        }
     }
     s
 }

@@ -134,3 +134,120 @@ fn a_missing_texture_image_warns_at_its_line_and_draws_untextured() {
     assert!(!draw(&sys.unwrap(), 64).is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `object`'s `.gft` translation (no diagnostic: textures are written).
+fn to_gft(object: &str, l: &str) -> (System, String) {
+    let c = driver::compile(SourceFile::read(&corpus(object).join(l)).unwrap());
+    let sys = c.system.clone().unwrap();
+    let req = graftal::back::Request {
+        target: graftal::back::by_name("gft").unwrap(),
+        lossy: false,
+        steps: None,
+    };
+    let t = driver::translate(&c, &sys, &req);
+    assert!(t.diagnostics.is_empty(), "{object}: {:?}", t.diagnostics);
+    (sys, t.text.unwrap())
+}
+
+/// Reads `.gft` text as a file of `folder` (nothing is written there).
+fn read_gft(folder: &Path, text: &str) -> driver::Compiled {
+    let name = folder.join("translated.gft");
+    driver::compile(SourceFile::new(name.to_string_lossy(), text))
+}
+
+#[test]
+fn textured_objects_read_back_from_gft_the_same_images_included() {
+    for (object, l, file) in [
+        ("11-CPFG-TexturedSurfaces", "plant.l", "maple.png"),
+        ("11-CPFG-GeneralizedCylinder", "fractal.l", "squares.png"),
+        (
+            "02-Mod-vis-3D-06-comp-leaf-perspective",
+            "leaf.l",
+            "leaft.png",
+        ),
+    ] {
+        let (sys, text) = to_gft(object, l);
+        assert!(
+            text.contains(&format!("texture \"{file}\" filter ")),
+            "{object}:\n{text}"
+        );
+        // Beside the object's images: decoded again, the same pixels.
+        let back = read_gft(&corpus(object), &text);
+        assert!(
+            back.diagnostics.is_empty(),
+            "{object}: {:?}",
+            back.diagnostics.0
+        );
+        let back = back.system.unwrap();
+        assert!(back.look.textures().iter().all(|t| t.image.is_some()));
+        sys.same_as(&back)
+            .unwrap_or_else(|e| panic!("{object}: {e}"));
+        // Elsewhere: each image a warning at its line (W0904), the
+        // system the same but for the pixels it could not read.
+        let elsewhere = read_gft(&std::env::temp_dir().join("graftal-no-such-folder"), &text);
+        let codes: Vec<&str> = elsewhere.diagnostics.iter().map(|d| d.code.0).collect();
+        assert!(
+            !codes.is_empty() && codes.iter().all(|&c| c == "W0904"),
+            "{codes:?}"
+        );
+        sys.same_as(&elsewhere.system.unwrap()).unwrap();
+    }
+    // The surface names its texture and carries its patches' coordinates.
+    let (_, text) = to_gft("11-CPFG-TexturedSurfaces", "plant.l");
+    let surface = text.lines().find(|l| l.starts_with("surface ")).unwrap();
+    assert!(
+        surface.ends_with(" texture 1 {") || text.contains("set-texture"),
+        "{surface}"
+    );
+    let first = text
+        .lines()
+        .skip_while(|l| !l.starts_with("surface "))
+        .nth(1)
+        .unwrap();
+    assert_eq!(first.matches('(').count(), 6, "{first}");
+}
+
+#[test]
+fn texture_settings_and_coordinates_make_another_system() {
+    let (sys, _) = to_gft("11-CPFG-TexturedSurfaces", "plant.l");
+    let mut other = sys.clone();
+    other.look.lighting.as_mut().unwrap().textures[0].ratio = 2.0;
+    assert!(sys.same_as(&other).unwrap_err().contains("look"));
+    let mut other = sys.clone();
+    other.look.lighting.as_mut().unwrap().textures[0].file = "oak.png".into();
+    assert!(sys.same_as(&other).is_err());
+    let mut other = sys.clone();
+    let m = other
+        .surfaces
+        .iter_mut()
+        .find(|m| !m.patch_uvs.is_empty())
+        .unwrap();
+    m.patch_uvs[0][0][0] += 0.25;
+    assert!(sys.same_as(&other).unwrap_err().contains("surfaces"));
+    // Decoded pixels that differ are another system too.
+    let mut other = sys.clone();
+    let t = &mut other.look.lighting.as_mut().unwrap().textures[0];
+    let blank = graftal::ir::texture::Image::new(1, 1, vec![0; 4]).unwrap();
+    t.image = Some(std::sync::Arc::new(blank));
+    assert!(sys.same_as(&other).unwrap_err().contains("image"));
+}
+
+#[test]
+fn other_targets_still_say_they_drop_textures() {
+    let path = corpus("11-CPFG-TexturedSurfaces/plant.l");
+    let c = driver::compile(SourceFile::read(&path).unwrap());
+    let sys = c.system.clone().unwrap();
+    for to in ["pfg", "linf", "stl"] {
+        let req = graftal::back::Request {
+            target: graftal::back::by_name(to).unwrap(),
+            lossy: false,
+            steps: None,
+        };
+        let t = driver::translate(&c, &sys, &req);
+        assert!(
+            t.diagnostics.iter().any(|d| d.code.0 == "W0615"),
+            "{to}: {:?}",
+            t.diagnostics
+        );
+    }
+}

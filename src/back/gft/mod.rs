@@ -13,6 +13,7 @@ pub mod expr;
 mod graph;
 mod look;
 mod words;
+pub use look::names_file;
 
 use crate::ir::program::{Program, Stmt};
 use crate::ir::{Phase, Production, Settings, System};

@@ -153,6 +153,13 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     lowered.system.program.functions = functions.functions;
     lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
+    if lowered.system.look.textures().is_empty() {
+        // Texture coordinates serve only textures: a look without any
+        // keeps its surfaces bare (and their `.gft` short).
+        for m in &mut lowered.system.surfaces {
+            (m.patch_uvs, m.surface_uvs) = (Vec::new(), Vec::new());
+        }
+    }
     report_undefined_surfaces(&lowered, &view, diags);
     if let Some(dir) = beside.dir {
         environment::name_program(dir, path, diags);
@@ -861,27 +868,7 @@ fn surface_mesh(r: &view::SurfaceRef, surface: &surface::Surface) -> crate::ir::
             (placed, uv)
         })
         .unzip();
-    let mut low = [f64::INFINITY; 2];
-    let mut high = [f64::NEG_INFINITY; 2];
-    for p in triangles.iter().flatten() {
-        for k in 0..2 {
-            low[k] = low[k].min(p[k]);
-            high[k] = high[k].max(p[k]);
-        }
-    }
-    // A surface flat along x or y spreads the texture's edge texel over it.
-    let across = |p: &[f64; 3], k: usize| {
-        let span = high[k] - low[k];
-        if span > 0.0 {
-            (p[k] - low[k]) / span
-        } else {
-            0.0
-        }
-    };
-    let surface_uvs = triangles
-        .iter()
-        .map(|t| t.map(|p| [across(&p, 0), across(&p, 1)]))
-        .collect();
+    let surface_uvs = crate::ir::SurfaceMesh::extent_uvs(&triangles);
     crate::ir::SurfaceMesh {
         triangles,
         patch_uvs,
