@@ -100,6 +100,24 @@ impl Image {
         let n = (self.rgba.len() / 4).max(1) as f64;
         sum.map(|s| (s as f64 / n / 255.0) as f32)
     }
+
+    /// The mean colour of the texels that show (alpha 0.5 or more: those
+    /// the alpha test keeps), opaque; [`Image::mean`] when none shows.
+    pub fn mean_shown(&self) -> [f32; 4] {
+        let mut sum = [0u64; 3];
+        let mut n = 0u64;
+        for px in self.rgba.chunks_exact(4).filter(|px| px[3] >= 128) {
+            for k in 0..3 {
+                sum[k] += u64::from(px[k]);
+            }
+            n += 1;
+        }
+        if n == 0 {
+            return self.mean();
+        }
+        let [r, g, b] = sum.map(|s| (s as f64 / n as f64 / 255.0) as f32);
+        [r, g, b, 1.0]
+    }
 }
 
 fn finite_or_zero(x: f64) -> f64 {
@@ -291,6 +309,8 @@ mod tests {
         assert!(Image::new(2, 2, vec![0; 15]).is_none());
         assert!(Image::new(0, 2, Vec::new()).is_none());
         assert!(Image::new(u32::MAX, u32::MAX, Vec::new()).is_none());
+        let im = Image::new(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 0]).unwrap();
+        assert_eq!(im.mean_shown(), [1.0, 0.0, 0.0, 1.0]);
         let missing = Texture::new("gone.png", None);
         assert_eq!(
             missing.shade([0.1, 0.2, 0.3, 1.0], 0.5, 0.5),

@@ -251,3 +251,44 @@ fn other_targets_still_say_they_drop_textures() {
         );
     }
 }
+
+/// The fills of an SVG picture of `sys`.
+fn svg_fills(sys: &System) -> Vec<[u8; 3]> {
+    let (_, g) = driver::geometry(sys, &RunOptions::default()).unwrap();
+    let opts = RenderOptions {
+        width: 200,
+        height: 200,
+        ..RenderOptions::default()
+    };
+    let svg = String::from_utf8(driver::render_bytes(sys, &g, Format::Svg, opts).unwrap()).unwrap();
+    svg.split("fill=\"#")
+        .skip(1)
+        .filter_map(|rest| {
+            let h = |i: usize| u8::from_str_radix(rest.get(i..i + 2)?, 16).ok();
+            Some([h(0)?, h(2)?, h(4)?])
+        })
+        .collect()
+}
+
+#[test]
+fn an_svg_fills_textured_leaves_with_their_images_shown_colour() {
+    let (sys, _) = compile(&corpus("11-CPFG-TexturedSurfaces/plant.l"));
+    let sys = sys.unwrap();
+    let mut plain = sys.clone();
+    plain.look.lighting.as_mut().unwrap().textures.clear();
+    let red = |fills: &[[u8; 3]]| {
+        fills
+            .iter()
+            .filter(|c| c[0] > c[1].saturating_add(40))
+            .count()
+    };
+    let (textured, untextured) = (svg_fills(&sys), svg_fills(&plain));
+    assert_eq!(textured.len(), untextured.len());
+    // The maple image's red modulates the leaves' colour.
+    assert!(
+        red(&textured) > red(&untextured) + 100,
+        "{} red fills textured, {} untextured",
+        red(&textured),
+        red(&untextured)
+    );
+}
