@@ -481,16 +481,31 @@ impl Turtle<'_> {
         let Some(c) = self.state.cylinder else {
             return;
         };
-        if c.contour != 0 || self.state.contour != 0 {
-            self.cylinder_mesh(&c, pieces);
+        // A textured cylinder is a mesh, its cross-section the default
+        // circle when it has none: the image lies on its quadrilaterals.
+        let mut texture_v = c.texture_v;
+        if c.contour != 0 || self.state.contour != 0 || self.cylinder_texture().is_some() {
+            texture_v = self.cylinder_mesh(&c, pieces);
         } else {
             self.cylinder_segments(&c, pieces.max(4));
         }
         self.state.cylinder = if end {
             None
         } else {
-            Some(Cylinder::at(&self.state))
+            Some(Cylinder {
+                texture_v,
+                ..Cylinder::at(&self.state)
+            })
         };
+    }
+
+    /// The texture the turtle lays on cylinders. Its image need not have
+    /// been read: what is drawn has one shape whether or not the image
+    /// is found (a picture without it draws the mesh untextured).
+    fn cylinder_texture(&self) -> Option<(u16, &crate::ir::texture::Texture)> {
+        let t = self.state.texture?;
+        let texture = self.sys.look.textures().get(usize::from(t))?;
+        Some((t, texture))
     }
 
     /// cpfg `@Gr`: one parameter says whether radius tangents scale with
@@ -537,8 +552,14 @@ impl Turtle<'_> {
     }
 
     /// A piece of generalized cylinder with a cross-section: the contour
-    /// swept from `c` to the turtle as quadrilaterals.
-    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
+    /// swept from `c` to the turtle as quadrilaterals; the texture's v it
+    /// ends at. A texture goes once around the cross-section (u from 0 to
+    /// 1 along its points) and up the cylinder as [`Texture::v_along`]
+    /// says for the piece's mean width and length, the image keeping its
+    /// proportions (stretched by the texture's ratio).
+    ///
+    /// [`Texture::v_along`]: crate::ir::texture::Texture::v_along
+    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) -> f64 {
         let st = &self.state;
         let chord: Vec3 = std::array::from_fn(|i| st.pos[i] - c.point[i]);
         let radius_tangents = self.piece_radius_tangents(c, dot(chord, chord).sqrt());
@@ -569,15 +590,38 @@ impl Turtle<'_> {
         );
         let index = index_of(st.colour);
         let colour = self.colour();
-        for q in quads {
+        let length = dot(chord, chord).sqrt();
+        let textured = self
+            .cylinder_texture()
+            .map(|(t, texture)| (t, texture.v_along((c.width + st.width) / 2.0, length)));
+        let v_end = c.texture_v + textured.map_or(0.0, |(_, dv)| dv);
+        let around = (quads.len() / pieces.max(1)).max(1);
+        for (k, q) in quads.into_iter().enumerate() {
+            let texture = textured.map(|(texture, dv)| {
+                // Quadrilateral k: ring k / around to the next, between
+                // cross-section points k % around and the next.
+                let (ring, i) = ((k / around) as f64, (k % around) as f64);
+                let v = |r: f64| c.texture_v + dv * r / pieces as f64;
+                let u = |i: f64| i / around as f64;
+                Textured {
+                    texture,
+                    uvs: vec![
+                        [u(i), v(ring)],
+                        [u(i + 1.0), v(ring)],
+                        [u(i + 1.0), v(ring + 1.0)],
+                        [u(i), v(ring + 1.0)],
+                    ],
+                }
+            });
             self.sink.polygon(Polygon {
                 points: q.to_vec(),
                 colour,
                 index,
                 surface: false,
-                texture: None,
+                texture,
             });
         }
+        v_end
     }
 
     /// A piece of generalized cylinder without a cross-section: its axis

@@ -60,6 +60,9 @@ pub(super) struct Cylinder {
     pub(super) tangents: (f64, f64),
     /// The radius tangents there (the leaving one starts the next piece).
     pub(super) radius_tangents: [[f64; 2]; 2],
+    /// How far up its texture image the cylinder has come there (the
+    /// texture's v; 0 where the cylinder starts).
+    pub(super) texture_v: f64,
 }
 
 /// cpfg's default tangent coefficients: the tangents at a Hermite
@@ -78,6 +81,7 @@ impl Cylinder {
             contour: st.contour,
             tangents: st.tangents,
             radius_tangents: st.radius_tangents,
+            texture_v: 0.0,
         }
     }
 }

@@ -292,3 +292,37 @@ fn an_svg_fills_textured_leaves_with_their_images_shown_colour() {
         red(&untextured)
     );
 }
+
+#[test]
+fn generalized_cylinders_wear_their_texture_around_and_along() {
+    let (sys, codes) = compile(&corpus("11-CPFG-GeneralizedCylinder/fractal.l"));
+    let sys = sys.unwrap();
+    assert!(!codes.iter().any(|c| c.0 == "W0814"), "{codes:?}");
+    let (_, g) = driver::geometry(&sys, &RunOptions::default()).unwrap();
+    let textured: Vec<_> = g
+        .polygons
+        .iter()
+        .filter_map(|p| p.texture.as_ref())
+        .collect();
+    assert!(
+        textured.len() > 100,
+        "{} textured quadrilaterals",
+        textured.len()
+    );
+    // `@Tx(2)`: the second texture, circles.png.
+    assert!(textured.iter().all(|t| t.texture == 1 && t.uvs.len() == 4));
+    let uvs = || textured.iter().flat_map(|t| &t.uvs);
+    // Once around the girth; up the cylinder further than one image.
+    assert!(uvs().all(|uv| (0.0..=1.0).contains(&uv[0])));
+    assert!(uvs().any(|uv| uv[0] == 1.0));
+    let top = uvs().map(|uv| uv[1]).fold(0.0, f64::max);
+    assert!(top > 1.0, "v reaches {top}");
+    // Each quadrilateral's v grows from one ring to the next.
+    assert!(textured.iter().all(|t| t.uvs[3][1] >= t.uvs[0][1]));
+    // Drawn: the picture differs from the untextured one.
+    let mut plain = sys.clone();
+    plain.look.lighting.as_mut().unwrap().textures.clear();
+    let (a, b) = (draw(&sys, 120), draw(&plain, 120));
+    let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    assert!(differ > 500, "{differ} pixels differ");
+}
