@@ -14,6 +14,7 @@
 pub mod back;
 pub mod cli;
 pub mod common;
+pub mod decode;
 pub mod diagnostics;
 pub mod driver;
 pub mod eval;

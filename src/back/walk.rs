@@ -122,6 +122,7 @@ pub fn does(op: Option<TurtleOp>) -> Does {
         | TurtleOp::Untwist
         | TurtleOp::KeepTwist
         | TurtleOp::SetContour
+        | TurtleOp::SetTexture
         | TurtleOp::SubLsystemCall
         | TurtleOp::SubLsystemReturn
         | TurtleOp::Label => Does::Cpfg,

@@ -50,6 +50,7 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("lighting", false),
     ("light", false),
     ("material", false),
+    ("texture", false),
     ("surface", true),
     ("backdrop", true),
     ("contour", true),

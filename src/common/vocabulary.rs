@@ -178,6 +178,7 @@ fn cpfg(name: &str) -> Option<TurtleOp> {
         "@Gt" => TurtleOp::CylinderTangents,
         "@Gr" => TurtleOp::RadiusTangents,
         "@#" => TurtleOp::SetContour,
+        "@Tx" => TurtleOp::SetTexture,
         // cpfg reads `@Ti`; the manual writes `@T`.
         "@Ts" => elasticity(ElasticityChange::Set),
         "@Ti" | "@T" => elasticity(ElasticityChange::Increase),

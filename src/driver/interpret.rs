@@ -108,6 +108,7 @@ pub fn add_fixed(sys: &System, g: &mut Geometry, layout: bool) {
         colour: p.colour,
         index: p.index,
         surface: false,
+        texture: None,
     });
     g.polygons.extend(scene);
 }
@@ -129,6 +130,7 @@ pub fn add_layout(sys: &System, g: &mut Geometry) {
             colour: crate::layout::shapes::colour(s),
             index: 0,
             surface: false,
+            texture: None,
         })
         .filter(|p| p.points.len() >= 3)
         .collect();

@@ -20,6 +20,25 @@ pub fn translate(c: &Compiled, sys: &System, req: &back::Request) -> back::Trans
         angle_divisions: c.front.angle_divisions(sys),
     };
     let mut t = back::translate(sys, &c.spans, &c.file.text, &origin, req);
+    // `.gft` writes textures (docs/gft.md §9), but for an image whose file
+    // name it cannot quote; no other notation says textures: the
+    // translation draws untextured, and says so.
+    let textures = sys.look.textures();
+    let unwritten = if req.target.name() == "gft" {
+        (textures.iter())
+            .filter(|t| !back::gft::names_file(&t.file))
+            .count()
+    } else {
+        textures.len()
+    };
+    if unwritten > 0 {
+        t.diagnostics.push(Diagnostic::global(
+            codes::TR_TEXTURES_DROPPED,
+            format!(
+                "{unwritten} texture(s) of the source are not written: the translation draws them untextured"
+            ),
+        ));
+    }
     if req.lossy && !t.diagnostics.is_empty() {
         compare_pictures(sys, req, &mut t);
     }

@@ -28,6 +28,13 @@ pub struct Look {
     pub scene: Vec<ScenePolygon>,
 }
 
+impl Look {
+    /// The textures of a lit look ([`Lighting::textures`]); none unlit.
+    pub fn textures(&self) -> &[super::texture::Texture] {
+        self.lighting.as_ref().map_or(&[], |l| &l.textures)
+    }
+}
+
 /// A polygon of a [`Look::scene`], in world coordinates, with the colour
 /// it has unlit and the colour index (a material of [`Lighting`]) it is
 /// lit with.
@@ -84,6 +91,10 @@ pub struct Lighting {
     /// Whether lights cast shadows (cpfg `render mode: shadows`): such a
     /// picture is ray traced.
     pub shadows: bool,
+    /// Textures, numbered from 1 by the modules that choose them (cpfg's
+    /// `@Tx(n)` takes `textures[n - 1]`); cpfg maps them only on lit
+    /// pictures (material mode, manual §6.7.4).
+    pub textures: Vec<super::texture::Texture>,
 }
 
 impl Lighting {
@@ -125,6 +136,7 @@ impl Default for Lighting {
             surface_ambient: 0.15,
             surface_diffuse: 0.75,
             shadows: false,
+            textures: Vec::new(),
         }
     }
 }

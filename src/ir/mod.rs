@@ -216,6 +216,7 @@ pub mod graph;
 pub mod look;
 pub mod program;
 mod same;
+pub mod texture;
 
 pub use d0l::D0l;
 use program::{Expr, Program, Stmt};
@@ -637,6 +638,10 @@ pub enum TurtleOp {
     /// follow is contour `id` of [`System::contours`]; 0 or no parameter:
     /// the default circle.
     SetContour,
+    /// cpfg `@Tx(n)`: what the turtle draws next wears texture `n` of
+    /// [`look::Look::textures`] (counted from 1); 0 or no parameter: no
+    /// texture.
+    SetTexture,
     /// cpfg `?(n, s)`: the modules that follow, up to the matching
     /// [`TurtleOp::SubLsystemReturn`], belong to sub-L-system `n`
     /// ([`System::sub_lsystems`]); the turtle's scale (step lengths,
@@ -1218,10 +1223,52 @@ pub struct Lowered {
 }
 
 /// A surface the turtle can place (a cpfg `~id`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct SurfaceMesh {
     pub name: String,
     pub triangles: Vec<[[f64; 3]; 3]>,
+    /// Per triangle, its corners' texture coordinates as a texture laid
+    /// once on each patch takes them (the patch's own parameters); empty
+    /// when the surface has none (it is then drawn untextured).
+    pub patch_uvs: Vec<[[f64; 2]; 3]>,
+    /// The same for a texture laid once across the whole surface (cpfg's
+    /// `S:`): the surface's x and y across its extent.
+    pub surface_uvs: Vec<[[f64; 2]; 3]>,
+    /// The texture the surface always wears (a cpfg `surface:` line's
+    /// texture file), an index of [`look::Look::textures`]; it takes
+    /// precedence over the turtle's.
+    pub texture: Option<u16>,
+}
+
+impl SurfaceMesh {
+    /// The texture coordinates of a texture laid once across a surface of
+    /// `triangles` (cpfg's `set_texture_coordinates` lays it in the plane
+    /// z = 0): each corner's x and y over the surface's extent in them. A
+    /// surface flat along x or y spreads the texture's edge texel over
+    /// it. The `.gft` reader derives [`SurfaceMesh::surface_uvs`] so, as
+    /// the cpfg front end computes them.
+    pub fn extent_uvs(triangles: &[[[f64; 3]; 3]]) -> Vec<[[f64; 2]; 3]> {
+        let mut low = [f64::INFINITY; 2];
+        let mut high = [f64::NEG_INFINITY; 2];
+        for p in triangles.iter().flatten() {
+            for k in 0..2 {
+                low[k] = low[k].min(p[k]);
+                high[k] = high[k].max(p[k]);
+            }
+        }
+        let across = |p: &[f64; 3], k: usize| {
+            let span = high[k] - low[k];
+            if span > 0.0 {
+                (p[k] - low[k]) / span
+            } else {
+                0.0
+            }
+        };
+        triangles
+            .iter()
+            .map(|t| t.map(|p| [across(&p, 0), across(&p, 1)]))
+            .collect()
+    }
 }
 
 impl Default for System {

@@ -1,7 +1,13 @@
 //! Binary glTF 2.0 (`.glb`): a JSON chunk describing meshes, materials
 //! and nodes, and a binary chunk with the vertices and indices. Each mesh
 //! has one primitive per colour; each node places a mesh, so a mesh
-//! placed many times is stored once.
+//! placed many times is stored once. A textured part has TEXCOORD_0
+//! (glTF's: v down from the image's top row), and its material a base
+//! colour texture: the image as PNG in the binary chunk, sampled with
+//! REPEAT wrapping and the texture's filter, alpha below 0.5 cut out
+//! (`MASK`) as cpfg's alpha test does. glTF's base colour texture
+//! multiplies the base colour: cpfg's modulate mode; decal and blend
+//! textures are written as modulated too.
 
 use super::{Finish, Mesh, Part, Scene};
 use serde_json::{json, Value};
@@ -11,6 +17,9 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_SHORT: u32 = 5123;
 const UNSIGNED_INT: u32 = 5125;
+const NEAREST: u32 = 9728;
+const LINEAR: u32 = 9729;
+const REPEAT: u32 = 10497;
 
 /// The binary chunk and the views and accessors into it.
 #[derive(Default)]
@@ -36,6 +45,39 @@ impl Buffers {
         self.views.len() - 1
     }
 
+    /// Appends `bytes` as a view with no target (an image); its index.
+    fn image_view(&mut self, bytes: &[u8]) -> usize {
+        let view = self.view(bytes, 0);
+        if let Some(v) = self.views[view].as_object_mut() {
+            v.remove("target");
+        }
+        view
+    }
+
+    /// A float accessor of `count` elements of type `kind` over the
+    /// components `values`; its index.
+    fn floats(&mut self, values: &[f32], count: usize, kind: &str) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let view = self.view(&bytes, ARRAY_BUFFER);
+        self.accessors.push(json!({
+            "bufferView": view,
+            "componentType": FLOAT,
+            "count": count,
+            "type": kind,
+        }));
+        self.accessors.len() - 1
+    }
+
+    /// A VEC2 float accessor of texture coordinates, v turned to run
+    /// down the image as glTF's do; its index.
+    fn texcoords(&mut self, uvs: &[[f64; 2]]) -> usize {
+        let f: Vec<f32> = uvs
+            .iter()
+            .flat_map(|t| [t[0] as f32, (1.0 - t[1]) as f32])
+            .collect();
+        self.floats(&f, uvs.len(), "VEC2")
+    }
+
     /// A VEC3 float accessor over `v`, with its bounds; its index.
     fn vec3(&mut self, v: &[[f64; 3]]) -> usize {
         let f: Vec<[f32; 3]> = v.iter().map(|p| p.map(|x| x as f32)).collect();
@@ -47,17 +89,11 @@ impl Buffers {
                 hi[k] = hi[k].max(p[k]);
             }
         }
-        let bytes: Vec<u8> = f.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
-        let view = self.view(&bytes, ARRAY_BUFFER);
-        self.accessors.push(json!({
-            "bufferView": view,
-            "componentType": FLOAT,
-            "count": f.len(),
-            "type": "VEC3",
-            "min": lo,
-            "max": hi,
-        }));
-        self.accessors.len() - 1
+        let flat: Vec<f32> = f.iter().flatten().copied().collect();
+        let k = self.floats(&flat, f.len(), "VEC3");
+        self.accessors[k]["min"] = json!(lo);
+        self.accessors[k]["max"] = json!(hi);
+        k
     }
 
     /// A SCALAR index accessor over `triangles`, in 16 bits when
@@ -89,8 +125,12 @@ impl Buffers {
         let position = self.vec3(&part.positions);
         let normal = self.vec3(&part.normals);
         let indices = self.indices(&part.triangles, part.positions.len());
+        let mut attributes = json!({ "POSITION": position, "NORMAL": normal });
+        if part.finish.texture.is_some() && part.uvs.len() == part.positions.len() {
+            attributes["TEXCOORD_0"] = json!(self.texcoords(&part.uvs));
+        }
         json!({
-            "attributes": { "POSITION": position, "NORMAL": normal },
+            "attributes": attributes,
             "indices": indices,
             "material": material,
         })
@@ -160,8 +200,9 @@ fn material(f: &Finish) -> Value {
 /// placing them, are left out (glTF wants a primitive in every mesh).
 pub fn glb(scene: &Scene) -> Vec<u8> {
     let finishes = scene.materials();
-    let materials: Vec<Value> = finishes.iter().map(material).collect();
+    let mut materials: Vec<Value> = finishes.iter().map(material).collect();
     let mut buffers = Buffers::default();
+    let textures = Textures::of(scene, &finishes, &mut materials, &mut buffers);
     let mut meshes: Vec<Value> = Vec::new();
     // Index in the file of each scene mesh, when it has triangles.
     let mut index: Vec<Option<usize>> = Vec::with_capacity(scene.meshes.len());
@@ -202,6 +243,11 @@ pub fn glb(scene: &Scene) -> Vec<u8> {
         doc["accessors"] = json!(buffers.accessors);
         doc["bufferViews"] = json!(buffers.views);
         doc["buffers"] = json!([{ "byteLength": buffers.bin.len() }]);
+        if !textures.textures.is_empty() {
+            doc["images"] = json!(textures.images);
+            doc["samplers"] = json!(textures.samplers);
+            doc["textures"] = json!(textures.textures);
+        }
     }
     container(&doc.to_string(), &buffers.bin)
 }
@@ -246,4 +292,73 @@ fn container(json: &str, bin: &[u8]) -> Vec<u8> {
         out.resize(out.len() + pad(bin.len()), 0);
     }
     out
+}
+
+/// The images, samplers and textures of a scene's textured materials.
+#[derive(Default)]
+struct Textures {
+    images: Vec<Value>,
+    samplers: Vec<Value>,
+    textures: Vec<Value>,
+}
+
+impl Textures {
+    /// Each texture a finish wears, once: its image (PNG) in `buffers`,
+    /// a sampler, and the finish's material given it as base colour
+    /// texture. A texture whose image was not read is left out.
+    fn of(
+        scene: &Scene,
+        finishes: &[Finish],
+        materials: &mut [Value],
+        buffers: &mut Buffers,
+    ) -> Textures {
+        let mut out = Textures::default();
+        let Some(all) = scene
+            .meshes
+            .iter()
+            .map(|m| &m.textures)
+            .find(|t| !t.is_empty())
+        else {
+            return out;
+        };
+        // The glTF texture of each look texture already written.
+        let mut written: Vec<(u16, usize)> = Vec::new();
+        for (f, m) in finishes.iter().zip(materials.iter_mut()) {
+            let Some(t) = f.texture else { continue };
+            let index = match written.iter().find(|w| w.0 == t) {
+                Some(w) => w.1,
+                None => {
+                    let Some(texture) = all.get(usize::from(t)) else {
+                        continue;
+                    };
+                    let Some(png) = texture.image.as_deref().and_then(super::texture::png) else {
+                        continue;
+                    };
+                    let view = buffers.image_view(&png);
+                    out.images
+                        .push(json!({ "bufferView": view, "mimeType": "image/png" }));
+                    let filter = match texture.filter {
+                        crate::ir::texture::Filter::Nearest => NEAREST,
+                        crate::ir::texture::Filter::Linear => LINEAR,
+                    };
+                    out.samplers.push(json!({
+                        "magFilter": filter,
+                        "minFilter": filter,
+                        "wrapS": REPEAT,
+                        "wrapT": REPEAT,
+                    }));
+                    let k = out.textures.len();
+                    out.textures.push(json!({ "sampler": k, "source": k }));
+                    written.push((t, k));
+                    k
+                }
+            };
+            m["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": index });
+            if m.get("alphaMode").is_none() {
+                m["alphaMode"] = json!("MASK");
+                m["alphaCutoff"] = json!(0.5);
+            }
+        }
+        out
+    }
 }

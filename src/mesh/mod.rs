@@ -23,6 +23,7 @@ mod gltf;
 pub mod instanced;
 mod obj;
 mod ply;
+pub mod texture;
 pub mod tube;
 
 use crate::ir::look::{Lighting, Material};
@@ -82,11 +83,14 @@ pub struct Finish {
     pub colour: (u8, u8, u8),
     /// The material and the colour index that names it.
     pub material: Option<(u16, Material)>,
+    /// The texture it wears, an index of [`Mesh::textures`] (the look's
+    /// textures); its part's vertices then have texture coordinates.
+    pub texture: Option<u16>,
 }
 
 /// Parts are shared by equal finishes: the colour, and the material's
 /// components bit for bit.
-type FinishKey = ((u8, u8, u8), Option<[u32; 14]>);
+type FinishKey = ((u8, u8, u8), Option<[u32; 14]>, Option<u16>);
 
 impl Finish {
     /// A plain colour, as unlit systems (and colour-map mode) have it.
@@ -94,6 +98,7 @@ impl Finish {
         Finish {
             colour: (c.0, c.1, c.2),
             material: None,
+            texture: None,
         }
     }
 
@@ -106,6 +111,7 @@ impl Finish {
                 Finish {
                     colour: (r, g, b),
                     material: Some((index, *m)),
+                    texture: None,
                 }
             }
             None => Finish::plain(colour),
@@ -123,18 +129,23 @@ impl Finish {
             k[13] = m.transparency.to_bits();
             k
         });
-        (self.colour, bits)
+        (self.colour, bits, self.texture)
     }
 
     /// The material's name in the files: `c` and the colour in hex, or
     /// `m` and the colour index.
     pub fn name(&self) -> String {
-        match self.material {
+        let base = match self.material {
             Some((index, _)) => format!("m{index}"),
             None => {
                 let c = self.colour;
                 format!("c{:02x}{:02x}{:02x}", c.0, c.1, c.2)
             }
+        };
+        match self.texture {
+            // Textures counted from 1, as cpfg's `@Tx(n)` counts them.
+            Some(t) => format!("{base}_t{}", u32::from(t) + 1),
+            None => base,
         }
     }
 }
@@ -146,6 +157,9 @@ pub struct Part {
     pub finish: Finish,
     pub positions: Vec<Vec3>,
     pub normals: Vec<Vec3>,
+    /// Texture coordinates, one a vertex, in a textured part (OpenGL's:
+    /// v up from the image's bottom row); empty in others.
+    pub uvs: Vec<[f64; 2]>,
     pub triangles: Vec<[u32; 3]>,
 }
 
@@ -162,6 +176,9 @@ impl Part {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     pub parts: Vec<Part>,
+    /// The textures its finishes name (the look's, when a part is
+    /// textured; else none).
+    pub textures: Vec<crate::ir::texture::Texture>,
     by_finish: HashMap<FinishKey, usize>,
 }
 
@@ -174,6 +191,7 @@ impl Mesh {
                 finish: f,
                 positions: Vec::new(),
                 normals: Vec::new(),
+                uvs: Vec::new(),
                 triangles: Vec::new(),
             });
             parts.len() - 1
@@ -367,7 +385,11 @@ impl Scene {
     pub fn flattened(&self) -> Mesh {
         let mut out = Mesh::default();
         for n in &self.nodes {
-            for p in &self.meshes[n.mesh].parts {
+            let m = &self.meshes[n.mesh];
+            if out.textures.is_empty() {
+                out.textures.clone_from(&m.textures);
+            }
+            for p in &m.parts {
                 let part = out.part(p.finish);
                 let base = part.positions.len() as u32;
                 let turn = Transform {
@@ -378,6 +400,7 @@ impl Scene {
                 for (v, nv) in p.positions.iter().zip(&p.normals) {
                     part.vertex(n.place.apply(*v), turn.apply(*nv));
                 }
+                part.uvs.extend_from_slice(&p.uvs);
                 part.triangles
                     .extend(p.triangles.iter().map(|t| t.map(|i| i + base)));
             }
@@ -439,11 +462,25 @@ pub fn of_geometry(
     }
     progress(g.segments.len() as u64, total);
     for p in &g.polygons {
-        polygon(
-            &mut mesh,
-            &p.points,
-            Finish::new(p.colour, p.index, lighting),
-        );
+        let finish = Finish::new(p.colour, p.index, lighting);
+        // A texture whose image was read, with a coordinate a corner.
+        let textured = p.texture.as_ref().filter(|tx| {
+            let texture = lighting.and_then(|l| l.textures.get(usize::from(tx.texture)));
+            texture.is_some_and(|t| t.image.is_some()) && tx.uvs.len() == p.points.len()
+        });
+        match (textured, lighting) {
+            (Some(tx), Some(l)) => {
+                if mesh.textures.is_empty() {
+                    mesh.textures.clone_from(&l.textures);
+                }
+                let finish = Finish {
+                    texture: Some(tx.texture),
+                    ..finish
+                };
+                polygon(&mut mesh, &p.points, Some(&tx.uvs), finish);
+            }
+            _ => polygon(&mut mesh, &p.points, None, finish),
+        }
     }
     for d in &g.discs {
         let r = if d.pixels {
@@ -482,31 +519,33 @@ fn perpendicular(t: Vec3) -> Vec3 {
     unit(cross(t, other)).unwrap_or([0.0, 0.0, 1.0])
 }
 
-/// The corners of a polygon without repeats: consecutive equal points
-/// and a last point equal to the first are dropped.
-fn corners(points: &[Vec3]) -> Vec<Vec3> {
+/// The indices of a polygon's corners without repeats: consecutive
+/// equal points and a last point equal to the first are dropped.
+fn corner_indices(points: &[Vec3]) -> Vec<usize> {
     // Equal up to rounding: a turtle that goes round a square comes back
     // within 1e-16 of where it started.
     let same = |a: &Vec3, b: &Vec3| {
         let size = a.iter().chain(b).fold(1.0f64, |m, x| m.max(x.abs()));
         (0..3).all(|k| (a[k] - b[k]).abs() <= 1e-9 * size)
     };
-    let mut out: Vec<Vec3> = Vec::with_capacity(points.len());
-    for p in points {
-        if !out.last().is_some_and(|q| same(p, q)) {
-            out.push(*p);
+    let mut out: Vec<usize> = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        if !out.last().is_some_and(|&q| same(p, &points[q])) {
+            out.push(i);
         }
     }
-    while out.len() > 1 && same(&out[0], &out[out.len() - 1]) {
+    while out.len() > 1 && same(&points[out[0]], &points[out[out.len() - 1]]) {
         out.pop();
     }
     out
 }
 
-/// A polygon as a fan of triangles with its (Newell) normal; polygons of
-/// fewer than three corners are left out.
-fn polygon(mesh: &mut Mesh, points: &[Vec3], finish: Finish) {
-    let pts = corners(points);
+/// A polygon as a fan of triangles with its (Newell) normal, and its
+/// corners' texture coordinates `uvs` (one a point) in a textured finish;
+/// polygons of fewer than three corners are left out.
+fn polygon(mesh: &mut Mesh, points: &[Vec3], uvs: Option<&[[f64; 2]]>, finish: Finish) {
+    let kept = corner_indices(points);
+    let pts: Vec<Vec3> = kept.iter().map(|&i| points[i]).collect();
     if pts.len() < 3 {
         return;
     }
@@ -522,6 +561,12 @@ fn polygon(mesh: &mut Mesh, points: &[Vec3], finish: Finish) {
     let base = part.positions.len() as u32;
     for &p in &pts {
         part.vertex(p, normal);
+    }
+    if let Some(uvs) = uvs {
+        part.uvs.extend(
+            kept.iter()
+                .map(|&i| uvs.get(i).copied().unwrap_or([0.0; 2])),
+        );
     }
     for k in 1..pts.len() as u32 - 1 {
         part.triangles.push([base, base + k, base + k + 1]);
@@ -658,7 +703,7 @@ mod tests {
             .lines()
             .filter_map(|l| l.strip_prefix("usemtl "))
             .collect();
-        let lib = mtl(&m);
+        let lib = mtl(&m, "graftal.mtl");
         assert!(used.iter().all(|u| lib.contains(&format!("newmtl {u}\n"))));
         assert_eq!(used.len(), m.parts.len());
 

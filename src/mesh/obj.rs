@@ -1,5 +1,10 @@
 //! Wavefront OBJ and its material library: one group per material, each
-//! vertex with its normal (the same index for both).
+//! vertex with its normal (the same index for both). A textured part's
+//! vertices have texture coordinates (`vt`, OpenGL's, v up from the
+//! image's bottom row) and its material names the texture's image
+//! (`map_Kd`), written as PNG beside the library ([`super::texture`]).
+//! OBJ's `map_Kd` multiplies the diffuse colour: cpfg's modulate mode;
+//! decal and blend textures are written as modulated too.
 
 use super::{Finish, Mesh};
 use crate::ir::look::Material;
@@ -20,27 +25,58 @@ pub fn obj(mesh: &Mesh, mtl_file: &str) -> String {
             let _ = writeln!(s, "vn {} {} {}", n[0] as f32, n[1] as f32, n[2] as f32);
         }
     }
-    // OBJ indices count from 1 over the whole file.
-    let mut base = 1u64;
+    for p in mesh.parts.iter().filter(|p| textured(p)) {
+        for uv in &p.uvs {
+            let _ = writeln!(s, "vt {} {}", uv[0] as f32, uv[1] as f32);
+        }
+    }
+    // OBJ indices count from 1 over the whole file; texture coordinates
+    // are counted apart.
+    let (mut base, mut uv_base) = (1u64, 1u64);
     for p in &mesh.parts {
         let _ = writeln!(s, "usemtl {}", p.finish.name());
+        let with_uvs = textured(p);
         for t in &p.triangles {
             let [a, b, c] = t.map(|i| u64::from(i) + base);
-            let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
+            if with_uvs {
+                let [ta, tb, tc] = t.map(|i| u64::from(i) + uv_base);
+                let _ = writeln!(s, "f {a}/{ta}/{a} {b}/{tb}/{b} {c}/{tc}/{c}");
+            } else {
+                let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
+            }
         }
         base += p.positions.len() as u64;
+        if with_uvs {
+            uv_base += p.uvs.len() as u64;
+        }
     }
     s
 }
 
-/// The material library of `mesh`: a lit look's materials as they are,
-/// else a diffuse colour per part.
-pub fn mtl(mesh: &Mesh) -> String {
+/// Whether a part's vertices carry texture coordinates.
+fn textured(p: &super::Part) -> bool {
+    p.finish.texture.is_some() && p.uvs.len() == p.positions.len()
+}
+
+/// The material library `library` of `mesh`: a lit look's materials as
+/// they are, else a diffuse colour per part; a textured part's material
+/// names its image ([`super::texture::image_file`]).
+pub fn mtl(mesh: &Mesh, library: &str) -> String {
     let mut s = String::from("# graftal\n");
     for p in &mesh.parts {
         match p.finish.material {
             Some((_, m)) => lit(&mut s, &p.finish, &m),
             None => plain(&mut s, &p.finish),
+        }
+        let image = p.finish.texture.filter(|&t| {
+            let t = mesh.textures.get(usize::from(t));
+            textured(p) && t.is_some_and(|t| t.image.is_some())
+        });
+        if let Some(t) = image {
+            // The material's block ends with a blank line: the map goes
+            // before it.
+            s.pop();
+            let _ = writeln!(s, "map_Kd {}\n", super::texture::image_file(library, t));
         }
     }
     s

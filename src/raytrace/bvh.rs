@@ -13,6 +13,7 @@ use super::primitive::{intersect, Ray};
 use super::vec::{max, min, sub, V3};
 use super::{Cut, Scene, Scratch, SurfaceHit};
 use crate::ir::graph::{Affine, Finish, Primitive};
+use crate::ir::texture::Texture;
 use crate::turtle::Geometry;
 
 /// One primitive with its look.
@@ -25,6 +26,47 @@ pub struct Item {
     pub placed: Option<Affine>,
     pub colour: [f64; 3],
     pub finish: Finish,
+    /// The texture a triangle wears (boxed: few items have one).
+    pub texture: Option<Box<ItemTexture>>,
+}
+
+/// A texture on a triangle item: the texture, whose image was read, and
+/// the texture coordinates of the triangle's corners.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ItemTexture {
+    pub texture: Texture,
+    pub uvs: [[f64; 2]; 3],
+}
+
+impl ItemTexture {
+    /// The texel at `p` on triangle `[a, b, c]` (its coordinates
+    /// interpolated between the corners'); `None` where its alpha is
+    /// below 0.5: cut out, as the z-buffer's alpha test cuts it.
+    fn texel(&self, [a, b, c]: [V3; 3], p: V3) -> Option<[f32; 4]> {
+        let image = self.texture.image.as_ref()?;
+        let [wa, wb, wc] = barycentric(a, b, c, p);
+        let [ta, tb, tc] = self.uvs;
+        let u = wa * ta[0] + wb * tb[0] + wc * tc[0];
+        let v = wa * ta[1] + wb * tb[1] + wc * tc[1];
+        let texel = image.sample(u, v, self.texture.filter);
+        (texel[3] >= 0.5).then_some(texel)
+    }
+}
+
+/// The barycentric weights of `p` (on the triangle's plane) in `[a, b,
+/// c]`; the first corner's alone for a degenerate triangle.
+fn barycentric(a: V3, b: V3, c: V3, p: V3) -> [f64; 3] {
+    use super::vec::dot;
+    let (e1, e2, d) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d11, d12, d22) = (dot(e1, e1), dot(e1, e2), dot(e2, e2));
+    let (d1, d2) = (dot(d, e1), dot(d, e2));
+    let den = d11 * d22 - d12 * d12;
+    if den.abs() <= f64::MIN_POSITIVE || !den.is_finite() {
+        return [1.0, 0.0, 0.0];
+    }
+    let wb = (d22 * d1 - d12 * d2) / den;
+    let wc = (d11 * d2 - d12 * d1) / den;
+    [1.0 - wb - wc, wb, wc]
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -206,6 +248,7 @@ impl Item {
             placed: None,
             colour,
             finish,
+            texture: None,
         }
     }
 
@@ -235,11 +278,20 @@ impl Item {
                 (hit, super::graph::normal_to_world(inverse, hit.normal))
             }
         };
+        let texel = match (&self.texture, &self.primitive) {
+            (Some(tx), Primitive::Triangle(corners)) => {
+                let p = super::vec::mad(ray.origin, ray.dir, hit.t);
+                // Cut out: the ray goes on to what lies behind.
+                Some((tx.texel(*corners, p)?, tx.texture.mode))
+            }
+            _ => None,
+        };
         Some(SurfaceHit {
             t: hit.t,
             normal,
             colour: self.colour,
             finish: self.finish,
+            texel,
         })
     }
 }
@@ -272,8 +324,9 @@ impl Scene for Bvh {
 /// with a sphere at each joint, each polygon a fan of triangles, each disc
 /// a sphere, each generalized cylinder's path a chain of such tubes.
 /// `pixel` is the world size of a pixel, for widths given in pixels;
-/// `finish` the look of every surface.
-pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish) -> Vec<Item> {
+/// `finish` the look of every surface; `textures` the look's, which
+/// textured polygons name.
+pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish, textures: &[Texture]) -> Vec<Item> {
     let mut items = Vec::with_capacity(g.segments.len() * 2 + g.polygons.len());
     let radius = |w: f64| {
         let w = if g.world_widths { w } else { w * pixel };
@@ -341,13 +394,26 @@ pub fn from_geometry(g: &Geometry, pixel: f64, finish: Finish) -> Vec<Item> {
     }
     for p in &g.polygons {
         let colour = super::linear(p.colour);
+        // A texture whose image was read, with a coordinate a corner.
+        let textured = p.texture.as_ref().and_then(|tx| {
+            let texture = textures.get(usize::from(tx.texture))?;
+            (texture.image.is_some() && tx.uvs.len() == p.points.len())
+                .then_some((texture, &tx.uvs))
+        });
         if let Some((&first, rest)) = p.points.split_first() {
-            for pair in rest.windows(2) {
-                items.push(Item::world(
+            for (k, pair) in rest.windows(2).enumerate() {
+                let mut item = Item::world(
                     Primitive::Triangle([first, pair[0], pair[1]]),
                     colour,
                     finish,
-                ));
+                );
+                if let Some((texture, uvs)) = textured {
+                    item.texture = Some(Box::new(ItemTexture {
+                        texture: texture.clone(),
+                        uvs: [uvs[0], uvs[k + 1], uvs[k + 2]],
+                    }));
+                }
+                items.push(item);
             }
         }
     }

@@ -329,6 +329,7 @@ impl<'g> GraphScene<'g> {
                     normal,
                     colour: self.colour,
                     finish: Default::default(),
+                    texel: None,
                 });
             }
         }
@@ -339,6 +340,7 @@ impl<'g> GraphScene<'g> {
             normal: normal_to_world(&inverse, found.normal),
             colour: found.colour,
             finish: found.finish,
+            texel: None,
         })
     }
 
@@ -441,6 +443,7 @@ impl GraphScene<'_> {
                 placed: Some(*inverse),
                 colour: super::linear(sh.colour),
                 finish: sh.finish,
+                texture: None,
             }));
         };
         while let Some((x, inverse, stretch)) = stack.pop() {
@@ -471,6 +474,7 @@ impl GraphScene<'_> {
                     placed: Some(inverse),
                     colour: self.colour,
                     finish: Finish::default(),
+                    texture: None,
                 });
                 continue;
             }

@@ -27,13 +27,15 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use vec::{add, cross, dot, mad, mul, normalize, sub, V3};
 
 /// What a ray met: where along it, the unit normal facing the ray, the
-/// surface's colour (linear, 0..1) and finish.
+/// surface's colour (linear, 0..1) and finish, and on a textured
+/// triangle the texel there and how it combines with the lit colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceHit {
     pub t: f64,
     pub normal: V3,
     pub colour: [f64; 3],
     pub finish: Finish,
+    pub texel: Option<([f32; 4], crate::ir::texture::TextureMode)>,
 }
 
 /// The width a pixel's beam has at distance `t` along a ray from the
@@ -341,7 +343,15 @@ fn shade(
                 + f.specular * phong * light.specular[k] as f64;
         }
     }
-    out
+    match hit.texel {
+        // The texel on the lit colour, as the z-buffer lays it.
+        Some((texel, mode)) => {
+            let lit = [out[0] as f32, out[1] as f32, out[2] as f32, 1.0];
+            let c = mode.apply(lit, texel);
+            [c[0], c[1], c[2]].map(f64::from)
+        }
+        None => out,
+    }
 }
 
 /// The sample offsets within a pixel: a fixed `k × k` grid.

@@ -248,6 +248,7 @@ mod tests {
             colour: Rgb(0, 0, 0),
             index: 63,
             surface,
+            texture: None,
         };
         let lit = |p: &crate::turtle::Polygon| {
             let c = sh.lit(

@@ -221,13 +221,31 @@ impl Scene<'_> {
         } else {
             String::new()
         };
+        let colour = self.colour(Kind::of(p), Paint::own(p.colour, p.index), mid, n);
         Some(Item {
             depth: pts.iter().map(|r| r.1).sum::<f64>() / pts.len() as f64,
             svg: format!(
                 r#"<path d="{d}" fill="{}" fill-rule="evenodd"{opacity}/>"#,
-                hex(self.colour(Kind::of(p), Paint::own(p.colour, p.index), mid, n))
+                hex(self.textured(p, colour))
             ),
         })
+    }
+
+    /// The colour of a textured polygon: its lit colour combined, as the
+    /// z-buffer combines a texel, with the mean colour of the texels that
+    /// show ([`crate::ir::texture::Image::mean_shown`]); an SVG path has
+    /// one fill, so the image itself is not mapped.
+    fn textured(&self, p: &Polygon, lit: Rgb) -> Rgb {
+        let texture = p.texture.as_ref().and_then(|tx| {
+            let t = self.lighting?.textures.get(usize::from(tx.texture))?;
+            Some((t.mode, t.image.as_ref()?.mean_shown()))
+        });
+        let Some((mode, texel)) = texture else {
+            return lit;
+        };
+        let unit = |c: u8| f32::from(c) / 255.0;
+        let c = mode.apply([unit(lit.0), unit(lit.1), unit(lit.2), 1.0], texel);
+        rgb([c[0], c[1], c[2]])
     }
 
     fn segment(&self, s: &Segment, paint: Paint, world_widths: bool) -> Option<Item> {
@@ -348,6 +366,7 @@ mod tests {
             colour: Rgb(grey, grey, grey),
             index: 0,
             surface: false,
+            texture: None,
         };
         let g = Geometry {
             polygons: vec![square(1.0, 1), square(-1.0, 2)],

@@ -34,6 +34,17 @@ pub struct Polygon {
     /// within its block of 64 for surfaces, and shifts it for polygons
     /// and the tubes of cylinders (manual §8.1.3).
     pub surface: bool,
+    /// The texture it wears, with its corners' texture coordinates.
+    pub texture: Option<Textured>,
+}
+
+/// A texture on a [`Polygon`]: an index of
+/// [`crate::ir::look::Look::textures`] and, point by point, the texture
+/// coordinates (u, v) of the polygon's points.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Textured {
+    pub texture: u16,
+    pub uvs: Vec<[f64; 2]>,
 }
 
 /// The sequence of turtle positions along one branch (every move, drawn or

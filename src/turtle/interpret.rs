@@ -7,7 +7,7 @@ use super::run::{Learned, Record, Run};
 use super::state::{
     add_scaled, dot, hermite, Cylinder, State, DEFAULT_TANGENTS, NO_HISTORY, RENORMALISE_EVERY,
 };
-use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, TurtlePath, Vec3};
+use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, Textured, TurtlePath, Vec3};
 use crate::ir::colours::DEFAULT_PALETTE;
 use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, SymbolId, System, TurtleOp};
 use crate::random::{Rng, Stream};
@@ -134,6 +134,7 @@ impl<'a> Turtle<'a> {
             cylinder: None,
             real: 0.0,
             contour: 0,
+            texture: None,
             tangents: DEFAULT_TANGENTS,
             radius_tangents: [[0.0; 2]; 2],
             scale_radius_tangents: false,
@@ -261,6 +262,7 @@ impl<'a> Turtle<'a> {
                 }
             }
             TurtleOp::SetContour => self.set_contour(args),
+            TurtleOp::SetTexture => self.set_texture(args),
             TurtleOp::SubLsystemCall => self.enter_sub_lsystem(args),
             TurtleOp::SubLsystemReturn => self.leave_sub_lsystem(),
             TurtleOp::Label => self.label(args),
@@ -463,6 +465,7 @@ impl Turtle<'_> {
                     colour,
                     index,
                     surface: false,
+                    texture: None,
                 });
             }
         }
@@ -492,16 +495,31 @@ impl Turtle<'_> {
         let Some(c) = self.state.cylinder else {
             return;
         };
-        if c.contour != 0 || self.state.contour != 0 {
-            self.cylinder_mesh(&c, pieces);
+        // A textured cylinder is a mesh, its cross-section the default
+        // circle when it has none: the image lies on its quadrilaterals.
+        let mut texture_v = c.texture_v;
+        if c.contour != 0 || self.state.contour != 0 || self.cylinder_texture().is_some() {
+            texture_v = self.cylinder_mesh(&c, pieces);
         } else {
             self.cylinder_segments(&c, pieces.max(4));
         }
         self.state.cylinder = if end {
             None
         } else {
-            Some(Cylinder::at(&self.state))
+            Some(Cylinder {
+                texture_v,
+                ..Cylinder::at(&self.state)
+            })
         };
+    }
+
+    /// The texture the turtle lays on cylinders. Its image need not have
+    /// been read: what is drawn has one shape whether or not the image
+    /// is found (a picture without it draws the mesh untextured).
+    fn cylinder_texture(&self) -> Option<(u16, &crate::ir::texture::Texture)> {
+        let t = self.state.texture?;
+        let texture = self.sys.look.textures().get(usize::from(t))?;
+        Some((t, texture))
     }
 
     /// cpfg `@Gr`: one parameter says whether radius tangents scale with
@@ -548,8 +566,14 @@ impl Turtle<'_> {
     }
 
     /// A piece of generalized cylinder with a cross-section: the contour
-    /// swept from `c` to the turtle as quadrilaterals.
-    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) {
+    /// swept from `c` to the turtle as quadrilaterals; the texture's v it
+    /// ends at. A texture goes once around the cross-section (u from 0 to
+    /// 1 along its points) and up the cylinder as [`Texture::v_along`]
+    /// says for the piece's mean width and length, the image keeping its
+    /// proportions (stretched by the texture's ratio).
+    ///
+    /// [`Texture::v_along`]: crate::ir::texture::Texture::v_along
+    fn cylinder_mesh(&mut self, c: &Cylinder, pieces: usize) -> f64 {
         let st = &self.state;
         let chord: Vec3 = std::array::from_fn(|i| st.pos[i] - c.point[i]);
         let radius_tangents = self.piece_radius_tangents(c, dot(chord, chord).sqrt());
@@ -580,14 +604,38 @@ impl Turtle<'_> {
         );
         let index = index_of(st.colour);
         let colour = self.colour();
-        for q in quads {
+        let length = dot(chord, chord).sqrt();
+        let textured = self
+            .cylinder_texture()
+            .map(|(t, texture)| (t, texture.v_along((c.width + st.width) / 2.0, length)));
+        let v_end = c.texture_v + textured.map_or(0.0, |(_, dv)| dv);
+        let around = (quads.len() / pieces.max(1)).max(1);
+        for (k, q) in quads.into_iter().enumerate() {
+            let texture = textured.map(|(texture, dv)| {
+                // Quadrilateral k: ring k / around to the next, between
+                // cross-section points k % around and the next.
+                let (ring, i) = ((k / around) as f64, (k % around) as f64);
+                let v = |r: f64| c.texture_v + dv * r / pieces as f64;
+                let u = |i: f64| i / around as f64;
+                Textured {
+                    texture,
+                    uvs: vec![
+                        [u(i), v(ring)],
+                        [u(i + 1.0), v(ring)],
+                        [u(i + 1.0), v(ring + 1.0)],
+                        [u(i), v(ring + 1.0)],
+                    ],
+                }
+            });
             self.sink.polygon(Polygon {
                 points: q.to_vec(),
                 colour,
                 index,
                 surface: false,
+                texture,
             });
         }
+        v_end
     }
 
     /// A piece of generalized cylinder without a cross-section: its axis
@@ -697,6 +745,14 @@ impl Turtle<'_> {
             .map_or(0, |k| (k + 1).min(u16::MAX as usize) as u16);
     }
 
+    /// `@Tx(n)`: texture `n` (from 1) of the look; 0, no parameter or a
+    /// number the look has no texture for: none.
+    fn set_texture(&mut self, args: Args) {
+        let n = args.get(0).unwrap_or(0.0);
+        let count = self.sys.look.textures().len() as f64;
+        self.state.texture = (n >= 1.0 && n <= count).then(|| (n as u16).saturating_sub(1));
+    }
+
     /// Fractint's `<n` / `>n`: the colour `by` places up or down the
     /// palette, wrapping around and skipping colour 0.
     fn shift_colour(&mut self, by: u32, up: bool) {
@@ -800,6 +856,7 @@ impl Turtle<'_> {
             colour,
             index: index_of(st.colour),
             surface: false,
+            texture: None,
         });
     }
 
@@ -817,7 +874,16 @@ impl Turtle<'_> {
         };
         let colour = self.colour();
         let st = &self.state;
-        for tri in &mesh.triangles {
+        let texture = mesh.texture.or(st.texture);
+        let per_surface = texture
+            .and_then(|t| self.sys.look.textures().get(usize::from(t)))
+            .is_some_and(|t| t.per_surface);
+        let uvs = if per_surface {
+            &mesh.surface_uvs
+        } else {
+            &mesh.patch_uvs
+        };
+        for (k, tri) in mesh.triangles.iter().enumerate() {
             let points = tri
                 .iter()
                 .map(|p| {
@@ -832,6 +898,10 @@ impl Turtle<'_> {
                 colour,
                 index: index_of(st.colour),
                 surface: true,
+                texture: texture.zip(uvs.get(k)).map(|(texture, uv)| Textured {
+                    texture,
+                    uvs: uv.to_vec(),
+                }),
             });
         }
     }

@@ -31,7 +31,7 @@ mod tropism;
 pub use cost::drawn_cost;
 pub(crate) use geometry::index_of;
 pub use geometry::{
-    grow_box, Disc, Drawn, Geometry, Label, Origins, Polygon, Segment, Sink, TurtlePath,
+    grow_box, Disc, Drawn, Geometry, Label, Origins, Polygon, Segment, Sink, Textured, TurtlePath,
 };
 pub use label::printf;
 pub use run::{run, Learned, Run, WordSymbols};
@@ -77,6 +77,7 @@ mod tests {
             colour: Rgb(0, 0, 0),
             index: 0,
             surface: false,
+            texture: None,
         };
         let line = || Segment {
             a: [0.0; 3],

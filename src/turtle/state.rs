@@ -29,6 +29,9 @@ pub(super) struct State {
     /// The cross-section of generalized cylinders: an index into
     /// [`System::contours`] plus one, 0 for the default circle.
     pub(super) contour: u16,
+    /// The texture what is drawn wears (cpfg `@Tx`): an index of the
+    /// look's textures, `None` for none. Branches keep their own.
+    pub(super) texture: Option<u16>,
     /// The tangent factors a control point set here gets (cpfg `@Gt`): for
     /// the piece of cylinder arriving at it, and the one leaving it.
     pub(super) tangents: (f64, f64),
@@ -57,6 +60,9 @@ pub(super) struct Cylinder {
     pub(super) tangents: (f64, f64),
     /// The radius tangents there (the leaving one starts the next piece).
     pub(super) radius_tangents: [[f64; 2]; 2],
+    /// How far up its texture image the cylinder has come there (the
+    /// texture's v; 0 where the cylinder starts).
+    pub(super) texture_v: f64,
 }
 
 /// cpfg's default tangent coefficients: the tangents at a Hermite
@@ -75,6 +81,7 @@ impl Cylinder {
             contour: st.contour,
             tangents: st.tangents,
             radius_tangents: st.radius_tangents,
+            texture_v: 0.0,
         }
     }
 }

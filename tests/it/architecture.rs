@@ -17,6 +17,8 @@
 //!   notations) imports only `ir` and `number`;
 //! * `layout` (layout shapes and outline growth, computations over the
 //!   IR) imports only `ir` and `number`;
+//! * `decode` (image files into the IR's texture images) imports only
+//!   `ir` and `number`;
 //! * the turtle imports neither render nor eval (nor anything above them);
 //! * the outputs of the turtle's geometry, render (pictures, animations),
 //!   mesh (OBJ, PLY, glTF) and raytrace (ray-traced pictures of instancing
@@ -400,7 +402,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "back" => matches!(target, "front" | "turtle"),
                 "ir" => !matches!(target, "ir" | "number"),
                 "number" => target != "number",
-                "common" | "layout" | "scene" => {
+                "common" | "layout" | "scene" | "decode" => {
                     target != top && !matches!(target, "ir" | "number")
                 }
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),

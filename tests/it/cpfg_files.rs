@@ -202,9 +202,10 @@ fn every_view_file_reads_without_errors() {
     assert_eq!(views, 98);
     assert!(default_angle >= 10, "{default_angle}");
     // No unknown commands (the one `tappered lines` is inside a comment);
-    // what graftal does not draw is said: 10 textures (background scenes
-    // are drawn; shadows are ray traced, so a shadow map needs no warning).
-    assert_eq!(warnings, ["W0807"; 10], "{warnings:?}");
+    // what graftal does not draw would be said (textures and background
+    // scenes are drawn; shadows are ray traced, so a shadow map needs no
+    // warning).
+    assert!(warnings.is_empty(), "{warnings:?}");
 }
 
 #[test]

@@ -302,8 +302,8 @@ fn cpfg_refusals_have_codes_of_their_own() {
 fn each_gft_code_has_its_snapshot_and_explanation() {
     let gft_codes = [
         "E0900", "E0901", "E0902", "E0903", "E0904", "E0905", "E0906", "E0907", "W0900", "W0901",
-        "W0902", "W0903", "E0920", "E0921", "E0922", "E0923", "E0924", "E0925", "E0926", "E1001",
-        "E1002", "W1003", "W1004",
+        "W0902", "W0903", "W0904", "E0920", "E0921", "E0922", "E0923", "E0924", "E0925", "E0926",
+        "E1001", "E1002", "W1003", "W1004",
     ];
     for code in gft_codes {
         let prefix = format!("gft-{}-", code.to_ascii_lowercase());

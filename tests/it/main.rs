@@ -75,4 +75,5 @@ mod stl_cli;
 mod stl_robustness;
 mod streamed;
 mod svg_detail;
+mod textures;
 mod translate;

@@ -359,3 +359,86 @@ fn a_lit_objects_glb_carries_emission_roughness_and_transparency() {
         assert_eq!(issues["numErrors"], 0, "{issues}");
     }
 }
+
+/// A lit cpfg object whose leaves (surfaces) wear a PNG texture.
+const MAPLE: &str = "tests/corpus/cpfg/11-CPFG-TexturedSurfaces/plant.l";
+
+#[test]
+fn a_textured_objects_obj_has_texture_coordinates_and_its_image() {
+    let out = temp("maple.obj");
+    render(MAPLE, &out, &[]);
+    let obj = std::fs::read_to_string(&out).unwrap();
+    let mtl = std::fs::read_to_string(out.with_extension("mtl")).unwrap();
+    let vt = obj.lines().filter(|l| l.starts_with("vt ")).count();
+    assert!(vt > 100, "{vt} vt lines");
+    // Textured faces name their coordinates: `f v/vt/vn`, every index in
+    // range.
+    let textured: Vec<&str> = obj
+        .lines()
+        .filter(|l| l.starts_with("f ") && !l.contains("//"))
+        .collect();
+    assert!(!textured.is_empty());
+    for f in &textured {
+        for corner in f[2..].split(' ') {
+            let t: usize = corner.split('/').nth(1).unwrap().parse().unwrap();
+            assert!((1..=vt).contains(&t), "{f}");
+        }
+    }
+    assert!(mtl.contains("map_Kd maple_t1.png\n"), "{mtl}");
+    // The image beside it: the maple leaf, decoded as the source's.
+    let png = std::fs::read(out.with_file_name("maple_t1.png")).unwrap();
+    let source = std::fs::read("tests/corpus/cpfg/11-CPFG-TexturedSurfaces/maple.png").unwrap();
+    assert_eq!(
+        graftal::decode::decode(&png).unwrap(),
+        graftal::decode::decode(&source).unwrap()
+    );
+    if let Some(theirs) = trimesh(&out) {
+        agrees(&render(MAPLE, &temp("maple2.obj"), &[]), &theirs);
+    }
+}
+
+#[test]
+fn a_textured_objects_glb_embeds_its_image_and_texture_coordinates() {
+    let out = temp("maple.glb");
+    render(MAPLE, &out, &[]);
+    let doc = glb_json(&out);
+    let prims: Vec<&Value> = doc["meshes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|m| m["primitives"].as_array().unwrap())
+        .collect();
+    let textured: Vec<&&Value> = prims
+        .iter()
+        .filter(|p| p["attributes"].get("TEXCOORD_0").is_some())
+        .collect();
+    assert!(!textured.is_empty());
+    let accessor =
+        &doc["accessors"][textured[0]["attributes"]["TEXCOORD_0"].as_u64().unwrap() as usize];
+    assert_eq!(accessor["type"], "VEC2");
+    let material = &doc["materials"][textured[0]["material"].as_u64().unwrap() as usize];
+    let texture = material["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+        .as_u64()
+        .unwrap() as usize;
+    assert_eq!(material["alphaMode"], "MASK");
+    let t = &doc["textures"][texture];
+    let sampler = &doc["samplers"][t["sampler"].as_u64().unwrap() as usize];
+    assert_eq!(
+        (sampler["wrapS"].as_u64(), sampler["wrapT"].as_u64()),
+        (Some(10497), Some(10497))
+    );
+    let image = &doc["images"][t["source"].as_u64().unwrap() as usize];
+    assert_eq!(image["mimeType"], "image/png");
+    // The image's bytes in the binary chunk decode to the maple leaf.
+    let view = &doc["bufferViews"][image["bufferView"].as_u64().unwrap() as usize];
+    let bytes = std::fs::read(&out).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let bin = &bytes[20 + json_len + 8..];
+    let at = view["byteOffset"].as_u64().unwrap() as usize;
+    let len = view["byteLength"].as_u64().unwrap() as usize;
+    let im = graftal::decode::decode(&bin[at..at + len]).unwrap();
+    assert_eq!((im.width(), im.height()), (256, 256));
+    if let Some(issues) = validate(&out) {
+        assert_eq!(issues["numErrors"], 0, "{issues}");
+    }
+}

@@ -615,7 +615,7 @@ fn a_context_free_plant_is_traced_from_its_shared_subtrees_as_its_geometry_is() 
         s.width = 2.0;
     }
     let flat = trace(
-        &Bvh::new(bvh::from_geometry(&geometry, pixel, Finish::default())),
+        &Bvh::new(bvh::from_geometry(&geometry, pixel, Finish::default(), &[])),
         &opts,
     );
     let rgb = |px: &[u8]| {
@@ -635,4 +635,87 @@ fn a_context_free_plant_is_traced_from_its_shared_subtrees_as_its_geometry_is() 
             "{near:.4} of the {which} picture's ink is within a pixel of the other's"
         );
     }
+}
+
+/// A unit square wearing a 2 × 2 image (bottom row red, green; top row
+/// blue, transparent), its corners at the image's corners, traced face on.
+fn textured_square(textured: bool) -> Vec<[u8; 3]> {
+    use graftal::ir::texture::{Image, Texture};
+    use graftal::turtle::{Geometry, Polygon, Textured};
+    let rgba = vec![
+        255, 0, 0, 255, 0, 255, 0, 255, // bottom: red, green
+        0, 0, 255, 255, 0, 0, 0, 0, // top: blue, transparent
+    ];
+    let image = Image::new(2, 2, rgba).unwrap();
+    let texture = Texture::new("quad.png", Some(std::sync::Arc::new(image)));
+    let g = Geometry {
+        polygons: vec![Polygon {
+            points: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            colour: Rgb(255, 255, 255),
+            index: 1,
+            surface: true,
+            texture: textured.then(|| Textured {
+                texture: 0,
+                uvs: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            }),
+        }],
+        ..Geometry::default()
+    };
+    let mut opts = options(64, view(0.0, 0.0));
+    opts.samples = 1;
+    opts.background = Rgb(0, 0, 0);
+    let items = graftal::raytrace::bvh::from_geometry(&g, 0.01, Finish::default(), &[texture]);
+    trace(&Bvh::new(items), &opts)
+        .chunks(4)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect()
+}
+
+#[test]
+fn a_textured_square_shows_its_image_and_lets_rays_through_where_it_is_transparent() {
+    let count = |px: &[[u8; 3]], f: &dyn Fn([i32; 3]) -> bool| {
+        px.iter().filter(|p| f(p.map(i32::from))).count()
+    };
+    let plain = textured_square(false);
+    let lit = count(&plain, &|p| p != [0, 0, 0]);
+    assert!(lit > 64 * 64 / 2, "{lit} pixels of the square");
+    // Untextured, the white square is grey to white: no colour dominates.
+    assert_eq!(count(&plain, &|p| (p[0] - p[1]).abs() > 30), 0);
+    let px = textured_square(true);
+    let red = count(&px, &|p| p[0] > p[1] + 50 && p[0] > p[2] + 50);
+    let green = count(&px, &|p| p[1] > p[0] + 50 && p[1] > p[2] + 50);
+    let blue = count(&px, &|p| p[2] > p[0] + 50 && p[2] > p[1] + 50);
+    let quarter = lit / 4;
+    for (name, n) in [("red", red), ("green", green), ("blue", blue)] {
+        assert!(
+            n * 10 > quarter * 8 && n * 10 < quarter * 12,
+            "{name}: {n} pixels, a quarter of the square is {quarter}"
+        );
+    }
+    // The transparent quarter is cut out: the background shows there.
+    let through = count(&px, &|p| p == [0, 0, 0]) - count(&plain, &|p| p == [0, 0, 0]);
+    assert!(
+        through * 10 > quarter * 8 && through * 10 < quarter * 12,
+        "{through} pixels cut out of {quarter}"
+    );
+    // Red beside green, blue above (or below) red: the image's layout.
+    let at = |x: usize, y: usize| px[y * 64 + x];
+    let red_at = |p: [u8; 3]| p[0] > p[1] + 50;
+    let (xs, ys): (Vec<usize>, Vec<usize>) = (0..64 * 64)
+        .filter(|&i| red_at(px[i]))
+        .map(|i| (i % 64, i / 64))
+        .unzip();
+    let (cx, cy) = (
+        xs.iter().sum::<usize>() / xs.len(),
+        ys.iter().sum::<usize>() / ys.len(),
+    );
+    let mirrored_x = 63 - cx;
+    let mirrored_y = 63 - cy;
+    assert!(at(mirrored_x, cy)[1] > 100, "green across from red");
+    assert!(at(cx, mirrored_y)[2] > 100, "blue across from red");
 }

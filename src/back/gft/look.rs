@@ -4,6 +4,7 @@
 use super::expr::num;
 use super::words::Spelling;
 use crate::ir::look::{Contour, ContourRole, LineStyle, Look, Shading, Tropism, TropismKind};
+use crate::ir::texture::{Filter, Texture, TextureMode};
 use crate::ir::{Angle, BranchEntry, BranchTerm, Growth, Rgb, SeedItem, Shape, Structure, System};
 use crate::number;
 use std::fmt::Write;
@@ -277,6 +278,40 @@ pub fn look(out: &mut String, look: &Look) {
             m.transparency
         );
     }
+    for t in &l.textures {
+        texture(out, t);
+    }
+}
+
+/// Whether `.gft` can name the image file `file`: in double quotes, so
+/// without a double quote or a line break.
+pub fn names_file(file: &str) -> bool {
+    !file.contains(['"', '\r', '\n'])
+}
+
+/// `texture "FILE" filter F mode M ratio R [surface-wide]` (docs/gft.md
+/// §9); a file name `.gft` cannot quote is not written (the translation
+/// says so, W0615).
+fn texture(out: &mut String, t: &Texture) {
+    if !names_file(&t.file) {
+        return;
+    }
+    let filter = match t.filter {
+        Filter::Nearest => "nearest",
+        Filter::Linear => "linear",
+    };
+    let mode = match t.mode {
+        TextureMode::Modulate => "modulate",
+        TextureMode::Decal => "decal",
+        TextureMode::Blend => "blend",
+    };
+    let wide = if t.per_surface { " surface-wide" } else { "" };
+    let _ = writeln!(
+        out,
+        "texture \"{}\" filter {filter} mode {mode} ratio {}{wide}",
+        t.file,
+        num(t.ratio)
+    );
 }
 
 /// Surfaces, one triangle per line, then contours, four points a line.
@@ -293,9 +328,23 @@ fn scene(out: &mut String, look: &Look) {
 pub fn surfaces(out: &mut String, sys: &System) {
     scene(out, &sys.look);
     for s in &sys.surfaces {
-        let _ = writeln!(out, "surface {} {{", s.name);
-        for t in &s.triangles {
-            let _ = writeln!(out, "  {} {} {}", triple(t[0]), triple(t[1]), triple(t[2]));
+        // The texture counted from 1, as `set-texture` counts them.
+        let texture = s
+            .texture
+            .map_or(String::new(), |t| format!(" texture {}", u32::from(t) + 1));
+        let _ = writeln!(out, "surface {}{texture} {{", s.name);
+        for (k, t) in s.triangles.iter().enumerate() {
+            let _ = write!(out, "  {} {} {}", triple(t[0]), triple(t[1]), triple(t[2]));
+            // Each corner's texture coordinates on its patch; those across
+            // the whole surface are derived again on reading.
+            if let Some(uv) = s.patch_uvs.get(k) {
+                let pairs: Vec<String> = uv
+                    .iter()
+                    .map(|p| format!("({}, {})", num(p[0]), num(p[1])))
+                    .collect();
+                let _ = write!(out, " {}", pairs.join(" "));
+            }
+            out.push('\n');
         }
         out.push_str("}\n");
     }

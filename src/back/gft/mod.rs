@@ -13,6 +13,7 @@ pub mod expr;
 mod graph;
 mod look;
 mod words;
+pub use look::names_file;
 
 use crate::ir::program::{Program, Stmt};
 use crate::ir::{Phase, Production, Settings, System};
@@ -456,6 +457,7 @@ mod tests {
         s.surfaces.push(SurfaceMesh {
             name: "leaf".into(),
             triangles: vec![[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]],
+            ..Default::default()
         });
         s.contours.push(Contour {
             id: 1,

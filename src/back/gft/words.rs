@@ -333,6 +333,7 @@ pub fn operation(sys: &System, op: TurtleOp) -> String {
         TurtleOp::CylinderTangents => "cylinder-tangents".into(),
         TurtleOp::RadiusTangents => "radius-tangents".into(),
         TurtleOp::SetContour => "set-contour".into(),
+        TurtleOp::SetTexture => "set-texture".into(),
         TurtleOp::Query(kind) => format!("query {}", query(kind)),
         TurtleOp::TurnUnswapped(a) => format!("turn-unswapped {}", angle(a)),
         TurtleOp::RotateReal(a) => format!("turn-real {}", angle(a)),

@@ -377,4 +377,18 @@ Example (female.v):
 
 Put the file in the object's folder, or take the line out (and `~b` out of
 the L-system).";
+
+    CPFG_TEXTURE_IMAGE = "W0814", "texture image missing or unreadable: drawn untextured",
+"A `texture:` line of the view file (or the texture file at the end of a
+`surface:` line) names an image the object's folder does not have, or one
+that is not a PNG or SGI (`.rgb`) image graftal can decode. cpfg then says
+it cannot load the texture and draws without it; graftal draws what the
+texture would cover in its own colours too, and keeps the texture's
+number, so that `@Tx(n)` still picks the texture the line after means.
+
+Example (plant.v):
+    texture: F: maple.png H:n L:n E:m S:     <- no maple.png in the folder
+
+Put the image in the object's folder (cpfg reads PNG and SGI images;
+convert others), or take the line out.";
 }

@@ -95,7 +95,7 @@ files or print into its output: the calls do nothing and return 0.";
 
     CPFG_NOT_DRAWN = "W0823", "turtle command not drawn",
 "graftal understands this turtle command but does not draw it: labels
-(`@L`), textures (`@Tx`) and L-system-defined surfaces (`@PS`, `@PC`,
+(`@L`) and L-system-defined surfaces (`@PS`, `@PC`,
 `@PD`); or the command has nothing to act on: elasticity modules (`@Ts`,
 `@Ti`, `@Td`, `@Tp`, `@Tf`) when the view file sets no tropism, tropisms
 past cpfg's ten. The rest of the picture is drawn as cpfg draws it.";

@@ -210,4 +210,18 @@ misspelt.
 Example:
     symbol apex
     axiom apx       <- did you mean `apex`? (read as `a p x`)";
+
+    GFT_TEXTURE_IMAGE = "W0904", "texture image missing or unreadable: drawn untextured",
+"A `texture` line names an image file (relative to the `.gft` file's
+folder) that is not there, or that is not a PNG or SGI (`.rgb`) image
+graftal can decode. What the texture would cover is drawn in its own
+colours, as cpfg draws it when a view file's image is missing (W0814);
+the texture keeps its number, so that `set-texture` still picks the
+texture the line after means.
+
+Example (plant.gft, written in another folder than the object's):
+    texture \"maple.png\" filter nearest mode modulate ratio 1  <- no maple.png here
+
+Put the image beside the `.gft` file, or name it relative to the file's
+folder (`\"../maple/maple.png\"`).";
 }

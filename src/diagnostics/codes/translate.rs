@@ -123,6 +123,13 @@ symbols than pfg has characters, the translation is not written.
 
 Translate with fewer steps (`-n`).";
 
+    TR_TEXTURES_DROPPED = "W0615", "textures not translated",
+"The source maps images on its surfaces (cpfg `texture:` lines and
+`@Tx`). Only `.gft` writes textures (its `texture` lines, naming the image
+file): pfg, LinF, STL and the other targets draw the same shapes in their
+own colours, untextured. `.gft` says this only of an image whose file name
+holds a double quote or a line break, which it cannot quote.";
+
     TR_PICTURE_DIFFERS = "W0614", "the approximated translation draws another picture",
 "After a `--lossy` translation, graftal draws the source and the
 translation (with the same steps, within small limits) and compares the

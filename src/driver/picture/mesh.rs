@@ -49,12 +49,20 @@ pub(super) fn draw(
         MeshFormat::Glb => (crate::mesh::glb(&scene), Vec::new()),
         MeshFormat::Obj => {
             let mesh = scene.flattened();
+            let library = &req.material_library;
             let mtl = SideFile {
-                name: req.material_library.clone(),
-                bytes: crate::mesh::mtl(&mesh).into_bytes(),
+                name: library.clone(),
+                bytes: crate::mesh::mtl(&mesh, library).into_bytes(),
             };
-            let obj = crate::mesh::obj(&mesh, &req.material_library);
-            (obj.into_bytes(), vec![mtl])
+            // The textures' images beside the library that names them.
+            let images = crate::mesh::texture::image_files(&mesh, library)
+                .into_iter()
+                .map(|(name, bytes)| SideFile { name, bytes });
+            let obj = crate::mesh::obj(&mesh, library);
+            (
+                obj.into_bytes(),
+                std::iter::once(mtl).chain(images).collect(),
+            )
         }
         MeshFormat::Ply => (
             crate::mesh::ply(&scene.flattened()).into_bytes(),

@@ -197,7 +197,7 @@ pub(super) fn geometry(
         specular: 0.2,
         ..Finish::default()
     };
-    let items = bvh::from_geometry(g, pixel, finish);
+    let items = bvh::from_geometry(g, pixel, finish, sys.look.textures());
     let scene = bvh::Bvh::new(items);
     if format == Format::Pov {
         let points = scene.fit_points();

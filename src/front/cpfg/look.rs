@@ -167,6 +167,7 @@ fn lighting(v: &View, materials: &[Option<Material>]) -> Lighting {
         surface_ambient: v.surface_ambient,
         surface_diffuse: v.surface_diffuse,
         shadows: v.render_mode == view::RenderMode::Shadows,
+        textures: Vec::new(),
     }
 }
 

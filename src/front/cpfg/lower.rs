@@ -29,7 +29,7 @@ pub fn turtle_op(name: &str) -> Option<TurtleOp> {
 }
 
 /// Turtle commands graftal reads but does not draw (W0823).
-const NOT_DRAWN: &[&str] = &["@Tx", "@PS", "@PC", "@PD", "@bo", "@bc"];
+const NOT_DRAWN: &[&str] = &["@PS", "@PC", "@PD", "@bo", "@bc"];
 
 /// Names bound in a production or block, resolved as they are met.
 /// A pattern's symbols and, for each module, the local slots it binds.

@@ -25,6 +25,7 @@ pub mod parser;
 pub mod preprocess;
 pub mod scene;
 pub mod surface;
+mod textures;
 mod tropisms;
 pub mod view;
 
@@ -148,9 +149,17 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
     apply_view(&mut lowered.system, &view);
     beside.add_look(&mut lowered.system, path, &view, diags);
     beside.add_scenes(&mut lowered.system, &view, diags);
+    beside.add_textures(&mut lowered.system, &view, diags);
     lowered.system.program.functions = functions.functions;
     lowered.system.contours = contours;
     beside.add_surfaces(&mut lowered.system, &view, diags);
+    if lowered.system.look.textures().is_empty() {
+        // Texture coordinates serve only textures: a look without any
+        // keeps its surfaces bare (and their `.gft` short).
+        for m in &mut lowered.system.surfaces {
+            (m.patch_uvs, m.surface_uvs) = (Vec::new(), Vec::new());
+        }
+    }
     report_undefined_surfaces(&lowered, &view, diags);
     if let Some(dir) = beside.dir {
         environment::name_program(dir, path, diags);
@@ -601,9 +610,11 @@ impl<'a> Beside<'a> {
                 continue;
             };
             let name = format!("~{}", r.id);
+            let texture = self.surface_texture(sys, r, &mut missing);
             sys.surfaces.push(crate::ir::SurfaceMesh {
                 name: name.clone(),
-                triangles: surface_triangles(r, &surface),
+                texture,
+                ..surface_mesh(r, &surface)
             });
             let index = (sys.surfaces.len() - 1) as u16;
             if let Some(id) = sys.symbols.get(&name) {
@@ -830,8 +841,11 @@ fn apply_view(sys: &mut System, view: &view::View) {
 }
 
 /// The triangles of a surface placed as `r` says, in turtle coordinates,
-/// with no more than [`MAX_SURFACE_TRIANGLES`].
-fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[f64; 3]; 3]> {
+/// with no more than [`MAX_SURFACE_TRIANGLES`], and their texture
+/// coordinates: per patch its parameters, across the surface its x and y
+/// (cpfg's, along the turtle's L and H) over their extent, as cpfg's
+/// `set_texture_coordinates` lays a texture in the plane z = 0.
+fn surface_mesh(r: &view::SurfaceRef, surface: &surface::Surface) -> crate::ir::SurfaceMesh {
     let mut div = r.s_divisions.max(r.t_divisions).clamp(1, 8);
     while div > 1 && surface.patches.len() * 2 * (div * div) as usize > MAX_SURFACE_TRIANGLES {
         div -= 1;
@@ -844,16 +858,24 @@ fn surface_triangles(r: &view::SurfaceRef, surface: &surface::Surface) -> Vec<[[
     } else {
         r.scale
     };
-    surface
-        .triangles(div)
+    let (triangles, patch_uvs): (Vec<_>, Vec<_>) = surface
+        .triangles_with_parameters(div)
         .into_iter()
-        .map(|t| {
-            t.map(|p| {
+        .map(|(t, uv)| {
+            let placed = t.map(|p| {
                 let [h, l, u] = surface.to_turtle(p);
                 [l * scale, h * scale, u * scale]
-            })
+            });
+            (placed, uv)
         })
-        .collect()
+        .unzip();
+    let surface_uvs = crate::ir::SurfaceMesh::extent_uvs(&triangles);
+    crate::ir::SurfaceMesh {
+        triangles,
+        patch_uvs,
+        surface_uvs,
+        ..Default::default()
+    }
 }
 
 /// A `~` module whose surface the view file does not define: the rest of

@@ -41,6 +41,10 @@ pub struct Surface {
     pub patches: Vec<Patch>,
 }
 
+/// A triangle's corners, and their texture coordinates.
+pub type Triangle = [[f64; 3]; 3];
+pub type TriangleUvs = [[f64; 2]; 3];
+
 const MAX_PATCHES: usize = 100_000;
 
 fn error(span: Range<usize>, msg: impl Into<String>, expected: &str) -> Diagnostics {
@@ -271,26 +275,32 @@ impl Surface {
     /// a (divisions+1)² grid (at least 1 division), two triangles a cell,
     /// so `patches × 2 × divisions²` triangles, consistently oriented.
     pub fn triangles(&self, divisions: u32) -> Vec<[[f64; 3]; 3]> {
+        self.triangles_with_parameters(divisions)
+            .into_iter()
+            .map(|(t, _)| t)
+            .collect()
+    }
+
+    /// [`Surface::triangles`], each with its corners' patch parameters
+    /// (s, t), the texture coordinates of a texture laid on each patch.
+    pub fn triangles_with_parameters(&self, divisions: u32) -> Vec<(Triangle, TriangleUvs)> {
         let d = divisions.clamp(1, 1024) as usize;
+        let step = 1.0 / d as f64;
         let mut out = Vec::with_capacity(self.patches.len() * 2 * d * d);
         for p in &self.patches {
             let grid: Vec<Vec<[f64; 3]>> = (0..=d)
                 .map(|i| {
                     (0..=d)
-                        .map(|j| p.point(i as f64 / d as f64, j as f64 / d as f64))
+                        .map(|j| p.point(i as f64 * step, j as f64 * step))
                         .collect()
                 })
                 .collect();
             for i in 0..d {
                 for j in 0..d {
-                    let (a, b, c, e) = (
-                        grid[i][j],
-                        grid[i + 1][j],
-                        grid[i + 1][j + 1],
-                        grid[i][j + 1],
-                    );
-                    out.push([a, b, c]);
-                    out.push([a, c, e]);
+                    let at = |i: usize, j: usize| (grid[i][j], [i as f64 * step, j as f64 * step]);
+                    let (a, b, c, e) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                    out.push(([a.0, b.0, c.0], [a.1, b.1, c.1]));
+                    out.push(([a.0, c.0, e.0], [a.1, c.1, e.1]));
                 }
             }
         }

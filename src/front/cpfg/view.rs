@@ -9,6 +9,7 @@
 //! use (lights, textures, fonts, …) are listed in [`View::unused`].
 
 use crate::diagnostics::{codes, nearest, Diagnostic, Diagnostics};
+use crate::ir::texture::{Filter, TextureMode};
 use crate::ir::{Rgb, Span};
 use std::path::{Path, PathBuf};
 
@@ -67,6 +68,19 @@ pub struct SurfaceRef {
 /// A `contour:` (`contour: id file.con`, a cross-section of generalized
 /// cylinders) or a `curve:` (`curve: file`, read by `curveX(id, t)`: its id
 /// is its place among the `curve:` lines, from 1).
+/// A `texture:` command (manual §8.1.7): `F: file`, `H:`/`L:` filters,
+/// `E:` mode, `S:` (per surface), `R: ratio`. Numbered from 1 in the order
+/// of the view file, as `@Tx(n)` names them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureRef {
+    pub file: String,
+    pub filter: Filter,
+    pub mode: TextureMode,
+    pub per_surface: bool,
+    pub ratio: f64,
+    pub line: Span,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContourRef {
     pub id: u32,
@@ -145,6 +159,8 @@ pub struct View {
     pub function_samples: Vec<Option<u32>>,
     pub function_sets: Vec<String>,
     pub surfaces: Vec<SurfaceRef>,
+    /// `texture:` commands, numbered from 1 in this order.
+    pub textures: Vec<TextureRef>,
     /// `line:` commands (lines drawn with a surface).
     pub lines: Vec<SurfaceRef>,
     pub contours: Vec<ContourRef>,
@@ -205,6 +221,7 @@ impl Default for View {
             function_samples: Vec::new(),
             function_sets: Vec::new(),
             surfaces: Vec::new(),
+            textures: Vec::new(),
             lines: Vec::new(),
             contours: Vec::new(),
             curves: Vec::new(),
@@ -229,10 +246,7 @@ impl Default for View {
 
 /// Commands that change cpfg's picture and that graftal does not draw:
 /// each is a warning at its line.
-const NOT_DRAWN: &[(&str, &str)] = &[
-    ("texture", "surfaces are drawn without their textures"),
-    ("tsurface", "the rayshade surfaces are not drawn"),
-];
+const NOT_DRAWN: &[(&str, &str)] = &[("tsurface", "the rayshade surfaces are not drawn")];
 
 /// Commands cpfg knows that graftal reads and needs not use: interactive
 /// settings, fonts, deprecated commands cpfg itself ignores, and the
@@ -585,6 +599,10 @@ fn set_lights(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
         "diffuse reflection" => set_num(&mut v.diffuse_reflection, c, d),
         "surface ambient" => set_num(&mut v.surface_ambient, c, d),
         "surface diffuse" => set_num(&mut v.surface_diffuse, c, d),
+        "texture" => match texture_ref(c.value, c.span.clone()) {
+            Some(t) => v.textures.push(t),
+            None => c.bad(d, "`F: file` and subcommands `H:`, `L:`, `E:`, `S:`, `R:`"),
+        },
         _ => return false,
     }
     true
@@ -855,6 +873,48 @@ fn tropism(value: &str) -> Option<Tropism> {
     // cpfg ignores a tropism without direction or intensity.
     let pulls = t.vector != [0.0; 3] && t.intensity != Some(0.0);
     (has_t && pulls).then_some(t)
+}
+
+/// A `texture:` command's subcommands, as cpfg's `read_texture` reads
+/// them: a letter, then (but for `S:`) a word. `L:` (the filter for
+/// texels smaller than pixels, mipmaps included) is read and not used: the
+/// pictures read textures through `H:`'s filter. The file is mandatory; an
+/// unknown subcommand makes cpfg drop the line, as here.
+fn texture_ref(value: &str, line: Span) -> Option<TextureRef> {
+    let mut words = value.split([' ', '\t', ':', ',']).filter(|w| !w.is_empty());
+    let mut t = TextureRef {
+        file: String::new(),
+        filter: Filter::Nearest,
+        mode: TextureMode::Modulate,
+        per_surface: false,
+        ratio: 1.0,
+        line,
+    };
+    while let Some(key) = words.next() {
+        match key.chars().next()? {
+            'F' => t.file = words.next()?.to_string(),
+            'H' => {
+                if let Some(f) = words.next()?.chars().next() {
+                    t.filter = if f == 'l' { Filter::Linear } else { t.filter };
+                }
+            }
+            'L' => {
+                words.next()?;
+            }
+            'E' => {
+                t.mode = match words.next()?.chars().next() {
+                    Some('d') => TextureMode::Decal,
+                    Some('b') => TextureMode::Blend,
+                    Some('m') => TextureMode::Modulate,
+                    _ => t.mode,
+                }
+            }
+            'S' => t.per_surface = true,
+            'R' => t.ratio = words.next().and_then(num).unwrap_or(t.ratio),
+            _ => return None,
+        }
+    }
+    (!t.file.is_empty()).then_some(t)
 }
 
 fn surface_ref(value: &str, line: Span) -> Option<SurfaceRef> {
@@ -1212,16 +1272,41 @@ mod tests {
         assert_eq!(v.render_mode, RenderMode::Wireframe);
         let (_, d) = read_view("shade mode: 9\n");
         assert_eq!(codes_of(&d), ["W0808"]);
-        let src = "font: x\ntexture: T: bark.png\n";
+        let src = "font: x\ntsurface: t bark.ray 1\n";
         let (_, d) = read_view(src);
         assert_eq!(codes_of(&d), ["W0807"]);
-        assert_eq!(&src[d.0[0].span.clone().unwrap()], "texture: T: bark.png");
+        assert_eq!(&src[d.0[0].span.clone().unwrap()], "tsurface: t bark.ray 1");
         // Scenes are read: several files on one line.
         let src = "background scene: a.dat, b.dat;c.dat\n";
         let (v, d) = read_view(src);
         assert!(d.is_empty(), "{d:?}");
         let names: Vec<&str> = v.scenes.iter().map(|s| s.0.as_str()).collect();
         assert_eq!(names, ["a.dat", "b.dat", "c.dat"]);
+    }
+
+    #[test]
+    fn textures_are_read_as_cpfg_reads_them() {
+        let src = "texture: F: maple.png H:n L:n E:m S: /* whole */\n\
+                   texture: F: squares.png E: d R: 0.5 H: l L: mll\n\
+                   texture: T: bark.png\ntexture: H: l\n";
+        let (v, d) = read_view(src);
+        assert_eq!(codes_of(&d), ["W0808", "W0808"]);
+        assert_eq!(v.textures.len(), 2);
+        let (a, b) = (&v.textures[0], &v.textures[1]);
+        assert_eq!(
+            (a.file.as_str(), a.filter, a.mode),
+            ("maple.png", Filter::Nearest, TextureMode::Modulate)
+        );
+        assert!(a.per_surface && a.ratio == 1.0);
+        assert_eq!(
+            &src[a.line.clone()],
+            "texture: F: maple.png H:n L:n E:m S: /* whole */".trim_end_matches(" /* whole */")
+        );
+        assert_eq!(
+            (b.file.as_str(), b.filter, b.mode),
+            ("squares.png", Filter::Linear, TextureMode::Decal)
+        );
+        assert!(!b.per_surface && b.ratio == 0.5);
     }
 
     #[test]

@@ -31,6 +31,9 @@ struct Cx<'d> {
     arrays: HashMap<String, (u16, usize)>,
     /// The file's budget for "did you mean …?".
     suggester: Suggester,
+    /// The folder texture images are read from (the `.gft` file's); none
+    /// for a text read without a file.
+    folder: Option<&'d std::path::Path>,
 }
 
 /// The names words may contain, found by length: a file that declares
@@ -61,7 +64,14 @@ impl WordNames {
 
 /// Lowers a parsed file; the system is usable only when `diags` got no error.
 pub fn lower(file: &File, diags: &mut Diagnostics) -> Lowered {
+    lower_in(file, None, diags)
+}
+
+/// [`lower`] for a file of the folder `folder`, which its `texture` lines
+/// name image files in (docs/gft.md §9).
+pub fn lower_in(file: &File, folder: Option<&std::path::Path>, diags: &mut Diagnostics) -> Lowered {
     let mut cx = Cx {
+        folder,
         sys: System::new(),
         spans: SpanTable::default(),
         diags,

@@ -35,7 +35,10 @@ impl Front for Gft {
         &["gft"]
     }
     fn read(&self, file: &SourceFile, _entry: Option<&str>, diags: &mut Diagnostics) -> Read {
-        read(&file.text, diags).into()
+        // Texture images are named relative to the file's folder.
+        let folder = std::path::Path::new(&file.name).parent();
+        let ast = parser::parse(&file.text, diags);
+        lower::lower_in(&ast, folder, diags).into()
     }
     fn comments(&self, src: &str) -> Vec<(Span, String)> {
         block_comments(src)

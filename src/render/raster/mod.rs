@@ -227,7 +227,13 @@ impl<'a> Scene<'a> {
 
     fn vert(&self, p: Vec3, c: Colour) -> Option<SVert> {
         let [x, y, z] = self.to_samples(p)?;
-        Some(SVert { x, y, z, c })
+        Some(SVert {
+            x,
+            y,
+            z,
+            c,
+            uv: [0.0; 2],
+        })
     }
 
     /// Samples per world unit at `p`.

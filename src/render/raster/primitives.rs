@@ -84,14 +84,24 @@ impl Scene<'_> {
                 vec![c; pts.len()]
             }
         };
+        let textured = p.texture.as_ref().and_then(|tx| {
+            let texture = self.lighting.textures.get(usize::from(tx.texture))?;
+            let has_uvs = texture.image.is_some() && tx.uvs.len() == pts.len();
+            has_uvs.then_some((texture, &tx.uvs))
+        });
         let vert = |i: usize| SVert {
             x: corners[i][0],
             y: corners[i][1],
             z: corners[i][2],
             c: colours[i],
+            uv: textured.map_or([0.0; 2], |(_, uvs)| uvs[i]),
         };
         for &[a, b, c] in &tess.triangles {
-            t.triangle([vert(a), vert(b), vert(c)]);
+            let v = [vert(a), vert(b), vert(c)];
+            match textured {
+                Some((texture, _)) => t.textured_triangle(v, texture),
+                None => t.triangle(v),
+            }
         }
     }
 
@@ -289,6 +299,7 @@ fn flat_disc(t: &mut Target, c: [f64; 3], r: f64, colour: Colour) {
         y: c[1],
         z: c[2],
         c: colour,
+        uv: [0.0; 2],
     };
     let at = |k: usize| {
         let (sn, cs) = (k as f64 * std::f64::consts::TAU / n as f64).sin_cos();

@@ -3,17 +3,19 @@
 //! triangles and lines rasterised into it (the nearer sample wins; on a
 //! tie the first drawn).
 
+use crate::ir::texture::Texture;
 use crate::ir::Rgb;
 use crate::render::shade::{to_colour, Colour};
 
 /// A vertex in samples (x right, y down), with its depth (smaller is
-/// nearer) and colour.
+/// nearer), colour and texture coordinates (unused untextured).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct SVert {
     pub(super) x: f64,
     pub(super) y: f64,
     pub(super) z: f64,
     pub(super) c: Colour,
+    pub(super) uv: [f64; 2],
 }
 
 /// A band of sample rows, or one thread's share of it: the band's rows
@@ -139,6 +141,19 @@ impl Target {
     }
 
     pub(super) fn triangle(&mut self, v: [SVert; 3]) {
+        self.fill(v, None);
+    }
+
+    /// A triangle wearing `texture`: each sample's lit colour combined
+    /// with the texel at its texture coordinates (interpolated across the
+    /// triangle as the colour is); a sample whose texel leaves it less than
+    /// half opaque is not drawn (the transparent parts of a leaf's image
+    /// cut its shape out of the surface).
+    pub(super) fn textured_triangle(&mut self, v: [SVert; 3], texture: &Texture) {
+        self.fill(v, Some(texture));
+    }
+
+    fn fill(&mut self, v: [SVert; 3], texture: Option<&Texture>) {
         if v.iter()
             .any(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()))
         {
@@ -184,7 +199,17 @@ impl Target {
                 let (b0, b1, b2) = (w0 / area, w1 / area, w2 / area);
                 let z = b0 * v[0].z + b1 * v[1].z + b2 * v[2].z;
                 let (b0, b1, b2) = (b0 as f32, b1 as f32, b2 as f32);
-                let c = [0, 1, 2].map(|k| b0 * v[0].c[k] + b1 * v[1].c[k] + b2 * v[2].c[k]);
+                let mut c = [0, 1, 2].map(|k| b0 * v[0].c[k] + b1 * v[1].c[k] + b2 * v[2].c[k]);
+                if let Some(texture) = texture {
+                    let (b0, b1, b2) = (f64::from(b0), f64::from(b1), f64::from(b2));
+                    let uv = [0, 1].map(|k| b0 * v[0].uv[k] + b1 * v[1].uv[k] + b2 * v[2].uv[k]);
+                    let lit = [c[0], c[1], c[2], 1.0];
+                    let shaded = texture.shade(lit, uv[0], uv[1]);
+                    if shaded[3] < 0.5 {
+                        continue;
+                    }
+                    c = [shaded[0], shaded[1], shaded[2]];
+                }
                 self.plot(x, y, z, c);
             }
         }
@@ -206,6 +231,7 @@ impl Target {
             y: p[1] + s * ty + side * ny,
             z: p[2],
             c,
+            uv: [0.0; 2],
         };
         let q = [
             at(a, -1.0, -1.0),

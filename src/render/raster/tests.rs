@@ -44,6 +44,7 @@ fn square(z: f64, half: f64, grey: u8) -> Polygon {
         colour: Rgb(grey, grey, grey),
         index: grey as u16,
         surface: false,
+        texture: None,
     }
 }
 
@@ -77,6 +78,7 @@ fn a_concave_polygon_covers_its_area() {
         colour: Rgb(255, 255, 255),
         index: 255,
         surface: false,
+        texture: None,
     };
     let g = Geometry {
         polygons: vec![l_shape],
@@ -309,6 +311,7 @@ fn bands_and_threads_do_not_change_the_picture() {
                     colour: Rgb(40, 160, 40),
                     index: 40,
                     surface: true,
+                    texture: None,
                 });
             }
             g.disc(Disc {
@@ -384,12 +387,14 @@ fn empty_and_degenerate_geometry_draws_without_panicking() {
                 colour: BLACK,
                 index: 0,
                 surface: false,
+                texture: None,
             },
             Polygon {
                 points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
                 colour: BLACK,
                 index: 0,
                 surface: false,
+                texture: None,
             },
             // A bow tie: crosses itself.
             Polygon {
@@ -397,6 +402,7 @@ fn empty_and_degenerate_geometry_draws_without_panicking() {
                 colour: BLACK,
                 index: 7,
                 surface: false,
+                texture: None,
             },
         ],
         discs: vec![Disc {

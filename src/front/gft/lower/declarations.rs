@@ -39,6 +39,7 @@ const SIMPLE_OPERATIONS: &[(&str, TurtleOp)] = &[
     ("cylinder-tangents", TurtleOp::CylinderTangents),
     ("radius-tangents", TurtleOp::RadiusTangents),
     ("set-contour", TurtleOp::SetContour),
+    ("set-texture", TurtleOp::SetTexture),
     ("forward-real", TurtleOp::ForwardReal { draw: true }),
     ("move-real", TurtleOp::ForwardReal { draw: false }),
     ("untwist", TurtleOp::Untwist),

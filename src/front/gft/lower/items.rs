@@ -11,6 +11,7 @@ use crate::ir::look::{
     TropismKind,
 };
 use crate::ir::program::Function;
+use crate::ir::texture::{Filter, Image, Texture, TextureMode};
 use crate::ir::{ElasticityChange, QueryKind, Rgb, Span, SurfaceMesh, TurtleOp};
 
 /// One argument after joining what is written without space between:
@@ -235,6 +236,7 @@ impl Cx<'_> {
             "lighting" => self.lighting(k),
             "light" => self.light(k),
             "material" => self.material(k),
+            "texture" => self.texture(k),
             "contour" => self.contour(k),
             "backdrop" => self.backdrop(k),
             "function" => self.function(k),
@@ -433,26 +435,175 @@ impl Cx<'_> {
         );
     }
 
-    /// `surface NAME { triangles }`.
+    /// `texture "FILE" filter F mode M ratio R [surface-wide]`: one more
+    /// texture of the look, its image read from the file's folder.
+    fn texture(&mut self, k: &Keyword) {
+        let mut f = Fields::new(k);
+        let file = match f.all().first().cloned() {
+            Some(Val::Word(w, _)) if w.len() >= 2 && w.starts_with('"') && w.ends_with('"') => {
+                Some(w[1..w.len() - 1].to_string())
+            }
+            v => f.fail(v.as_ref(), "the image's file name in double quotes".into()),
+        };
+        let filter = f.word("filter", &["nearest", "linear"]);
+        let mode = f.word("mode", &["modulate", "decal", "blend"]);
+        let ratio = f.number("ratio");
+        let per_surface = f.has("surface-wide");
+        if let (Some(file), Some(filter), Some(mode), Some(ratio)) = (file, filter, mode, ratio) {
+            let image = self.texture_image(&file, &k.line);
+            self.lighting_mut().textures.push(Texture {
+                filter: match filter.as_str() {
+                    "linear" => Filter::Linear,
+                    _ => Filter::Nearest,
+                },
+                mode: match mode.as_str() {
+                    "decal" => TextureMode::Decal,
+                    "blend" => TextureMode::Blend,
+                    _ => TextureMode::Modulate,
+                },
+                per_surface,
+                ratio,
+                ..Texture::new(file, image)
+            });
+        }
+        self.malformed(
+            f,
+            k,
+            "texture \"leaf.png\" filter nearest mode modulate ratio 1 [surface-wide]",
+        );
+    }
+
+    /// The decoded image `file` of the `.gft`'s folder, or a warning at
+    /// `line` (W0904) saying why not: what it textures is then drawn
+    /// untextured, as a cpfg view file's missing image is.
+    fn texture_image(&mut self, file: &str, line: &Span) -> Option<std::sync::Arc<Image>> {
+        let why = match self.folder.map(|d| read_capped(&d.join(file))) {
+            None => "cannot be read: the text has no folder".to_string(),
+            Some(Err(e)) if e.kind() == std::io::ErrorKind::NotFound => {
+                "is not in the file's folder".to_string()
+            }
+            Some(Err(e)) => format!("cannot be read: {e}"),
+            Some(Ok(bytes)) => match crate::decode::decode(&bytes) {
+                Ok(image) => return Some(std::sync::Arc::new(image)),
+                Err(e) => format!("cannot be decoded: {e}"),
+            },
+        };
+        self.diags.push(
+            crate::diagnostics::Diagnostic::at(
+                codes::GFT_TEXTURE_IMAGE,
+                line.clone(),
+                format!("the texture image `{file}` {why}: what it textures is drawn without it"),
+            )
+            .with_label("named here")
+            .with_help(format!(
+                "put `{file}` (a PNG or SGI .rgb image) beside the .gft file, or name it relative to the file's folder"
+            )),
+        );
+        None
+    }
+
+    /// `surface NAME [texture N] { triangles }`: a triangle's three points,
+    /// each followed or not by its corners' texture coordinates `(s, t)`
+    /// on their patch (every triangle or none); those across the whole
+    /// surface are derived from the points.
     pub(super) fn surface(&mut self, k: &Keyword) {
         let mut f = Fields::new(k);
         let name = f.word("", &[]);
-        let points = self.block_points(k);
-        if let (Some(name), Some(points)) = (name, points) {
-            if points.len() % 3 != 0 {
-                self.diags.push(err(
-                    codes::GFT_BAD_VALUE,
-                    &k.line,
-                    "a surface's points are triangles",
-                    "not a multiple of three points",
-                    "write three points `(x, y, z)` a triangle",
-                ));
-                return;
+        // `texture N`, counted from 1 (after the name, which may itself
+        // be spelt `texture`).
+        let texture = match (f.all().get(1).cloned(), f.all().get(2).cloned()) {
+            (None, _) => None,
+            (Some(Val::Word(w, _)), Some(Val::Num(n, s))) if w == "texture" => {
+                match n.parse::<u16>() {
+                    Ok(n) if n >= 1 => Some(n - 1),
+                    _ => f.fail(Some(&Val::Num(n, s)), "a texture number from 1".into()),
+                }
             }
-            let triangles = points.chunks(3).map(|t| [t[0], t[1], t[2]]).collect();
-            self.sys.surfaces.push(SurfaceMesh { name, triangles });
+            (v, _) => f.fail(v.as_ref(), "`texture N` or the block".into()),
+        };
+        let mesh = self.surface_block(k);
+        if let (Some(name), Some((triangles, patch_uvs))) = (name, mesh) {
+            let surface_uvs = if patch_uvs.is_empty() {
+                Vec::new()
+            } else {
+                SurfaceMesh::extent_uvs(&triangles)
+            };
+            self.sys.surfaces.push(SurfaceMesh {
+                name,
+                triangles,
+                patch_uvs,
+                surface_uvs,
+                texture,
+            });
         }
-        self.malformed(f, k, "surface NAME { (x, y, z) (x, y, z) (x, y, z) }");
+        self.malformed(
+            f,
+            k,
+            "surface NAME [texture N] { (x, y, z) (x, y, z) (x, y, z) [(s, t) (s, t) (s, t)] }",
+        );
+    }
+
+    /// A surface block's triangles and their corners' texture coordinates
+    /// (none, or one triple of `(s, t)` a triangle); `None` when malformed
+    /// (reported).
+    #[allow(clippy::type_complexity)]
+    fn surface_block(&mut self, k: &Keyword) -> Option<(Vec<[[f64; 3]; 3]>, Vec<[[f64; 2]; 3]>)> {
+        let vs = vals(&k.lines());
+        let numbers = |v: &Val| match v {
+            Val::Tuple(parts, _) => parts.iter().map(|p| p.parse().ok()).collect(),
+            _ => None,
+        };
+        let tuples: Vec<Option<Vec<f64>>> = vs.iter().map(numbers).collect();
+        let width = |i: usize| tuples.get(i).and_then(|t| t.as_ref().map(Vec::len));
+        let (mut triangles, mut uvs) = (Vec::new(), Vec::new());
+        let mut i = 0;
+        let mut problem = None;
+        while i < vs.len() {
+            if (i..i + 3).any(|j| width(j) != Some(3)) {
+                problem = Some((i..i + 3).find(|&j| width(j) != Some(3)).unwrap_or(i));
+                break;
+            }
+            let p = |j: usize| {
+                let t = tuples[j].as_deref().unwrap_or(&[0.0; 3]);
+                [t[0], t[1], t[2]]
+            };
+            triangles.push([p(i), p(i + 1), p(i + 2)]);
+            i += 3;
+            if width(i) == Some(2) {
+                if let Some(bad) = (i..i + 3).find(|&j| width(j) != Some(2)) {
+                    problem = Some(bad);
+                    break;
+                }
+                let q = |j: usize| {
+                    let t = tuples[j].as_deref().unwrap_or(&[0.0; 2]);
+                    [t[0], t[1]]
+                };
+                uvs.push([q(i), q(i + 1), q(i + 2)]);
+                i += 3;
+            }
+        }
+        if let Some(at) = problem {
+            let span = vs.get(at).map_or(k.line.clone(), |v| v.span().clone());
+            self.diags.push(err(
+                codes::GFT_BAD_VALUE,
+                &span,
+                "a surface's lines are triangles",
+                "not a point `(x, y, z)` of a triangle, or one of its three `(s, t)`",
+                "write three points `(x, y, z)` a triangle, then, or not, three `(s, t)`",
+            ));
+            return None;
+        }
+        if !uvs.is_empty() && uvs.len() != triangles.len() {
+            self.diags.push(err(
+                codes::GFT_BAD_VALUE,
+                &k.line,
+                "a surface's triangles all have texture coordinates, or none",
+                "some triangles without `(s, t)`",
+                "give every triangle its three `(s, t)`, or none",
+            ));
+            return None;
+        }
+        Some((triangles, uvs))
     }
 
     /// `contour ID cross-section|curve closed|open length L { points }`.
@@ -628,4 +779,19 @@ impl Cx<'_> {
         ));
         None
     }
+}
+
+/// The bytes of the file at `path`, refused past the size graftal reads a
+/// source to.
+fn read_capped(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let cap = crate::source::MAX_SOURCE_BYTES as u64;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(cap + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > cap {
+        return Err(std::io::Error::other("the file is too large"));
+    }
+    Ok(bytes)
 }

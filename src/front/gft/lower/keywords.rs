@@ -68,7 +68,7 @@ impl Cx<'_> {
         let _ = settings;
         let repeated = [
             "symbol", "silent", "rotation", "array", "globals", "rule", "light", "material",
-            "surface", "contour", "function", "tropism", "backdrop",
+            "texture", "surface", "contour", "function", "tropism", "backdrop",
         ];
         if structure::is_structure_seed(k) {
             // Read with the structure; given once like the settings.
