@@ -1360,6 +1360,20 @@ impl System {
             || !self.sub_lsystems.is_empty()
     }
 
+    /// Every production of the system: its own, its phases', then each
+    /// sub-L-system's and its phases'.
+    pub fn every_production(&self) -> impl Iterator<Item = &Production> {
+        let phases = [&self.decomposition, &self.homomorphism];
+        let subs = self.sub_lsystems.iter().flat_map(|s| {
+            (s.productions.iter())
+                .chain(&s.decomposition.productions)
+                .chain(&s.homomorphism.productions)
+        });
+        (self.productions.iter())
+            .chain(phases.into_iter().flat_map(|p| &p.productions))
+            .chain(subs)
+    }
+
     /// Whether any symbol writes a label ([`TurtleOp::Label`]).
     pub fn writes_labels(&self) -> bool {
         self.interpretation.contains(&Some(TurtleOp::Label))
@@ -1384,16 +1398,8 @@ impl System {
             }
         }
         let mut out = Vec::new();
-        let phases = [&self.decomposition, &self.homomorphism];
-        let subs = self.sub_lsystems.iter().flat_map(|s| {
-            (s.productions.iter())
-                .chain(&s.decomposition.productions)
-                .chain(&s.homomorphism.productions)
-        });
-        let productions = (self.productions.iter())
-            .chain(phases.iter().flat_map(|p| &p.productions))
-            .chain(subs);
-        let successors = productions.flat_map(|p| p.alternatives.iter().flat_map(|a| &a.args));
+        let successors =
+            (self.every_production()).flat_map(|p| p.alternatives.iter().flat_map(|a| &a.args));
         for e in self.axiom_args.iter().chain(successors).flatten() {
             walk(e, &mut out);
         }

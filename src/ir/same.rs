@@ -405,16 +405,7 @@ impl System {
             }
         };
         add(&self.axiom.0);
-        let phases = [&self.decomposition, &self.homomorphism];
-        let subs = self.sub_lsystems.iter().flat_map(|s| {
-            (s.productions.iter())
-                .chain(&s.decomposition.productions)
-                .chain(&s.homomorphism.productions)
-        });
-        let all = (self.productions.iter())
-            .chain(phases.iter().flat_map(|p| &p.productions))
-            .chain(subs);
-        for p in all {
+        for p in self.every_production() {
             add(&p.left);
             add(&p.predecessor);
             add(&p.right);
