@@ -458,9 +458,74 @@ fn every_object_looks_like_cpfgs_thumbnail() {
             100.0 * passed as f64 / comparable as f64
         );
     }
+    if report {
+        pairs_sheet(&Path::new(env!("CARGO_MANIFEST_DIR")).join("target/icons"));
+    }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     // The goal of issue 34: at least 85% of the comparable objects alike.
     assert!(passed * 100 >= comparable * 85, "{passed} of {comparable}");
+}
+
+/// The objects of the README's side-by-side sheet (docs/cpfg-pairs.png).
+const SHEET: &[&str] = &[
+    "02-Mod-vis-3D-05-monopodial",
+    "11-CPFG-Horneophyton",
+    "15-VlabTools-LeafPosition",
+    "11-CPFG-Ridley",
+    "15-VlabTools-LilyLeaf",
+    "03-inverse-modeling-02-fern-leaf",
+    "04-Signaling-10-mycelis-realistic",
+    "11-CPFG-BackgroundScene",
+    "07-Open-05-phyllotaxis-Vogel",
+];
+
+/// With `GRAFTAL_ICONS`, the README's sheet: for each object of [`SHEET`]
+/// its name, cpfg's thumbnail (left) and graftal's picture side by side, three
+/// objects a row, written to `dir/pairs.png` (copied to docs/ on purpose).
+fn pairs_sheet(dir: &Path) {
+    use graftal::render::text::{self, Placed};
+    const CELL: u32 = 140;
+    const GAP: u32 = 10;
+    const TITLE: u32 = 14;
+    let (cols, rows) = (3u32, SHEET.len().div_ceil(3) as u32);
+    let col_w = 2 * CELL + GAP;
+    let (w, h) = (
+        cols * col_w + (cols - 1) * 2 * GAP,
+        rows * (TITLE + CELL + GAP),
+    );
+    let mut rgba = vec![255u8; (w * h * 4) as usize];
+    for (k, name) in SHEET.iter().enumerate() {
+        let (x0, y0) = (
+            (k as u32 % cols) * (col_w + 2 * GAP),
+            (k as u32 / cols) * (TITLE + CELL + GAP),
+        );
+        let title = Placed {
+            at: [f64::from(x0), f64::from(y0 + TITLE - 4)],
+            text: name.to_string(),
+            colour: graftal::ir::Rgb(0, 0, 0),
+        };
+        text::write(&mut rgba, w, 0, &title);
+        for (j, file) in [format!("{name}.icon.png"), format!("{name}.png")]
+            .iter()
+            .enumerate()
+        {
+            let Ok(bytes) = std::fs::read(dir.join(file)) else {
+                continue;
+            };
+            let pic = Picture::decode(&bytes);
+            let left = x0 + j as u32 * (CELL + GAP);
+            for y in 0..pic.height.min(CELL as usize) {
+                for x in 0..pic.width.min(CELL as usize) {
+                    let at = (((y0 + TITLE) as usize + y) * w as usize + left as usize + x) * 4;
+                    let [r, g, b] = pic.at(x, y);
+                    rgba[at..at + 4].copy_from_slice(&[r, g, b, 255]);
+                }
+            }
+        }
+    }
+    let size = tiny_skia::IntSize::from_wh(w, h).unwrap();
+    let pixmap = tiny_skia::Pixmap::from_vec(rgba, size).unwrap();
+    pixmap.save_png(dir.join("pairs.png")).unwrap();
 }
 
 /// The measures themselves: a picture matches itself, and a picture
