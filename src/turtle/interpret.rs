@@ -90,7 +90,7 @@ struct Turtle<'a> {
     /// `]` does not leave a call).
     sub_scales: Vec<f64>,
     /// The system's string literals, found at the first label.
-    strings: Option<Vec<String>>,
+    strings: Option<Vec<&'a str>>,
     /// Arena of the colour histories: (previous entry, colour).
     history: Vec<(u32, usize)>,
     /// The polygons being collected, innermost last: vertices and colour.
@@ -676,11 +676,8 @@ impl Turtle<'_> {
     /// rest; a label without a format writes nothing.
     fn label(&mut self, args: Args) {
         let Some(k) = args.get(0) else { return };
-        let strings = self.strings.get_or_insert_with(|| {
-            (self.sys.strings().into_iter())
-                .map(str::to_string)
-                .collect()
-        });
+        let sys = self.sys;
+        let strings = self.strings.get_or_insert_with(|| sys.strings());
         let Some(format) = strings.get(k as usize).filter(|_| k >= 0.0) else {
             return;
         };
