@@ -1,5 +1,7 @@
 // Just enough Markdown for the server's hover texts: paragraphs, `code`
-// spans, **bold**, lists, `---` rules, # headings and fenced code blocks.
+// spans, **bold**, lists, `---` rules, # headings and code blocks, fenced
+// or indented (graftal's explanations write their examples indented right
+// under an "Example:" line, so an indented line always starts code here).
 // Everything is escaped first, so the text can never inject markup.
 
 const escapes = { "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" };
@@ -24,7 +26,8 @@ export function markdownToHtml(markdown) {
   const out = [];
   let paragraph = [];
   let list = null; // "ul" or "ol" while inside a list
-  let fence = null; // the lines of an open code block
+  let fence = null; // the lines of an open fenced code block
+  let indented = []; // the lines of an indented code block
 
   const closeParagraph = () => {
     if (paragraph.length) out.push(`<p>${inline(paragraph.join(" "))}</p>`);
@@ -34,9 +37,14 @@ export function markdownToHtml(markdown) {
     if (list) out.push(`</${list}>`);
     list = null;
   };
+  const closeCode = () => {
+    if (indented.length) out.push(`<pre><code>${escapeHtml(indented.join("\n"))}</code></pre>`);
+    indented = [];
+  };
   const closeBlocks = () => {
     closeParagraph();
     closeList();
+    closeCode();
   };
 
   for (const line of markdown.split("\n")) {
@@ -49,6 +57,12 @@ export function markdownToHtml(markdown) {
       }
       continue;
     }
+    if (/^(?: {4}|\t)/.test(line) && line.trim() !== "" && !list) {
+      closeParagraph();
+      indented.push(line.replace(/^(?: {4}|\t)/, ""));
+      continue;
+    }
+    closeCode();
     const item = /^\s*(?:([-*+])|(\d+)[.)])\s+(.*)$/.exec(line);
     const heading = /^\s*#{1,6}\s+(.*)$/.exec(line);
     if (/^\s*```/.test(line)) {
