@@ -102,6 +102,7 @@ async function update() {
     const answer = await postJson("/api/update", body);
     if (answer.superseded || answer.seq < page.applied) {
       tracker.drop(mark);
+      settleIfNewest(body.seq);
       return;
     }
     apply(answer, body, mark);
@@ -134,7 +135,8 @@ function apply(answer, body, mark) {
     setThreeD(answer);
     $("steps").placeholder = String(answer.steps ?? "");
     if (answer.seq === page.seq) setStatus("ready");
-    loadFrames(body);
+    // While dragging, every step's picture from each new view is wasted work.
+    if (!page.dragFrom) loadFrames(body);
   } else {
     picture.setStale(true);
     const first = diagnostics.find((d) => d.severity === "error") || diagnostics[0];
@@ -254,7 +256,10 @@ async function translate() {
 // ---- saving, exporting, the standard library ----
 
 async function save() {
-  if (!page.start.can_save) return;
+  if (!page.start.can_save) {
+    setStatus("not saved: the server was started without a file", "error");
+    return;
+  }
   const text = page.view.state.doc.toString();
   try {
     const answer = await postJson("/api/save", { text });
