@@ -117,9 +117,4 @@ export class Picture {
     c.addEventListener("pointerup", end);
     c.addEventListener("pointercancel", end);
   }
-
-  /** How many drawn elements the picture has (for the growth label). */
-  drawnCount() {
-    return this.container.querySelectorAll("[data-src]").length;
-  }
 }
