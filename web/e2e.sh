@@ -12,7 +12,7 @@ shot=${2:-"$(mktemp -d)/picture.png"}
 work=$(mktemp -d)
 printf 'angle factor: 4\naxiom: F-F-F-F\nF --> F-F+F+FF-F-F+F\n' > "$work/koch.l"
 
-"$graftal" serve "$work/koch.l" > "$work/out" 2> "$work/err" &
+"$graftal" serve --port 0 "$work/koch.l" > "$work/out" 2> "$work/err" &
 server=$!
 trap 'kill "$server" 2>/dev/null || true; rm -rf "$work"' EXIT
 

@@ -20,10 +20,12 @@ const WAIT_MS = 10_000;
 const WHOLE_RUN_MS = 120_000;
 
 // The quadratic Koch island (ABOP Fig. 1.6), valid pfg with no warnings:
-// the headers in the order the book's program reads them.
-const KOCH = "angle factor: 4\naxiom: F-F-F-F\nF --> F-F+F+FF-F-F+F\n";
-// Line 3 with a mistake (`->` for `-->`) and another successor, so that the
-// corrected text draws a different picture from KOCH.
+// the headers in the order the book's program reads them. Two steps, so
+// that the production shows in the picture (with none, only the axiom is).
+const KOCH = "derivation length: 2\nangle factor: 4\naxiom: F-F-F-F\nF --> F-F+F+FF-F-F+F\n";
+// The production's line with a mistake (`->` for `-->`) and another
+// successor, so that the corrected text draws a different picture.
+const PRODUCTION_LINE = 4;
 const BROKEN_LINE = "F -> F+F-F-F+F";
 const FIXED_LINE = "F --> F+F-F-F+F";
 
@@ -127,29 +129,32 @@ const steps = [
     check(!(await page.isVisible("#stale-badge")), "the stale badge shows for a valid text");
   }],
 
-  ["a mistake on line 3 is underlined, listed and makes the picture stale", async (page) => {
+  [`a mistake on line ${PRODUCTION_LINE} is underlined, listed and makes the picture stale`, async (page) => {
     const before = await seqOf(page);
-    await replaceLine(page, 3, BROKEN_LINE);
+    await replaceLine(page, PRODUCTION_LINE, BROKEN_LINE);
     await settled(page, before, "the mistake");
     const underlinedLine = await page.evaluate(() => {
       const mark = document.querySelector("#editor .cm-lintRange-error");
       const line = mark?.closest(".cm-line");
       return line ? [...line.parentElement.children].indexOf(line) + 1 : 0;
     });
-    check(underlinedLine === 3, `expected an error underline on line 3, found ${underlinedLine || "none"}`);
-    check((await page.locator('li.diag[data-line="3"]').count()) > 0, 'no li.diag with data-line="3" listed');
+    check(underlinedLine === PRODUCTION_LINE,
+      `expected an error underline on line ${PRODUCTION_LINE}, found ${underlinedLine || "none"}`);
+    const listed = await page.locator(`li.diag[data-line="${PRODUCTION_LINE}"]`).count();
+    check(listed > 0, `no li.diag with data-line="${PRODUCTION_LINE}" listed`);
     check(await page.isVisible("#stale-badge"), "#stale-badge is not visible while the text has errors");
   }],
 
   ["fixing it clears the list and redraws the picture", async (page) => {
     const stalePicture = await pictureHtml(page);
     const before = await seqOf(page);
-    const fix = page.locator('li.diag[data-line="3"] button.fix').first();
+    const fix = page.locator(`li.diag[data-line="${PRODUCTION_LINE}"] button.fix`).first();
     if ((await fix.count()) > 0) await fix.click({ timeout: WAIT_MS });
-    else await replaceLine(page, 3, FIXED_LINE);
+    else await replaceLine(page, PRODUCTION_LINE, FIXED_LINE);
     await settled(page, before, "the fix");
-    const text = await page.evaluate(() => window.graftalEditor.state.doc.line(3).text);
-    check(text === FIXED_LINE, `after the fix line 3 reads ${JSON.stringify(text)}, not ${JSON.stringify(FIXED_LINE)}`);
+    const text = await page.evaluate((n) => window.graftalEditor.state.doc.line(n).text, PRODUCTION_LINE);
+    check(text === FIXED_LINE,
+      `after the fix line ${PRODUCTION_LINE} reads ${JSON.stringify(text)}, not ${JSON.stringify(FIXED_LINE)}`);
     const listed = await page.locator("#diagnostics li.diag").count();
     check(listed === 0, `${listed} diagnostic(s) still listed after the fix`);
     check(!(await page.isVisible("#stale-badge")), "#stale-badge still visible after the fix");
