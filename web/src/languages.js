@@ -10,12 +10,15 @@ import { tags } from "@lezer/highlight";
 // most notations a keyword elsewhere is a run of symbols, e.g. pfg's `axiom`
 // is just five letters inside a production). `lineComment`: a string that
 // starts a comment to the end of the line; `blockComment`: /* */.
+// `digitSymbols`: digits are symbols (pfg's 0 and 1 cells, Smith's 0 and
+// 1), numbers only as a header's whole value.
 const notations = {
   pfg: {
     keywords: ["derivation length:", "angle factor:", "scale factor:", "axiom:", "ignore:"],
     anyHeader: true,
     atLineStart: true,
     blockComment: true,
+    digitSymbols: true,
   },
   cpfg: {
     keywords: [
@@ -55,6 +58,7 @@ const notations = {
     anyHeader: true,
     atLineStart: true,
     lineComment: "#",
+    digitSymbols: true,
   },
   gft: {
     keywords: [
@@ -88,10 +92,15 @@ function tokenizer(spec) {
   const keyword = keywordPattern(spec);
   return function token(stream, state) {
     if (state.inComment) return blockCommentRest(stream, state);
-    if (stream.sol()) state.lineStart = true;
+    if (stream.sol()) {
+      state.lineStart = true;
+      state.valueNext = false;
+    }
     if (stream.eatSpace()) return null;
     const atStart = state.lineStart;
+    const atValue = state.valueNext; // the first token after a header
     state.lineStart = false;
+    state.valueNext = false;
 
     if (spec.blockComment && stream.match("/*")) {
       state.inComment = true;
@@ -106,12 +115,23 @@ function tokenizer(spec) {
       return "comment";
     }
     if (spec.preprocessor && atStart && stream.match(/^#\s*\w+/)) return "meta";
-    if (keyword && (atStart || !spec.atLineStart) && stream.match(keyword)) return "keyword";
     // An unknown header (`angle:` in a pfg file) still reads as a header;
     // the diagnostics say it is wrong.
-    if (spec.anyHeader && atStart && stream.match(/^[A-Za-z][A-Za-z ]*[A-Za-z]:/)) return "keyword";
+    const header =
+      (keyword && (atStart || !spec.atLineStart) && stream.match(keyword)) ||
+      (spec.anyHeader && atStart && stream.match(/^[A-Za-z][A-Za-z ]*[A-Za-z]:/));
+    if (header) {
+      state.valueNext = true;
+      return "keyword";
+    }
     if (spec.entryNames && atStart && stream.match(/^[^\s{;]+(?=\s*\{)/)) return "className";
-    return symbolToken(stream);
+    // Where digits are symbols, a number is a header's whole value
+    // (`derivation length: 30`, not the cells of `axiom: F1F1F1`).
+    if (spec.digitSymbols) {
+      const value = atValue && stream.match(/^\d+(?:\.\d*)?(?=\s*(?:\/\*|#|$))/);
+      return value ? "number" : symbolToken(stream, false);
+    }
+    return symbolToken(stream, true);
   };
 }
 
@@ -125,13 +145,13 @@ function blockCommentRest(stream, state) {
   return "comment";
 }
 
-function symbolToken(stream) {
+function symbolToken(stream, numbers) {
   if (stream.match(/^(?:-->|->|=>|→)/)) return "definitionOperator";
   if (stream.match(/^"(?:[^"\\]|\\.)*"?/)) return "string";
-  if (stream.match(/^\d+(?:\.\d*)?(?:[eE][-+]?\d+)?/) || stream.match(/^\.\d+/)) return "number";
+  if (numbers && (stream.match(/^\d+(?:\.\d*)?(?:[eE][-+]?\d+)?/) || stream.match(/^\.\d+/))) return "number";
   const c = stream.next();
   if (/[[\](){}]/.test(c)) return "bracket";
-  if (/[A-Za-z]/.test(c)) return "variableName";
+  if (/[A-Za-z0-9]/.test(c)) return "variableName";
   if (/[-+&^\\/|!~?:<>*=%$@,]/.test(c)) return "operator";
   return null;
 }
@@ -147,7 +167,7 @@ export function languageFor(id) {
       key,
       StreamLanguage.define({
         name: key,
-        startState: () => ({ inComment: false, lineStart: true }),
+        startState: () => ({ inComment: false, lineStart: true, valueNext: false }),
         copyState: (s) => ({ ...s }),
         token: tokenizer(spec),
         languageData: {
