@@ -30,6 +30,7 @@ pub mod random;
 pub mod raytrace;
 pub mod render;
 pub mod scene;
+pub mod serve;
 pub mod source;
 pub mod stdlib;
 pub mod turtle;

@@ -5,6 +5,7 @@
 //! Exit status: 0 success (warnings allowed), 1 the input has errors, 2 a
 //! usage or I/O problem.
 
+mod bars;
 mod output;
 mod records;
 
@@ -13,6 +14,7 @@ use crate::driver::picture;
 use crate::driver::DEFAULT_MAX_SYMBOLS;
 use crate::driver::{self, Compiled, Format, RunOptions};
 use crate::render::View;
+use bars::{stage_bar, step_bar, Bars};
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use output::{picture_format, Output, UsageError};
 use std::io::{IsTerminal, Write};
@@ -140,6 +142,10 @@ struct RenderArgs {
     /// (as the book draws kolams and Fig. 2.11).
     #[arg(long)]
     spline: bool,
+    /// An SVG whose drawn parts name the bytes of the source that drew
+    /// them (`data-src="FROM-TO"`), as the live page links them.
+    #[arg(long)]
+    linked: bool,
     /// Do not draw an STL file's layout shapes under the tree.
     #[arg(long)]
     no_layout: bool,
@@ -273,6 +279,19 @@ enum Command {
     /// Serve the Language Server Protocol on stdin and stdout (LSP 3.17):
     /// an editor's diagnostics, hover, definitions, outline and completion.
     Lsp,
+    /// Serve a page on 127.0.0.1 where a model is edited and its picture
+    /// and diagnostics follow as it is typed; Save writes FILE.
+    Serve {
+        /// A file (created when saved), or `std:NAME`; none: an empty model.
+        file: Option<String>,
+        /// The port; 0 takes any free one.
+        #[arg(long, default_value_t = 7878)]
+        port: u16,
+        /// Listen on this address instead of 127.0.0.1 (loopback): the
+        /// page can then be reached, and FILE written, from the network.
+        #[arg(long, default_value = "127.0.0.1")]
+        host: std::net::IpAddr,
+    },
     /// List the standard library (`std:NAME`): each entry's figure and
     /// whether it draws at its defaults or is a schema (a string example).
     List {
@@ -384,6 +403,9 @@ where
         Command::Show { name } => show(io, &name),
         Command::Gallery { out_dir } => gallery(io, &out_dir),
         Command::Lsp => lsp(io),
+        Command::Serve { file, port, host } => {
+            serve(io, file, std::net::SocketAddr::new(host, port))
+        }
         Command::Fmt { files, check } => files.iter().map(|f| fmt(io, f, check)).max().unwrap_or(0),
     }
 }
@@ -555,6 +577,7 @@ fn render(io: &mut Io<'_>, a: &RenderArgs) -> i32 {
                 samples: a.samples,
                 threads: threads_asked(a.threads),
             },
+            linked: a.linked,
         };
         let mut bars = Bars::new(io);
         let drawn = picture::draw(c, &req, &mut bars);
@@ -693,6 +716,17 @@ fn lsp(io: &mut Io<'_>) -> i32 {
         Ok(()) => 0,
         Err(e) => {
             let _ = writeln!(io.stderr, "error: graftal lsp: {e}");
+            1
+        }
+    }
+}
+
+/// `graftal serve`: the live page, until the process is stopped.
+fn serve(io: &mut Io<'_>, file: Option<String>, addr: std::net::SocketAddr) -> i32 {
+    match crate::serve::run(&crate::serve::Options { file, addr }, io.stdout) {
+        Ok(()) => 0,
+        Err(e) => {
+            let _ = writeln!(io.stderr, "error: graftal serve: {e}");
             1
         }
     }
@@ -1075,102 +1109,6 @@ fn fail(io: &mut Io<'_>, format: OutputFormat, message: &str, help: Option<&str>
         (OutputFormat::Human, None) => format!("error: {message}\n"),
     };
     let _ = write!(io.stderr, "{text}");
-}
-
-/// Whether progress is shown: on a terminal, outside CI.
-fn show_progress(io: &Io<'_>) -> bool {
-    io.terminal && std::env::var_os("CI").is_none()
-}
-
-/// A progress bar for a long stage (`stage`: drawing, encoding, mesh,
-/// frames), counting `unit`s, when [`show_progress`]; its length is set
-/// when the stage starts. Never in pipes: `io.terminal` is false there.
-pub(crate) fn stage_bar(io: &Io<'_>, stage: &str, unit: &str) -> Option<indicatif::ProgressBar> {
-    show_progress(io).then(|| new_stage_bar(stage, unit))
-}
-
-/// A bar for `stage`, counting `unit`s.
-fn new_stage_bar(stage: &str, unit: &str) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(0);
-    let template = format!("{stage:9} {{bar:30}} {{pos}}/{{len}} {unit}");
-    bar.set_style(indicatif::ProgressStyle::with_template(&template).expect("valid template"));
-    bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    bar
-}
-
-/// The progress bars of a picture being made, each started when its
-/// stage first reports ([`picture::Progress`]), when [`show_progress`].
-struct Bars {
-    show: bool,
-    steps: Option<indicatif::ProgressBar>,
-    stage: Option<indicatif::ProgressBar>,
-}
-
-impl Bars {
-    fn new(io: &Io<'_>) -> Bars {
-        Bars {
-            show: show_progress(io),
-            steps: None,
-            stage: None,
-        }
-    }
-
-    /// Clears the bars from the terminal.
-    fn clear(self) {
-        self.steps
-            .iter()
-            .chain(&self.stage)
-            .for_each(|b| b.finish_and_clear());
-    }
-}
-
-impl picture::Progress for Bars {
-    fn derived(&mut self, step: u64, steps: u64, symbols: usize) {
-        if !self.show || steps == 0 {
-            return;
-        }
-        let bar = self.steps.get_or_insert_with(|| new_step_bar(steps));
-        bar.set_position(step);
-        bar.set_message(format!("{symbols} symbols"));
-    }
-
-    fn advanced(&mut self, stage: picture::Stage, done: u64, total: u64) {
-        if !self.show {
-            return;
-        }
-        if let Some(steps) = self.steps.take() {
-            steps.finish_and_clear();
-        }
-        let (name, unit) = match stage {
-            picture::Stage::Drawing => ("drawing", "segments"),
-            picture::Stage::Meshing => ("meshing", "primitives"),
-            picture::Stage::Frames => ("frames", "frames"),
-        };
-        let bar = self.stage.get_or_insert_with(|| new_stage_bar(name, unit));
-        bar.set_length(total);
-        bar.set_position(done);
-    }
-}
-
-/// A progress bar over derivation steps, when [`show_progress`].
-fn step_bar(
-    io: &Io<'_>,
-    sys: &crate::ir::System,
-    opts: &RunOptions,
-) -> Option<indicatif::ProgressBar> {
-    let steps = opts.derive_options(sys).steps;
-    (show_progress(io) && steps > 0).then(|| new_step_bar(steps))
-}
-
-/// A bar over `steps` derivation steps.
-fn new_step_bar(steps: u64) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(steps);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("deriving {bar:30} step {pos}/{len} {msg}")
-            .expect("valid template"),
-    );
-    bar.set_draw_target(indicatif::ProgressDrawTarget::stderr_with_hz(10));
-    bar
 }
 
 fn report(io: &mut Io<'_>, c: &Compiled, ds: &[Diagnostic], format: OutputFormat) {

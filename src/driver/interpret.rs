@@ -87,6 +87,31 @@ pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, op
     }
 }
 
+/// Whether the turtle leaves the picture's plane, so that turning the view
+/// shows more: a symbol of the axiom or of a successor rolls or pitches
+/// (a rotation about H or L, or back to vertical), tropisms bend it, or
+/// the system is a 3D instancing graph.
+pub fn turns_in_space(sys: &System) -> bool {
+    let leaves_plane = |&s: &crate::ir::SymbolId| {
+        matches!(
+            sys.op(s),
+            Some(
+                TurtleOp::Rotate {
+                    axis: crate::ir::Axis::Heading | crate::ir::Axis::Left,
+                    ..
+                } | TurtleOp::RollToVertical
+            )
+        )
+    };
+    let mut written = sys.axiom.0.iter().chain(
+        (sys.every_production())
+            .flat_map(|p| p.alternatives.iter().flat_map(|a| a.successor.0.iter())),
+    );
+    written.any(leaves_plane)
+        || !sys.settings.tropisms.is_empty()
+        || sys.graph.as_ref().is_some_and(|g| !g.is_planar())
+}
+
 /// Derives and interprets: the geometry of the system, with its look's
 /// scene ([`add_fixed`]).
 pub fn geometry(sys: &System, opts: &RunOptions) -> Result<(Word, Geometry), Diagnostic> {

@@ -31,7 +31,7 @@ pub use derive::{
     derive, derive_symbols, derive_values, derive_with_progress, write_derived, RunOptions,
 };
 pub use empty::{nearly_nothing_drawn, nothing_drawn, why_nothing_drawn, NEARLY_NOTHING};
-pub use interpret::{add_fixed, add_layout, geometry, interpret, MAX_MOVES};
+pub use interpret::{add_fixed, add_layout, geometry, interpret, turns_in_space, MAX_MOVES};
 pub use load::{
     choose_entry, compile, compile_as, compile_entry, load, notations, split_entry, Compiled,
     LoadError,
@@ -39,3 +39,10 @@ pub use load::{
 pub use picture::{render_bytes, Format};
 pub use stats::{stats, StageTimes, Stats, GRAPH_STATS_PIXELS};
 pub use translate::{translate, COMPARE_MAX_SYMBOLS};
+pub struct HoverStub {
+    pub markdown: String,
+    pub span: Option<crate::ir::Span>,
+}
+pub fn hover_stub(_c: &Compiled, _at: usize) -> Option<HoverStub> {
+    None
+}

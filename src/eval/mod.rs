@@ -16,6 +16,7 @@ mod bound;
 pub mod count;
 pub use bound::fewest_at;
 pub mod parametric;
+pub mod provenance;
 mod sub_lsystems;
 
 mod table;
@@ -25,6 +26,7 @@ use crate::random::{Rng, Stream};
 
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::{Guard, SymbolId, System, Word};
+use provenance::Notes;
 use std::collections::HashMap;
 
 /// Default for [`DeriveOptions::max_symbols`]: 200 million symbols (800 MB
@@ -257,23 +259,24 @@ impl<'a> Deriver<'a> {
     ) -> Result<Symbols, Diagnostic> {
         let n = self.sys.symbols.len();
         Ok(match &self.table {
-            Some(t) if n < 256 => Symbols::Bytes(self.steps(&t.stepper::<u8>(), opts, progress)?),
+            Some(t) if n < 256 => Symbols::Bytes(self.steps(&t.stepper::<u8>(), opts, progress)?.0),
             Some(t) if n < 65536 => {
-                Symbols::Shorts(self.steps(&t.stepper::<u16>(), opts, progress)?)
+                Symbols::Shorts(self.steps(&t.stepper::<u16>(), opts, progress)?.0)
             }
-            Some(t) => Symbols::Wide(self.steps(&t.stepper::<SymbolId>(), opts, progress)?),
-            None => Symbols::Wide(self.steps(&General(self), opts, progress)?),
+            Some(t) => Symbols::Wide(self.steps(&t.stepper::<SymbolId>(), opts, progress)?.0),
+            None => Symbols::Wide(self.steps(&General(self), opts, progress)?.0),
         })
     }
 
     /// Rewrites `opts.steps` steps with `stepper`, stopping early at a fixed
-    /// point and skipping confirmed cycles.
+    /// point and skipping confirmed cycles: the word, and what the stepper
+    /// kept beside it.
     fn steps<S: Stepper>(
         &self,
         stepper: &S,
         opts: &DeriveOptions,
         mut progress: impl FnMut(u64, usize),
-    ) -> Result<Vec<S::Sym>, Diagnostic> {
+    ) -> Result<(Vec<S::Sym>, S::Scratch), Diagnostic> {
         let mut run = Run {
             rng: Rng::new(opts.seed, Stream::Derivation),
             cur: self
@@ -327,9 +330,11 @@ impl<'a> Deriver<'a> {
                 _ => {}
             }
         }
-        Ok(run.cur)
+        Ok((run.cur, run.scratch))
     }
 
+    /// One step of the general matcher: `out` becomes the rewriting of
+    /// `cur`, and `notes` hears where each symbol of it came from.
     fn step(
         &self,
         cur: &[SymbolId],
@@ -337,6 +342,7 @@ impl<'a> Deriver<'a> {
         out: &mut Vec<SymbolId>,
         rng: &mut Rng,
         max: usize,
+        notes: &mut impl Notes,
     ) -> Result<(), ()> {
         let mut around = Around::default();
         let mut i = 0;
@@ -345,6 +351,7 @@ impl<'a> Deriver<'a> {
             if let Some(g) = self.guards[sym.index()] {
                 if rng.next_f64() >= g.probability {
                     out.push(sym);
+                    notes.kept(i);
                     i += 1;
                     continue;
                 }
@@ -353,15 +360,17 @@ impl<'a> Deriver<'a> {
             match self.find(cur, i, sym, index, &mut around) {
                 Some(pi) => {
                     let p = &self.sys.productions[pi as usize];
-                    let alt = if p.alternatives.len() == 1 {
-                        &p.alternatives[0]
+                    let a = if p.alternatives.len() == 1 {
+                        0
                     } else {
-                        &p.alternatives[choose(p.alternatives.iter().map(|a| a.weight), rng)]
+                        choose(p.alternatives.iter().map(|a| a.weight), rng)
                     };
+                    let alt = &p.alternatives[a];
                     if out.len() + alt.successor.len() > max {
                         return Err(());
                     }
                     out.extend_from_slice(&alt.successor.0);
+                    notes.wrote(pi, a, alt.successor.len());
                     i += p.predecessor.len();
                 }
                 None => {
@@ -369,6 +378,7 @@ impl<'a> Deriver<'a> {
                         return Err(());
                     }
                     out.push(cur[i]);
+                    notes.kept(i);
                     i += 1;
                 }
             }
@@ -557,7 +567,7 @@ impl Stepper for General<'_, '_> {
         if self.0.contexts {
             index.build(cur, &self.0.ignored);
         }
-        self.0.step(cur, index, out, rng, max)
+        self.0.step(cur, index, out, rng, max, &mut ())
     }
 }
 

@@ -481,11 +481,11 @@ mod tests {
                 packed_shift: None,
                 ..t.stepper::<u8>()
             };
-            let want = d.steps(&packed, &opts, |_, _| {}).unwrap();
+            let want = d.steps(&packed, &opts, |_, _| {}).unwrap().0;
             assert!(want.len() > 200_000, "{name}: {}", want.len());
-            assert_eq!(d.steps(&separate, &opts, |_, _| {}).unwrap(), want);
+            assert_eq!(d.steps(&separate, &opts, |_, _| {}).unwrap().0, want);
             let wide = d.steps(&t.stepper::<crate::ir::SymbolId>(), &opts, |_, _| {});
-            let wide: Vec<u8> = Symbols::Wide(wide.unwrap())
+            let wide: Vec<u8> = Symbols::Wide(wide.unwrap().0)
                 .iter()
                 .map(|s| s.0 as u8)
                 .collect();

@@ -80,6 +80,11 @@ pub struct RenderOptions {
     /// drawn at any zoom, and merging (`detail`) drops the overlapping
     /// strokes whose sum would show density.
     pub thin_dense: bool,
+    /// Whether the picture keeps, per part, which module of the word drew
+    /// it (the geometry's [`Origins`](crate::turtle::Origins)): a picture
+    /// linked to its source ([`Links`]). Runs of lines are then split where
+    /// the module changes.
+    pub linked: bool,
 }
 
 /// What an SVG keeps of detail finer than half a pixel at its size
@@ -285,6 +290,7 @@ impl Default for RenderOptions {
             framing: None,
             detail: Detail::Merged,
             thin_dense: true,
+            linked: false,
         }
     }
 }
@@ -311,6 +317,30 @@ pub struct Picture {
     pub polygons: Vec<(Rgb, Vec<[f64; 2]>)>,
     /// Text written over the rest (cpfg labels).
     pub labels: Vec<text::Placed>,
+    /// What drew each part, in a linked picture.
+    pub links: Links,
+}
+
+/// Which module of the word drew each part of a picture
+/// ([`RenderOptions::linked`]): per run and per polygon its position in
+/// the word ([`UNTAGGED`] for a part no module drew), and `names`, what
+/// the SVG says of each position (its `data-src`); all empty unless
+/// linked.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Links {
+    pub runs: Vec<u32>,
+    pub polygons: Vec<u32>,
+    pub names: Vec<String>,
+}
+
+/// The tag of a part drawn by no module (a layout, a scene).
+pub const UNTAGGED: u32 = u32::MAX;
+
+impl Links {
+    /// What the SVG says of a part tagged `tag`: its `data-src`, if named.
+    pub fn name(&self, tag: Option<&u32>) -> Option<&str> {
+        self.names.get(*tag? as usize).map(String::as_str)
+    }
 }
 
 /// How near `p` is to the viewer (larger is nearer): the coordinate along
@@ -566,11 +596,20 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
     let fit = proj
         .fit_padded(&extent, opts, half_widest(&segments, opts, g.world_widths))
         .thinned(ink, widest, g.world_widths || !opts.thin_dense);
-    let runs = runs(&segments, &fit, g.world_widths);
+    let (runs, run_tags) = runs(&segments, &fit, g.world_widths);
     let mut polygons: Vec<(Rgb, Vec<[f64; 2]>)> = polys
         .into_iter()
         .map(|(c, pts)| (c, pts.into_iter().map(|q| fit.to_px(q)).collect()))
         .collect();
+    let mut links = Links::default();
+    if opts.linked {
+        let tag = |o: Option<&usize>| o.map_or(UNTAGGED, |&o| o.min(UNTAGGED as usize) as u32);
+        links.runs = run_tags;
+        links.polygons = (0..polygons.len())
+            .map(|i| tag(g.origins.polygons.get(i)))
+            .chain((0..discs.len()).map(|i| tag(g.origins.discs.get(i))))
+            .collect();
+    }
     for (colour, pixels, c, r) in discs {
         let r = if pixels {
             r * fit.line_unit
@@ -598,6 +637,7 @@ pub fn layout(g: &Geometry, opts: &RenderOptions) -> Picture {
         runs,
         polygons,
         labels,
+        links,
     }
 }
 
@@ -631,6 +671,9 @@ struct FlatSegment {
     b: [f64; 2],
     colour: Rgb,
     width: f64,
+    /// The position in the word of the module that drew it, in a linked
+    /// picture; else [`UNTAGGED`].
+    tag: u32,
 }
 
 /// What `g` draws as lines, in the picture plane and in drawing order:
@@ -659,6 +702,7 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
                 b: w[1],
                 colour,
                 width: path.width,
+                tag: UNTAGGED,
             }));
         }
     } else {
@@ -670,6 +714,9 @@ fn flat_segments(g: &Geometry, opts: &RenderOptions, proj: &Projector) -> Vec<Fl
                 b: on_plane(s.b)?,
                 colour: Palette::segment_paint(opts.style.palette, g, i).colour(),
                 width: s.width,
+                tag: (g.origins.segments.get(i))
+                    .filter(|_| opts.linked)
+                    .map_or(UNTAGGED, |&o| o.min(UNTAGGED as usize) as u32),
             })
         };
         match depth_order(g, proj) {
@@ -851,21 +898,24 @@ fn rotate(p: [f64; 2], (c, s): (f64, f64)) -> [f64; 2] {
 
 /// `segments` in pixels, as runs of one colour and width in which
 /// segments that continue one another make one polyline.
-fn runs(segments: &[FlatSegment], fit: &Fit, world_widths: bool) -> Vec<Run> {
+fn runs(segments: &[FlatSegment], fit: &Fit, world_widths: bool) -> (Vec<Run>, Vec<u32>) {
     let mut runs: Vec<Run> = Vec::new();
+    let mut tags: Vec<u32> = Vec::new();
     let mut last_end: Option<[f64; 2]> = None;
     for seg in segments {
         let (pa, pb) = (fit.to_px(seg.a), fit.to_px(seg.b));
         let width = fit.line_width(seg.width, world_widths);
         let same = runs
             .last()
-            .is_some_and(|r| r.colour == seg.colour && r.width == width);
+            .is_some_and(|r| r.colour == seg.colour && r.width == width)
+            && tags.last() == Some(&seg.tag);
         if !same {
             runs.push(Run {
                 colour: seg.colour,
                 width,
                 lines: Vec::new(),
             });
+            tags.push(seg.tag);
             last_end = None;
         }
         let run = runs.last_mut().expect("just pushed");
@@ -875,7 +925,11 @@ fn runs(segments: &[FlatSegment], fit: &Fit, world_widths: bool) -> Vec<Run> {
         }
         last_end = Some(pb);
     }
-    runs
+    // Unlinked pictures keep no tags.
+    if tags.iter().all(|&t| t == UNTAGGED) {
+        tags.clear();
+    }
+    (runs, tags)
 }
 
 /// A disc of radius `r` around `c` (pixels) as a polygon: a point per

@@ -143,6 +143,7 @@ mod tests {
                 }],
                 polygons: Vec::new(),
                 labels: Vec::new(),
+                links: Default::default(),
             };
             let pixmap = draw(&pic).unwrap();
             let dark = pixmap.pixels().iter().filter(|p| p.red() < 128).count();

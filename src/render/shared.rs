@@ -52,6 +52,7 @@ pub fn picture(
         }],
         polygons: Vec::new(),
         labels: Vec::new(),
+        links: Default::default(),
     }
 }
 

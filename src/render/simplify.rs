@@ -216,6 +216,7 @@ mod tests {
             }],
             polygons: Vec::new(),
             labels: Vec::new(),
+            links: Default::default(),
         }
     }
 

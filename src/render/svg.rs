@@ -103,6 +103,12 @@ fn compact_polyline(d: &mut String, pts: &[[f64; 2]]) {
     }
 }
 
+/// ` data-src="…"` for a part of a linked picture that a module drew
+/// (the names are made of digits and `-`: nothing to escape).
+fn source_attribute(name: Option<&str>) -> String {
+    name.map_or_else(String::new, |n| format!(r#" data-src="{n}""#))
+}
+
 /// The picture as an SVG document, its sub-pixel detail merged
 /// ([`Detail::Merged`]).
 pub fn write(pic: &Picture) -> String {
@@ -124,18 +130,19 @@ pub fn write_with(pic: &Picture, detail: Detail) -> String {
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
     background_rect(&mut out, (w, h), pic.background, pic.background_alpha);
-    for (colour, pts) in &pic.polygons {
+    for (i, (colour, pts)) in pic.polygons.iter().enumerate() {
         let mut d = String::new();
         polyline(&mut d, pts);
         d.push('Z');
+        let src = source_attribute(pic.links.name(pic.links.polygons.get(i)));
         let _ = writeln!(
             out,
-            r#"<path d="{d}" fill="{}" fill-rule="evenodd"/>"#,
+            r#"<path d="{d}" fill="{}" fill-rule="evenodd"{src}/>"#,
             hex(*colour)
         );
     }
     let runs: &[Run] = merged.as_deref().unwrap_or(&pic.runs);
-    for run in runs {
+    for (i, run) in runs.iter().enumerate() {
         let mut d = String::new();
         for line in run.lines.iter().filter(|l| !l.is_empty()) {
             match merged {
@@ -146,9 +153,12 @@ pub fn write_with(pic: &Picture, detail: Detail) -> String {
         if d.is_empty() {
             continue;
         }
+        // Merged runs are not the picture's own: no tag is theirs.
+        let tag = merged.is_none().then(|| pic.links.runs.get(i)).flatten();
+        let src = source_attribute(pic.links.name(tag));
         let _ = writeln!(
             out,
-            r#"<path d="{d}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"/>"#,
+            r#"<path d="{d}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"{src}/>"#,
             hex(run.colour),
             num(run.width)
         );

@@ -26,7 +26,9 @@
 //!   no front end, emitter, eval, driver, cli, language server or gallery;
 //! * the gallery draws through the driver, as a command would: it imports
 //!   no front end, emitter, cli or language server, and only cli calls it;
-//! * the faces (cli, the language server, the gallery) reach the layers
+//! * the live page's server (`serve`) is a face like the others, and the
+//!   only module that speaks HTTP (`tiny_http`); it names no notation;
+//! * the faces (cli, the language server, the gallery, the page's server) reach the layers
 //!   under the library's calls only for plain data of a request (a view, a
 //!   style, a mesh or animation format): never a way of drawing (the
 //!   raster, the streamed painter, shared subtrees, encoders, mesh
@@ -341,9 +343,11 @@ const NOT_FOR_FRONT_ENDS: &[&str] = &[
 const ABOVE_THE_TURTLE: &[&str] = &[
     "render", "raytrace", "eval", "front", "back", "driver", "cli",
 ];
-const NOT_FOR_OUTPUTS: &[&str] = &["front", "back", "eval", "driver", "cli", "lsp", "gallery"];
-const NOT_FOR_THE_GALLERY: &[&str] = &["front", "back", "cli", "lsp"];
-const THE_FACES: &[&str] = &["cli", "lsp", "gallery"];
+const NOT_FOR_OUTPUTS: &[&str] = &[
+    "front", "back", "eval", "driver", "cli", "lsp", "gallery", "serve",
+];
+const NOT_FOR_THE_GALLERY: &[&str] = &["front", "back", "cli", "lsp", "serve"];
+const THE_FACES: &[&str] = &["cli", "lsp", "gallery", "serve"];
 /// The layers under the library's calls, which a face reaches only for
 /// [`A_FACE_MAY_NAME`].
 const BENEATH_THE_FACES: &[&str] = &["render", "mesh", "raytrace", "turtle", "eval"];
@@ -420,6 +424,7 @@ fn violations(files: &[Source]) -> Vec<String> {
             ("ariadne", f.path == "diagnostics/render.rs"),
             ("chumsky", top == "front"),
             ("logos", top == "front"),
+            ("tiny_http", top == "serve"),
         ];
         let names: Vec<&str> = allowed.iter().map(|a| a.0).collect();
         for used in external(&f.code, &names) {
@@ -573,28 +578,28 @@ fn strip_comments(src: &str) -> String {
 /// notation (keywords, comments, declarations, user functions), the front
 /// end answers through `Front`.
 #[test]
-fn the_language_server_names_no_notation() {
+fn the_language_server_and_the_page_name_no_notation() {
     let notations = notations();
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("src")
-        .join("lsp");
-    let mut files = Vec::new();
-    collect(&root, &mut files);
-    assert!(files.len() >= 5, "{files:?}");
-    let named: Vec<String> = files
-        .iter()
-        .flat_map(|p| {
-            let raw = std::fs::read_to_string(p).unwrap();
-            let shown = p.strip_prefix(&root).unwrap().display().to_string();
-            (notations_named(&raw, &notations).into_iter())
-                .map(move |n| format!("lsp/{shown}: {n}"))
-        })
-        .collect();
-    assert!(
-        named.is_empty(),
-        "the language server names notations:\n{}",
-        named.join("\n")
-    );
+    for face in ["lsp", "serve"] {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(face);
+        let mut files = Vec::new();
+        collect(&root, &mut files);
+        assert!(files.len() >= 5, "{files:?}");
+        let named: Vec<String> = files
+            .iter()
+            .flat_map(|p| {
+                let raw = std::fs::read_to_string(p).unwrap();
+                let shown = p.strip_prefix(&root).unwrap().display().to_string();
+                (notations_named(&raw, &notations).into_iter())
+                    .map(move |n| format!("{face}/{shown}: {n}"))
+            })
+            .collect();
+        assert!(
+            named.is_empty(),
+            "{face} names notations:\n{}",
+            named.join("\n")
+        );
+    }
     // The check sees what it looks for.
     let seen = |code: &str| !notations_named(code, &notations).is_empty();
     assert!(seen("match n { \"stl\" => rules(t), _ => vec![] }"));
@@ -879,6 +884,13 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
             "let p = crate::render::attractor::pixels(m, o);",
             true,
         ),
+        ("serve/api.rs", "use crate::render::raster::png;", true),
+        (
+            "serve/api.rs",
+            "use crate::driver::picture::{self, Request};",
+            false,
+        ),
+        ("eval/mod.rs", "fn f() { tiny_http::Server::http(a) }", true),
         // Comments, strings and the test module are not imports.
         (
             "ir/mod.rs",

@@ -65,6 +65,7 @@ mod readme;
 mod render_style;
 mod robustness;
 mod scale;
+mod serve;
 mod smith;
 mod smith_figures;
 mod snapshots;

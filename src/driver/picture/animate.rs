@@ -81,10 +81,7 @@ pub(super) fn draw(
             &at,
             Format::Png,
             ropts,
-            super::How {
-                layout: req.layout,
-                tracing: req.tracing,
-            },
+            super::How::of(req),
             &mut super::Quiet,
         );
         match drawn {

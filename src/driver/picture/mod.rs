@@ -18,6 +18,7 @@
 
 mod animate;
 mod attractor;
+mod linked;
 mod lit;
 mod mesh;
 mod shared;
@@ -31,7 +32,7 @@ use super::interpret::{add_fixed, check_moves_up_front, interpret};
 use super::load::{compile_as, load, split_entry, Compiled, LoadError};
 use crate::diagnostics::{Diagnostic, Diagnostics};
 use crate::front::Front;
-use crate::ir::System;
+use crate::ir::{SpanTable, System};
 use crate::mesh::{MeshFormat, MeshStats};
 use crate::render::animate::Container;
 use crate::render::{Detail, RenderOptions, Style, View};
@@ -159,6 +160,11 @@ pub struct Request {
     /// Whether the picture is ray traced, with how many samples and
     /// threads.
     pub tracing: Tracing,
+    /// An SVG whose drawn parts name the source that drew them
+    /// (`data-src="FROM-TO"`, bytes of the source): what the live page
+    /// links picture and text by. Only a flat picture of plain symbols is
+    /// linked; the rest is drawn as without it.
+    pub linked: bool,
 }
 
 impl Request {
@@ -179,6 +185,7 @@ impl Request {
             fps: DEFAULT_FPS,
             material_library: "graftal.mtl".into(),
             tracing: Tracing::default(),
+            linked: false,
         }
     }
 }
@@ -375,6 +382,7 @@ pub fn draw(
         sys,
         file: &c.file.name,
         diagnostics: &c.diagnostics,
+        spans: Some(&c.spans),
     };
     draw_subject(&subject, req, progress)
 }
@@ -395,10 +403,7 @@ fn draw_subject(
                 || traced::wanted(s.sys, &req.tracing)
                 || !attractor::draws(graph);
             if traced {
-                let how = How {
-                    layout: req.layout,
-                    tracing: req.tracing,
-                };
+                let how = How::of(req);
                 return still_counted(s, &req.run, format, ropts, how, progress).map(|(p, _)| p);
             }
         }
@@ -413,10 +418,7 @@ fn draw_subject(
     }
     match req.target {
         Target::Still(format) => {
-            let how = How {
-                layout: req.layout,
-                tracing: req.tracing,
-            };
+            let how = How::of(req);
             still_counted(s, &req.run, format, ropts, how, progress).map(|(p, _)| p)
         }
         Target::Mesh(format) => mesh::draw(s.sys, format, req, progress),
@@ -436,6 +438,7 @@ pub fn draw_system(
         sys,
         file: "",
         diagnostics: &diagnostics,
+        spans: None,
     };
     draw_subject(&subject, req, progress)
 }
@@ -446,6 +449,8 @@ struct Subject<'a> {
     sys: &'a System,
     file: &'a str,
     diagnostics: &'a Diagnostics,
+    /// Where the file writes its symbols, for a linked picture.
+    spans: Option<&'a SpanTable>,
 }
 
 /// The picture `req` asks for, in the renderer's terms: the view asked
@@ -477,6 +482,18 @@ struct How {
     /// An STL file's layout drawn under the tree.
     layout: bool,
     tracing: Tracing,
+    /// An SVG linked to its source ([`Request::linked`]).
+    linked: bool,
+}
+
+impl How {
+    fn of(req: &Request) -> How {
+        How {
+            layout: req.layout,
+            tracing: req.tracing,
+            linked: req.linked,
+        }
+    }
 }
 
 /// A still picture by the first method that serves: ray traced where the
@@ -508,6 +525,11 @@ fn still_counted(
     // A POV-Ray scene is what the tracer would draw.
     let ray_traced = format == Format::Pov || traced::wanted(sys, &how.tracing);
     let mut drawing = |done: u64, total: u64| progress.advanced(Stage::Drawing, done, total);
+    if let (true, Format::Svg, Some(spans)) = (how.linked, format, s.spans) {
+        if let Some(bytes) = linked::draw(sys, spans, run, ropts, layout)? {
+            return Ok((picture(bytes, Method::Stored), 0));
+        }
+    }
     if ray_traced {
         // A context-free system is traced from its shared subtrees; the
         // rest needs the geometry (streaming and lit bands draw lines).
