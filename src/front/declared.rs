@@ -61,6 +61,11 @@ pub fn is_name_char(c: char) -> bool {
 
 /// The word (letters, digits, `_`) around byte `at` of `text`.
 pub fn word_at(text: &str, at: usize) -> Option<&str> {
+    word_span(text, at).map(|s| &text[s])
+}
+
+/// Where the word (letters, digits, `_`) around byte `at` of `text` is.
+pub fn word_span(text: &str, at: usize) -> Option<Span> {
     let at = at.min(text.len());
     let start = text
         .get(..at)?
@@ -70,5 +75,5 @@ pub fn word_at(text: &str, at: usize) -> Option<&str> {
         .get(at..)?
         .find(|c| !is_name_char(c))
         .map_or(text.len(), |i| at + i);
-    (start < end).then(|| &text[start..end])
+    (start < end).then_some(start..end)
 }

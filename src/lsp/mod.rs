@@ -3,19 +3,19 @@
 //! makes: each open document is compiled as `graftal check` compiles it
 //! ([`driver::compile`]) on open and on every change, and its diagnostics
 //! are published; hover, definitions and the outline read the compiled
-//! system (of a file with errors, what was read of the parts that parse).
+//! system (of a file with errors, what was read of the parts that parse),
+//! as [`driver::explain`] says them.
 //! Nothing is derived on a keystroke: `check`'s derivation limits
 //! (E0301, E0302) are left to `graftal check`.
 
 mod edits;
 mod features;
 mod json;
-mod names;
 mod position;
 mod publish;
 mod uri;
 
-use crate::driver::{self, Compiled};
+use crate::driver::{self, Compiled, Knowledge};
 use crate::source::SourceFile;
 use lsp_server::{ErrorCode, Message, Notification, Request, RequestId};
 use lsp_types::notification::{
@@ -29,7 +29,6 @@ use lsp_types::{
     TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 use serde_json::json;
-use std::cell::OnceCell;
 use std::collections::HashMap;
 use std::io::Write;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -39,14 +38,9 @@ use std::sync::mpsc::{channel, Receiver};
 pub struct Document {
     pub uri: Uri,
     pub compiled: Compiled,
-    /// Where its symbols are written: found by the first request that
-    /// needs them, once per compile.
-    occurrences: OnceCell<Vec<features::Occurrence>>,
-    /// The names it declares besides symbols, found like `occurrences`.
-    names: OnceCell<names::Names>,
-    /// The user functions the files beside it declare (a cpfg object's),
-    /// read from disk like `occurrences`.
-    functions: OnceCell<Vec<crate::front::FunctionSite>>,
+    /// Where its symbols and names are written, the user functions beside
+    /// it: each found by the first request that needs it, once per compile.
+    known: Knowledge,
 }
 
 impl Document {
@@ -57,9 +51,7 @@ impl Document {
         Document {
             uri,
             compiled: driver::compile(file),
-            occurrences: OnceCell::new(),
-            names: OnceCell::new(),
-            functions: OnceCell::new(),
+            known: Knowledge::default(),
         }
     }
 }

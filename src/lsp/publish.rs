@@ -4,7 +4,7 @@
 
 use super::position::range;
 use super::uri;
-use crate::diagnostics::{self, Diagnostic, Severity};
+use crate::diagnostics::{Diagnostic, Severity};
 use crate::source::SourceFile;
 use lsp_types::{
     DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Position, Uri,
@@ -122,9 +122,4 @@ fn message(d: &Diagnostic) -> String {
         info.code, info.title, info.code
     ));
     text
-}
-
-/// The explanation `graftal explain CODE` prints, as Markdown.
-pub fn explanation(code: &str) -> Option<String> {
-    diagnostics::codes::lookup(code).map(diagnostics::codes::explain_text)
 }

@@ -276,7 +276,7 @@ pub fn hover(s: &Served, m: &Model) -> Result<Value, Refusal> {
     let c = compile(s, m)?;
     let at = Positions::of(&c.file.text);
     let offset = at.byte(m.offset.unwrap_or(0));
-    Ok(match crate::driver::hover_stub(&c, offset) {
+    Ok(match driver::hover(&c, offset) {
         None => Value::Null,
         Some(h) => {
             let span = h.span.unwrap_or(offset..offset);

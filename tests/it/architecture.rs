@@ -26,6 +26,10 @@
 //!   no front end, emitter, eval, driver, cli, language server or gallery;
 //! * the gallery draws through the driver, as a command would: it imports
 //!   no front end, emitter, cli or language server, and only cli calls it;
+//! * the language server is a face that only cli starts: nothing else
+//!   imports it (what its hover and definitions say is the library's,
+//!   `driver::explain`, which every face asks), and only it speaks the
+//!   protocol (`lsp_types`, `lsp_server`);
 //! * the live page's server (`serve`) is a face like the others, and the
 //!   only module that speaks HTTP (`tiny_http`); it names no notation;
 //! * the faces (cli, the language server, the gallery, the page's server) reach the layers
@@ -414,6 +418,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "gallery" => NOT_FOR_THE_GALLERY.contains(&target),
                 _ => false,
             } || (target == "gallery" && !matches!(top.as_str(), "gallery" | "cli"))
+                || (target == "lsp" && !matches!(top.as_str(), "lsp" | "cli"))
                 || (THE_FACES.contains(&top.as_str()) && a_face_reaches_past_the_library(&path));
             if broken {
                 out.push(format!("{}: imports crate::{}", f.path, path.join("::")));
@@ -425,6 +430,8 @@ fn violations(files: &[Source]) -> Vec<String> {
             ("chumsky", top == "front"),
             ("logos", top == "front"),
             ("tiny_http", top == "serve"),
+            ("lsp_types", top == "lsp"),
+            ("lsp_server", top == "lsp"),
         ];
         let names: Vec<&str> = allowed.iter().map(|a| a.0).collect();
         for used in external(&f.code, &names) {
@@ -610,6 +617,37 @@ fn the_language_server_and_the_page_name_no_notation() {
         "let k = f.keywords();\n#[cfg(test)]\nmod tests { fn t() { find(\"cpfg\") } }"
     ));
     assert!(!seen("let u = \"http://x\"; let s = \"pfgs\";"));
+}
+
+/// What a hover says (what a symbol does to the turtle, which productions
+/// rewrite it, a user function's points, a code's explanation) is worded
+/// once, in `driver/explain/`: no face words it again, so that the
+/// language server and the page of `graftal serve` say the same.
+#[test]
+fn what_a_hover_says_is_worded_in_the_library_alone() {
+    let wording = [
+        "fn what_it_does",
+        "fn symbol_text",
+        "fn angle_text",
+        "fn function_text",
+        "fn explanation",
+    ];
+    let files = sources();
+    let worded: Vec<(&str, &str)> = (files.iter())
+        .flat_map(|f| {
+            let found = wording.iter().filter(|w| f.code.contains(*w));
+            found.map(|w| (f.path.as_str(), *w))
+        })
+        .collect();
+    let elsewhere: Vec<_> = (worded.iter())
+        .filter(|(path, _)| !path.starts_with("driver/explain/"))
+        .collect();
+    assert!(
+        elsewhere.is_empty(),
+        "worded outside the library: {elsewhere:?}"
+    );
+    // The check sees what it looks for: each is worded there, once.
+    assert_eq!(worded.len(), wording.len(), "{worded:?}");
 }
 
 /// The most lines a source file holds before its test module: a file
@@ -809,6 +847,23 @@ fn the_checker_sees_each_kind_of_forbidden_import() {
         ),
         ("gallery.rs", "use crate::render::View;", false),
         ("driver/mod.rs", "use crate::gallery::write;", true),
+        // The hover is the library's: no layer but cli reaches the server.
+        (
+            "driver/explain/mod.rs",
+            "use crate::lsp::features::hover;",
+            true,
+        ),
+        ("driver/explain/prose.rs", "use lsp_types::Hover;", true),
+        ("serve/api.rs", "let h = crate::lsp::hover(d, o);", true),
+        ("serve/api.rs", "let h = crate::driver::hover(c, o);", false),
+        ("cli/mod.rs", "let r = crate::lsp::run_stdio(o);", false),
+        ("cli/mod.rs", "use lsp_server::Message;", true),
+        (
+            "lsp/features.rs",
+            "use crate::driver::explain::{DeclarationKind, FunctionSite};",
+            false,
+        ),
+        ("lsp/features.rs", "use lsp_types::Hover;", false),
         ("cli/mod.rs", "use crate::gallery::write;", false),
         // A face draws through `driver::picture`, never by a way of its own.
         ("cli/mod.rs", "let b = crate::render::raster::png(g);", true),
