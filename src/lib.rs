@@ -17,6 +17,7 @@ pub mod common;
 pub mod decode;
 pub mod diagnostics;
 pub mod driver;
+pub mod enviro;
 pub mod eval;
 pub mod format;
 pub mod front;

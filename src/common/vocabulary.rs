@@ -65,7 +65,7 @@ const STL: &[&str] = &["[", "]", "F", "L", "R", "+", "-"];
 const CPFG: &[&str] = &[
     "[", "]", "F", "G", "f", "g", "+", "-", "&", "^", "\\", "/", "|", ";", ",", "#", "!", "{", "}",
     ".", "@O", "@o", "@c", "@M", "@R", "@v", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@#", "@Ts", "@Ti",
-    "@T", "@Td", "@Tp", "@Tf", "?P", "?H", "?L", "?U", "?", "$", "@L",
+    "@T", "@Td", "@Tp", "@Tf", "?P", "?H", "?L", "?U", "?E", "?", "$", "@L",
 ];
 const FRACTINT: &[&str] = &["[", "]", "+", "-", "|", "!", "f", "g", "d", "m"];
 
@@ -189,6 +189,7 @@ fn cpfg(name: &str) -> Option<TurtleOp> {
         "?H" => TurtleOp::Query(QueryKind::Heading),
         "?L" => TurtleOp::Query(QueryKind::Left),
         "?U" => TurtleOp::Query(QueryKind::Up),
+        "?E" => TurtleOp::Query(QueryKind::Environment),
         "?" => TurtleOp::SubLsystemCall,
         "$" => TurtleOp::SubLsystemReturn,
         "@L" => TurtleOp::Label,

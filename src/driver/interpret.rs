@@ -77,10 +77,11 @@ pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, op
         ..turtle::Run::word(sys, &drawn, opts.seed)
     };
     for (i, v) in turtle::run(run, &mut Geometry::default()).answers {
-        // Only a query module the homomorphism kept writes back.
+        // Only a query module the homomorphism kept writes back; the
+        // environment's queries are answered by the environment.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;
-        if word.0.get(o) != drawn.0.get(i) {
+        if word.0.get(o) != drawn.0.get(i) || is_environment_query(sys, drawn.0[i]) {
             continue;
         }
         word.set_args(o, &v);
@@ -110,6 +111,11 @@ pub fn turns_in_space(sys: &System) -> bool {
     written.any(leaves_plane)
         || !sys.settings.tropisms.is_empty()
         || sys.graph.as_ref().is_some_and(|g| !g.is_planar())
+}
+
+/// Whether `s` is a `?E` module, which the environment answers.
+pub(super) fn is_environment_query(sys: &System, s: crate::ir::SymbolId) -> bool {
+    sys.op(s) == Some(TurtleOp::Query(crate::ir::QueryKind::Environment))
 }
 
 /// Derives and interprets: the geometry of the system, with its look's

@@ -212,6 +212,7 @@
 
 pub mod colours;
 pub mod d0l;
+pub mod environment;
 pub mod graph;
 pub mod look;
 pub mod program;
@@ -678,6 +679,10 @@ pub enum QueryKind {
     Heading,
     Left,
     Up,
+    /// cpfg `?E`: the environment ([`System::environment`]) is told the
+    /// module's parameters and the turtle's position, and its answer is
+    /// written into the parameters.
+    Environment,
 }
 
 /// A successor with its weight.
@@ -1212,6 +1217,9 @@ pub struct System {
     /// The L-systems that rewrite and draw the parts of the word the calls
     /// hand them ([`SubLsystem`]).
     pub sub_lsystems: Vec<SubLsystem>,
+    /// What answers the [`QueryKind::Environment`] modules (an open
+    /// L-system); `None`: nothing does, and they keep their parameters.
+    pub environment: Option<environment::Environment>,
 }
 
 /// What a front end makes of a source: the system and where its parts
@@ -1285,6 +1293,7 @@ impl System {
             interpretation: Vec::new(),
             axiom: Word::default(),
             axiom_args: Vec::new(),
+            environment: None,
             productions: Vec::new(),
             decomposition: Phase::default(),
             homomorphism: Phase::default(),

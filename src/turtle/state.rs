@@ -223,6 +223,8 @@ impl State {
             QueryKind::Left => self.l,
             // `0 − x`, not `−x`: no −0 in the word.
             QueryKind::Up => self.u.map(|x| 0.0 - x),
+            // The environment is told where the turtle is.
+            QueryKind::Environment => self.pos,
         }
     }
 }

@@ -355,6 +355,7 @@ fn query(kind: QueryKind) -> &'static str {
         QueryKind::Heading => "heading",
         QueryKind::Left => "left",
         QueryKind::Up => "up",
+        QueryKind::Environment => "environment",
     }
 }
 

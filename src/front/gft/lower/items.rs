@@ -717,7 +717,8 @@ impl Cx<'_> {
                 "heading" => QueryKind::Heading,
                 "left" => QueryKind::Left,
                 "up" => QueryKind::Up,
-                _ => return self.bad_op(g, span, "query position|heading|left|up"),
+                "environment" => QueryKind::Environment,
+                _ => return self.bad_op(g, span, "query position|heading|left|up|environment"),
             })),
             "colour-shift" => {
                 let (up, by) = match word(1).split_at_checked(1) {
