@@ -55,6 +55,7 @@ pub const KEYWORDS: &[(&str, bool)] = &[
     ("backdrop", true),
     ("contour", true),
     ("graph", true),
+    ("environment", false),
 ];
 
 /// The words that start a line of a `graph { … }` block (docs/gft.md

@@ -178,9 +178,20 @@ pub fn derive_values(
     // The module test alone ([`eval::plan`] would build the Deriver, and
     // its table, a second time): the plain methods are the Deriver's.
     if sys.rewrites_modules() {
-        return eval::parametric::derive(sys, &dopts, progress, &mut |w, values| {
-            answer_queries(sys, w, values, opts)
-        });
+        // The environment, if any, is asked at the start of each step (of
+        // the word about to be rewritten), or after each step and of the
+        // axiom (`after_each_step`): every call but the last, or all.
+        let mut program = sys.environment.as_ref().map(crate::enviro::start);
+        let after = sys.environment.as_ref().is_some_and(|e| e.after_each_step);
+        return eval::parametric::derive(
+            sys,
+            &dopts,
+            progress,
+            &mut |w, values, last| match program.as_mut() {
+                Some(p) if after || !last => answer_queries(sys, w, values, opts, Some(p.as_mut())),
+                _ => answer_queries(sys, w, values, opts, None),
+            },
+        );
     }
     let word = Deriver::new(sys).derive(&dopts, progress)?;
     Ok((word, Globals::initial(&sys.program)))

@@ -35,7 +35,7 @@ pub fn nothing_drawn(
         Some(env) => {
             d = d.with_note(
                 "the model draws only what its environment answers to `?E`, \
-                 and graftal runs no environment program (W0821)",
+                 and no environment program graftal runs answers them (W0821)",
             );
             d.notes.extend(env.notes.iter().cloned());
         }

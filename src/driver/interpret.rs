@@ -67,7 +67,15 @@ pub(super) fn drawn_word<'w>(
 
 /// Fills the query modules (`?P`, `?H`, …) of `word` with what the turtle
 /// finds there, drawing the word through the homomorphism.
-pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, opts: &RunOptions) {
+/// With `environment`, the `?E` modules met are the environment's
+/// queries, and its answers are written back too ([`super::environment`]).
+pub(super) fn answer_queries(
+    sys: &System,
+    word: &mut Word,
+    values: &Globals,
+    opts: &RunOptions,
+    environment: Option<&mut dyn crate::enviro::Pass>,
+) {
     let dopts = opts.derive_options(sys);
     let Ok((drawn, origins)) = eval::parametric::homomorphism(sys, word, values, &dopts) else {
         return;
@@ -76,15 +84,23 @@ pub(super) fn answer_queries(sys: &System, word: &mut Word, values: &Globals, op
         queries: true,
         ..turtle::Run::word(sys, &drawn, opts.seed)
     };
+    let mut asked = super::environment::Asked::default();
+    let env = sys.environment.as_ref().filter(|_| environment.is_some());
     for (i, v) in turtle::run(run, &mut Geometry::default()).answers {
-        // Only a query module the homomorphism kept writes back; the
-        // environment's queries are answered by the environment.
+        // Only a query module the homomorphism kept writes back.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;
-        if word.0.get(o) != drawn.0.get(i) || is_environment_query(sys, drawn.0[i]) {
-            continue;
+        let kept = word.0.get(o) == drawn.0.get(i);
+        if is_environment_query(sys, drawn.0[i]) {
+            if let Some(env) = env {
+                asked.push(env, kept.then_some(o), drawn.args(i), v);
+            }
+        } else if kept {
+            word.set_args(o, &v);
         }
-        word.set_args(o, &v);
+    }
+    if let Some(program) = environment {
+        asked.answer(program, word);
     }
 }
 

@@ -17,6 +17,7 @@
 mod check;
 mod derive;
 mod empty;
+mod environment;
 pub mod explain;
 mod interpret;
 mod load;

@@ -803,7 +803,7 @@ impl ContextIndex {
 pub fn derive(sys: &System, opts: &DeriveOptions) -> Result<Word, Diagnostic> {
     // As `plan` decides, without building the Deriver twice.
     if sys.rewrites_modules() {
-        return parametric::derive(sys, opts, |_, _| {}, &mut |_, _| {}).map(|(w, _)| w);
+        return parametric::derive(sys, opts, |_, _| {}, &mut |_, _, _| {}).map(|(w, _)| w);
     }
     Deriver::new(sys).derive(opts, |_, _| {})
 }

@@ -1065,13 +1065,14 @@ fn axiom(sys: &System, m: &mut Machine<'_>) -> Result<Word, Halt> {
 /// Derives a system by module rewriting: `opts.steps` steps from the
 /// axiom, with `progress` called after each step. `query` is called before
 /// each step when the system has query modules, to fill their parameters
-/// (with the program's values then, which the homomorphism reads). The
+/// (with the program's values then, which the homomorphism reads), and
+/// once more on the last word (its `bool` then true). The
 /// word comes with the values the program left, for [`homomorphism`].
 pub fn derive(
     sys: &System,
     opts: &DeriveOptions,
     mut progress: impl FnMut(u64, usize),
-    query: &mut dyn FnMut(&mut Word, &Globals),
+    query: &mut dyn FnMut(&mut Word, &Globals, bool),
 ) -> Result<(Word, Globals), Diagnostic> {
     super::refuse_early(sys, opts)?;
     let n = sys.symbols.len();
@@ -1104,7 +1105,7 @@ pub fn derive(
         let mut step = 0;
         while step < e.m.steps {
             if has_query {
-                query(&mut word, &e.m.values());
+                query(&mut word, &e.m.values(), false);
             }
             e.m.charge(super::STEP_COST)?;
             e.m.run(&program.start_each, &mut [])?;
@@ -1131,7 +1132,7 @@ pub fn derive(
         }
         e.m.run(&program.end, &mut [])?;
         if has_query {
-            query(&mut word, &e.m.values());
+            query(&mut word, &e.m.values(), true);
         }
         Ok((word, e.m.values()))
     })();

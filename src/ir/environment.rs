@@ -91,6 +91,8 @@ pub struct Canopy {
     pub range: [f64; 2],
     /// The light one leaf lets through.
     pub transmittance: f64,
+    /// The image's file, as the specification names it.
+    pub image_file: Option<String>,
     /// The light (green) and ratio (red) over the plane; `None`: full
     /// light everywhere.
     #[serde(skip)]

@@ -43,6 +43,7 @@ impl System {
         debug("graph", &self.graph, &other.graph)?;
         debug("surfaces", &self.surfaces, &other.surfaces)?;
         debug("contours", &self.contours, &other.contours)?;
+        same_environment(self, other)?;
         same_images(self, other)?;
         let (a, b) = (without_images(self), without_images(other));
         debug("look", &a.look, &b.look)
@@ -70,6 +71,30 @@ fn same_images(a: &System, b: &System) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The environments alike: their settings, and the canopy's decoded image
+/// where both have it (as for textures, a file's image is what its folder
+/// held).
+fn same_environment(a: &System, b: &System) -> Result<(), String> {
+    use super::environment::Program;
+    let image = |s: &System| match s.environment.as_ref().map(|e| &e.program) {
+        Some(Program::Canopy(c)) => c.image.clone(),
+        _ => None,
+    };
+    if let (Some(p), Some(q)) = (image(a), image(b)) {
+        if p != q {
+            return Err("environment image: the pixels differ".into());
+        }
+    }
+    let bare = |s: &System| {
+        let mut e = s.environment.clone();
+        if let Some(Program::Canopy(c)) = e.as_mut().map(|e| &mut e.program) {
+            c.image = None;
+        }
+        e
+    };
+    debug("environment", &bare(a), &bare(b))
 }
 
 /// The look of `sys` without its textures' decoded images.

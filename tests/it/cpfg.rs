@@ -289,7 +289,7 @@ fn run_object(dir: &Path) -> Outcome {
 }
 
 #[test]
-fn all_but_three_corpus_objects_render() {
+fn all_but_one_corpus_object_render() {
     let dirs = corpus();
     assert_eq!(dirs.len(), 95);
     let mut drawn = 0;
@@ -312,9 +312,10 @@ fn all_but_three_corpus_objects_render() {
         }
     }
     eprintln!("{drawn}/95 drawn; refused:\n{}", refused.join("\n"));
-    // The two: an exercise left with `?` blanks, and Sierpinski, whose
-    // growth only its environment program decides.
-    assert_eq!(drawn, 93, "{drawn}/95 drawn:\n{}", refused.join("\n"));
+    // The one: an exercise left with `?` blanks. (Sierpinski, whose
+    // growth only its environment program decides, grows: graftal runs
+    // honda81.)
+    assert_eq!(drawn, 94, "{drawn}/95 drawn:\n{}", refused.join("\n"));
 }
 
 /// Damaged cpfg files (bytes cut, doubled or replaced at random, from

@@ -8,7 +8,6 @@
 //!
 //! Everything must read back: there is no list of exceptions.
 
-use graftal::diagnostics::Diagnostics;
 use graftal::driver::{self, Compiled, RunOptions};
 use graftal::ir::{System, Word};
 use graftal::source::SourceFile;
@@ -81,13 +80,16 @@ struct Tally {
 /// `Err` describes the first failure with the text.
 fn round_trip(what: &str, sys: &System, seed: u64, tally: &mut Tally) -> Result<(), String> {
     let text = graftal::back::gft::write(sys, None);
-    let mut diags = Diagnostics::default();
-    let back = graftal::front::gft::read(&text, &mut diags).system;
+    // Read as a `.gft` beside the source (the images its textures and
+    // environment name are the folder's).
+    let name = std::path::Path::new(what).with_extension("gft");
+    let file = SourceFile::new(name.display().to_string(), text.as_str());
+    let read = driver::compile_as(file, None, graftal::front::by_name("gft"));
     let fail = |e: String| Err(format!("{what}: {e}\n--- gft ---\n{text}"));
-    if diags.has_errors() {
-        let list: Vec<String> = diags.iter().map(|d| format!("{d:?}")).collect();
+    let Some(back) = read.system else {
+        let list: Vec<String> = read.diagnostics.iter().map(|d| format!("{d:?}")).collect();
         return fail(format!("read back with errors: {}", list.join("\n")));
-    }
+    };
     if let Err(e) = sys.same_as(&back) {
         return fail(format!("not the same system: {e}"));
     }

@@ -9,6 +9,7 @@
 //! look, surfaces and contours. Numbers are [`expr::num`]: bit-exact. Where
 //! docs/gft.md is silent, docs/gft-emitter-notes.md says what is written.
 
+mod environment;
 pub mod expr;
 mod graph;
 mod look;
@@ -80,6 +81,9 @@ pub fn write(sys: &System, steps: Option<u64>) -> String {
     }
     look::look(&mut out, &sys.look);
     look::surfaces(&mut out, sys);
+    if let Some(env) = &sys.environment {
+        environment::environment(&mut out, env);
+    }
     out
 }
 

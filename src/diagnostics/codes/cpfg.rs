@@ -378,6 +378,21 @@ Example (female.v):
 Put the file in the object's folder, or take the line out (and `~b` out of
 the L-system).";
 
+    CPFG_ENVIRONMENT_LINE = "W0816", "environment or specification line not read",
+"A line of the `.e` file or of the environment program's specification
+file (`density.spec`, `light.spec`, `enviro.spec`) that the program does
+not read: its keyword (the text before the first `:`) is none of the
+program's, matched exactly as vlab's programs match it (`3D case` is not
+`3d case`), or its value has no number. The program skips such a line and
+keeps its default, and so does graftal, which runs the program's
+computation itself.
+
+Example (density.spec, read by honda81):
+    3D case: on     <- honda81 reads `3d case`: the model stays in the plane
+
+Write the keyword as the program spells it (the help lists them), or take
+the line out if the default is what is meant.";
+
     CPFG_TEXTURE_IMAGE = "W0814", "texture image missing or unreadable: drawn untextured",
 "A `texture:` line of the view file (or the texture file at the end of a
 `surface:` line) names an image the object's folder does not have, or one

@@ -82,11 +82,14 @@ before it in the production, nor a global variable assigned in a Start,
 StartEach, EndEach or End block. cpfg warns and uses 0, and so does graftal.
 A misspelt name or a missing `#define` is the usual cause.";
 
-    CPFG_NO_ENVIRONMENT = "W0821", "no environment process",
-"`?E(…)` modules exchange values with an environmental process (named in
-the object's `.e` file) that cpfg starts with `-e`. graftal does not run
-environment programs: the module keeps the parameters the L-system gave it,
-so the model grows as if the environment never answered.";
+    CPFG_NO_ENVIRONMENT = "W0821", "no environment answers `?E`",
+"`?E(…)` modules exchange values with an environment program, named in
+the object's `.e` file, that cpfg starts with `-e`. graftal runs the
+computations of vlab's honda81, chiba, clover, ecosystem and obcheck
+itself; for any other program, or without a `.e` file naming one, nothing
+answers: the module keeps the parameters the L-system gave it, and the
+model grows as if the environment never answered. The note names the
+program the `.e` file gives.";
 
     CPFG_IO_IGNORED = "W0822", "file and console output not performed",
 "`printf`, `fprintf`, `fopen`, `fclose`, `fflush` and `fscanf` read or

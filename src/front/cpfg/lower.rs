@@ -116,7 +116,7 @@ impl Lowerer<'_> {
                 Diagnostic::at(
                     codes::CPFG_NO_ENVIRONMENT,
                     m.span.clone(),
-                    "`?E` modules get no answer: graftal runs no environment process",
+                    "`?E` modules get no answer: no environment program graftal runs is named",
                 )
                 .with_label("keeps the parameters the L-system gives it"),
             );

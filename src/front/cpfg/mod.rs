@@ -161,9 +161,8 @@ pub fn read_file(file: &SourceFile, diags: &mut Diagnostics) -> Lowered {
         }
     }
     report_undefined_surfaces(&lowered, &view, diags);
-    if let Some(dir) = beside.dir {
-        environment::name_program(dir, path, diags);
-    }
+    let when = (view.environment_after_step, view.interpret_past_cut);
+    lowered.system.environment = environment::read(&beside, path, when, diags);
     beside.report_other_case(diags);
     lowered
 }

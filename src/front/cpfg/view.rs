@@ -173,6 +173,9 @@ pub struct View {
     pub z_buffer: bool,
     /// `interpretation past %:`.
     pub interpret_past_cut: bool,
+    /// `environment display:`: the environment is asked after each step
+    /// (and of the axiom) rather than before each.
+    pub environment_after_step: bool,
     pub twist_of_cylinders: bool,
     /// `light:` commands (material mode), in order.
     pub lights: Vec<crate::ir::look::Light>,
@@ -231,6 +234,7 @@ impl Default for View {
             render_mode: RenderMode::Filled,
             z_buffer: true,
             interpret_past_cut: true,
+            environment_after_step: false,
             twist_of_cylinders: false,
             lights: Vec::new(),
             light_direction: [1.0, 0.0, 0.0],
@@ -277,6 +281,7 @@ const KNOWN: &[&str] = &[
     "line width increment",
     "initial scale",
     "interpretation past %",
+    "environment display",
     "viewpoint",
     "view reference point",
     "twist",
@@ -577,6 +582,7 @@ fn set_rendering(v: &mut View, c: &Command, d: &mut Diagnostics) -> bool {
         }
         "twist of cylinders" => set_flag(&mut v.twist_of_cylinders, c, d),
         "interpretation past %" => set_flag(&mut v.interpret_past_cut, c, d),
+        "environment display" => set_flag(&mut v.environment_after_step, c, d),
         "contour sides" => match num(c.value) {
             Some(n) if n >= 1.0 => v.contour_sides = n as u32,
             _ => c.bad(d, "a positive number"),

@@ -5,6 +5,7 @@
 //! is lowered on its own (`graph`).
 
 mod declarations;
+mod environment;
 mod graph;
 mod items;
 mod keywords;

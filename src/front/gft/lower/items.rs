@@ -145,6 +145,44 @@ impl<'k> Fields<'k> {
         }
     }
 
+    /// The third value after the word `label` (`grid 32 32 32`).
+    pub(super) fn third<T: std::str::FromStr>(&mut self, label: &str) -> Option<T> {
+        let k = self.after(label).map(|x| x.0 + 2);
+        match k.and_then(|k| self.vals.get(k)).cloned() {
+            Some(Val::Num(t, s)) => match t.parse() {
+                Ok(v) => Some(v),
+                Err(_) => self.fail(
+                    Some(&Val::Num(t, s)),
+                    format!("three numbers after `{label}`"),
+                ),
+            },
+            v => self.fail(v.as_ref(), format!("three numbers after `{label}`")),
+        }
+    }
+
+    /// `(x, y)` after `label`, as `[x, y, 0]`.
+    pub(super) fn pair_or_triple(&mut self, label: &str) -> Option<[f64; 3]> {
+        let v = self.after(label).map(|x| x.1.clone());
+        if let Some(Val::Tuple(parts, _)) = &v {
+            let n: Option<Vec<f64>> = parts.iter().map(|p| p.trim().parse().ok()).collect();
+            if let Some(&[a, b]) = n.as_deref() {
+                return Some([a, b, 0.0]);
+            }
+        }
+        self.fail(v.as_ref(), format!("`(x, y)` after `{label}`"))
+    }
+
+    /// Fails at the value after `label`, expecting `what`.
+    pub(super) fn fail_at<T>(&mut self, label: &str, what: &str) -> Option<T> {
+        let v = self.after(label).map(|x| x.1.clone());
+        self.fail(v.as_ref(), what.to_string())
+    }
+
+    /// The whole line's span.
+    pub(super) fn line(&self) -> &Span {
+        self.line
+    }
+
     /// Whether the word `w` is present.
     pub(super) fn has(&self, w: &str) -> bool {
         self.vals
@@ -476,7 +514,11 @@ impl Cx<'_> {
     /// The decoded image `file` of the `.gft`'s folder, or a warning at
     /// `line` (W0904) saying why not: what it textures is then drawn
     /// untextured, as a cpfg view file's missing image is.
-    fn texture_image(&mut self, file: &str, line: &Span) -> Option<std::sync::Arc<Image>> {
+    pub(super) fn texture_image(
+        &mut self,
+        file: &str,
+        line: &Span,
+    ) -> Option<std::sync::Arc<Image>> {
         let why = match self.folder.map(|d| read_capped(&d.join(file))) {
             None => "cannot be read: the text has no folder".to_string(),
             Some(Err(e)) if e.kind() == std::io::ErrorKind::NotFound => {

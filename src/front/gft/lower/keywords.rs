@@ -154,6 +154,7 @@ impl Cx<'_> {
                 }
             }
             "sub-lsystem" => self.sub_lsystem(k),
+            "environment" => self.environment(k),
             "start" | "start-each" | "end-each" | "end" => {
                 let Some(Block::Statements(s)) = &k.block else {
                     return;
