@@ -86,13 +86,17 @@ pub(super) fn answer_queries(
     };
     let mut asked = super::environment::Asked::default();
     let env = sys.environment.as_ref().filter(|_| environment.is_some());
+    // `interpretation past %: off`: the queries of a cut branch are not sent.
+    let cut = (env.filter(|e| !e.past_cut).zip(sys.cut))
+        .map(|(_, c)| eval::parametric::cut_mask(&drawn.0, c))
+        .unwrap_or_default();
     for (i, v) in turtle::run(run, &mut Geometry::default()).answers {
         // Only a query module the homomorphism kept writes back.
         let Some(&o) = origins.get(i) else { continue };
         let o = o as usize;
         let kept = word.0.get(o) == drawn.0.get(i);
         if is_environment_query(sys, drawn.0[i]) {
-            if let Some(env) = env {
+            if let Some(env) = env.filter(|_| !cut.get(i).copied().unwrap_or(false)) {
                 asked.push(env, kept.then_some(o), drawn.args(i), v);
             }
         } else if kept {
