@@ -12,7 +12,10 @@
 //!
 //! Imports only the IR: the programs know queries, not words or turtles.
 
+mod canopy;
+mod circles;
 mod density;
+mod obstacles;
 
 use crate::ir::environment::{Environment, Program};
 
@@ -43,9 +46,11 @@ pub trait Pass {
 pub fn start(env: &Environment) -> Box<dyn Pass> {
     match &env.program {
         Program::Density(d) => Box::new(density::Honda81::new(d)),
-        Program::Light(_) | Program::Canopy(_) | Program::Circles(_) | Program::Obstacles(_) => {
-            Box::new(Silent)
-        }
+        Program::Canopy(c) => Box::new(canopy::Clover::new(c)),
+        Program::Circles(c) => Box::new(circles::Ecosystem::new(c)),
+        Program::Obstacles(o) => Box::new(obstacles::Obcheck::new(o)),
+        // chiba is not built in yet.
+        Program::Light(_) => Box::new(Silent),
     }
 }
 
