@@ -254,6 +254,7 @@ mod tests {
             position: [0.0, 0.0],
             range: [4.0, 4.0],
             transmittance: t,
+            image_file: None,
             image: Some(image()),
             remove_old_leaves: false,
             z_is_up: true,
