@@ -133,6 +133,7 @@ pub static ENTRIES: &[Entry] = &[
     entry!("gft" / "koch-island" . "gft"),
     entry!("gft" / "signal-plant-3d" . "gft"),
     entry!("gft" / "stochastic-tree" . "gft"),
+    entry!("gft" / "light-competition" . "gft"),
     entry!("gft" / "two-heading-curve" . "gft"),
     entry!("gft" / "bekaert" / "fern" . "gft"),
     entry!("gft" / "bekaert" / "menger" . "gft"),

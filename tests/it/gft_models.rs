@@ -79,7 +79,7 @@ fn same_segments(a: &[Segment], b: &[Segment], mirror: bool) -> Result<(), Strin
 #[test]
 fn every_gft_entry_draws_more_than_trivial_geometry() {
     let names: Vec<&str> = gft_entries().map(|e| e.name).collect();
-    assert_eq!(names.len(), 5, "{names:?}");
+    assert_eq!(names.len(), 6, "{names:?}");
     for e in gft_entries() {
         assert!(e.file.ends_with(".gft"), "{}", e.file);
         let c = compiled(&format!("std:{}", e.name));
