@@ -13,6 +13,7 @@
 //! Imports only the IR: the programs know queries, not words or turtles.
 
 mod density;
+mod light;
 
 use crate::ir::environment::{Environment, Program};
 
@@ -43,9 +44,8 @@ pub trait Pass {
 pub fn start(env: &Environment) -> Box<dyn Pass> {
     match &env.program {
         Program::Density(d) => Box::new(density::Honda81::new(d)),
-        Program::Light(_) | Program::Canopy(_) | Program::Circles(_) | Program::Obstacles(_) => {
-            Box::new(Silent)
-        }
+        Program::Light(l) => Box::new(light::Chiba::new(l)),
+        Program::Canopy(_) | Program::Circles(_) | Program::Obstacles(_) => Box::new(Silent),
     }
 }
 
