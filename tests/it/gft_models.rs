@@ -323,3 +323,50 @@ fn the_koch_island_is_labelled_with_its_figure() {
         }
     }
 }
+
+/// Two trees competing for light: with the environment answering, shaded
+/// apices stop (each with a leaf), most where the crowns meet, so the
+/// trees draw far fewer segments than the same file without its
+/// `environment` line, where every apex forks as a full symmetric tree.
+#[test]
+fn light_competition_thins_the_crowns_where_they_meet() {
+    let c = compiled("std:gft/light-competition");
+    let lit = c.system.clone().expect("it compiles");
+    assert!(
+        lit.environment.is_some(),
+        "the file's environment line is read"
+    );
+    let mut dark = lit.clone();
+    dark.environment = None;
+    let opts = RunOptions::default();
+    let (_, with) = driver::geometry(&lit, &opts).unwrap();
+    let (_, without) = driver::geometry(&dark, &opts).unwrap();
+    // Without answers: two trees forking 9 times, each a trunk and
+    // 2 + 4 + … + 2^9 internodes.
+    assert_eq!(without.segments.len(), 2 * (1 + 1022));
+    assert!(
+        without.discs.is_empty(),
+        "no apex stops without the environment"
+    );
+    assert!(
+        with.segments.len() * 2 < without.segments.len(),
+        "{} segments with the light against {}",
+        with.segments.len(),
+        without.segments.len()
+    );
+    assert!(!with.discs.is_empty(), "shaded apices bear leaves");
+    // The crowns meet in the middle (x = 0): leaves there, and the two
+    // trees mirror each other, as their light does.
+    let near_middle = with
+        .discs
+        .iter()
+        .filter(|d| d.centre[0].abs() < 3.0)
+        .count();
+    assert!(near_middle > 0, "leaves where the crowns meet");
+    let left = with.segments.iter().filter(|s| s.a[0] < 0.0).count();
+    let right = with.segments.len() - left;
+    assert!(
+        left.abs_diff(right) * 10 <= with.segments.len(),
+        "{left} against {right}"
+    );
+}
