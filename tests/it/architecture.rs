@@ -19,6 +19,8 @@
 //!   IR) imports only `ir` and `number`;
 //! * `decode` (image files into the IR's texture images) imports only
 //!   `ir` and `number`;
+//! * `enviro` (the environment programs of open L-systems: queries in,
+//!   answers out) imports only `ir` and `number`;
 //! * the turtle imports neither render nor eval (nor anything above them);
 //! * the outputs of the turtle's geometry, render (pictures, animations),
 //!   mesh (OBJ, PLY, glTF) and raytrace (ray-traced pictures of instancing
@@ -410,7 +412,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "back" => matches!(target, "front" | "turtle"),
                 "ir" => !matches!(target, "ir" | "number"),
                 "number" => target != "number",
-                "common" | "layout" | "scene" | "decode" => {
+                "common" | "layout" | "scene" | "decode" | "enviro" => {
                     target != top && !matches!(target, "ir" | "number")
                 }
                 "turtle" => ABOVE_THE_TURTLE.contains(&target),

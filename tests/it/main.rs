@@ -24,6 +24,7 @@ mod book;
 mod check_derives;
 mod cli;
 mod cpfg;
+mod cpfg_environment;
 mod cpfg_files;
 mod cpfg_frame;
 mod cpfg_gencyl;
