@@ -328,18 +328,20 @@ const NOT_COMPARABLE: &[(&str, &str)] = &[
     (
         "07-Open-13-clover",
         "the thumbnail's ground is light08.rgb laid as a texture on the BACKGROUND polygon \
-         (`@Tx(1)`), which graftal draws textured only in lit pictures (this one is flat: the \
-         polygon is drawn in its colour), and the thumbnail is a late frame of the \
-         animation (plant.a: 200 frames) where the file derives 0 steps; with clover built in, \
-         graftal's plant at 60 steps spreads its ramets and leaves over the ground",
+         (`@Tx(1)` before `{ … }`): graftal lays textures on surfaces and generalized \
+         cylinders but not yet on `{ }` polygons, so the ground is drawn in its colour (a gap \
+         of graftal's); and the thumbnail is a late frame of the animation (plant.a: 200 \
+         frames) where the file derives 0 steps. With clover built in, graftal's plant at 60 \
+         steps spreads its ramets and leaves over the ground",
     ),
     (
         "20-EnviroPgms-CPFG-Clover",
         "the thumbnail's ground is light08.rgb laid as a texture on the BACKGROUND polygon \
-         (`@Tx(1)`), which graftal draws textured only in lit pictures (this one is flat: the \
-         polygon is drawn in its colour), and the thumbnail is a late frame of the \
-         animation (plant.a: 200 frames) where the file derives 0 steps; with clover built in, \
-         graftal's plant at 60 steps spreads its ramets and leaves over the ground",
+         (`@Tx(1)` before `{ … }`): graftal lays textures on surfaces and generalized \
+         cylinders but not yet on `{ }` polygons, so the ground is drawn in its colour (a gap \
+         of graftal's); and the thumbnail is a late frame of the animation (plant.a: 200 \
+         frames) where the file derives 0 steps. With clover built in, graftal's plant at 60 \
+         steps spreads its ramets and leaves over the ground",
     ),
     (
         "11-CPFG-Snowflake",
