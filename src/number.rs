@@ -131,6 +131,16 @@ pub fn radians_interval(lo: f64, hi: f64) -> String {
     format!("[{} {}]", radians(lo), radians(hi))
 }
 
+/// The number a text begins with, as C's `atof` (and `scanf`'s `%f`) read
+/// it: the longest prefix that is a number (`100view.pnl` is 100); `None`
+/// when it begins with none.
+pub fn leading(t: &str) -> Option<f64> {
+    let end = (1..=t.len())
+        .rev()
+        .find(|&k| t.is_char_boundary(k) && t[..k].parse::<f64>().is_ok())?;
+    t[..end].parse().ok()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

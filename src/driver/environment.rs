@@ -74,7 +74,7 @@ fn write(word: &mut Word, o: usize, answer: &Answer) {
 /// A number as it arrives through cpfg's text: printed `%g` (six
 /// significant digits), read back as a C `float`.
 fn through_g(x: f64) -> f32 {
-    atof(&printf("%g", &[x])).unwrap_or(0.0) as f32
+    crate::number::leading(&printf("%g", &[x])).unwrap_or(0.0) as f32
 }
 
 /// The position as the program reads it: `format` prints the turtle's
@@ -91,20 +91,12 @@ fn sent_position(format: &str, p: Vec3) -> Vec<f32> {
         if out.len() >= conversions.min(3) {
             break;
         }
-        match atof(token) {
+        match crate::number::leading(token) {
             Some(x) => out.push(x as f32),
             None => break,
         }
     }
     out
-}
-
-/// The number a text begins with, as C's `atof`/`%f` read it.
-fn atof(t: &str) -> Option<f64> {
-    let end = (1..=t.len())
-        .rev()
-        .find(|&k| t.is_char_boundary(k) && t[..k].parse::<f64>().is_ok())?;
-    t[..end].parse().ok()
 }
 
 #[cfg(test)]

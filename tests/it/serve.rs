@@ -74,6 +74,15 @@ fn post(addr: SocketAddr, path: &str, body: &Value) -> (u16, Value) {
     (status, serde_json::from_slice(&body).unwrap_or(Value::Null))
 }
 
+/// Koch's island downloaded as `format`: the status, head and bytes.
+fn export(addr: SocketAddr, format: &str) -> (u16, String, Vec<u8>) {
+    let body = json!({ "text": KOCH, "format": format }).to_string();
+    send(
+        addr,
+        &request(addr, "POST", "/api/export", "", body.as_bytes()),
+    )
+}
+
 fn get(addr: SocketAddr, path: &str) -> (u16, String, Vec<u8>) {
     send(addr, &request(addr, "GET", path, "", b""))
 }
@@ -266,32 +275,14 @@ fn hover_translation_and_downloads_come_from_the_library() {
             .contains("axiom"),
         "{v}"
     );
-    let raw = request(
-        addr,
-        "POST",
-        "/api/export",
-        "",
-        json!({ "text": KOCH, "format": "png" })
-            .to_string()
-            .as_bytes(),
-    );
-    let (status, head, png) = send(addr, &raw);
+    let (status, head, png) = export(addr, "png");
     assert_eq!(status, 200, "{head}");
     assert!(
         head.contains("image/png") && head.contains("attachment"),
         "{head}"
     );
     assert!(png.starts_with(b"\x89PNG"));
-    let raw = request(
-        addr,
-        "POST",
-        "/api/export",
-        "",
-        json!({ "text": KOCH, "format": "obj" })
-            .to_string()
-            .as_bytes(),
-    );
-    let (_, _, obj) = send(addr, &raw);
+    let (_, _, obj) = export(addr, "obj");
     assert!(
         String::from_utf8_lossy(&obj).contains("\nv "),
         "an OBJ has vertices"

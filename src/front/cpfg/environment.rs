@@ -216,12 +216,9 @@ fn numbers(value: &str, delims: &[char]) -> Vec<Option<f64>> {
         .collect()
 }
 
-/// The number a token begins with (`100view.pnl` is 100).
+/// The finite number a token begins with (`100view.pnl` is 100).
 fn leading_number(t: &str) -> Option<f64> {
-    let end = (1..=t.len())
-        .rev()
-        .find(|&k| t.is_char_boundary(k) && t[..k].parse::<f64>().is_ok())?;
-    t[..end].parse().ok().filter(|x: &f64| x.is_finite())
+    crate::number::leading(t).filter(|x| x.is_finite())
 }
 
 /// The first number of a value, warning when it has none.
