@@ -93,8 +93,8 @@ struct Turtle<'a> {
     strings: Option<Vec<&'a str>>,
     /// Arena of the colour histories: (previous entry, colour).
     history: Vec<(u32, usize)>,
-    /// The polygons being collected, innermost last: vertices and colour.
-    open_polygons: Vec<(Vec<Vec3>, usize)>,
+    /// The polygons being collected, innermost last.
+    open_polygons: Vec<OpenPolygon>,
     /// What the run learns: the paths, the deepest nesting and the
     /// queries' answers (segments, polygons and discs go to `sink`).
     learned: Learned,
@@ -110,6 +110,42 @@ struct Turtle<'a> {
     /// it has none.
     tropisms: Option<tropism::Tropisms<'a>>,
     sink: &'a mut dyn Sink,
+}
+
+/// A polygon being collected (`{` … `}`).
+struct OpenPolygon {
+    points: Vec<Vec3>,
+    colour: usize,
+    /// The turtle at the first point, once there is one.
+    first: Option<FirstVertex>,
+}
+
+/// What cpfg keeps of a polygon's first vertex to lay a texture on it.
+#[derive(Clone, Copy)]
+struct FirstVertex {
+    h: Vec3,
+    l: Vec3,
+    texture: Option<u16>,
+}
+
+/// Texture coordinates for a polygon, as cpfg's `SetPolygonTextureParams`
+/// lays them: s across the first vertex's −L, t along its H, each
+/// stretched so that the polygon's extent spans the image once (a polygon
+/// with no extent along an axis takes 0 there).
+fn polygon_uvs(points: &[Vec3], h: Vec3, l: Vec3) -> Vec<[f64; 2]> {
+    let s_axis = [-l[0], -l[1], -l[2]];
+    let span = |axis: Vec3| {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let d = dot(*p, axis);
+                (lo.min(d), hi.max(d))
+            });
+        let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
+        move |p: Vec3| (dot(p, axis) - lo) * scale
+    };
+    let (s, t) = (span(s_axis), span(h));
+    points.iter().map(|&p| [s(p), t(p)]).collect()
 }
 
 impl<'a> Turtle<'a> {
@@ -207,12 +243,14 @@ impl<'a> Turtle<'a> {
             // cpfg `{(n)`: a generalized cylinder, not a polygon.
             TurtleOp::PolygonBegin if args.get(0).is_some() => self.start_cylinder(),
             TurtleOp::PolygonBegin => {
-                let first = if self.sys.settings.cpfg_polygons {
-                    Vec::new()
-                } else {
-                    vec![self.state.pos]
-                };
-                self.open_polygons.push((first, self.state.colour))
+                self.open_polygons.push(OpenPolygon {
+                    points: Vec::new(),
+                    colour: self.state.colour,
+                    first: None,
+                });
+                if !self.sys.settings.cpfg_polygons {
+                    self.polygon_point(self.state.pos);
+                }
             }
             TurtleOp::PolygonEnd if args.get(0).is_some() => self.cylinder_point(4, true),
             TurtleOp::PolygonEnd => self.end_polygon(),
@@ -313,13 +351,7 @@ impl Turtle<'_> {
         let b = add_scaled(a, direction, step);
         self.state.pos = b;
         self.record_position();
-        let in_polygon = match self.open_polygons.last_mut() {
-            Some((points, _)) => {
-                points.push(b);
-                true
-            }
-            None => false,
-        };
+        let in_polygon = self.polygon_point(b);
         if draw && (!in_polygon || self.sys.settings.cpfg_polygons) {
             let colour = self.colour();
             self.sink.segment(Segment {
@@ -456,19 +488,45 @@ impl Turtle<'_> {
 /// Polygons and generalized cylinders.
 impl Turtle<'_> {
     fn end_polygon(&mut self) {
-        if let Some((points, colour)) = self.open_polygons.pop() {
-            if points.len() >= 3 {
-                let index = index_of(colour);
-                let colour = self.colour_of(colour);
-                self.sink.polygon(Polygon {
-                    points,
-                    colour,
-                    index,
-                    surface: false,
-                    texture: None,
-                });
-            }
+        let Some(open) = self.open_polygons.pop() else {
+            return;
+        };
+        if open.points.len() < 3 {
+            return;
         }
+        let texture = open.first.and_then(|first| {
+            let t = first.texture?;
+            self.sys.look.textures().get(usize::from(t))?;
+            Some(Textured {
+                texture: t,
+                uvs: polygon_uvs(&open.points, first.h, first.l),
+            })
+        });
+        self.sink.polygon(Polygon {
+            colour: self.colour_of(open.colour),
+            index: index_of(open.colour),
+            points: open.points,
+            surface: false,
+            texture,
+        });
+    }
+
+    /// Adds `p` to the polygon being collected, if there is one (the
+    /// first point keeps the turtle's frame and texture, from which cpfg
+    /// lays a texture on the polygon); whether there was.
+    fn polygon_point(&mut self, p: Vec3) -> bool {
+        let Some(open) = self.open_polygons.last_mut() else {
+            return false;
+        };
+        if open.points.is_empty() {
+            open.first = Some(FirstVertex {
+                h: self.state.h,
+                l: self.state.l,
+                texture: self.state.texture,
+            });
+        }
+        open.points.push(p);
+        true
     }
 
     /// `.`: a vertex of the polygon being collected, or, with a parameter
@@ -476,8 +534,8 @@ impl Turtle<'_> {
     fn polygon_vertex(&mut self, args: Args) {
         if let Some(n) = args.get(0) {
             self.cylinder_point(pieces(n), false);
-        } else if let Some((points, _)) = self.open_polygons.last_mut() {
-            points.push(self.state.pos);
+        } else {
+            self.polygon_point(self.state.pos);
         }
     }
 

@@ -27,7 +27,20 @@ fn compile(path: &Path) -> (Option<System>, Vec<(&'static str, String)>) {
 
 /// The picture's RGB pixels.
 fn draw(sys: &System, size: u32) -> Vec<[u8; 3]> {
-    let (_, g) = driver::geometry(sys, &RunOptions::default()).unwrap();
+    draw_steps_of(sys, size, None)
+}
+
+/// The picture's RGB pixels at `steps`.
+fn draw_steps(sys: &System, size: u32, steps: u64) -> Vec<[u8; 3]> {
+    draw_steps_of(sys, size, Some(steps))
+}
+
+fn draw_steps_of(sys: &System, size: u32, steps: Option<u64>) -> Vec<[u8; 3]> {
+    let run = RunOptions {
+        steps,
+        ..RunOptions::default()
+    };
+    let (_, g) = driver::geometry(sys, &run).unwrap();
     let opts = RenderOptions {
         width: size,
         height: size,
@@ -325,4 +338,45 @@ fn generalized_cylinders_wear_their_texture_around_and_along() {
     let (a, b) = (draw(&sys, 120), draw(&plain, 120));
     let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
     assert!(differ > 500, "{differ} pixels differ");
+}
+
+/// cpfg lays a texture on a `{ }` polygon as `SetPolygonTextureParams`
+/// does: s across the first vertex's −L, t along its H, the polygon's
+/// extent spanning the image once. Clover's ground is light08.rgb so laid.
+#[test]
+fn polygons_wear_their_texture_across_their_extent() {
+    let (sys, _) = compile(&corpus("07-Open-13-clover/plant.l"));
+    let sys = sys.unwrap();
+    let opts = RunOptions {
+        steps: Some(0),
+        ..RunOptions::default()
+    };
+    let (_, g) = driver::geometry(&sys, &opts).unwrap();
+    let ground: Vec<_> = g.polygons.iter().filter(|p| p.texture.is_some()).collect();
+    assert_eq!(ground.len(), 1, "one textured polygon, the ground");
+    let t = ground[0].texture.as_ref().unwrap();
+    assert_eq!(t.texture, 0);
+    // The square from (-51.25, -51.25): up the turtle's H first (t from 0
+    // to 1), then right, along -L (s from 0 to 1).
+    let corners: Vec<[i64; 2]> = t
+        .uvs
+        .iter()
+        .map(|[s, t]| [s.round() as i64, t.round() as i64])
+        .collect();
+    assert_eq!(corners, [[0, 1], [1, 1], [1, 0], [0, 0]]);
+    for ([s, t], p) in t.uvs.iter().zip(&ground[0].points) {
+        assert!((s - (p[0] + 51.25) / 102.5).abs() < 1e-9, "{s} at {p:?}");
+        assert!((t - (p[1] + 51.25) / 102.5).abs() < 1e-9, "{t} at {p:?}");
+    }
+    // The picture shows the image: its dark middle (a black disc in
+    // light08.rgb) and its light crescents, on one flat-coloured polygon.
+    let px = draw_steps(&sys, 200, 0);
+    let at = |x: usize, y: usize| px[y * 200 + x];
+    let middle = at(100, 100);
+    assert!(middle.iter().all(|&c| c < 20), "{middle:?}");
+    let crescent = at(170, 30);
+    assert!(
+        crescent[0] > 100 && crescent[0] > crescent[2],
+        "{crescent:?}"
+    );
 }
