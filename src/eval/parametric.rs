@@ -265,8 +265,12 @@ impl<'p> Machine<'p> {
             Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal => {
                 self.curve(f, x, y)
             }
+            // cpfg's manual: "stop(n) Stop the animation. If n=1, and Run
+            // or Forever is selected from the menu, draw the current
+            // string and continue. Otherwise, stop the simulation." A
+            // derivation of N steps is a Run: stop(1) marks a frame.
             Builtin::Stop => {
-                self.stop = true;
+                self.stop |= x != 1.0;
                 0.0
             }
             Builtin::SetDerivationLength => {

@@ -103,3 +103,55 @@ fn honda81_stops_the_tips_that_meet() {
         none.segments.len()
     );
 }
+
+/// 07-Open-12: two trees compete for chiba's light. Each year ends with
+/// `stop(1)`, which in cpfg's Run draws the frame and goes on (its manual:
+/// "If n=1, and Run or Forever is selected from the menu, draw the
+/// current string and continue"); the animation runs 183 frames. With
+/// chiba answering, leaves in each other's shade make less product than
+/// the same leaves unanswered (each `?E` keeping the value its module
+/// carries, half its vigour, everywhere): the trees grow a quarter less.
+#[test]
+fn two_trees_grow_year_after_year_in_each_others_shade() {
+    let dir = corpus().join("07-Open-12-two-trees");
+    let c = driver::compile(SourceFile::read(&dir.join("tree.l")).unwrap());
+    let sys = c.system.unwrap();
+    let at = |sys: &graftal::ir::System, steps| {
+        let opts = RunOptions {
+            steps: Some(steps),
+            ..RunOptions::default()
+        };
+        driver::derive(sys, &opts).unwrap().len()
+    };
+    let (year, later) = (at(&sys, 4), at(&sys, 120));
+    let mut unshaded = sys.clone();
+    unshaded.environment = None;
+    let alone = at(&unshaded, 120);
+    assert!(
+        later > 5 * year,
+        "{year} modules at 4 steps, {later} at 120"
+    );
+    assert!(
+        4 * alone > 5 * later,
+        "{alone} unanswered, {later} in the light"
+    );
+}
+
+/// `stop()` or `stop(0)` ends the derivation after the step; `stop(1)`
+/// marks a frame and the derivation goes on.
+#[test]
+fn stop_ends_the_derivation_and_stop_1_marks_a_frame() {
+    let steps = |call: &str| {
+        let text = format!(
+            "Lsystem: 1\nStart: {{n=0;}}\nEndEach: {{n=n+1; if(n==2){{{call};}}}}\n\
+             derivation length: 6\nAxiom: A\nA --> AB\nendlsystem\n"
+        );
+        let file = crate::common::object_file("stop-calls", "stop.l", &text);
+        let c = driver::compile(SourceFile::read(&file).unwrap());
+        let word = driver::derive(&c.system.unwrap(), &RunOptions::default()).unwrap();
+        word.len() - 1
+    };
+    assert_eq!(steps("stop(1)"), 6);
+    assert_eq!(steps("stop(0)"), 2);
+    assert_eq!(steps("stop()"), 2);
+}
