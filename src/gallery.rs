@@ -107,17 +107,29 @@ pub fn pictures(entry: &Entry) -> Pictures {
     }
 }
 
-/// Writes every entry's pictures and the index into `dir`, calling
-/// `progress(done, total)` after each entry; the items listed.
-pub fn write(dir: &Path, progress: &mut dyn FnMut(u64, u64)) -> Result<Vec<Item>, String> {
+/// Writes every entry's pictures and the index into `dir`, drawing on
+/// `threads` threads (0: every core; the same files for every count) and
+/// calling `progress(done, total)` as each entry is drawn; the items
+/// listed.
+pub fn write(
+    dir: &Path,
+    threads: usize,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Vec<Item>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create `{}`: {e}", dir.display()))?;
     let put = |name: &str, bytes: &[u8]| {
         std::fs::write(dir.join(name), bytes).map_err(|e| format!("cannot write `{name}`: {e}"))
     };
-    let total = stdlib::ENTRIES.len() as u64;
+    let entries = stdlib::ENTRIES;
+    let total = entries.len() as u64;
+    let drawn = crate::parallel::map_in_order(
+        entries.len(),
+        threads,
+        |k| pictures(&entries[k]),
+        |done| progress(done as u64, total),
+    );
     let mut items = Vec::new();
-    for (k, entry) in stdlib::ENTRIES.iter().enumerate() {
-        let p = pictures(entry);
+    for (entry, p) in entries.iter().zip(drawn) {
         let mut item = Item {
             name: format!("std:{}", entry.name),
             figure: entry.figure(),
@@ -136,7 +148,6 @@ pub fn write(dir: &Path, progress: &mut dyn FnMut(u64, u64)) -> Result<Vec<Item>
             item.svg = Some(f);
         }
         items.push(item);
-        progress(k as u64 + 1, total);
     }
     put("README.md", readme(&items).as_bytes())?;
     put("index.html", html(&items).as_bytes())?;

@@ -27,6 +27,7 @@ pub mod layout;
 pub mod lsp;
 pub mod mesh;
 pub mod number;
+pub mod parallel;
 pub mod random;
 pub mod raytrace;
 pub mod render;

@@ -259,6 +259,10 @@ enum Command {
         /// How diagnostics are printed.
         #[arg(long, value_enum, default_value_t)]
         format: OutputFormat,
+        /// Threads that read the files [default: every core; also
+        /// GRAFTAL_THREADS]. The report is the same for every count.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        threads: Option<u32>,
     },
     /// Print the derived word after N steps (to stdout, or to `-o FILE`).
     Derive(DeriveCmd),
@@ -317,6 +321,10 @@ enum Command {
     Gallery {
         /// The folder to write, e.g. docs/gallery.
         out_dir: String,
+        /// Threads that draw [default: every core; also GRAFTAL_THREADS].
+        /// The files are the same for every count.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        threads: Option<u32>,
     },
     /// Print a standard-library entry's source text, e.g. `graftal show std:algae`.
     Show {
@@ -392,7 +400,8 @@ where
             files,
             reading,
             format,
-        } => check(io, &files, &reading, format),
+            threads,
+        } => check(io, &files, &reading, format, threads_asked(threads)),
         Command::Derive(a) => derive(io, &a),
         Command::Stats(a) => stats(io, &a),
         Command::Render(a) => render(io, &a),
@@ -401,7 +410,7 @@ where
         Command::Explain { code: None } => explain_all(io),
         Command::List { format } => list(io, format),
         Command::Show { name } => show(io, &name),
-        Command::Gallery { out_dir } => gallery(io, &out_dir),
+        Command::Gallery { out_dir, threads } => gallery(io, &out_dir, threads_asked(threads)),
         Command::Lsp => lsp(io),
         Command::Serve { file, port, host } => {
             serve(io, file, std::net::SocketAddr::new(host, port))
@@ -425,19 +434,37 @@ fn usage(io: &mut Io<'_>, e: &clap::Error) -> i32 {
 }
 
 /// `graftal check`: each file's diagnostics, and its listing.
-fn check(io: &mut Io<'_>, files: &[String], reading: &Reading, format: OutputFormat) -> i32 {
+fn check(
+    io: &mut Io<'_>,
+    files: &[String],
+    reading: &Reading,
+    format: OutputFormat,
+    threads: usize,
+) -> i32 {
     let notation = reading.notation.as_deref().and_then(crate::front::by_name);
-    let mut status = 0;
-    let mut listings = Vec::new();
-    for f in files {
-        let (path, named) = driver::split_entry(f);
-        match driver::load(&path) {
-            Ok(file) => {
+    // Read and checked on every thread, reported in the order given.
+    let checked = crate::parallel::map_in_order(
+        files.len(),
+        threads,
+        |k| {
+            let (path, named) = driver::split_entry(&files[k]);
+            driver::load(&path).map(|file| {
                 let entry = reading.entry.as_deref().or(named.as_deref());
                 let c = driver::compile_as(file, entry, notation);
-                report(io, &c, &c.diagnostics.0, format);
                 // What `derive` would add: the derivation's limits.
-                report(io, &c, &driver::derivation_diagnostics(&c), format);
+                let limits = driver::derivation_diagnostics(&c);
+                (c, limits)
+            })
+        },
+        |_| {},
+    );
+    let mut status = 0;
+    let mut listings = Vec::new();
+    for done in checked {
+        match done {
+            Ok((c, limits)) => {
+                report(io, &c, &c.diagnostics.0, format);
+                report(io, &c, &limits, format);
                 match format {
                     OutputFormat::Human => list_entries(io, &c),
                     OutputFormat::Json => listings.push(listing_json(&c)),
@@ -681,7 +708,7 @@ fn write_picture(io: &mut Io<'_>, a: &RenderArgs, output: &Output, p: &picture::
 }
 
 /// `graftal gallery`: every stdlib entry's pictures and the index.
-fn gallery(io: &mut Io<'_>, dir: &str) -> i32 {
+fn gallery(io: &mut Io<'_>, dir: &str, threads: usize) -> i32 {
     let bar = stage_bar(io, "gallery", "entries");
     let mut progress = |k: u64, n: u64| {
         if let Some(bar) = &bar {
@@ -689,7 +716,7 @@ fn gallery(io: &mut Io<'_>, dir: &str) -> i32 {
             bar.set_position(k);
         }
     };
-    let done = crate::gallery::write(std::path::Path::new(dir), &mut progress);
+    let done = crate::gallery::write(std::path::Path::new(dir), threads, &mut progress);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }

@@ -265,10 +265,7 @@ impl<'p> Machine<'p> {
             Builtin::CurveX | Builtin::CurveY | Builtin::CurveZ | Builtin::CurveGal => {
                 self.curve(f, x, y)
             }
-            // cpfg's manual: "stop(n) Stop the animation. If n=1, and Run
-            // or Forever is selected from the menu, draw the current
-            // string and continue. Otherwise, stop the simulation." A
-            // derivation of N steps is a Run: stop(1) marks a frame.
+            // A derivation is cpfg's Run, where stop(1) draws and goes on.
             Builtin::Stop => {
                 self.stop |= x != 1.0;
                 0.0

@@ -378,7 +378,7 @@ pub fn trace(scene: &dyn Scene, opts: &Options) -> Vec<u8> {
     let offsets = sample_offsets(opts.samples);
     let bands = h.div_ceil(BAND);
     let next = AtomicUsize::new(0);
-    let threads = threads(opts.threads).min(bands.max(1));
+    let threads = crate::parallel::threads(opts.threads).min(bands.max(1));
     let bg = linear(opts.background);
     let work = || {
         let mut scratch = Scratch::default();
@@ -430,15 +430,6 @@ pub fn trace(scene: &dyn Scene, opts: &Options) -> Vec<u8> {
     };
     parts.sort_by_key(|(band, _)| *band);
     parts.into_iter().flat_map(|(_, px)| px).collect()
-}
-
-/// The threads to use: `asked`, or every core for 0.
-pub fn threads(asked: usize) -> usize {
-    if asked > 0 {
-        asked
-    } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    }
 }
 
 /// A traced picture as PNG bytes.

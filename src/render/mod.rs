@@ -85,6 +85,9 @@ pub struct RenderOptions {
     /// linked to its source ([`Links`]). Runs of lines are then split where
     /// the module changes.
     pub linked: bool,
+    /// Threads that draw; 0 for every core. The picture is the same for
+    /// every count.
+    pub threads: usize,
 }
 
 /// What an SVG keeps of detail finer than half a pixel at its size
@@ -291,6 +294,7 @@ impl Default for RenderOptions {
             detail: Detail::Merged,
             thin_dense: true,
             linked: false,
+            threads: 0,
         }
     }
 }

@@ -412,6 +412,7 @@ fn violations(files: &[Source]) -> Vec<String> {
                 "back" => matches!(target, "front" | "turtle"),
                 "ir" => !matches!(target, "ir" | "number"),
                 "number" => target != "number",
+                "parallel" => target != "parallel",
                 "common" | "layout" | "scene" | "decode" | "enviro" => {
                     target != top && !matches!(target, "ir" | "number")
                 }

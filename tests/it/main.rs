@@ -78,4 +78,5 @@ mod stl_robustness;
 mod streamed;
 mod svg_detail;
 mod textures;
+mod threads;
 mod translate;

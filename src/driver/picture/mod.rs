@@ -472,6 +472,7 @@ fn render_options(req: &Request, sys: &System, file: &str) -> RenderOptions {
         view_given: req.view.is_some(),
         style: req.style,
         detail: req.detail,
+        threads: req.tracing.threads,
         ..RenderOptions::default()
     }
 }

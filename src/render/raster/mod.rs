@@ -154,7 +154,7 @@ pub fn png_surveyed(
     if palette.is_empty() {
         return None;
     }
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().clamp(1, MAX_THREADS));
+    let threads = crate::parallel::threads(opts.threads).clamp(1, MAX_THREADS);
     let scene = Scene::new(survey, drawing.world_widths, lighting, palette, opts);
     png_in_bands(drawing, &scene, survey.drawn, opts, threads, progress)
 }

@@ -220,7 +220,7 @@ pub fn main_l(dir: &std::path::Path) -> Option<std::path::PathBuf> {
     ls.into_iter().next()
 }
 
-fn corpus(part: &str) -> std::path::PathBuf {
+pub fn corpus(part: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/corpus")
         .join(part)

@@ -1,0 +1,108 @@
+//! Every core, the same output (issue 38): pictures drawn on 1, 2 and 3
+//! threads are the same bytes over the standard library, the Fractint
+//! corpus and the cpfg corpus; `graftal check` of many files says the same
+//! on any number of threads.
+
+use crate::common::{corpus, graftal, main_l};
+use graftal::driver::picture::{self, Request, Source, Target, Tracing};
+use graftal::driver::Format;
+
+/// The PNG of `spec` on `threads` threads, at a size small enough to
+/// sweep the corpora and large enough for every thread to draw stripes
+/// (four rows each); `None` when nothing is drawn.
+fn png(spec: &str, threads: usize) -> Option<Vec<u8>> {
+    let req = Request {
+        width: 96,
+        height: 96,
+        tracing: Tracing {
+            threads,
+            samples: 1,
+            ..Tracing::default()
+        },
+        ..Request::new(Target::Still(Format::Png))
+    };
+    let made = picture::make(
+        &Source::Spec(spec.to_string()),
+        None,
+        None,
+        &req,
+        &mut picture::Quiet,
+    );
+    made.picture.ok().map(|p| p.bytes)
+}
+
+/// Asserts that each of `specs` draws the same bytes on 1, 2 and 3
+/// threads; how many drew.
+fn same_on_every_count(specs: &[String]) -> usize {
+    let mut drawn = 0;
+    for spec in specs {
+        let one = png(spec, 1);
+        for threads in [2, 3] {
+            assert!(
+                png(spec, threads) == one,
+                "{spec}: {threads} threads draw other bytes"
+            );
+        }
+        drawn += usize::from(one.is_some());
+    }
+    drawn
+}
+
+#[test]
+fn a_lit_picture_is_the_same_on_every_count() {
+    // Lit, with surfaces and cylinders: drawn in bands shared by threads.
+    let specs = ["std:plant-e".to_string()];
+    let lilac = corpus("cpfg").join("11-CPFG-Lilac");
+    let lilac = main_l(&lilac).unwrap().display().to_string();
+    assert_eq!(same_on_every_count(&[specs[0].clone(), lilac]), 2);
+}
+
+#[test]
+fn every_picture_of_the_corpora_is_the_same_on_every_count() {
+    if !crate::common::slow("the stdlib and corpora drawn on 1, 2 and 3 threads") {
+        return;
+    }
+    let stdlib: Vec<String> = graftal::stdlib::ENTRIES
+        .iter()
+        .map(|e| format!("std:{}", e.name))
+        .collect();
+    assert!(same_on_every_count(&stdlib) > stdlib.len() / 2);
+    let fractint: Vec<String> = crate::common::fractint_corpus_entries()
+        .into_iter()
+        .map(|(name, _)| corpus("fractint").join(name).display().to_string())
+        .collect();
+    assert!(same_on_every_count(&fractint) > fractint.len() / 2);
+    let cpfg: Vec<String> = crate::common::cpfg_object_dirs()
+        .iter()
+        .filter_map(|d| main_l(d))
+        .map(|p| p.display().to_string())
+        .collect();
+    assert!(same_on_every_count(&cpfg) > cpfg.len() / 2);
+}
+
+#[test]
+fn check_says_the_same_on_every_count() {
+    let mut files: Vec<String> = crate::common::cpfg_object_dirs()
+        .iter()
+        .filter_map(|d| main_l(d))
+        .map(|p| p.display().to_string())
+        .collect();
+    files.push(corpus("fractint").join("fractint.l").display().to_string());
+    files.push("std:algae".to_string());
+    files.push("no-such-file.l".to_string());
+    let args = |threads: &'static str, format: &'static str| {
+        let mut a = vec!["check", "--format", format, "--threads", threads];
+        a.extend(files.iter().map(String::as_str));
+        graftal(&a)
+    };
+    for format in ["human", "json"] {
+        let one = args("1", format);
+        assert!(one.stderr.contains("E0"), "{format}: errors are reported");
+        for threads in ["2", "3"] {
+            let many = args(threads, format);
+            assert_eq!(many.stdout, one.stdout, "{format}, {threads} threads");
+            assert_eq!(many.stderr, one.stderr, "{format}, {threads} threads");
+            assert_eq!(many.status, one.status);
+        }
+    }
+}
