@@ -59,7 +59,8 @@ fn style_of(params: &str) -> String {
     css.join(";")
 }
 
-/// The sixteen terminal colours, as xterm draws them.
+/// The sixteen terminal colours, as xterm draws them, but white and bright
+/// white drawn grey: a notebook's page is white.
 const BASIC: [&str; 16] = [
     "#000000", "#cd0000", "#00a000", "#b8a000", "#2050e0", "#cd00cd", "#00a0a0", "#808080",
     "#7f7f7f", "#ff0000", "#00c000", "#c0a000", "#5c5cff", "#ff00ff", "#00c0c0", "#404040",

@@ -293,18 +293,14 @@ impl Model {
         self.system(py)?;
         let c = &self.compiled;
         let drawn = call(py, || picture::draw(c, &req))?;
-        match drawn {
-            Ok(p) => Picture::new(py, p, req.target, &self.compiled),
-            Err(picture::Refused::Diagnostics(found)) => {
-                let message = found.first().map(|d| d.message.clone()).unwrap_or_default();
-                Err(diagnostic::error(py, &found, c, &message))
-            }
-            Err(picture::Refused::NotCompiled) => Err(self
-                .system(py)
-                .err()
-                .unwrap_or_else(|| diagnostic::plain(py, "the file has errors"))),
-            Err(picture::Refused::Other(why)) => Err(diagnostic::plain(py, why)),
-        }
+        let found = match drawn {
+            Ok(p) => return Picture::new(py, p, req.target, c),
+            Err(picture::Refused::Other(why)) => return Err(diagnostic::plain(py, why)),
+            Err(picture::Refused::Diagnostics(found)) => found,
+            Err(picture::Refused::NotCompiled) => self.compile_diagnostics(),
+        };
+        let message = found.first().map(|d| d.message.clone()).unwrap_or_default();
+        Err(diagnostic::error(py, &found, c, &message))
     }
 
     /// The steps from 0 as the frames of an animation (`"gif"`, or
