@@ -45,7 +45,11 @@
 //! * the language server names no notation (no `"pfg"`, no
 //!   `front::cpfg::…`): what it needs of one, each front end answers
 //!   through `Front`;
-//! * the top-level modules form no import cycle.
+//! * the top-level modules form no import cycle;
+//! * the Python module (`python/src/`, a crate of its own over this one) is
+//!   a face like the others: it reaches the library as they do (no way of
+//!   drawing, no turtle or eval, no other face), names no notation, and is
+//!   the only code that speaks to Python (`pyo3`, `numpy`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -435,6 +439,9 @@ fn violations(files: &[Source]) -> Vec<String> {
             ("tiny_http", top == "serve"),
             ("lsp_types", top == "lsp"),
             ("lsp_server", top == "lsp"),
+            // Python is the Python face's alone (`python/src/`).
+            ("pyo3", false),
+            ("numpy", false),
         ];
         let names: Vec<&str> = allowed.iter().map(|a| a.0).collect();
         for used in external(&f.code, &names) {
@@ -1062,4 +1069,116 @@ fn the_ifs_front_end_the_library_rooms_and_the_attractor_stand_in_their_layers()
         .map(|f| f.path.as_str())
         .collect();
     assert_eq!(drawers, ["driver/picture/attractor.rs"]);
+}
+
+/// The Python face's sources (`python/src/`), read as [`sources`] reads
+/// the library's.
+fn python_sources() -> Vec<Source> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("python")
+        .join("src");
+    let mut files = Vec::new();
+    collect(&root, &mut files);
+    files.sort();
+    (files.into_iter())
+        .map(|p| Source {
+            path: format!("python/src/{}", p.strip_prefix(&root).unwrap().display()),
+            code: without_tests(&strip(&std::fs::read_to_string(&p).unwrap())),
+        })
+        .collect()
+}
+
+/// The library's paths `code` names (`graftal::driver::…`, `use
+/// graftal::{…}`), as module paths of the library (up to three segments).
+fn library_paths(code: &str) -> BTreeSet<Vec<String>> {
+    let words = tokens(code);
+    let mut out = BTreeSet::new();
+    for (k, w) in words.iter().enumerate() {
+        let at_root = k == 0 || words[k - 1].1 != "::";
+        if w.1 == "graftal" && at_root && words.get(k + 1).is_some_and(|t| t.1 == "::") {
+            follow(&words, k + 1, Vec::new(), &mut out);
+        }
+    }
+    out
+}
+
+/// Every rule of the faces the Python face breaks, as "file: what".
+fn python_violations(files: &[(Source, String)]) -> Vec<String> {
+    let notations = notations();
+    let mut out = Vec::new();
+    for (f, raw) in files {
+        for path in library_paths(&f.code) {
+            let other_face = THE_FACES.contains(&path[0].as_str());
+            if other_face || a_face_reaches_past_the_library(&path) {
+                out.push(format!("{}: uses graftal::{}", f.path, path.join("::")));
+            }
+        }
+        for named in notations_named(raw, &notations) {
+            out.push(format!("{}: names the notation {named}", f.path));
+        }
+        let speaks: Vec<&str> = ["clap", "ariadne", "tiny_http", "lsp_types", "lsp_server"].into();
+        for used in external(&f.code, &speaks) {
+            out.push(format!("{}: uses the crate {used}", f.path));
+        }
+    }
+    out
+}
+
+#[test]
+fn the_python_face_reaches_the_library_as_the_other_faces_do() {
+    let files = python_sources();
+    assert!(files.len() >= 5, "read {} files of python/src", files.len());
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let with_raw: Vec<(Source, String)> = (files.into_iter())
+        .map(|f| {
+            let raw = std::fs::read_to_string(root.join(&f.path)).unwrap();
+            (f, raw)
+        })
+        .collect();
+    let broken = python_violations(&with_raw);
+    assert!(broken.is_empty(), "the Python face:\n{}", broken.join("\n"));
+    // The paths are read: it does call the driver, and speaks Python.
+    let named: BTreeSet<String> = (with_raw.iter())
+        .flat_map(|(f, _)| library_paths(&f.code))
+        .map(|p| p[0].clone())
+        .collect();
+    assert!(named.contains("driver"), "{named:?}");
+    assert!(with_raw
+        .iter()
+        .any(|(f, _)| !external(&f.code, &["pyo3"]).is_empty()));
+}
+
+/// The Python face's checker catches what it is meant to.
+#[test]
+fn the_checker_sees_what_the_python_face_may_not_do() {
+    let case = |code: &str| {
+        let f = Source {
+            path: "python/src/x.rs".into(),
+            code: without_tests(&strip(code)),
+        };
+        !python_violations(&[(f, code.to_string())]).is_empty()
+    };
+    assert!(case("use graftal::render::raster::png;"));
+    assert!(case("let w = graftal::eval::Deriver::new(s);"));
+    assert!(case("use graftal::{driver, turtle::Geometry};"));
+    assert!(case("use graftal::cli::main;"));
+    assert!(case("let f = graftal::front::by_name(\"pfg\");"));
+    assert!(case("use graftal::front::stl::ast;"));
+    assert!(case("fn f() { tiny_http::Server::http(a) }"));
+    assert!(!case("use graftal::driver::{self, Compiled, RunOptions};"));
+    assert!(!case(
+        "use graftal::driver::picture::{self, Request, Target};"
+    ));
+    assert!(!case("use graftal::render::{Detail, Margin, View};"));
+    assert!(!case("let m = graftal::mesh::MeshFormat::ALL;"));
+    assert!(!case("use pyo3::prelude::*;\nuse numpy::PyArray1;"));
+    assert!(!case(
+        "// graftal::turtle::Geometry, in a comment\nlet x = 1;"
+    ));
+    // The library itself speaks no Python.
+    let lib = Source {
+        path: "driver/mod.rs".into(),
+        code: "use pyo3::prelude::*;".into(),
+    };
+    assert!(!violations(&[lib]).is_empty());
 }
