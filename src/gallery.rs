@@ -49,13 +49,14 @@ pub fn file_name(entry: &Entry, ext: &str) -> String {
 /// Draws `entry` at its defaults in `format`, by the one call
 /// `graftal render` draws through ([`picture::make`]); `Ok(None)` when it
 /// draws nothing.
-fn draw(entry: &Entry, format: Format) -> Result<Option<Vec<u8>>, String> {
+fn draw(entry: &Entry, format: Format, threads: usize) -> Result<Option<Vec<u8>>, String> {
     let source = picture::Source::Spec(format!("std:{}", entry.name));
-    let req = picture::Request {
+    let mut req = picture::Request {
         width: SIZE,
         height: SIZE,
         ..picture::Request::new(picture::Target::Still(format))
     };
+    req.tracing.threads = threads;
     let made = picture::make(&source, None, None, &req, &mut picture::Quiet);
     let p = match made.picture {
         Ok(p) => p,
@@ -68,7 +69,12 @@ fn draw(entry: &Entry, format: Format) -> Result<Option<Vec<u8>>, String> {
 
 /// The pictures of `entry` ([`SIZE`], an SVG only up to [`MAX_SVG`]).
 pub fn pictures(entry: &Entry) -> Pictures {
-    let png = match draw(entry, Format::Png) {
+    pictures_on(entry, 0)
+}
+
+/// [`pictures`], each drawn on `threads` threads (0: every core).
+fn pictures_on(entry: &Entry, threads: usize) -> Pictures {
+    let png = match draw(entry, Format::Png, threads) {
         Ok(Some(png)) => png,
         Ok(None) => {
             let why = match entry.schema_reason() {
@@ -89,7 +95,7 @@ pub fn pictures(entry: &Entry) -> Pictures {
             }
         }
     };
-    let (svg, note) = match draw(entry, Format::Svg) {
+    let (svg, note) = match draw(entry, Format::Svg, threads) {
         Ok(Some(svg)) if svg.len() <= MAX_SVG => (Some(svg), None),
         Ok(Some(svg)) => (
             None,
@@ -125,7 +131,9 @@ pub fn write(
     let drawn = crate::parallel::map_in_order(
         entries.len(),
         threads,
-        |k| pictures(&entries[k]),
+        // Each picture may share its own work among the threads too (a
+        // ray-traced entry takes longest).
+        |k| pictures_on(&entries[k], threads),
         |done| progress(done as u64, total),
     );
     let mut items = Vec::new();
