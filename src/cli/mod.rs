@@ -118,6 +118,10 @@ struct DeriveCmd {
     /// Output file; `-` (the default) is standard output.
     #[arg(short = 'o', long = "output")]
     output: Option<String>,
+    /// Threads that derive [default: every core; also GRAFTAL_THREADS].
+    /// The word is the same for every count.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -508,6 +512,10 @@ fn derive(io: &mut Io<'_>, a: &DeriveCmd) -> i32 {
         let out: &mut dyn Write = match &mut file {
             Some(f) => f,
             None => io.stdout,
+        };
+        let opts = &RunOptions {
+            threads: threads_asked(a.threads),
+            ..opts.clone()
         };
         let r = driver::write_derived(c.front, sys, opts, out, |step, len| {
             if let Some(bar) = &bar {
@@ -964,6 +972,7 @@ fn with_system(
         steps: a.steps,
         seed: a.seed,
         max_symbols: a.max_symbols,
+        threads: threads_asked(None),
         ..RunOptions::default()
     };
     match f(io, &c, sys, &opts, parse_seconds) {

@@ -136,6 +136,8 @@ pub struct RunOptions {
     pub max_symbols: usize,
     /// The most turtle moves interpreted (see [`MAX_MOVES`]).
     pub max_moves: usize,
+    /// Threads that derive; 0 for every core.
+    pub threads: usize,
 }
 
 impl Default for RunOptions {
@@ -145,6 +147,7 @@ impl Default for RunOptions {
             seed: 0,
             max_symbols: DEFAULT_MAX_SYMBOLS,
             max_moves: MAX_MOVES,
+            threads: 0,
         }
     }
 }
@@ -154,6 +157,7 @@ impl RunOptions {
         DeriveOptions::new(self.steps.or(sys.settings.steps).unwrap_or(0))
             .seed(self.seed)
             .max_symbols(self.max_symbols)
+            .threads(self.threads)
     }
 }
 

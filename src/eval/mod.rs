@@ -42,6 +42,9 @@ pub struct DeriveOptions {
     pub max_symbols: usize,
     /// The most symbols rewritten over all steps.
     pub max_work: u64,
+    /// Threads that derive; 0 for every core. The word is the same for
+    /// every count.
+    pub threads: usize,
 }
 
 impl DeriveOptions {
@@ -51,7 +54,12 @@ impl DeriveOptions {
             seed: 0,
             max_symbols: DEFAULT_MAX_SYMBOLS,
             max_work: (DEFAULT_MAX_SYMBOLS as u64).saturating_mul(20),
+            threads: 0,
         }
+    }
+    pub fn threads(mut self, threads: usize) -> Self {
+        self.threads = threads;
+        self
     }
     pub fn seed(mut self, seed: u64) -> Self {
         self.seed = seed;
@@ -219,7 +227,7 @@ impl<'a> Deriver<'a> {
         if opts.steps <= tree::MAX_TREE_DEPTH {
             if let Some(t) = tree::Tree::new(self.sys) {
                 let len = self.tree_len(&t, opts)?;
-                let word = t.word(opts.steps, len);
+                let word = t.word_on(opts.steps, len, opts.threads);
                 progress(opts.steps, word.len());
                 return Ok(Symbols::Wide(word));
             }

@@ -35,6 +35,17 @@ pub const MAX_TREE_DEPTH: u64 = 4096;
 const MEMO_BUDGET: usize = 64 << 20;
 /// The longest single memoised expansion, in elements.
 const MEMO_CHUNK: usize = 4 << 20;
+/// The shortest word [`Tree::word_on`] shares among threads.
+const PARALLEL_WORD: usize = 1 << 20;
+
+/// A subtree of the derivation: one symbol (a slice of the axiom or of a
+/// successor), the steps it still takes, and the length of its word.
+#[derive(Clone, Copy)]
+struct Piece<'a> {
+    symbol: &'a [SymbolId],
+    depth: u64,
+    len: usize,
+}
 
 /// A D0L system's successors, indexed by symbol.
 #[derive(Clone, Debug)]
@@ -153,11 +164,24 @@ impl<'a> Tree<'a> {
         &self,
         steps: u64,
         leaf: impl Fn(SymbolId) -> &'a [T],
-        mut emit: impl FnMut(&[T]) -> Result<(), E>,
+        emit: impl FnMut(&[T]) -> Result<(), E>,
     ) -> Result<(), E> {
         let memo = Memo::build(self, steps, &leaf);
+        self.walk_from(&memo, self.axiom, steps, &leaf, emit)
+    }
+
+    /// [`Tree::walk`] of the word `start` derives in `depth` steps, with
+    /// the memoised expansions `memo`.
+    fn walk_from<T: Copy + 'a, E>(
+        &self,
+        memo: &Memo<T>,
+        start: &'a [SymbolId],
+        depth: u64,
+        leaf: &impl Fn(SymbolId) -> &'a [T],
+        mut emit: impl FnMut(&[T]) -> Result<(), E>,
+    ) -> Result<(), E> {
         // Frames: (symbols still to expand, their remaining depth).
-        let mut stack: Vec<(&[SymbolId], u64)> = vec![(self.axiom, steps)];
+        let mut stack: Vec<(&[SymbolId], u64)> = vec![(start, depth)];
         while let Some(top) = stack.last_mut() {
             let Some((&s, rest)) = top.0.split_first() else {
                 stack.pop();
@@ -174,6 +198,117 @@ impl<'a> Tree<'a> {
             }
         }
         Ok(())
+    }
+
+    /// [`Tree::word`] (`len` symbols) built on `threads` threads (0:
+    /// every core): the word is cut into subtrees whose offsets follow
+    /// from their known lengths, and each thread fills its own run of
+    /// them. The same symbols for every count.
+    pub fn word_on(&self, steps: u64, len: usize, threads: usize) -> Vec<SymbolId> {
+        self.word_split(steps, len, threads, PARALLEL_WORD)
+    }
+
+    /// [`Tree::word_on`], a word shorter than `shortest` built on one
+    /// thread.
+    fn word_split(&self, steps: u64, len: usize, threads: usize, shortest: usize) -> Vec<SymbolId> {
+        let threads = crate::parallel::threads(threads);
+        if threads <= 1 || len < shortest.max(1) {
+            return self.word(steps, len);
+        }
+        let leaves: Vec<SymbolId> = (0..self.succ.len() as u32).map(SymbolId).collect();
+        let leaves = &leaves;
+        let leaf = |s: SymbolId| std::slice::from_ref(&leaves[s.index()]);
+        let memo = Memo::build(self, steps, &leaf);
+        let pieces = self.pieces(steps, len.div_ceil(8 * threads));
+        let mut out = vec![SymbolId(0); len];
+        // Contiguous runs of pieces of about len / threads symbols each.
+        let target = len.div_ceil(threads);
+        let mut runs: Vec<(&[Piece<'_>], &mut [SymbolId])> = Vec::new();
+        let mut rest: &mut [SymbolId] = &mut out;
+        let (mut first, mut run_len) = (0, 0);
+        for (k, piece) in pieces.iter().enumerate() {
+            run_len += piece.len;
+            if run_len >= target || k + 1 == pieces.len() {
+                let (mine, others) = std::mem::take(&mut rest).split_at_mut(run_len);
+                runs.push((&pieces[first..=k], mine));
+                rest = others;
+                (first, run_len) = (k + 1, 0);
+            }
+        }
+        std::thread::scope(|scope| {
+            for (pieces, slice) in runs {
+                let (memo, leaf) = (&memo, &leaf);
+                scope.spawn(move || {
+                    let mut at = 0;
+                    for p in pieces {
+                        let _ = self.walk_from(
+                            memo,
+                            p.symbol,
+                            p.depth,
+                            leaf,
+                            |chunk: &[SymbolId]| {
+                                slice[at..at + chunk.len()].copy_from_slice(chunk);
+                                at += chunk.len();
+                                Ok::<(), ()>(())
+                            },
+                        );
+                    }
+                });
+            }
+        });
+        out
+    }
+
+    /// The word after `steps` steps as subtrees in order, each at most
+    /// `most` symbols long unless it is a single symbol that stays.
+    fn pieces(&self, steps: u64, most: usize) -> Vec<Piece<'a>> {
+        let lens = self.lengths(steps);
+        let piece = |w: &'a [SymbolId], i: usize, depth: u64| Piece {
+            symbol: &w[i..i + 1],
+            depth,
+            len: lens[depth as usize][w[i].index()],
+        };
+        let mut pieces: Vec<Piece<'a>> = (0..self.axiom.len())
+            .map(|i| piece(self.axiom, i, steps))
+            .collect();
+        loop {
+            let mut split = false;
+            let mut next = Vec::with_capacity(pieces.len());
+            for p in pieces {
+                match self.succ[p.symbol[0].index()] {
+                    Some(w) if p.depth > 0 && p.len > most => {
+                        next.extend((0..w.len()).map(|i| piece(w, i, p.depth - 1)));
+                        split = true;
+                    }
+                    _ => next.push(p),
+                }
+            }
+            pieces = next;
+            if !split {
+                return pieces;
+            }
+        }
+    }
+
+    /// `lengths[d][s]`: the length of the word `s` derives in `d` steps,
+    /// for `d` up to `steps` (saturating: the caller has checked the
+    /// word's length).
+    fn lengths(&self, steps: u64) -> Vec<Vec<usize>> {
+        let n = self.succ.len();
+        let mut lengths = vec![vec![1usize; n]];
+        for d in 1..=steps as usize {
+            let below = &lengths[d - 1];
+            let level = (0..n)
+                .map(|s| match self.succ[s] {
+                    Some(w) => w
+                        .iter()
+                        .fold(0usize, |sum, c| sum.saturating_add(below[c.index()])),
+                    None => 1,
+                })
+                .collect();
+            lengths.push(level);
+        }
+        lengths
     }
 
     /// The word after `steps` steps as a vector of symbols.
@@ -393,13 +528,17 @@ mod tests {
     ];
 
     #[test]
-    fn walk_word_and_stream_agree_with_stepwise_rewriting() {
+    fn walk_word_threads_and_stream_agree_with_stepwise_rewriting() {
         for src in SYSTEMS {
             let s = sys(src);
             let t = Tree::new(&s).expect("context-free");
             for n in 0..8 {
                 let want = stepwise(&s, n);
                 assert_eq!(t.word(n, 0), want, "{src} n={n}");
+                for threads in [2, 3, 7] {
+                    // Every word split among the threads, however short.
+                    assert_eq!(t.word_split(n, want.len(), threads, 0), want, "{src} n={n}");
+                }
                 assert_eq!(t.symbols(n).collect::<Vec<_>>(), want, "{src} n={n}");
                 assert_eq!(t.word_len(n, u128::MAX), Ok(want.len() as u128));
                 let names: Vec<Vec<u8>> = s

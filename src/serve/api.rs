@@ -154,6 +154,7 @@ fn picture_request(m: &Model, target: Target, steps: Option<u64>) -> Request {
         seed: m.seed,
         max_symbols: PAGE_MAX_SYMBOLS,
         max_moves: PAGE_MAX_MOVES,
+        ..RunOptions::default()
     };
     req.width = m.width.unwrap_or(600).clamp(*SIZES.start(), *SIZES.end());
     req.height = m.height.unwrap_or(600).clamp(*SIZES.start(), *SIZES.end());

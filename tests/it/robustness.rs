@@ -209,6 +209,7 @@ fn pipeline(case: &Case) -> Result<Outcome, String> {
             seed: case.seed,
             max_symbols: MAX_SYMBOLS,
             max_moves: MAX_SYMBOLS,
+            threads: 0,
         };
         let which = format!("(steps {steps:?}, seed {})", case.seed);
         let result = stage(&format!("driver::geometry {which}"), || {

@@ -106,3 +106,38 @@ fn check_says_the_same_on_every_count() {
         }
     }
 }
+
+/// The Koch island at 6 steps (2 M symbols, past the length from which a
+/// shared-subtree word is split among threads): the same word written on
+/// 1, 2 and 3 threads, and the same as the word stepwise rewriting gives.
+#[test]
+fn a_word_derived_on_several_threads_is_the_same() {
+    let derived = |threads: &str| {
+        let out = graftal(&["derive", "std:koch-island", "-n", "6", "--threads", threads]);
+        assert_eq!(out.status, 0, "{}", out.stderr);
+        out.stdout
+    };
+    let one = derived("1");
+    assert!(one.len() > 1 << 20, "{} bytes", one.len());
+    for threads in ["2", "3"] {
+        assert!(
+            derived(threads) == one,
+            "{threads} threads write another word"
+        );
+    }
+    let c = graftal::driver::compile(graftal::driver::load("std:koch-island").unwrap());
+    let sys = c.system.unwrap();
+    for threads in [1, 2, 3] {
+        let opts = graftal::driver::RunOptions {
+            steps: Some(6),
+            threads,
+            ..Default::default()
+        };
+        let word = graftal::driver::derive(&sys, &opts).unwrap();
+        let stepwise = graftal::eval::Deriver::new(&sys)
+            .derive_stepwise(&opts.derive_options(&sys), |_, _| {})
+            .unwrap();
+        assert!(word == stepwise, "{threads} threads");
+        assert_eq!(format!("{}\n", word.display(&sys.symbols)), one);
+    }
+}
