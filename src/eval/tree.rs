@@ -37,6 +37,9 @@ const MEMO_BUDGET: usize = 64 << 20;
 const MEMO_CHUNK: usize = 4 << 20;
 /// The shortest word [`Tree::word_on`] shares among threads.
 const PARALLEL_WORD: usize = 1 << 20;
+/// The most entries of the table of lengths by symbol and depth that
+/// [`Tree::word_on`] builds to cut a word.
+const MAX_LENGTHS: usize = 1 << 22;
 
 /// A subtree of the derivation: one symbol (a slice of the axiom or of a
 /// successor), the steps it still takes, and the length of its word.
@@ -212,14 +215,20 @@ impl<'a> Tree<'a> {
     /// thread.
     fn word_split(&self, steps: u64, len: usize, threads: usize, shortest: usize) -> Vec<SymbolId> {
         let threads = crate::parallel::threads(threads);
-        if threads <= 1 || len < shortest.max(1) {
+        // The table of lengths by depth must stay small.
+        let table = (steps as usize + 1).saturating_mul(self.succ.len());
+        if threads <= 1 || len < shortest.max(1) || table > MAX_LENGTHS {
+            return self.word(steps, len);
+        }
+        let pieces = self.pieces(steps, len.div_ceil(8 * threads));
+        if pieces.iter().map(|p| p.len).sum::<usize>() != len {
+            // Not the word's length: nothing to cut by.
             return self.word(steps, len);
         }
         let leaves: Vec<SymbolId> = (0..self.succ.len() as u32).map(SymbolId).collect();
         let leaves = &leaves;
         let leaf = |s: SymbolId| std::slice::from_ref(&leaves[s.index()]);
         let memo = Memo::build(self, steps, &leaf);
-        let pieces = self.pieces(steps, len.div_ceil(8 * threads));
         let mut out = vec![SymbolId(0); len];
         // Contiguous runs of pieces of about len / threads symbols each.
         let target = len.div_ceil(threads);
@@ -539,6 +548,8 @@ mod tests {
                     // Every word split among the threads, however short.
                     assert_eq!(t.word_split(n, want.len(), threads, 0), want, "{src} n={n}");
                 }
+                // A length that is not the word's: built on one thread.
+                assert_eq!(t.word_split(n, want.len() + 1, 3, 0), want);
                 assert_eq!(t.symbols(n).collect::<Vec<_>>(), want, "{src} n={n}");
                 assert_eq!(t.word_len(n, u128::MAX), Ok(want.len() as u128));
                 let names: Vec<Vec<u8>> = s
