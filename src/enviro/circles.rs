@@ -224,12 +224,7 @@ fn cell_size(circles: &[Option<Circle>]) -> f64 {
 mod tests {
     use super::*;
 
-    fn q(radius: f32, at: [f32; 3]) -> Query {
-        Query {
-            params: vec![radius],
-            position: at.to_vec(),
-        }
-    }
+    use crate::enviro::query_at as q;
 
     fn with(mut q: Query, p2: f32) -> Query {
         q.params.push(p2);

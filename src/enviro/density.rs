@@ -125,12 +125,7 @@ fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
 mod tests {
     use super::*;
 
-    fn q(vigor: f32, at: [f32; 3]) -> Query {
-        Query {
-            params: vec![vigor],
-            position: at.to_vec(),
-        }
-    }
+    use crate::enviro::query_at as q;
 
     fn answers(three_d: bool, radius: f64, queries: &[Query]) -> Vec<Answer> {
         Honda81::new(&Density { radius, three_d }).answer(queries)

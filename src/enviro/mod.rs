@@ -33,6 +33,15 @@ pub struct Query {
     pub position: Vec<f32>,
 }
 
+/// A query of one parameter at `at`, for the programs' tests.
+#[cfg(test)]
+fn query_at(param: f32, at: [f32; 3]) -> Query {
+    Query {
+        params: vec![param],
+        position: at.to_vec(),
+    }
+}
+
 /// A program's answer to one query: per parameter, the value it sets, or
 /// `None` to leave the parameter as it is. Empty: no answer at all.
 pub type Answer = Vec<Option<f32>>;
