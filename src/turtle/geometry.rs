@@ -2,6 +2,7 @@
 //! goes: a [`Sink`], which stores it ([`Geometry`]), counts it or draws it
 //! straight into a picture.
 
+use super::pieces::Pieced;
 use super::Vec3;
 use crate::ir::Rgb;
 use serde::Serialize;
@@ -207,25 +208,84 @@ impl Geometry {
     /// was added without a note of its order (a layout, a geometry built by
     /// hand) follows: polygons, then segments, then discs.
     pub fn replay(&self, sink: &mut dyn Sink) {
+        for run in self.runs() {
+            self.give(run, sink);
+        }
+    }
+
+    /// What is drawn as runs of one kind, `(kind, first, end)` indices into
+    /// its list, in the order [`Geometry::replay`] gives them.
+    fn runs(&self) -> Vec<(Drawn, usize, usize)> {
+        let lens = [self.segments.len(), self.polygons.len(), self.discs.len()];
         let mut next = [0usize; 3];
-        let mut give = |kind: Drawn, n: usize, sink: &mut dyn Sink| {
+        let mut runs = Vec::with_capacity(self.order.len() + 3);
+        let mut take = |kind: Drawn, n: usize| {
             let k = kind as usize;
-            let len = [self.segments.len(), self.polygons.len(), self.discs.len()][k];
-            let end = next[k].saturating_add(n).min(len);
-            for i in next[k]..end {
-                match kind {
-                    Drawn::Segment => sink.segment(self.segments[i].clone()),
-                    Drawn::Polygon => sink.polygon(self.polygons[i].clone()),
-                    Drawn::Disc => sink.disc(self.discs[i].clone()),
-                }
+            let end = next[k].saturating_add(n).min(lens[k]);
+            if end > next[k] {
+                runs.push((kind, next[k], end));
             }
             next[k] = end;
         };
         for &(kind, n) in &self.order {
-            give(kind, n as usize, sink);
+            take(kind, n as usize);
         }
         for kind in [Drawn::Polygon, Drawn::Segment, Drawn::Disc] {
-            give(kind, usize::MAX, sink);
+            take(kind, usize::MAX);
         }
+        runs
+    }
+
+    fn give(&self, (kind, first, end): (Drawn, usize, usize), sink: &mut dyn Sink) {
+        for i in first..end {
+            match kind {
+                Drawn::Segment => sink.segment(self.segments[i].clone()),
+                Drawn::Polygon => sink.polygon(self.polygons[i].clone()),
+                Drawn::Disc => sink.disc(self.discs[i].clone()),
+            }
+        }
+    }
+
+    /// The drawing in parts of at most `most` things each, in order, to be
+    /// drawn on several threads ([`Pieced`]).
+    pub fn in_parts(&self, most: usize) -> Parts<'_> {
+        let most = most.max(1);
+        let mut parts = vec![Vec::new()];
+        let mut room = most;
+        for (kind, mut first, end) in self.runs() {
+            while first < end {
+                if room == 0 {
+                    parts.push(Vec::new());
+                    room = most;
+                }
+                let take = room.min(end - first);
+                parts
+                    .last_mut()
+                    .expect("a part")
+                    .push((kind, first, first + take));
+                first += take;
+                room -= take;
+            }
+        }
+        Parts { g: self, parts }
+    }
+}
+
+/// A stored drawing cut into parts ([`Geometry::in_parts`]).
+pub struct Parts<'g> {
+    g: &'g Geometry,
+    parts: Vec<Vec<(Drawn, usize, usize)>>,
+}
+
+impl Pieced for Parts<'_> {
+    fn count(&self) -> usize {
+        self.parts.len()
+    }
+
+    fn run(&self, k: usize, sink: &mut dyn Sink) -> usize {
+        for &run in &self.parts[k] {
+            self.g.give(run, sink);
+        }
+        self.g.max_depth
     }
 }

@@ -9,8 +9,8 @@ use super::state::{
 };
 use super::{gencyl, tropism, Disc, Polygon, Segment, Sink, Textured, TurtlePath, Vec3};
 use crate::ir::colours::DEFAULT_PALETTE;
-use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, SymbolId, System, TurtleOp};
-use crate::random::{Rng, Stream};
+use crate::ir::{Angle, Axis, ElasticityChange, Rgb, RotationId, SymbolId, System, TurtleOp, Word};
+use crate::random::{keyed, Stream};
 use std::cell::Cell;
 
 /// [`run`](super::run), telling `at` which module is being interpreted.
@@ -23,34 +23,26 @@ pub(super) fn interpret<W: Iterator<Item = SymbolId>>(
     at: Option<&Cell<usize>>,
 ) -> Learned {
     let sys = run.system;
-    let ops: Vec<Option<TurtleOp>> = (0..sys.symbols.len())
-        .map(|i| sys.op(SymbolId(i as u32)))
-        .collect();
+    let ops = ops_of(sys);
     let record = Record {
         paths: run.paths,
         queries: run.queries,
     };
-    let params = run.params;
     let mut turtle = Turtle::new(sys, run.seed, record, sink);
-    for (i, sym) in run.symbols.enumerate() {
-        let Some(op) = ops.get(sym.index()).copied().flatten() else {
-            continue;
-        };
-        let args = Args(match params {
-            Some(w) => w.args(i),
-            None => &[],
-        });
-        if let Some(at) = at {
-            at.set(i);
-        }
-        turtle.apply(i, op, args);
-    }
+    turtle.walk(run.symbols, 0, run.params, &ops, at);
     turtle.finish()
+}
+
+/// Each symbol's turtle command, by symbol index.
+pub(super) fn ops_of(sys: &System) -> Vec<Option<TurtleOp>> {
+    (0..sys.symbols.len())
+        .map(|i| sys.op(SymbolId(i as u32)))
+        .collect()
 }
 
 /// The parameters of the module being interpreted.
 #[derive(Clone, Copy)]
-struct Args<'w>(&'w [f64]);
+pub(super) struct Args<'w>(&'w [f64]);
 
 impl Args<'_> {
     /// Parameter `k`. A parameter that is not a number draws nothing odd:
@@ -70,6 +62,12 @@ impl Args<'_> {
     }
 }
 
+/// The first parameter of module `i` of a word with `params`, as the
+/// turtle reads it (absent when it is not a number).
+pub(super) fn first_arg(params: Option<&Word>, i: usize) -> Option<f64> {
+    params.and_then(|w| Args(w.args(i)).get(0))
+}
+
 /// How many pieces a cylinder module's parameter asks for.
 pub(super) fn pieces(n: f64) -> usize {
     n.clamp(1.0, 64.0) as usize
@@ -77,11 +75,16 @@ pub(super) fn pieces(n: f64) -> usize {
 
 /// The turtle interpreting a word: its state and the enclosing branches'
 /// states, and what it is building; what it draws goes to `sink`.
-struct Turtle<'a> {
+pub(super) struct Turtle<'a> {
     sys: &'a System,
     palette: Vec<Rgb>,
-    /// The stream interval angles are drawn from.
-    rng: Rng,
+    /// What interval angles are drawn from: the seed, the index of the
+    /// module being interpreted and how many it has drawn so far, so that
+    /// a draw depends on where it is in the word, not on what was drawn
+    /// before it (a piece of the word drawn on its own draws the same).
+    seed: u64,
+    at: usize,
+    draws: u64,
     state: State,
     /// The states of the enclosing branches.
     stack: Vec<State>,
@@ -104,12 +107,19 @@ struct Turtle<'a> {
     /// the enclosing branches' paths.
     path: usize,
     path_stack: Vec<usize>,
-    /// Rotations since the frame was last re-orthonormalised.
-    rotations: u32,
     /// The system's tropisms and what bends with the turtle; `None` when
     /// it has none.
     tropisms: Option<tropism::Tropisms<'a>>,
     sink: &'a mut dyn Sink,
+}
+
+/// What [`Turtle::snapshot`] keeps.
+#[derive(Clone)]
+pub(super) struct Snapshot<'a> {
+    state: State,
+    stack: Vec<State>,
+    history: Vec<(u32, usize)>,
+    tropisms: Option<tropism::Tropisms<'a>>,
 }
 
 /// A polygon being collected (`{` … `}`).
@@ -175,11 +185,14 @@ impl<'a> Turtle<'a> {
             radius_tangents: [[0.0; 2]; 2],
             scale_radius_tangents: false,
             scale: 1.0,
+            rotations: 0,
         };
         let mut turtle = Turtle {
             sys,
             palette,
-            rng: Rng::new(seed, Stream::Turtle),
+            seed,
+            at: 0,
+            draws: 0,
             state,
             stack: Vec::new(),
             sub_scales: Vec::new(),
@@ -191,7 +204,6 @@ impl<'a> Turtle<'a> {
             record_queries: record.queries,
             path: usize::MAX,
             path_stack: Vec::new(),
-            rotations: 0,
             tropisms: tropism::Tropisms::new(&sys.settings.tropisms, &state),
             sink,
         };
@@ -201,16 +213,77 @@ impl<'a> Turtle<'a> {
         turtle
     }
 
+    /// Interprets `symbols`, the first of them at index `first` of the
+    /// word whose parameters are `params`, telling `at` which module is
+    /// being interpreted.
+    #[inline(always)]
+    pub(super) fn walk<W: Iterator<Item = SymbolId>>(
+        &mut self,
+        symbols: W,
+        first: usize,
+        params: Option<&Word>,
+        ops: &[Option<TurtleOp>],
+        at: Option<&Cell<usize>>,
+    ) {
+        for (k, sym) in symbols.enumerate() {
+            let Some(op) = ops.get(sym.index()).copied().flatten() else {
+                continue;
+            };
+            let i = first + k;
+            let args = Args(match params {
+                Some(w) => w.args(i),
+                None => &[],
+            });
+            if let Some(at) = at {
+                at.set(i);
+            }
+            self.apply(i, op, args);
+        }
+    }
+
+    /// Where the turtle is, to start another from ([`Turtle::resumed`]):
+    /// everything a branch keeps, and the colour histories.
+    pub(super) fn snapshot(&self) -> Snapshot<'a> {
+        Snapshot {
+            state: self.state,
+            stack: self.stack.clone(),
+            history: self.history.clone(),
+            tropisms: self.tropisms.clone(),
+        }
+    }
+
+    /// A turtle at `snapshot`, drawing into `sink` and recording nothing
+    /// (no polygon is open there: the caller starts it where none is).
+    pub(super) fn resumed(
+        sys: &'a System,
+        seed: u64,
+        snapshot: &Snapshot<'a>,
+        sink: &'a mut dyn Sink,
+    ) -> Self {
+        let record = Record {
+            paths: false,
+            queries: false,
+        };
+        let mut turtle = Turtle::new(sys, seed, record, sink);
+        turtle.state = snapshot.state;
+        turtle.stack.clone_from(&snapshot.stack);
+        turtle.history.clone_from(&snapshot.history);
+        turtle.tropisms.clone_from(&snapshot.tropisms);
+        turtle
+    }
+
     /// Interprets `op`, the module at index `i` of the word.
     // Inlined into `run::interpret`'s loop, as `forward` is: called as functions they
     // made interpretation (benches/throughput.rs, `interpret`) a fifth
     // slower.
     #[inline(always)]
-    pub(super) fn apply(&mut self, i: usize, op: TurtleOp, args: Args) {
-        if self.rotations >= RENORMALISE_EVERY {
+    pub(super) fn apply(&mut self, i: usize, op: TurtleOp, args: Args<'_>) {
+        if self.state.rotations >= RENORMALISE_EVERY {
             self.state.renormalise();
-            self.rotations = 0;
+            self.state.rotations = 0;
         }
+        self.at = i;
+        self.draws = 0;
         match op {
             TurtleOp::Forward { draw } if self.tropisms.is_some() => self.forward_bent(draw, args),
             TurtleOp::Forward { draw } => self.forward(self.state.h, draw, args),
@@ -226,7 +299,7 @@ impl<'a> Turtle<'a> {
             TurtleOp::TurnUnswapped(angle) => {
                 let a = self.resolve(angle);
                 self.state.turn_unswapped(a);
-                self.rotations += 1;
+                self.state.rotations += 1;
             }
             TurtleOp::RotateReal(angle) => {
                 let a = self.resolve(angle);
@@ -320,7 +393,11 @@ impl<'a> Turtle<'a> {
         match a {
             Angle::Delta(f) => f * self.sys.settings.delta,
             Angle::Radians(r) => r,
-            Angle::Uniform { lo, hi } => lo + (hi - lo) * self.rng.next_f64(),
+            Angle::Uniform { lo, hi } => {
+                let u = keyed(self.seed, Stream::Turtle, self.at as u64, self.draws);
+                self.draws += 1;
+                lo + (hi - lo) * u
+            }
         }
     }
 
@@ -379,7 +456,7 @@ impl Turtle<'_> {
                 t.drawn_step(&self.state);
             }
         }
-        self.rotations += 1;
+        self.state.rotations += 1;
     }
 
     /// `@Ts`, `@Ti`, `@Td`, `_`: an elasticity change; the tropism is the
@@ -442,7 +519,7 @@ impl Turtle<'_> {
             _ => self.resolve(angle),
         };
         self.state.turn(axis, a);
-        self.rotations += 1;
+        self.state.rotations += 1;
     }
 
     /// A named LinF rotation: torsion about H, then curvature about U.
@@ -454,7 +531,7 @@ impl Turtle<'_> {
         let (t, k) = (self.resolve(r.torsion), self.resolve(r.curvature));
         self.state.turn(Axis::Heading, -sign * t);
         self.state.turn(Axis::Up, -sign * k);
-        self.rotations += 1;
+        self.state.rotations += 1;
     }
 }
 

@@ -24,6 +24,7 @@ mod geometry;
 pub mod instanced;
 mod interpret;
 mod label;
+pub mod pieces;
 mod run;
 mod state;
 mod tropism;
@@ -31,9 +32,11 @@ mod tropism;
 pub use cost::drawn_cost;
 pub(crate) use geometry::index_of;
 pub use geometry::{
-    grow_box, Disc, Drawn, Geometry, Label, Origins, Polygon, Segment, Sink, Textured, TurtlePath,
+    grow_box, Disc, Drawn, Geometry, Label, Origins, Parts, Polygon, Segment, Sink, Textured,
+    TurtlePath,
 };
 pub use label::printf;
+pub use pieces::{Letters, Pieced, Pieces};
 pub use run::{run, Learned, Run, WordSymbols};
 pub(crate) use state::{cross, dot};
 

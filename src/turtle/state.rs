@@ -45,6 +45,12 @@ pub(super) struct State {
     /// scales of the sub-L-system calls the turtle is in (cpfg's
     /// `scale_factor`), 1 outside them.
     pub(super) scale: f64,
+    /// Rotations of this frame since it was last re-orthonormalised. Kept
+    /// with the state, so that a branch counts from where it started and
+    /// `]` takes the count back: the frame at any symbol then follows from
+    /// the symbols on its path alone, as drawing a word in pieces on
+    /// several threads needs ([`super::pieces`]).
+    pub(super) rotations: u32,
 }
 
 #[derive(Clone, Copy, Debug)]

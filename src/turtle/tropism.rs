@@ -31,6 +31,7 @@ struct Bending {
 }
 
 /// The tropisms of a system while a word is interpreted.
+#[derive(Clone)]
 pub(super) struct Tropisms<'a> {
     list: &'a [Tropism],
     /// Each tropism's pull: its unit vector times its intensity.

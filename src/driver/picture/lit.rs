@@ -1,5 +1,6 @@
-//! Lit pictures drawn straight from the turtle: it runs once to survey
-//! the framing, then once per band of rows; nothing drawn is stored.
+//! Lit pictures drawn straight from the turtle: the word interpreted in
+//! pieces on every thread, once to survey the framing, then once per band
+//! of rows; no more than a round of pieces' drawing is stored.
 
 use super::stored::{apply_look, palette, too_large};
 use super::{DrawError, Format};
@@ -31,9 +32,10 @@ pub(super) fn streams_lit(
 }
 
 /// Draws a lit system's word to a PNG straight from the turtle
-/// ([`render::raster::png_surveyed`]): the turtle runs once for the framing and
-/// once per band of rows, and nothing drawn is stored, so a plant of
-/// millions of polygons draws in the memory of its picture. The picture is
+/// ([`render::raster::png_surveyed`]): the word is interpreted in pieces
+/// ([`turtle::Pieces`]) on every thread, once for the framing and once per
+/// band of rows, and only a round of pieces' drawing is held at a time, so
+/// a plant of millions of polygons draws in the memory of its picture. The picture is
 /// the one [`super::render_bytes`] draws from the stored geometry. `Ok(None)` when
 /// nearly nothing is drawn, which the stored way explains. Call it where
 /// [`streams_lit`] holds.
@@ -51,10 +53,9 @@ pub(super) fn draw(
     let Some(lighting) = sys.look.lighting.as_ref() else {
         return Ok(None);
     };
-    let replay = |sink: &mut dyn turtle::Sink| {
-        turtle::run(turtle::Run::word(sys, &drawn, opts.seed), sink).max_depth
-    };
-    let drawing = render::raster::Drawing::replayed(&replay, sys.settings.world_widths);
+    let params = drawn.has_params().then_some(&*drawn);
+    let pieces = turtle::Pieces::plan(sys, &drawn.0[..], params, opts.seed, ropts.threads);
+    let drawing = render::raster::Drawing::pieces(&pieces, sys.settings.world_widths);
     let survey = render::raster::survey(&drawing, lighting, &ropts);
     if survey.pixels_across(&ropts) < NEARLY_NOTHING {
         return Ok(None);

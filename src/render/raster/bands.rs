@@ -1,18 +1,24 @@
 //! A lit picture drawn band by band: the bands of sample rows that bound
-//! the memory held, the threads that each draw every other stripe of a
-//! band, and the band's rows box-filtered down to pixels and handed to the
-//! PNG encoder as they are done.
+//! the memory held; in each, every thread draws a run of the drawing's
+//! pieces into a band of its own, and the bands are laid together nearer
+//! over farther (the earlier piece on a tie), which is what one thread
+//! drawing every piece in order into one band gives. The band's rows are
+//! box-filtered down to pixels and handed to the PNG encoder as they are
+//! done.
 
 use super::painter::Painter;
 use super::target::Target;
 use super::{samples_per_pixel, Drawing, Scene};
 use crate::render::RenderOptions;
-use std::sync::atomic::AtomicU64;
+use crate::turtle::Polygon;
+use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Samples (colour and depth, 8 bytes each) held at once: 64 MB.
-const MAX_BAND_SAMPLES: usize = 8 << 20;
+/// Samples (colour and depth, 8 bytes each) held at once by each thread:
+/// 32 MB, and 64 MB on one thread.
+const THREAD_BAND_SAMPLES: usize = 4 << 20;
 
-/// Draws `scene` (`drawn` things, replayed from `drawing`) in bands on
+/// Draws `scene` (`drawn_each` things, from `drawing`) in bands on
 /// `threads` threads, into PNG bytes.
 pub(super) fn png_in_bands(
     drawing: &Drawing<'_>,
@@ -26,9 +32,11 @@ pub(super) fn png_in_bands(
     if w == 0 || h == 0 {
         return None;
     }
+    let pieces = drawing.pieced().count();
+    let threads = threads.clamp(1, pieces.max(1));
     let ss = samples_per_pixel(w, h);
-    let bands = Bands::new(w, h, ss);
-    let total = drawn_each.saturating_mul((bands.count() * threads) as u64);
+    let bands = Bands::new(w, h, ss, threads);
+    let total = drawn_each.saturating_mul(bands.count() as u64);
     let mut out = Vec::new();
     let mut encoder = ::png::Encoder::new(&mut out, w, h);
     encoder.set_color(::png::ColorType::Rgba);
@@ -36,41 +44,38 @@ pub(super) fn png_in_bands(
     let mut writer = encoder.write_header().ok()?;
     let mut stream = writer.stream_writer().ok()?;
     let drawn = AtomicU64::new(0);
-    let stripe = i64::from(STRIPE_PIXELS * ss);
     let labels = scene.placed_labels(drawing);
+    let runs: Vec<Range<usize>> = (0..threads)
+        .map(|t| t * pieces / threads..(t + 1) * pieces / threads)
+        .collect();
     for i in 0..bands.count() {
         let (row, rows) = bands.band(i);
-        let share_of = |share: usize| {
-            Target::share(
-                i64::from(row * ss),
-                i64::from(rows * ss),
-                i64::from(w * ss),
-                (opts.background, opts.background_alpha),
-                (stripe, threads as i64, share as i64),
-            )
+        let band = || {
+            let (y0, rows, width) = (row * ss, rows * ss, w * ss);
+            let background = (opts.background, opts.background_alpha);
+            Target::band(i64::from(y0), i64::from(rows), i64::from(width), background)
         };
-        let paint = |target, progress| {
-            let mut painter = Painter::new(scene, target, &drawn, progress);
-            drawing.replay(&mut painter);
-            downsample(&painter.finish(), w, ss)
+        let paint = |run: Range<usize>, progress: &mut dyn FnMut(u64, u64)| {
+            let first = scene.first_segments.get(run.start).copied().unwrap_or(0);
+            let mut painter = Painter::new(scene, band(), &drawn, first);
+            for k in run {
+                drawing.pieced().run(k, &mut painter);
+                painter.end_piece();
+                progress(drawn.load(Ordering::Relaxed), total);
+            }
+            painter.opaque()
         };
-        // This thread draws share 0 (and tells the progress); the others
-        // the rest.
-        let shares: Vec<Vec<u8>> = std::thread::scope(|scope| {
-            let others: Vec<_> = (1..threads)
-                .map(|k| scope.spawn(move || paint(share_of(k), None)))
+        let painted: Vec<(Target, Vec<Polygon>)> = std::thread::scope(|scope| {
+            let others: Vec<_> = (runs[1..].iter().cloned())
+                .map(|run| scope.spawn(move || paint(run, &mut |_, _| {})))
                 .collect();
-            let first = paint(share_of(0), Some((&mut *progress, total)));
-            std::iter::once(first)
-                .chain(others.into_iter().map(|t| t.join().unwrap_or_default()))
-                .collect()
-        });
-        let mut pixels = interleave(
-            &shares,
-            (w * 4) as usize,
-            rows as usize,
-            STRIPE_PIXELS as usize,
-        )?;
+            let first = paint(runs[0].clone(), &mut *progress);
+            std::iter::once(Some(first))
+                .chain(others.into_iter().map(|t| t.join().ok()))
+                .collect::<Option<Vec<_>>>()
+        })?;
+        let target = merged(scene, &drawn, painted)?;
+        let mut pixels = downsample(&target, w, ss);
         // Labels over everything, as cpfg writes its bitmaps.
         for l in &labels {
             crate::render::text::write(&mut pixels, w, row, l);
@@ -83,30 +88,28 @@ pub(super) fn png_in_bands(
     Some(out)
 }
 
-/// Threads drawing a band at once, at most.
-pub(super) const MAX_THREADS: usize = 8;
-
-/// Pixel rows in a stripe of a thread's share of a band ([`Target`]).
-const STRIPE_PIXELS: u32 = 4;
-
-/// The rows of a band of `rows` rows of `row_bytes` from its shares, each
-/// holding every `shares.len()`th stripe of `stripe` rows; `None` when a
-/// share is short (its thread failed).
-fn interleave(shares: &[Vec<u8>], row_bytes: usize, rows: usize, stripe: usize) -> Option<Vec<u8>> {
-    let mut out = Vec::with_capacity(rows * row_bytes);
-    let mut next = vec![0; shares.len()];
-    for r in 0..rows {
-        let k = (r / stripe) % shares.len();
-        let row = shares[k].get(next[k]..next[k] + row_bytes)?;
-        out.extend_from_slice(row);
-        next[k] += row_bytes;
+/// The threads' bands laid together in the order of their pieces, and
+/// every thread's translucent polygons blended over the whole, in order.
+fn merged(
+    scene: &Scene<'_>,
+    drawn: &AtomicU64,
+    painted: Vec<(Target, Vec<Polygon>)>,
+) -> Option<Target> {
+    let mut painted = painted.into_iter();
+    let (mut target, mut translucent) = painted.next()?;
+    for (later, more) in painted {
+        target.merge(&later);
+        translucent.extend(more);
     }
-    Some(out)
+    Some(Painter::new(scene, target, drawn, 0).blend(translucent))
 }
 
+/// Threads drawing a band at once, at most.
+pub(super) const MAX_THREADS: usize = 64;
+
 /// The bands of rows a picture is drawn in, one after another: each at most
-/// [`MAX_BAND_SAMPLES`] samples (all threads' shares together). A sample's
-/// colour does not depend on which band or share holds it, so neither do
+/// [`THREAD_BAND_SAMPLES`] samples a thread (twice that on one). A
+/// sample's colour does not depend on which band holds it, so neither do
 /// the picture's bytes.
 struct Bands {
     h: u32,
@@ -114,9 +117,10 @@ struct Bands {
 }
 
 impl Bands {
-    fn new(w: u32, h: u32, ss: u32) -> Self {
+    fn new(w: u32, h: u32, ss: u32, threads: usize) -> Self {
         let row_samples = w as usize * (ss * ss) as usize;
-        let rows = (MAX_BAND_SAMPLES / row_samples).clamp(1, h as usize) as u32;
+        let samples = THREAD_BAND_SAMPLES * if threads == 1 { 2 } else { 1 };
+        let rows = (samples / row_samples).clamp(1, h as usize) as u32;
         Bands { h, rows }
     }
 

@@ -29,7 +29,7 @@ use super::shade::{Colour, Kind, Paint, Shader};
 use super::{Fit, Palette, RenderOptions};
 use crate::ir::look::{Lighting, Shading};
 use crate::ir::Rgb;
-use crate::turtle::{Geometry, Segment, Sink, Vec3};
+use crate::turtle::{Geometry, Parts, Pieced, Segment, Vec3};
 use bands::{png_in_bands, MAX_THREADS};
 use target::{SVert, Target};
 
@@ -46,11 +46,12 @@ fn samples_per_pixel(width: u32, height: u32) -> u32 {
     }
 }
 
-/// What a lit picture is drawn from: everything drawn, given to a sink in
-/// the same order each time it is replayed (once to find the framing, then
-/// once per band of rows, bands on several threads). A stored [`Geometry`]
-/// replays itself; the driver replays the turtle, so that nothing drawn is
-/// stored.
+/// What a lit picture is drawn from: everything drawn, in pieces given to
+/// a sink in the same order each time (once to find the framing, then once
+/// per band of rows), each thread drawing a run of pieces. A stored
+/// [`Geometry`] is cut into parts ([`Geometry::in_parts`]); a word in
+/// pieces ([`crate::turtle::Pieces`]) is interpreted piece by piece, so
+/// that nothing drawn is stored.
 pub struct Drawing<'d> {
     source: Source<'d>,
     /// Whether segment widths are in turtle units ([`Geometry::world_widths`]).
@@ -58,48 +59,44 @@ pub struct Drawing<'d> {
 }
 
 enum Source<'d> {
-    Stored(&'d Geometry),
-    /// Gives everything to the sink; returns the deepest branch nesting.
-    Replayed(&'d (dyn Fn(&mut dyn Sink) -> usize + Sync)),
+    Stored(&'d Geometry, Parts<'d>),
+    Pieces(&'d dyn Pieced),
 }
 
+/// Things drawn per part of a stored drawing.
+const PART: usize = 1 << 16;
+
 impl<'d> Drawing<'d> {
-    /// The labels of a stored drawing (a replayed one has none: a system
+    /// The labels of a stored drawing (a word in pieces has none: a system
     /// with labels is drawn from what is stored).
     fn labels(&self) -> &'d [crate::turtle::Label] {
         match self.source {
-            Source::Stored(g) => &g.labels,
-            Source::Replayed(_) => &[],
+            Source::Stored(g, _) => &g.labels,
+            Source::Pieces(_) => &[],
         }
     }
 
     pub fn stored(g: &'d Geometry) -> Self {
         Drawing {
-            source: Source::Stored(g),
+            source: Source::Stored(g, g.in_parts(PART)),
             world_widths: g.world_widths,
         }
     }
 
-    /// The drawing `replay` gives each time it is called (the same each
-    /// time), its widths in turtle units when `world_widths`.
-    pub fn replayed(
-        replay: &'d (dyn Fn(&mut dyn Sink) -> usize + Sync),
-        world_widths: bool,
-    ) -> Self {
+    /// The drawing of a word in pieces, its widths in turtle units when
+    /// `world_widths`.
+    pub fn pieces(word: &'d dyn Pieced, world_widths: bool) -> Self {
         Drawing {
-            source: Source::Replayed(replay),
+            source: Source::Pieces(word),
             world_widths,
         }
     }
 
-    /// Gives everything drawn to `sink`; the deepest branch nesting.
-    fn replay(&self, sink: &mut dyn Sink) -> usize {
-        match self.source {
-            Source::Stored(g) => {
-                g.replay(sink);
-                g.max_depth
-            }
-            Source::Replayed(f) => f(sink),
+    /// The drawing's pieces.
+    fn pieced(&self) -> &dyn Pieced {
+        match &self.source {
+            Source::Stored(_, parts) => parts,
+            Source::Pieces(p) => *p,
         }
     }
 }
@@ -118,6 +115,8 @@ struct Scene<'a> {
     /// Segments in the drawing and its deepest nesting (for `--palette`).
     segments: usize,
     max_depth: usize,
+    /// The index of each piece's first segment.
+    first_segments: Vec<usize>,
 }
 
 /// Draws `g` as its look `lighting` says, `palette` its colour map (never
@@ -186,6 +185,13 @@ impl<'a> Scene<'a> {
             world_widths,
             segments: survey.segments,
             max_depth: survey.max_depth,
+            first_segments: (survey.piece_segments.iter())
+                .scan(0, |before, n| {
+                    let first = *before;
+                    *before += n;
+                    Some(first)
+                })
+                .collect(),
         }
     }
 

@@ -12,9 +12,6 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// cylinder's triangles come one after another, and are smoothed together.
 const MAX_RUN: usize = 1 << 14;
 
-/// Whom to tell how much is drawn, and of what total.
-type Progress<'p> = (&'p mut dyn FnMut(u64, u64), u64);
-
 /// The second pass: everything drawn into a band as it comes. Polygons
 /// that come one after another (a run) are held until the run ends, so
 /// that their shared corners get one normal; a segment is held until the
@@ -36,8 +33,6 @@ pub(super) struct Painter<'s, 'p> {
     /// Drawn and not yet counted in `drawn`, which all threads count in.
     uncounted: u64,
     drawn: &'p AtomicU64,
-    /// Whom to tell of `drawn` (of a total), on one thread.
-    progress: Option<Progress<'p>>,
 }
 
 impl<'s, 'p> Painter<'s, 'p> {
@@ -45,7 +40,7 @@ impl<'s, 'p> Painter<'s, 'p> {
         scene: &'s Scene<'s>,
         target: Target,
         drawn: &'p AtomicU64,
-        progress: Option<Progress<'p>>,
+        first_segment: usize,
     ) -> Self {
         Painter {
             scene,
@@ -56,21 +51,17 @@ impl<'s, 'p> Painter<'s, 'p> {
             shown: Vec::new(),
             corners: Vec::new(),
             held: None,
-            segments: 0,
+            segments: first_segment,
             uncounted: 0,
             drawn,
-            progress,
         }
     }
 
     fn tick(&mut self) {
         self.uncounted += 1;
         if self.uncounted == 1 << 14 {
-            let all = self.drawn.fetch_add(self.uncounted, Ordering::Relaxed) + self.uncounted;
+            self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
             self.uncounted = 0;
-            if let Some((progress, total)) = &mut self.progress {
-                progress(all, *total);
-            }
         }
     }
 
@@ -126,13 +117,25 @@ impl<'s, 'p> Painter<'s, 'p> {
         self.scene.segment(&mut self.target, &s, paint, end_width);
     }
 
-    /// The band, with everything drawn: the opaque, then the translucent
-    /// blended over it one by one, in the order they came.
-    pub(super) fn finish(mut self) -> Target {
-        self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
+    /// The end of a piece of the drawing: what is held is drawn, so that
+    /// each piece draws the same whichever thread draws what follows it.
+    pub(super) fn end_piece(&mut self) {
         self.flush_run();
         self.draw_held(None);
-        for p in std::mem::take(&mut self.translucent) {
+        self.drawn.fetch_add(self.uncounted, Ordering::Relaxed);
+        self.uncounted = 0;
+    }
+
+    /// The band with everything opaque drawn, and the translucent polygons
+    /// held to be drawn over it (over every thread's band, merged).
+    pub(super) fn opaque(mut self) -> (Target, Vec<Polygon>) {
+        self.end_piece();
+        (self.target, self.translucent)
+    }
+
+    /// `target` with `translucent` blended over it one by one, in order.
+    pub(super) fn blend(mut self, translucent: Vec<Polygon>) -> Target {
+        for p in translucent {
             self.target.opacity = Some(self.scene.opacity(&p));
             self.run.push(p);
             self.flush_run();

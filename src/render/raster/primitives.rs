@@ -36,8 +36,7 @@ impl Scene<'_> {
         }
         let first_x = ((lo[0] - 0.5).ceil() as i64).max(0);
         let last_x = ((hi[0] - 0.5).floor() as i64).min(t.width - 1);
-        let mut rows = t.rows_between(lo[1], hi[1]);
-        let shown = first_x <= last_x && rows.any(|y| t.owns(y));
+        let shown = first_x <= last_x && !t.rows_between(lo[1], hi[1]).is_empty();
         if !shown {
             out.truncate(at);
         }
@@ -263,9 +262,6 @@ impl Scene<'_> {
         let centre_z = self.proj.project(d.centre).map_or(0.0, |p| p.1);
         let perspective = self.proj.perspective();
         for y in t.rows_between(c[1] - r, c[1] + r) {
-            if !t.owns(y) {
-                continue;
-            }
             let dy = (y as f64 + 0.5 - c[1]) / r;
             let half = (1.0 - dy * dy).max(0.0).sqrt() * r;
             let first = ((c[0] - half - 0.5).ceil() as i64).max(0);

@@ -21,6 +21,9 @@ pub struct Survey {
     extremes: [([f64; 2], f64); 6],
     bbox: Option<[f64; 6]>,
     pub(super) segments: usize,
+    /// The segments each piece of the drawing draws (where a thread
+    /// starting at a piece starts counting, for `--palette`).
+    pub(super) piece_segments: Vec<usize>,
     /// Everything drawn (for progress).
     pub(super) drawn: u64,
     pub(super) max_depth: usize,
@@ -33,18 +36,43 @@ impl Survey {
         opts: &RenderOptions,
     ) -> Self {
         let turn = opts.style.rotate.to_radians().sin_cos();
-        let mut survey = Survey {
+        let empty = || Survey {
             proj: Projector::new(opts),
             world_lines: lighting.line_style != LineStyle::Pixel,
             turn: (turn.1, turn.0),
             extremes: [([0.0; 2], f64::NEG_INFINITY); 6],
             bbox: None,
             segments: 0,
+            piece_segments: Vec::new(),
             drawn: 0,
             max_depth: 0,
         };
-        survey.max_depth = drawing.replay(&mut survey);
+        let threads = crate::parallel::threads(opts.threads);
+        let (parts, depth) = crate::turtle::pieces::each(drawing.pieced(), threads, empty);
+        let mut survey = empty();
+        for part in parts {
+            survey.piece_segments.push(part.segments);
+            survey.add(part);
+        }
+        survey.max_depth = depth;
         survey
+    }
+
+    /// Adds what `later` surveyed, as if it had come after what this
+    /// survey saw: the same survey as one pass over both.
+    fn add(&mut self, later: Survey) {
+        for (e, l) in self.extremes.iter_mut().zip(later.extremes) {
+            // The first point furthest out wins a tie, as in one pass.
+            if l.1 > e.1 {
+                *e = l;
+            }
+        }
+        if let Some(b) = later.bbox {
+            crate::turtle::grow_box(&mut self.bbox, [b[0], b[1], b[2]]);
+            crate::turtle::grow_box(&mut self.bbox, [b[3], b[4], b[5]]);
+        }
+        self.segments += later.segments;
+        self.drawn += later.drawn;
     }
 
     /// The fit of everything surveyed into the picture of `opts`.

@@ -1,7 +1,8 @@
-//! The samples a lit picture is drawn into: a band of sample rows (or a
-//! thread's share of it) holding a colour and a depth per sample, and the
-//! triangles and lines rasterised into it (the nearer sample wins; on a
-//! tie the first drawn).
+//! The samples a lit picture is drawn into: a band of sample rows holding
+//! a colour and a depth per sample, and the triangles and lines rasterised
+//! into it (the nearer sample wins; on a tie the first drawn). Threads
+//! draw successive parts of the drawing into bands of their own, which
+//! [`Target::merge`] lays together by the same rule.
 
 use crate::ir::texture::Texture;
 use crate::ir::Rgb;
@@ -18,18 +19,12 @@ pub(super) struct SVert {
     pub(super) uv: [f64; 2],
 }
 
-/// A band of sample rows, or one thread's share of it: the band's rows
-/// are dealt out in stripes of `stripe` rows to `shares` targets, and this
-/// one holds the stripes of share `share` (colour and depth), so that
-/// threads drawing a plant share its dense parts alike.
+/// A band of sample rows: colour and depth per sample.
 pub(super) struct Target {
     /// First sample row of the band, and its rows.
     y0: i64,
     rows: i64,
     pub(super) width: i64,
-    stripe: i64,
-    shares: i64,
-    share: i64,
     pub(super) colour: Vec<u32>,
     depth: Vec<f32>,
     /// While translucent things are drawn (after everything opaque), their
@@ -64,45 +59,32 @@ fn edge(a: &SVert, b: &SVert, px: f64, py: f64) -> f64 {
 }
 
 impl Target {
-    /// Share `share` of `shares` of the band, in stripes of `stripe` rows.
-    pub(super) fn share(
-        y0: i64,
-        rows: i64,
-        width: i64,
-        (background, alpha): (Rgb, u8),
-        (stripe, shares, share): (i64, i64, i64),
-    ) -> Target {
-        let mut t = Target {
+    /// The band of `rows` sample rows from `y0`, `width` samples wide,
+    /// filled with the background.
+    pub(super) fn band(y0: i64, rows: i64, width: i64, (background, alpha): (Rgb, u8)) -> Target {
+        let n = (rows.max(0) * width.max(0)) as usize;
+        let bg = pack(to_colour(background)) & 0x00ff_ffff | u32::from(alpha) << 24;
+        Target {
             y0,
             rows,
             width,
-            stripe,
-            shares,
-            share,
-            colour: Vec::new(),
-            depth: Vec::new(),
+            colour: vec![bg; n],
+            depth: vec![f32::INFINITY; n],
             opacity: None,
-        };
-        let held = (0..rows).filter(|r| t.owns(y0 + r)).count();
-        let n = held * width.max(0) as usize;
-        let bg = pack(to_colour(background)) & 0x00ff_ffff | u32::from(alpha) << 24;
-        t.colour = vec![bg; n];
-        t.depth = vec![f32::INFINITY; n];
-        t
+        }
     }
 
-    /// Whether sample row `y` is held here.
-    #[inline]
-    pub(super) fn owns(&self, y: i64) -> bool {
-        let r = y - self.y0;
-        (0..self.rows).contains(&r) && (r / self.stripe) % self.shares == self.share
-    }
-
-    /// Where held row `y` is stored.
-    #[inline]
-    fn local(&self, y: i64) -> i64 {
-        let r = y - self.y0;
-        r / self.stripe / self.shares * self.stripe + r % self.stripe
+    /// Lays `later` (the same band, with what was drawn after what this
+    /// holds) over this one: each sample the nearer of the two, this one's
+    /// on a tie, as if everything had been drawn into one band in order.
+    pub(super) fn merge(&mut self, later: &Target) {
+        let samples = self.depth.iter_mut().zip(&mut self.colour);
+        for ((d, c), (&ld, &lc)) in samples.zip(later.depth.iter().zip(&later.colour)) {
+            if ld < *d {
+                *d = ld;
+                *c = lc;
+            }
+        }
     }
 
     /// Whether sample rows `lo..=hi` meet the band.
@@ -114,7 +96,7 @@ impl Target {
     // Called per sample from the other rooms of the raster.
     #[inline]
     pub(super) fn plot(&mut self, x: i64, y: i64, z: f64, c: Colour) {
-        let i = (self.local(y) * self.width + x) as usize;
+        let i = ((y - self.y0) * self.width + x) as usize;
         let z = z as f32;
         if z < self.depth[i] {
             match self.opacity {
@@ -131,8 +113,7 @@ impl Target {
         }
     }
 
-    /// The rows of samples whose centres lie in `lo..=hi`, in the band
-    /// (those held here: [`Target::owns`]).
+    /// The rows of samples whose centres lie in `lo..=hi`, in the band.
     #[inline]
     pub(super) fn rows_between(&self, lo: f64, hi: f64) -> std::ops::Range<i64> {
         let first = ((lo - 0.5).ceil() as i64).max(self.y0);
@@ -169,9 +150,6 @@ impl Target {
         let lo = v.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
         let hi = v.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
         for y in self.rows_between(lo, hi) {
-            if !self.owns(y) {
-                continue;
-            }
             let yc = y as f64 + 0.5;
             let Some((xl, xr)) = span(&v, yc) else {
                 continue;

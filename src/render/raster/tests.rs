@@ -1,7 +1,7 @@
 use super::tessellate::ear_clip;
 use super::*;
 use crate::ir::look::{Camera, Light, LineStyle, Material};
-use crate::turtle::{Disc, Polygon, Segment};
+use crate::turtle::{Disc, Polygon, Segment, Sink};
 
 const BLACK: Rgb = Rgb(0, 0, 0);
 
@@ -504,5 +504,89 @@ fn translucent_materials_blend_over_what_is_behind() {
             );
             assert_eq!(rgb(&pm, 30, 30), [0, 255, 0], "the opaque square in front");
         }
+    }
+}
+
+#[test]
+fn threads_drawing_runs_of_parts_lay_together_as_one_thread_drawing_all() {
+    // Squares at one depth in turn (a tie each time: the first drawn must
+    // win), nearer and farther ones, lines, spheres and a translucent
+    // pane, cut into parts of a few things each: every thread count draws
+    // the bytes one thread draws, and, flat and untapered (nothing held
+    // from one part to the next), the bytes of the drawing in one part.
+    let mut g = Geometry::default();
+    // The same square first and last: exactly the same depths.
+    let tie = |grey, index| {
+        let mut p = square(1.5, 0.3, grey);
+        p.index = index;
+        p
+    };
+    g.polygon(tie(250, 60));
+    for i in 0..40u8 {
+        let z = f64::from(i % 3) - 1.0;
+        let mut p = square(z, 0.2 + f64::from(i) * 0.02, 10 + i * 5);
+        p.index = 2 + u16::from(i);
+        g.polygon(p);
+        g.segment(Segment {
+            a: [-1.0, f64::from(i) * 0.05 - 1.0, z],
+            b: [1.0, 1.0 - f64::from(i) * 0.05, z],
+            width: 0.05,
+            colour: Rgb(200, 40, i),
+            index: 3,
+            depth: 0,
+        });
+        if i % 7 == 0 {
+            g.disc(Disc {
+                centre: [f64::from(i) * 0.04 - 0.8, 0.5, 0.0],
+                diameter: 0.3,
+                colour: Rgb(30, 30, 200),
+                pixels: false,
+                index: 2,
+            });
+        }
+    }
+    g.polygon(tie(5, 61));
+    let mut pane = square(2.0, 0.6, 1);
+    pane.index = 1;
+    g.polygon(pane);
+    let mut l = lighting(Shading::Filled, LineStyle::Cylinder);
+    // A colour of its own for each index; index 1 half transparent.
+    l.materials = (0..64u8)
+        .map(|i| {
+            let k = f32::from(i) / 64.0;
+            Some(Material {
+                ambient: [0.2; 3],
+                diffuse: [k, 1.0 - k, 0.5],
+                specular: [0.0; 3],
+                emission: [0.0; 3],
+                shininess: 0.0,
+                transparency: if i == 1 { 0.5 } else { 0.0 },
+            })
+        })
+        .collect();
+    let palette = [Rgb(1, 2, 3)];
+    let opts = small(64);
+    let draw = |drawing: &Drawing, threads| {
+        let survey = survey(drawing, &l, &opts);
+        let scene = Scene::new(&survey, false, &l, &palette, &opts);
+        png_in_bands(
+            drawing,
+            &scene,
+            survey.drawn,
+            &opts,
+            threads,
+            &mut |_, _| {},
+        )
+        .expect("a picture")
+    };
+    let whole = draw(&Drawing::stored(&g), 1);
+    let parts = Drawing {
+        source: Source::Stored(&g, g.in_parts(3)),
+        world_widths: false,
+    };
+    assert!(parts.pieced().count() > 20);
+
+    for threads in [1, 2, 3, 7] {
+        assert!(draw(&parts, threads) == whole, "{threads} threads");
     }
 }
