@@ -17,7 +17,9 @@ use crate::turtle::{self, Geometry};
 pub const MAX_MOVES: usize = 30_000_000;
 
 /// Interprets `word`, refusing words whose geometry would not fit in memory
-/// ([`MAX_MOVES`]). With `paths`, the turtle's paths are recorded too. A
+/// ([`MAX_MOVES`]), in pieces on the threads `opts` asks for
+/// ([`turtle::Pieces`]). With `paths`, the turtle's paths are recorded too
+/// (by one turtle). A
 /// system whose rewriting needs modules draws its word through its
 /// homomorphism, which reads the program's globals and arrays as `values`
 /// holds them ([`derive_values`]).
@@ -29,11 +31,16 @@ pub fn interpret(
     paths: bool,
 ) -> Result<Geometry, Diagnostic> {
     let drawn = drawn_word(sys, word, values, opts)?;
-    Ok(turtle::Run {
-        paths,
-        ..turtle::Run::word(sys, &drawn, opts.seed)
+    if paths {
+        // Paths are recorded branch by branch, by one turtle.
+        let run = turtle::Run::word(sys, &drawn, opts.seed);
+        return Ok(turtle::Run { paths, ..run }.geometry());
     }
-    .geometry())
+    let params = drawn.has_params().then_some(&*drawn);
+    let pieces = turtle::Pieces::plan(sys, &drawn.0[..], params, opts.seed, opts.threads);
+    let mut g = turtle::pieces::geometry(&pieces, opts.threads);
+    g.world_widths = sys.settings.world_widths;
+    Ok(g)
 }
 
 /// The word the turtle draws for `word`: itself, or what the system's

@@ -80,6 +80,13 @@ impl Counter {
     fn point(&mut self, p: turtle::Vec3) {
         turtle::grow_box(&mut self.bbox, p);
     }
+
+    /// Adds what `later` counted (a later piece of the word).
+    fn add(&mut self, later: Counter) {
+        self.segments += later.segments;
+        self.polygons += later.polygons;
+        turtle::join_boxes(&mut self.bbox, later.bbox);
+    }
 }
 
 impl turtle::Sink for Counter {
@@ -317,9 +324,12 @@ pub fn stats(sys: &System, opts: &RunOptions) -> Result<Stats, Diagnostic> {
         };
         c.measured(Count::from(w.len() as u64), g.max_depth)
     } else {
+        let pieces = turtle::Pieces::plan(sys, &w.0[..], None, opts.seed, opts.threads);
+        let (counts, depth) = turtle::pieces::each(&pieces, opts.threads, Counter::default);
         let mut c = Counter::default();
-        let run = turtle::Run::symbols(sys, w.0.iter().copied(), opts.seed);
-        let depth = turtle::run(run, &mut c).max_depth;
+        for later in counts {
+            c.add(later);
+        }
         c.measured(Count::from(written_symbols(sys, &w) as u64), depth)
     };
     let t2 = Instant::now();

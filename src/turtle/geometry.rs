@@ -119,6 +119,14 @@ pub fn grow_box(b: &mut Option<[f64; 6]>, p: Vec3) {
     }
 }
 
+/// `b` grown to hold box `other` too (a box of a later piece).
+pub fn join_boxes(b: &mut Option<[f64; 6]>, other: Option<[f64; 6]>) {
+    if let Some(o) = other {
+        grow_box(b, [o[0], o[1], o[2]]);
+        grow_box(b, [o[3], o[4], o[5]]);
+    }
+}
+
 /// A kind of thing the turtle draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Drawn {
@@ -242,6 +250,22 @@ impl Geometry {
                 Drawn::Segment => sink.segment(self.segments[i].clone()),
                 Drawn::Polygon => sink.polygon(self.polygons[i].clone()),
                 Drawn::Disc => sink.disc(self.discs[i].clone()),
+            }
+        }
+    }
+
+    /// Adds `later` (drawn after this, by the same turtle: its order notes
+    /// complete) after what this holds.
+    pub fn append(&mut self, later: Geometry) {
+        self.segments.extend(later.segments);
+        self.polygons.extend(later.polygons);
+        self.discs.extend(later.discs);
+        self.labels.extend(later.labels);
+        self.max_depth = self.max_depth.max(later.max_depth);
+        for (kind, n) in later.order {
+            match self.order.last_mut() {
+                Some((k, m)) if *k == kind && m.checked_add(n).is_some() => *m += n,
+                _ => self.order.push((kind, n)),
             }
         }
     }

@@ -32,8 +32,8 @@ mod tropism;
 pub use cost::drawn_cost;
 pub(crate) use geometry::index_of;
 pub use geometry::{
-    grow_box, Disc, Drawn, Geometry, Label, Origins, Parts, Polygon, Segment, Sink, Textured,
-    TurtlePath,
+    grow_box, join_boxes, Disc, Drawn, Geometry, Label, Origins, Parts, Polygon, Segment, Sink,
+    Textured, TurtlePath,
 };
 pub use label::printf;
 pub use pieces::{Letters, Pieced, Pieces};

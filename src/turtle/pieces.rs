@@ -143,6 +143,20 @@ pub fn stored(word: &dyn Pieced, range: Range<usize>, threads: usize) -> Vec<Geo
     )
 }
 
+/// Every piece of `word` interpreted on `threads` threads into one stored
+/// drawing, in order: a round of pieces at a time, so that no more than a
+/// round's drawing is held twice.
+pub fn geometry(word: &dyn Pieced, threads: usize) -> Geometry {
+    let round = 2 * crate::parallel::threads(threads);
+    let mut g = Geometry::default();
+    for first in (0..word.count()).step_by(round) {
+        for part in stored(word, first..word.count().min(first + round), threads) {
+            g.append(part);
+        }
+    }
+    g
+}
+
 /// A sink that keeps nothing (the spines' walk draws nothing).
 struct Nowhere;
 

@@ -1,5 +1,6 @@
-//! Pictures streamed: each segment drawn into the picture's coverage as
-//! the turtle makes it, none stored.
+//! Pictures streamed: the word interpreted in pieces on every thread, each
+//! piece's segments drawn into the picture's coverage a round of pieces at
+//! a time, the whole drawing never stored.
 
 use super::stored::{apply_look, too_large};
 use super::{DrawError, Format};
@@ -8,7 +9,7 @@ use crate::driver::empty::NEARLY_NOTHING;
 use crate::driver::interpret::has_outline;
 use crate::driver::Globals;
 use crate::eval;
-use crate::ir::{System, Word};
+use crate::ir::{SymbolId, System, Word};
 use crate::render::{self, RenderOptions};
 use crate::turtle;
 
@@ -34,10 +35,11 @@ pub(super) enum Streamed {
     Word(Word, Globals),
 }
 
-/// Draws `word` to a PNG streamed ([`render::coverage`]): the turtle runs
-/// over the word twice, once for the bounds and once drawing each segment
-/// into the picture as it is made; no segment is stored. Call it where
-/// [`streams`] holds.
+/// Draws `word` to a PNG streamed ([`render::coverage`]): the word is
+/// interpreted in pieces on every thread ([`turtle::Pieces`]), once for
+/// the bounds and once drawing each piece's segments into the picture a
+/// round of pieces at a time; no more segments are stored than a round
+/// draws. Call it where [`streams`] holds.
 pub(super) fn draw(
     sys: &System,
     opts: &RunOptions,
@@ -48,26 +50,71 @@ pub(super) fn draw(
     apply_look(sys, &mut ropts);
     let unstreamed =
         |w: eval::Symbols| Streamed::Word(w.into_word(), Globals::initial(&sys.program));
-    let mut survey = render::coverage::Survey::new(&ropts);
-    turtle::run(
-        turtle::Run::symbols(sys, word.iter(), opts.seed),
-        &mut survey,
-    );
+    let letters = Letters(&word);
+    let pieces = turtle::Pieces::plan(sys, &letters, None, opts.seed, ropts.threads);
+    let survey = || render::coverage::Survey::new(&ropts);
+    let (parts, _) = turtle::pieces::each(&pieces, ropts.threads, survey);
+    let mut survey = survey();
+    for part in parts {
+        survey.add(part);
+    }
     if !survey.streams() {
         return Ok(unstreamed(word));
     }
     let world_widths = sys.settings.world_widths;
-    let Some(mut painter) = render::coverage::Painter::new(&survey, &ropts, world_widths, progress)
+    let threads = ropts.threads;
+    let Some(mut painter) =
+        render::coverage::Painter::new(&survey, &ropts, world_widths, threads, progress)
     else {
         return Err(too_large(&ropts));
     };
-    turtle::run(
-        turtle::Run::symbols(sys, word.iter(), opts.seed),
-        &mut painter,
-    );
+    painter.draw(&pieces, threads);
     if painter.overflow || painter.spread_width() < NEARLY_NOTHING {
+        drop(pieces);
         return Ok(unstreamed(word));
     }
-    let png = painter.picture.png().ok_or(too_large(&ropts))?;
+    let png = painter.png().ok_or(too_large(&ropts))?;
     Ok(Streamed::Picture(png))
+}
+
+/// A derived word's symbols as the turtle reads them in pieces.
+struct Letters<'w>(&'w eval::Symbols);
+
+/// A range of a derived word's symbols, in whichever width it keeps them.
+enum Range<'w> {
+    Bytes(std::slice::Iter<'w, u8>),
+    Shorts(std::slice::Iter<'w, u16>),
+    Wide(std::slice::Iter<'w, SymbolId>),
+}
+
+impl Iterator for Range<'_> {
+    type Item = SymbolId;
+
+    #[inline]
+    fn next(&mut self) -> Option<SymbolId> {
+        match self {
+            Range::Bytes(i) => i.next().map(|&s| SymbolId(u32::from(s))),
+            Range::Shorts(i) => i.next().map(|&s| SymbolId(u32::from(s))),
+            Range::Wide(i) => i.next().copied(),
+        }
+    }
+}
+
+impl turtle::Letters for Letters<'_> {
+    type Range<'s>
+        = Range<'s>
+    where
+        Self: 's;
+
+    fn count(&self) -> usize {
+        self.0.len()
+    }
+
+    fn range(&self, r: std::ops::Range<usize>) -> Range<'_> {
+        match self.0 {
+            eval::Symbols::Bytes(w) => Range::Bytes(w[r].iter()),
+            eval::Symbols::Shorts(w) => Range::Shorts(w[r].iter()),
+            eval::Symbols::Wide(w) => Range::Wide(w[r].iter()),
+        }
+    }
 }

@@ -67,10 +67,7 @@ impl Survey {
                 *e = l;
             }
         }
-        if let Some(b) = later.bbox {
-            crate::turtle::grow_box(&mut self.bbox, [b[0], b[1], b[2]]);
-            crate::turtle::grow_box(&mut self.bbox, [b[3], b[4], b[5]]);
-        }
+        crate::turtle::join_boxes(&mut self.bbox, later.bbox);
         self.segments += later.segments;
         self.drawn += later.drawn;
     }

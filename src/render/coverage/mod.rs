@@ -19,11 +19,15 @@
 //! grey in proportion to how much of it they cover: a dense crown shows its
 //! density instead of a solid mass.
 
+mod painter;
+
 use super::camera::Projector;
 use super::shade::Paint;
 use super::{Fit, RenderOptions};
 use crate::ir::Rgb;
 use crate::turtle::{Disc, Polygon, Segment, Sink};
+
+pub use painter::Painter;
 
 /// The most samples held: 16 MB (one byte each).
 const MAX_SAMPLES: u64 = 16 << 20;
@@ -38,11 +42,19 @@ fn samples_per_pixel(width: u32, height: u32) -> u32 {
         .unwrap_or(1)
 }
 
-/// A picture as paint indices per sample (0 the background).
+/// A picture as paint indices per sample (0 the background), or a share
+/// of one: its pixel rows dealt out in stripes to threads, each holding
+/// its own stripes and drawing into them every line, in order (so that
+/// each sample sees the lines it would see in the whole picture).
 pub struct Coverage {
     width: u32,
     height: u32,
     ss: u32,
+    /// Pixel rows per stripe, how many shares the stripes are dealt to,
+    /// and which this one is.
+    stripe: u32,
+    shares: u32,
+    share: u32,
     /// Samples per row and rows of samples.
     sw: i64,
     sh: i64,
@@ -90,23 +102,73 @@ fn over(h: &[f32; 4], sum: [u32; 4], n: u32) -> [u8; 4] {
 impl Coverage {
     /// An empty picture; `None` when it has no pixels.
     pub fn new(width: u32, height: u32, background: Rgb, background_alpha: u8) -> Option<Self> {
-        if width == 0 || height == 0 {
+        Coverage::share(
+            width,
+            height,
+            (background, background_alpha),
+            (height, 1, 0),
+        )
+    }
+
+    /// Share `share` of `shares` of an empty picture, its pixel rows dealt
+    /// out in stripes of `stripe`; `None` when it has no pixels.
+    fn share(
+        width: u32,
+        height: u32,
+        (background, background_alpha): (Rgb, u8),
+        (stripe, shares, share): (u32, u32, u32),
+    ) -> Option<Self> {
+        if width == 0 || height == 0 || stripe == 0 || share >= shares {
             return None;
         }
         let ss = samples_per_pixel(width, height);
         let (sw, sh) = (i64::from(width * ss), i64::from(height * ss));
-        Some(Coverage {
+        let mut c = Coverage {
             width,
             height,
             ss,
+            stripe,
+            shares,
+            share,
             sw,
             sh,
-            samples: vec![0; usize::try_from(sw * sh).ok()?],
+            samples: Vec::new(),
             paints: Vec::new(),
             background,
             background_alpha,
             hairlines: Vec::new(),
-        })
+        };
+        let held = (0..height)
+            .filter(|&y| c.local(i64::from(y)).is_some())
+            .count();
+        c.samples = vec![0; usize::try_from(sw).ok()? * held * ss as usize];
+        Some(c)
+    }
+
+    /// Where pixel row `y` is kept here, if this share holds it.
+    #[inline]
+    fn local(&self, y: i64) -> Option<usize> {
+        let (stripe, shares) = (i64::from(self.stripe), i64::from(self.shares));
+        let s = y.div_euclid(stripe);
+        (y >= 0 && y < i64::from(self.height) && s % shares == i64::from(self.share))
+            .then(|| (s / shares * stripe + y % stripe) as usize)
+    }
+
+    /// Whether this share holds any pixel row from `lo` to `hi` (NaN:
+    /// yes, and the drawing decides).
+    fn holds_rows(&self, lo: f64, hi: f64) -> bool {
+        let span = f64::from(self.stripe * self.shares);
+        if self.shares == 1 || (hi - lo).partial_cmp(&span) != Some(std::cmp::Ordering::Less) {
+            return true;
+        }
+        let stripe = f64::from(self.stripe);
+        let (first, last) = ((lo / stripe).floor() as i64, (hi / stripe).floor() as i64);
+        (first..=last).any(|s| s.rem_euclid(i64::from(self.shares)) == i64::from(self.share))
+    }
+
+    /// The pixel rows this share holds.
+    fn held(&self) -> usize {
+        self.samples.len() / (self.sw as usize * self.ss as usize).max(1)
     }
 
     /// The paint index of `colour`, added when new; `None` past 255.
@@ -126,6 +188,12 @@ impl Coverage {
     /// ([`Coverage::hairline`]) of its width's opacity, as tiny-skia strokes
     /// it; 0 or NaN wide, an opaque hairline.
     pub fn line(&mut self, a: [f64; 2], b: [f64; 2], width: f64, k: u8) {
+        // Most lines of a dense drawing lie in one stripe: a share that
+        // holds none of the rows a line can reach leaves it at once.
+        let reach = if width >= 1.0 { width / 2.0 } else { 0.0 } + 1.0;
+        if !self.holds_rows(a[1].min(b[1]) - reach, a[1].max(b[1]) + reach) {
+            return;
+        }
         if width.is_nan() || width < 1.0 {
             let alpha = if width > 0.0 { width } else { 1.0 };
             return self.hairline(a, b, alpha as f32, k);
@@ -141,7 +209,15 @@ impl Coverage {
         let len = (dx * dx + dy * dy).sqrt();
         let top = ((a[1].min(b[1]) - r - 0.5).ceil() as i64).max(0);
         let bottom = ((a[1].max(b[1]) + r - 0.5).floor() as i64).min(self.sh - 1);
-        for row in top..=bottom {
+        let ss = i64::from(self.ss);
+        let mut row = top;
+        while row <= bottom {
+            let Some(local) = self.local(row / ss) else {
+                // On to the first row of the next stripe.
+                row = (row / ss / i64::from(self.stripe) + 1) * i64::from(self.stripe) * ss;
+                continue;
+            };
+            let at = (local as i64 * ss + row % ss) * self.sw;
             let yc = row as f64 + 0.5;
             let (mut xl, mut xr) = (f64::INFINITY, f64::NEG_INFINITY);
             for end in [a, b] {
@@ -167,9 +243,10 @@ impl Coverage {
             let first = ((xl - 0.5).ceil() as i64).max(0);
             let last = ((xr - 0.5).floor() as i64).min(self.sw - 1);
             if first <= last {
-                let at = (row * self.sw) as usize;
+                let at = at as usize;
                 self.samples[at + first as usize..=at + last as usize].fill(k);
             }
+            row += 1;
         }
     }
 
@@ -184,7 +261,7 @@ impl Coverage {
             return;
         }
         if self.hairlines.is_empty() {
-            let n = self.width as usize * self.height as usize;
+            let n = self.width as usize * self.held();
             self.hairlines = vec![[0.0, 0.0, 0.0, 1.0]; n];
         }
         let c = self.paints[usize::from(k) - 1];
@@ -217,8 +294,11 @@ impl Coverage {
                     continue;
                 }
                 let (x, y) = match steep {
-                    false => (col as usize, r as usize),
-                    true => (r as usize, col as usize),
+                    false => (col as usize, r as i64),
+                    true => (r as usize, col),
+                };
+                let Some(y) = self.local(y) else {
+                    continue;
                 };
                 let px = &mut self.hairlines[y * self.width as usize + x];
                 let a = share * s as f32;
@@ -230,10 +310,13 @@ impl Coverage {
         }
     }
 
-    /// Rows `y0..y0 + rows` of the picture, RGBA, each pixel the mean of its
-    /// samples weighed by their opacity (so that a transparent background
-    /// does not tint the edges).
-    fn rgba_rows(&self, y0: u32, rows: u32) -> Vec<u8> {
+    /// Pixel row `y` of the picture (held here), RGBA, each pixel the mean
+    /// of its samples weighed by their opacity (so that a transparent
+    /// background does not tint the edges), onto `out`.
+    fn rgba_row(&self, y: u32, out: &mut Vec<u8>) {
+        let Some(y) = self.local(i64::from(y)) else {
+            return;
+        };
         let ss = self.ss as usize;
         let n = (ss * ss) as u32;
         let bg = self.background;
@@ -243,57 +326,67 @@ impl Coverage {
                 k => (self.paints[k as usize - 1], 255),
             }
         };
-        let mut out = Vec::with_capacity(self.width as usize * rows as usize * 4);
-        for y in y0 as usize..(y0 + rows) as usize {
-            for x in 0..self.width as usize {
-                let mut sum = [0u32; 4];
-                for sy in 0..ss {
-                    let base = (y * ss + sy) * self.sw as usize + x * ss;
-                    for &k in &self.samples[base..base + ss] {
-                        let (c, a) = colour(k);
-                        sum[0] += u32::from(c.0) * a;
-                        sum[1] += u32::from(c.1) * a;
-                        sum[2] += u32::from(c.2) * a;
-                        sum[3] += a;
-                    }
-                }
-                match self.hairlines.get(y * self.width as usize + x) {
-                    None => {
-                        let a = sum[3].max(1);
-                        out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
-                        out.push(((sum[3] + n / 2) / n) as u8);
-                    }
-                    Some(h) => out.extend(over(h, sum, n)),
+        for x in 0..self.width as usize {
+            let mut sum = [0u32; 4];
+            for sy in 0..ss {
+                let base = (y * ss + sy) * self.sw as usize + x * ss;
+                for &k in &self.samples[base..base + ss] {
+                    let (c, a) = colour(k);
+                    sum[0] += u32::from(c.0) * a;
+                    sum[1] += u32::from(c.1) * a;
+                    sum[2] += u32::from(c.2) * a;
+                    sum[3] += a;
                 }
             }
+            match self.hairlines.get(y * self.width as usize + x) {
+                None => {
+                    let a = sum[3].max(1);
+                    out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
+                    out.push(((sum[3] + n / 2) / n) as u8);
+                }
+                Some(h) => out.extend(over(h, sum, n)),
+            }
         }
-        out
     }
 
     /// The picture, RGBA, row by row.
     pub fn rgba(&self) -> Vec<u8> {
-        self.rgba_rows(0, self.height)
+        let mut out = Vec::with_capacity(self.width as usize * self.height as usize * 4);
+        for y in 0..self.height {
+            self.rgba_row(y, &mut out);
+        }
+        out
     }
 
     /// The picture as PNG bytes, encoded a band of rows at a time.
     pub fn png(&self) -> Option<Vec<u8>> {
-        let mut out = Vec::new();
-        let mut encoder = ::png::Encoder::new(&mut out, self.width, self.height);
-        encoder.set_color(::png::ColorType::Rgba);
-        encoder.set_depth(::png::BitDepth::Eight);
-        encoder.set_compression(::png::Compression::Fast);
-        let mut writer = encoder.write_header().ok()?;
-        let mut stream = writer.stream_writer().ok()?;
-        let mut row = 0;
-        while row < self.height {
-            let rows = 64.min(self.height - row);
-            std::io::Write::write_all(&mut stream, &self.rgba_rows(row, rows)).ok()?;
-            row += rows;
-        }
-        stream.finish().ok()?;
-        drop(writer);
-        Some(out)
+        png_of_shares(std::slice::from_ref(self))
     }
+}
+
+/// The picture whose shares are `shares` (every share of it, in order) as
+/// PNG bytes, encoded a band of rows at a time.
+fn png_of_shares(shares: &[Coverage]) -> Option<Vec<u8>> {
+    let first = shares.first()?;
+    let (w, h, stripe) = (first.width, first.height, first.stripe);
+    let mut out = Vec::new();
+    let mut encoder = ::png::Encoder::new(&mut out, w, h);
+    encoder.set_color(::png::ColorType::Rgba);
+    encoder.set_depth(::png::BitDepth::Eight);
+    encoder.set_compression(::png::Compression::Fast);
+    let mut writer = encoder.write_header().ok()?;
+    let mut stream = writer.stream_writer().ok()?;
+    let mut rows = Vec::with_capacity(w as usize * 64 * 4);
+    for y in 0..h {
+        shares[(y / stripe) as usize % shares.len()].rgba_row(y, &mut rows);
+        if rows.len() >= w as usize * 64 * 4 || y + 1 == h {
+            std::io::Write::write_all(&mut stream, &rows).ok()?;
+            rows.clear();
+        }
+    }
+    stream.finish().ok()?;
+    drop(writer);
+    Some(out)
 }
 
 /// What the first pass finds: the bounds of the drawing in the picture
@@ -345,6 +438,45 @@ impl Survey {
         let (x, y) = (p[0] - o[0], p[1] - o[1]);
         for (sum, v) in self.sums.iter_mut().zip([1.0, x, y, x * x, x * y, y * y]) {
             *sum += v;
+        }
+    }
+
+    /// Adds what `later` surveyed, as if it had come after what this
+    /// survey saw (the sums for the principal axis moved to this survey's
+    /// first point).
+    pub fn add(&mut self, later: Survey) {
+        self.lo = [self.lo[0].min(later.lo[0]), self.lo[1].min(later.lo[1])];
+        self.hi = [self.hi[0].max(later.hi[0]), self.hi[1].max(later.hi[1])];
+        self.depth = (
+            self.depth.0.min(later.depth.0),
+            self.depth.1.max(later.depth.1),
+        );
+        self.segments += later.segments;
+        self.widest = self.widest.max(later.widest);
+        self.ink += later.ink;
+        for colour in later.colours {
+            if !self.colours.contains(&colour) {
+                self.stored |= self.colours.len() >= 255;
+                self.colours.push(colour);
+            }
+        }
+        self.stored |= later.stored;
+        let Some(theirs) = later.origin else {
+            return;
+        };
+        let ours = *self.origin.get_or_insert(theirs);
+        let [n, x, y, xx, xy, yy] = later.sums;
+        let (dx, dy) = (theirs[0] - ours[0], theirs[1] - ours[1]);
+        let moved = [
+            n,
+            x + n * dx,
+            y + n * dy,
+            xx + 2.0 * dx * x + n * dx * dx,
+            xy + dx * y + dy * x + n * dx * dy,
+            yy + 2.0 * dy * y + n * dy * dy,
+        ];
+        for (sum, m) in self.sums.iter_mut().zip(moved) {
+            *sum += m;
         }
     }
 
@@ -415,92 +547,42 @@ impl Sink for Survey {
     }
 }
 
-/// The second pass: each segment drawn into the picture as it comes.
-pub struct Painter<'p> {
-    proj: Projector,
-    fit: Fit,
-    world_widths: bool,
-    /// Every line black (`--palette mono`).
-    mono: bool,
-    pub picture: Coverage,
-    /// Drawn so far, of `total`, and whom to tell.
-    drawn: u64,
-    total: u64,
-    progress: &'p mut dyn FnMut(u64, u64),
-    /// The direction across the drawing's principal axis, and the range of
-    /// the drawing along it (plane units).
-    across: (f64, f64),
-    range: (f64, f64),
-    /// A colour past the picture's 255.
-    pub overflow: bool,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-impl<'p> Painter<'p> {
-    /// The painter of what `survey` found, into the picture of `opts`;
-    /// `None` when the picture has no pixels.
-    pub fn new(
-        survey: &Survey,
-        opts: &RenderOptions,
-        world_widths: bool,
-        progress: &'p mut dyn FnMut(u64, u64),
-    ) -> Option<Self> {
-        let picture = Coverage::new(
-            opts.width,
-            opts.height,
-            opts.background,
-            opts.background_alpha,
-        )?;
-        let (c, s) = survey.principal();
-        Some(Painter {
-            proj: Projector::new(opts),
-            fit: survey.fit(opts, world_widths),
-            world_widths,
-            mono: opts.style.palette == Some(super::Palette::Mono),
-            picture,
-            drawn: 0,
-            total: survey.segments,
-            progress,
-            across: (-s, c),
-            range: (f64::INFINITY, f64::NEG_INFINITY),
-            overflow: false,
-        })
-    }
-
-    /// How wide the drawing is across the direction it spreads most, in
-    /// pixels ([`super::Spread::width`]).
-    pub fn spread_width(&self) -> f64 {
-        (self.range.1 - self.range.0).max(0.0) * self.fit.scale
-    }
-
-    fn across(&mut self, p: [f64; 2]) {
-        let v = p[0] * self.across.0 + p[1] * self.across.1;
-        self.range = (self.range.0.min(v), self.range.1.max(v));
-    }
-}
-
-impl Sink for Painter<'_> {
-    fn segment(&mut self, s: Segment) {
-        let (Some((a, _)), Some((b, _))) = (self.proj.project(s.a), self.proj.project(s.b)) else {
-            return;
+    #[test]
+    fn surveys_of_parts_added_in_order_are_the_survey_of_the_whole() {
+        let segment = |i: u32| Segment {
+            a: [f64::from(i) * 0.5, f64::from(i % 5), 0.0],
+            b: [f64::from(i) * 0.5 + 3.0, f64::from(i % 5) * 2.0 + 1.0, 0.0],
+            width: f64::from(i % 4),
+            colour: Rgb((i % 3) as u8, 0, 0),
+            index: 0,
+            depth: 0,
         };
-        self.across(a);
-        self.across(b);
-        let colour = match self.mono {
-            true => Rgb(0, 0, 0),
-            false => Paint::own(s.colour, s.index).colour(),
-        };
-        let Some(k) = self.picture.paint(colour) else {
-            self.overflow = true;
-            return;
-        };
-        let width = self.fit.line_width(s.width, self.world_widths);
-        self.picture
-            .line(self.fit.to_px(a), self.fit.to_px(b), width, k);
-        self.drawn += 1;
-        if self.drawn % (1 << 16) == 0 || self.drawn == self.total {
-            (self.progress)(self.drawn, self.total);
+        let opts = RenderOptions::default();
+        let mut whole = Survey::new(&opts);
+        let mut parts = Survey::new(&opts);
+        for part in [0..7, 7..8, 8..30] {
+            let mut survey = Survey::new(&opts);
+            for i in part {
+                whole.segment(segment(i));
+                survey.segment(segment(i));
+            }
+            parts.add(survey);
         }
+        parts.add(Survey::new(&opts));
+        assert_eq!((parts.lo, parts.hi), (whole.lo, whole.hi));
+        assert_eq!(
+            (parts.segments, parts.widest),
+            (whole.segments, whole.widest)
+        );
+        assert_eq!(parts.colours, whole.colours);
+        assert_eq!(parts.origin, whole.origin);
+        for (p, w) in parts.sums.iter().zip(whole.sums) {
+            assert!((p - w).abs() <= 1e-9 * w.abs().max(1.0), "{p} against {w}");
+        }
+        assert!((parts.ink - whole.ink).abs() < 1e-9);
     }
-    fn polygon(&mut self, _: Polygon) {}
-    fn disc(&mut self, _: Disc) {}
 }
