@@ -80,6 +80,12 @@ pub fn start_counting() {
     STARTED.store(true, Relaxed);
 }
 
+/// Makes [`CountingWhenStarted`] stop counting (so that timings on many
+/// threads do not share the counters' cache lines).
+pub fn stop_counting() {
+    STARTED.store(false, Relaxed);
+}
+
 // SAFETY: every call goes to `Counting` or to `System`, which `Counting`
 // forwards to unchanged; a block allocated by either is freed by `System`.
 unsafe impl GlobalAlloc for CountingWhenStarted {

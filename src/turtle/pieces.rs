@@ -59,12 +59,12 @@ struct Cut {
     most: u64,
 }
 
-/// Pieces of 64 Ki symbols and primitives, at most 128 of them: the
+/// Pieces of 32 Ki symbols and primitives, at most 128 of them: the
 /// walk of the spines and a snapshot per piece are a few thousandths of
 /// the work, and there are pieces enough to keep 16 threads busy.
 const CUT: Cut = Cut {
     block: 1 << 14,
-    work: 1 << 16,
+    work: 1 << 15,
     most: 128,
 };
 

@@ -1,7 +1,8 @@
 //! Every core, the same output (issue 38): pictures drawn on 1, 2 and 3
 //! threads are the same bytes over the standard library, the Fractint
-//! corpus and the cpfg corpus; `graftal check` of many files says the same
-//! on any number of threads.
+//! corpus and the cpfg corpus, and so are words big enough to be drawn in
+//! pieces; `graftal check` of many files says the same on any number of
+//! threads.
 
 use crate::common::{corpus, graftal, main_l};
 use graftal::driver::picture::{self, Request, Source, Target, Tracing};
@@ -9,9 +10,14 @@ use graftal::driver::Format;
 
 /// The PNG of `spec` on `threads` threads, at a size small enough to
 /// sweep the corpora and large enough for every thread to draw stripes
-/// (four rows each); `None` when nothing is drawn.
+/// (eight rows each); `None` when nothing is drawn.
 fn png(spec: &str, threads: usize) -> Option<Vec<u8>> {
-    let req = Request {
+    png_at(spec, None, threads)
+}
+
+/// [`png`] after `steps` steps (`None`: the file's).
+fn png_at(spec: &str, steps: Option<u64>, threads: usize) -> Option<Vec<u8>> {
+    let mut req = Request {
         width: 96,
         height: 96,
         tracing: Tracing {
@@ -21,6 +27,8 @@ fn png(spec: &str, threads: usize) -> Option<Vec<u8>> {
         },
         ..Request::new(Target::Still(Format::Png))
     };
+    req.run.steps = steps;
+    req.run.threads = threads;
     let made = picture::make(
         &Source::Spec(spec.to_string()),
         None,
@@ -55,6 +63,36 @@ fn a_lit_picture_is_the_same_on_every_count() {
     let lilac = corpus("cpfg").join("11-CPFG-Lilac");
     let lilac = main_l(&lilac).unwrap().display().to_string();
     assert_eq!(same_on_every_count(&[specs[0].clone(), lilac]), 2);
+}
+
+#[test]
+fn words_drawn_in_pieces_are_the_same_on_every_count() {
+    // Fig. 3.11a at 46 steps: 0.32 M symbols, streamed, cut into pieces.
+    let spec = "std:hogeweg-hesper-a";
+    let sys = graftal::driver::compile(graftal::driver::load(spec).unwrap())
+        .system
+        .unwrap();
+    let opts = graftal::driver::RunOptions {
+        steps: Some(46),
+        ..Default::default()
+    };
+    let word = graftal::driver::derive(&sys, &opts).unwrap();
+    let pieces = graftal::turtle::Pieces::plan(&sys, &word.0[..], None, 0, 1);
+    assert!(graftal::turtle::Pieced::count(&pieces) > 4);
+    let one = png_at(spec, Some(46), 1).expect("drawn");
+    for threads in [2, 3] {
+        assert!(
+            png_at(spec, Some(46), threads) == Some(one.clone()),
+            "{threads} threads"
+        );
+    }
+    // Lit: sympodial-asym's 0.12 M polygons, in pieces.
+    let dir = corpus("cpfg").join("02-Mod-vis-3D-11-sympodial-asym");
+    let lit = main_l(&dir).unwrap().display().to_string();
+    let one = png(&lit, 1).expect("drawn");
+    for threads in [2, 3] {
+        assert!(png(&lit, threads) == Some(one.clone()), "{threads} threads");
+    }
 }
 
 #[test]

@@ -42,6 +42,9 @@ fn samples_per_pixel(width: u32, height: u32) -> u32 {
         .unwrap_or(1)
 }
 
+/// A pixel row another share of the picture keeps.
+const NOT_HELD: u32 = u32::MAX;
+
 /// A picture as paint indices per sample (0 the background), or a share
 /// of one: its pixel rows dealt out in stripes to threads, each holding
 /// its own stripes and drawing into them every line, in order (so that
@@ -55,6 +58,9 @@ pub struct Coverage {
     stripe: u32,
     shares: u32,
     share: u32,
+    /// Where each pixel row is kept here ([`NOT_HELD`] where another share
+    /// keeps it): a look-up, not divisions, for every pixel a line covers.
+    rows: Vec<u32>,
     /// Samples per row and rows of samples.
     sw: i64,
     sh: i64,
@@ -130,6 +136,7 @@ impl Coverage {
             stripe,
             shares,
             share,
+            rows: Vec::new(),
             sw,
             sh,
             samples: Vec::new(),
@@ -138,20 +145,25 @@ impl Coverage {
             background_alpha,
             hairlines: Vec::new(),
         };
-        let held = (0..height)
-            .filter(|&y| c.local(i64::from(y)).is_some())
-            .count();
-        c.samples = vec![0; usize::try_from(sw).ok()? * held * ss as usize];
+        let mut held = 0;
+        c.rows = (0..height)
+            .map(|y| match (y / stripe) % shares == share {
+                true => {
+                    held += 1;
+                    held - 1
+                }
+                false => NOT_HELD,
+            })
+            .collect();
+        c.samples = vec![0; usize::try_from(sw).ok()? * held as usize * ss as usize];
         Some(c)
     }
 
     /// Where pixel row `y` is kept here, if this share holds it.
     #[inline]
     fn local(&self, y: i64) -> Option<usize> {
-        let (stripe, shares) = (i64::from(self.stripe), i64::from(self.shares));
-        let s = y.div_euclid(stripe);
-        (y >= 0 && y < i64::from(self.height) && s % shares == i64::from(self.share))
-            .then(|| (s / shares * stripe + y % stripe) as usize)
+        let at = *self.rows.get(usize::try_from(y).ok()?)?;
+        (at != NOT_HELD).then_some(at as usize)
     }
 
     /// Whether this share holds any pixel row from `lo` to `hi` (NaN:
