@@ -47,17 +47,16 @@ const NOT_HELD: u32 = u32::MAX;
 
 /// A picture as paint indices per sample (0 the background), or a share
 /// of one: its pixel rows dealt out in stripes to threads, each holding
-/// its own stripes and drawing into them every line, in order (so that
-/// each sample sees the lines it would see in the whole picture).
+/// its own stripes and drawing into them every line that reaches them, in
+/// order (so that each sample sees the lines it would see in the whole
+/// picture).
 pub struct Coverage {
     width: u32,
     height: u32,
     ss: u32,
-    /// Pixel rows per stripe, how many shares the stripes are dealt to,
-    /// and which this one is.
+    /// Pixel rows per stripe (the stripes are dealt out to the shares in
+    /// turn).
     stripe: u32,
-    shares: u32,
-    share: u32,
     /// Where each pixel row is kept here ([`NOT_HELD`] where another share
     /// keeps it): a look-up, not divisions, for every pixel a line covers.
     rows: Vec<u32>,
@@ -134,8 +133,6 @@ impl Coverage {
             height,
             ss,
             stripe,
-            shares,
-            share,
             rows: Vec::new(),
             sw,
             sh,
@@ -166,18 +163,6 @@ impl Coverage {
         (at != NOT_HELD).then_some(at as usize)
     }
 
-    /// Whether this share holds any pixel row from `lo` to `hi` (NaN:
-    /// yes, and the drawing decides).
-    fn holds_rows(&self, lo: f64, hi: f64) -> bool {
-        let span = f64::from(self.stripe * self.shares);
-        if self.shares == 1 || (hi - lo).partial_cmp(&span) != Some(std::cmp::Ordering::Less) {
-            return true;
-        }
-        let stripe = f64::from(self.stripe);
-        let (first, last) = ((lo / stripe).floor() as i64, (hi / stripe).floor() as i64);
-        (first..=last).any(|s| s.rem_euclid(i64::from(self.shares)) == i64::from(self.share))
-    }
-
     /// The pixel rows this share holds.
     fn held(&self) -> usize {
         self.samples.len() / (self.sw as usize * self.ss as usize).max(1)
@@ -200,12 +185,6 @@ impl Coverage {
     /// ([`Coverage::hairline`]) of its width's opacity, as tiny-skia strokes
     /// it; 0 or NaN wide, an opaque hairline.
     pub fn line(&mut self, a: [f64; 2], b: [f64; 2], width: f64, k: u8) {
-        // Most lines of a dense drawing lie in one stripe: a share that
-        // holds none of the rows a line can reach leaves it at once.
-        let reach = if width >= 1.0 { width / 2.0 } else { 0.0 } + 1.0;
-        if !self.holds_rows(a[1].min(b[1]) - reach, a[1].max(b[1]) + reach) {
-            return;
-        }
         if width.is_nan() || width < 1.0 {
             let alpha = if width > 0.0 { width } else { 1.0 };
             return self.hairline(a, b, alpha as f32, k);

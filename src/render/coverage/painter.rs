@@ -1,8 +1,8 @@
 //! The second pass over a flat line drawing, on every thread: the word's
 //! pieces are interpreted a round at a time, each piece on a thread into
-//! its segments projected to the picture ([`Lines`]); then every thread
-//! draws the round's lines, in order, into its own stripes of the picture
-//! ([`Coverage`] shares). Each sample sees the lines it sees when one
+//! its segments projected to the picture and dealt to the stripes they
+//! reach ([`Lines`]); then every thread draws the round's lines that reach
+//! its own stripes of the picture, in order ([`Coverage`] shares). Each sample sees the lines it sees when one
 //! thread draws the whole word, in the same order, so the picture is the
 //! same on any number of threads.
 
@@ -16,8 +16,8 @@ use crate::turtle::{Disc, Pieced, Polygon, Segment, Sink};
 /// Pixel rows in a stripe of a thread's share of the picture.
 const STRIPE: u32 = 8;
 
-/// A segment in the picture plane: its ends, its width as the turtle
-/// drew it, and its colour.
+/// A segment as the picture draws it: its ends and width in pixels, and
+/// its colour.
 #[derive(Clone, Copy, Debug)]
 struct Line {
     a: [f64; 2],
@@ -26,19 +26,55 @@ struct Line {
     colour: Rgb,
 }
 
-/// A piece's segments projected into the picture plane, and the range of
-/// the drawing across its principal axis.
-struct Lines {
+/// A piece's segments projected into the picture, each dealt to the
+/// shares whose stripes it can reach (so that a thread goes over its own
+/// lines only), and the range of the drawing across its principal axis.
+struct Lines<'f> {
     proj: Projector,
+    fit: &'f Fit,
+    world_widths: bool,
     /// Every line black (`--palette mono`).
     mono: bool,
     /// The direction across the drawing's principal axis.
     across: (f64, f64),
     range: (f64, f64),
-    lines: Vec<Line>,
+    /// Per share of the picture, its lines in order.
+    shares: Vec<Vec<Line>>,
+    /// Lines made (once each, whatever the shares they went to).
+    made: u64,
 }
 
-impl Sink for Lines {
+impl Lines<'_> {
+    /// Gives `line` to each share holding a pixel row it can reach.
+    fn deal(&mut self, line: Line) {
+        let n = self.shares.len() as i64;
+        let reach = if line.width >= 1.0 {
+            line.width / 2.0
+        } else {
+            0.0
+        } + 1.0;
+        let (lo, hi) = (
+            line.a[1].min(line.b[1]) - reach,
+            line.a[1].max(line.b[1]) + reach,
+        );
+        let stripe = f64::from(STRIPE);
+        let (first, last) = ((lo / stripe).floor(), (hi / stripe).floor());
+        // Spanning a stripe of every share, or not a number: every share
+        // draws it (and the drawing decides).
+        let few = (last - first).partial_cmp(&(n as f64)) == Some(std::cmp::Ordering::Less);
+        if n == 1 || !few {
+            for share in &mut self.shares {
+                share.push(line);
+            }
+            return;
+        }
+        for s in first as i64..=last as i64 {
+            self.shares[s.rem_euclid(n) as usize].push(line);
+        }
+    }
+}
+
+impl Sink for Lines<'_> {
     fn segment(&mut self, s: Segment) {
         let (Some((a, _)), Some((b, _))) = (self.proj.project(s.a), self.proj.project(s.b)) else {
             return;
@@ -51,10 +87,11 @@ impl Sink for Lines {
             true => Rgb(0, 0, 0),
             false => Paint::own(s.colour, s.index).colour(),
         };
-        self.lines.push(Line {
-            a,
-            b,
-            width: s.width,
+        self.made += 1;
+        self.deal(Line {
+            a: self.fit.to_px(a),
+            b: self.fit.to_px(b),
+            width: self.fit.line_width(s.width, self.world_widths),
             colour,
         });
     }
@@ -121,64 +158,34 @@ impl<'p> Painter<'p> {
         let threads = crate::parallel::threads(threads);
         let round = 2 * threads;
         let pieces = word.count();
-        let empty = Lines {
-            proj: self.proj,
-            mono: self.mono,
-            across: self.across,
-            range: (f64::INFINITY, f64::NEG_INFINITY),
-            lines: Vec::new(),
-        };
+        let shares = self.shares.len();
         for first in (0..pieces).step_by(round) {
             let lines = crate::parallel::map_in_order(
                 round.min(pieces - first),
                 threads,
                 |k| {
                     let mut lines = Lines {
-                        lines: Vec::new(),
-                        ..empty
+                        proj: self.proj,
+                        fit: &self.fit,
+                        world_widths: self.world_widths,
+                        mono: self.mono,
+                        across: self.across,
+                        range: (f64::INFINITY, f64::NEG_INFINITY),
+                        shares: vec![Vec::new(); shares],
+                        made: 0,
                     };
                     word.run(first + k, &mut lines);
                     lines
                 },
                 |_| {},
             );
-            self.paint(&lines);
-        }
-    }
-
-    /// Each share draws every line of `pieces`, in order, on a thread of
-    /// its own (the first on this one).
-    fn paint(&mut self, pieces: &[Lines]) {
-        let (fit, world_widths) = (&self.fit, self.world_widths);
-        let draw = |share: &mut Coverage| {
-            let mut overflow = false;
-            for line in pieces.iter().flat_map(|p| &p.lines) {
-                let width = fit.line_width(line.width, world_widths);
-                match share.paint(line.colour) {
-                    Some(k) => share.line(fit.to_px(line.a), fit.to_px(line.b), width, k),
-                    None => overflow = true,
-                }
+            self.overflow |= paint(&mut self.shares, &lines);
+            for p in &lines {
+                self.range = (self.range.0.min(p.range.0), self.range.1.max(p.range.1));
+                self.drawn += p.made;
             }
-            overflow
-        };
-        let overflow = std::thread::scope(|scope| {
-            let (first, rest) = self.shares.split_at_mut(1);
-            let others: Vec<_> = rest
-                .iter_mut()
-                .map(|s| scope.spawn(move || draw(s)))
-                .collect();
-            let mut overflow = first.iter_mut().any(draw);
-            for t in others {
-                overflow |= t.join().unwrap_or(true);
-            }
-            overflow
-        });
-        self.overflow |= overflow;
-        for p in pieces {
-            self.range = (self.range.0.min(p.range.0), self.range.1.max(p.range.1));
-            self.drawn += p.lines.len() as u64;
+            (self.progress)(self.drawn.min(self.total), self.total);
         }
-        (self.progress)(self.drawn.min(self.total), self.total);
     }
 
     /// How wide the drawing is across the direction it spreads most, in
@@ -191,6 +198,32 @@ impl<'p> Painter<'p> {
     pub fn png(&self) -> Option<Vec<u8>> {
         png_of_shares(&self.shares)
     }
+}
+
+/// Each share draws its lines of `pieces`, in order, on a thread of its
+/// own (the first on this one); whether a colour was past the picture's
+/// 255.
+fn paint(shares: &mut [Coverage], pieces: &[Lines<'_>]) -> bool {
+    let draw = |(k, share): (usize, &mut Coverage)| {
+        let mut overflow = false;
+        for line in pieces.iter().flat_map(|p| &p.shares[k]) {
+            match share.paint(line.colour) {
+                Some(paint) => share.line(line.a, line.b, line.width, paint),
+                None => overflow = true,
+            }
+        }
+        overflow
+    };
+    std::thread::scope(|scope| {
+        let mut shares = shares.iter_mut().enumerate();
+        let first = shares.next();
+        let others: Vec<_> = shares.map(|s| scope.spawn(move || draw(s))).collect();
+        let mut overflow = first.is_some_and(draw);
+        for t in others {
+            overflow |= t.join().unwrap_or(true);
+        }
+        overflow
+    })
 }
 
 #[cfg(test)]
