@@ -186,7 +186,8 @@ cd "$CORPUS"
 stdlib_cases() {
     local line
     while IFS= read -r line; do
-        if [[ $line == std:* ]]; then echo "$line"; fi
+        # `list` prints the name, then the figure and whether it draws.
+        if [[ $line == std:* ]]; then echo "${line%%[[:space:]]*}"; fi
     done < <("$1" list </dev/null || true)
 }
 
@@ -388,7 +389,8 @@ run_job() {
     scr=$(mktemp -d "$RUN_DIR/scratch/job.XXXXXX")
     b=$(run_one "$BASE_BIN" "$case" "$cmd" "$scr")
     n=$(run_one "$NEW_BIN" "$case" "$cmd" "$scr")
-    rmdir "$scr"
+    # A run may leave side files (a mesh's material, its textures).
+    rm -rf "$scr"
     printf 'base\t%s\t%s\t%s\nnew\t%s\t%s\t%s\n' "$case" "$cmd" "$b" "$case" "$cmd" "$n"
 }
 
