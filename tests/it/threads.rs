@@ -10,7 +10,7 @@ use graftal::driver::Format;
 
 /// The PNG of `spec` on `threads` threads, at a size small enough to
 /// sweep the corpora and large enough for every thread to draw stripes
-/// (eight rows each); `None` when nothing is drawn.
+/// (32 rows each); `None` when nothing is drawn.
 fn png(spec: &str, threads: usize) -> Option<Vec<u8>> {
     png_at(spec, None, threads)
 }

@@ -13,8 +13,9 @@ use crate::render::shade::Paint;
 use crate::render::{Fit, RenderOptions};
 use crate::turtle::{Disc, Pieced, Polygon, Segment, Sink};
 
-/// Pixel rows in a stripe of a thread's share of the picture.
-const STRIPE: u32 = 8;
+/// Pixel rows in a stripe of a thread's share of the picture: tall enough
+/// that few lines reach two stripes (each share then goes over them).
+const STRIPE: u32 = 32;
 
 /// A segment as the picture draws it: its ends and width in pixels, and
 /// its colour.
