@@ -107,6 +107,12 @@ pub struct Geometry {
     /// picture drawn from it and one drawn straight from the turtle agree.
     #[serde(skip)]
     pub order: Vec<(Drawn, u32)>,
+    /// Where each piece of the word after the first starts, as a count of
+    /// things drawn before it ([`crate::turtle::Pieces`]): a lit picture
+    /// drawn from this cuts its parts there, as the picture drawn straight
+    /// from the turtle does, so that the two agree.
+    #[serde(skip)]
+    pub cuts: Vec<usize>,
 }
 
 /// Grows the box `b` (`[minx, miny, minz, maxx, maxy, maxz]`, `None` when
@@ -257,6 +263,9 @@ impl Geometry {
     /// Adds `later` (drawn after this, by the same turtle: its order notes
     /// complete) after what this holds.
     pub fn append(&mut self, later: Geometry) {
+        let before = self.segments.len() + self.polygons.len() + self.discs.len();
+        self.cuts.push(before);
+        self.cuts.extend(later.cuts.iter().map(|c| before + c));
         self.segments.extend(later.segments);
         self.polygons.extend(later.polygons);
         self.discs.extend(later.discs);
@@ -270,17 +279,27 @@ impl Geometry {
         }
     }
 
-    /// The drawing in parts of at most `most` things each, in order, to be
-    /// drawn on several threads ([`Pieced`]).
+    /// The drawing in parts, in order, to be drawn on several threads
+    /// ([`Pieced`]): cut where the pieces of its word started, if it was
+    /// drawn in pieces ([`Geometry::cuts`]), else every `most` things.
     pub fn in_parts(&self, most: usize) -> Parts<'_> {
         let most = most.max(1);
+        let mut cuts = self.cuts.iter().copied().filter(|&c| c > 0);
         let mut parts = vec![Vec::new()];
-        let mut room = most;
+        // Things until the next cut, and things given so far.
+        let next_cut =
+            |cuts: &mut dyn Iterator<Item = usize>, done: usize| match self.cuts.is_empty() {
+                true => most,
+                false => cuts.next().map_or(usize::MAX, |c| c - done),
+            };
+        let mut done = 0;
+        let mut room = next_cut(&mut cuts, done);
         for (kind, mut first, end) in self.runs() {
             while first < end {
                 if room == 0 {
                     parts.push(Vec::new());
-                    room = most;
+                    room = next_cut(&mut cuts, done);
+                    continue;
                 }
                 let take = room.min(end - first);
                 parts
@@ -289,6 +308,7 @@ impl Geometry {
                     .push((kind, first, first + take));
                 first += take;
                 room -= take;
+                done += take;
             }
         }
         Parts { g: self, parts }
