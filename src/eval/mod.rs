@@ -86,7 +86,8 @@ pub enum Method {
     /// predecessors, without parameters or guards (stochastic alternatives
     /// allowed): each step looks up the production of every (left, symbol,
     /// right) in a table, on words of bytes when the alphabet has fewer
-    /// than 256 symbols.
+    /// than 256 symbols, a step of a big word on every thread
+    /// ([`DeriveOptions::threads`]).
     Table,
     /// Any other system without parameters (longer predecessors and
     /// contexts, guards): the general matcher.
@@ -266,12 +267,21 @@ impl<'a> Deriver<'a> {
         progress: impl FnMut(u64, usize),
     ) -> Result<Symbols, Diagnostic> {
         let n = self.sys.symbols.len();
+        // A table step of a big word is shared among the threads.
+        let threads = crate::parallel::threads(opts.threads);
         Ok(match &self.table {
-            Some(t) if n < 256 => Symbols::Bytes(self.steps(&t.stepper::<u8>(), opts, progress)?.0),
-            Some(t) if n < 65536 => {
-                Symbols::Shorts(self.steps(&t.stepper::<u16>(), opts, progress)?.0)
+            Some(t) if n < 256 => {
+                let stepper = t.stepper::<u8>().on(threads);
+                Symbols::Bytes(self.steps(&stepper, opts, progress)?.0)
             }
-            Some(t) => Symbols::Wide(self.steps(&t.stepper::<SymbolId>(), opts, progress)?.0),
+            Some(t) if n < 65536 => {
+                let stepper = t.stepper::<u16>().on(threads);
+                Symbols::Shorts(self.steps(&stepper, opts, progress)?.0)
+            }
+            Some(t) => {
+                let stepper = t.stepper::<SymbolId>().on(threads);
+                Symbols::Wide(self.steps(&stepper, opts, progress)?.0)
+            }
             None => Symbols::Wide(self.steps(&General(self), opts, progress)?.0),
         })
     }
@@ -821,6 +831,23 @@ mod tests {
     use super::*;
     use crate::front::pfg::read_ok as sys;
 
+    /// `w` with the `]`s that close nothing dropped and what stays open
+    /// closed (pfg wants balanced successors).
+    pub(super) fn balanced(w: &str) -> String {
+        let mut depth = 0usize;
+        let mut out = String::new();
+        for c in w.chars() {
+            match c {
+                '[' => depth += 1,
+                ']' if depth == 0 => continue,
+                ']' => depth -= 1,
+                _ => {}
+            }
+            out.push(c);
+        }
+        out + &"]".repeat(depth)
+    }
+
     fn run(src: &str, n: u64) -> String {
         let s = sys(src);
         derive(&s, &DeriveOptions::new(n))
@@ -990,25 +1017,10 @@ mod tests {
                 ("[ab+*]", "[ab+]", "[ab+*]", "[ab+\\[\\]]{0,5}"), 1..6),
             ignore_plus in proptest::bool::ANY,
             seed in 0u64..4,
+            threads in 1usize..8,
         ) {
-            // pfg wants balanced brackets: drop the `]`s that close
-            // nothing, close what stays open.
-            let balance = |w: &str| {
-                let mut depth = 0usize;
-                let mut out = String::new();
-                for c in w.chars() {
-                    match c {
-                        '[' => depth += 1,
-                        ']' if depth == 0 => continue,
-                        ']' => depth -= 1,
-                        _ => {}
-                    }
-                    out.push(c);
-                }
-                out + &"]".repeat(depth)
-            };
-            let axiom = balance(&axiom);
-            let rules: Vec<_> = rules.iter().map(|(l, p, r, w)| (l, p, r, balance(w))).collect();
+            let axiom = balanced(&axiom);
+            let rules: Vec<_> = rules.iter().map(|(l, p, r, w)| (l, p, r, balanced(w))).collect();
             let mut src = format!("axiom: {axiom}\n");
             if ignore_plus {
                 src.push_str("ignore: +\n");
@@ -1023,6 +1035,14 @@ mod tests {
             proptest::prop_assert!(Deriver::new(&s).table.is_some());
             let opts = DeriveOptions::new(6).seed(seed).max_symbols(100_000);
             let fast = Deriver::new(&s).derive_stepwise(&opts, |_, _| {});
+            // Every step cut into pieces of one symbol and more, one a
+            // thread.
+            let d = Deriver::new(&s);
+            let split = table::Split { from: 1, piece: 1 + seed as usize };
+            let stepper = d.table.as_ref().unwrap().stepper::<u8>().on(threads).split(split);
+            let pieces = d.steps(&stepper, &opts, |_, _| {}).map(|(w, _)| w);
+            let bytes = fast.as_ref().map(|w| w.0.iter().map(|s| s.0 as u8).collect::<Vec<_>>());
+            proptest::prop_assert_eq!(pieces.ok(), bytes.ok(), "{} on {} threads", src, threads);
             proptest::prop_assert_eq!(fast.ok(), general(&s, &opts).ok(), "{}", src);
         }
     }

@@ -13,16 +13,27 @@
 //! for every position, then one pass that looks the production up and
 //! copies its successor.
 //!
-//! One thread: splitting a step into halves for two threads was measured
-//! slower on the 2-core machines graftal is tested on (the second half
-//! must first scan the first for its left-context state, and two threads
-//! there run at about 1.3 times one thread's throughput).
+//! A step of a big word (from 64 Ki symbols) is shared among the threads
+//! asked for, one piece of the word a thread ([`parallel`]): each piece's
+//! context at its borders is found from short summaries of the others, so
+//! the word is the one-thread word for any number of threads. Measured on
+//! the 2-core test machine (best and median of interleaved runs while
+//! nothing else ran): `graftal derive std:hogeweg-hesper-a -n 60` (9.2
+//! million symbols) took 226 ms (median 228) on one thread and 130 ms
+//! (134) on two, 1.7 times faster; what stays on one thread whatever the
+//! count (writing the word out, about 15 ms, starting up and the steps
+//! below the threshold, about 8) keeps it from 2. Shorter words, one
+//! thread, and systems with stochastic productions (whose draws come in
+//! word order from one generator) take the one-thread path unchanged.
 //!
 //! Words are exactly those of the general matcher ([`super::Deriver`]); the
 //! tests compare them.
 
 use super::{Rng, Stepper, Sym};
 use crate::ir::{SymbolId, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+mod parallel;
 
 /// The most table cells built (4 bytes each).
 const MAX_CELLS: usize = 1 << 22;
@@ -71,6 +82,25 @@ impl<T> Default for Neighbours<T> {
         Neighbours {
             right: Vec::new(),
             growth: 1.0,
+        }
+    }
+}
+
+/// When a step is cut into pieces for several threads: from a word of
+/// `from` symbols, into pieces of at least `piece` symbols (fewer pieces
+/// than threads when the word is short). The tests lower both to cut small
+/// words into many pieces.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Split {
+    pub(super) from: usize,
+    pub(super) piece: usize,
+}
+
+impl Default for Split {
+    fn default() -> Self {
+        Split {
+            from: 1 << 16,
+            piece: 1 << 15,
         }
     }
 }
@@ -255,6 +285,8 @@ impl<'a> Table<'a> {
                 let (symbol, class) = (bits(self.side - 2), bits(self.rights - 1));
                 (symbol + class <= T::BITS).then_some(symbol)
             },
+            threads: 1,
+            split: Split::default(),
         }
     }
 }
@@ -285,6 +317,9 @@ pub(super) struct TableStepper<'t, 'a, T> {
     /// word's own symbols, shifted by this, instead of in an array as long
     /// as the word: a step then holds just the word and its rewriting.
     packed_shift: Option<u32>,
+    /// Threads a step of a big word is shared among ([`parallel`]).
+    threads: usize,
+    split: Split,
 }
 
 impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
@@ -300,16 +335,18 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
         max: usize,
     ) -> Result<(), ()> {
         out.clear();
+        let pieces = self.pieces(cur.len());
+        if pieces > 1 {
+            return self.step_in_pieces(cur, nb, out, max, pieces);
+        }
         // One allocation of about the output's size (growing by a sixteenth
         // when the guess falls short), not a doubling Vec: the output is
         // most of what a step holds.
-        let slack = self.chunk_len() * self.longest.max(COPY) + COPY;
-        let guess = (cur.len() as f64 * nb.growth * 1.02) as usize;
-        out.reserve_exact(guess.min(max).saturating_add(slack));
+        out.reserve_exact(self.room(cur.len(), nb.growth, max));
         let done = match self.packed_shift {
             Some(shift) => {
                 self.pack_right_neighbours(cur, shift);
-                let done = self.rewrite::<true>(cur, &[], out, rng, max);
+                let done = self.rewrite::<true>(cur, &[], out, rng, max, &mut self.left(), None);
                 let low = (1 << shift) - 1;
                 for s in cur.iter_mut() {
                     *s = T::from_index(s.index() & low);
@@ -318,7 +355,8 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
             }
             None => {
                 self.right_neighbours(cur, &mut nb.right);
-                self.rewrite::<false>(cur, &nb.right, out, rng, max)
+                let (left, right) = (&mut self.left(), &nb.right[1..]);
+                self.rewrite::<false>(cur, right, out, rng, max, left, None)
             }
         };
         if !cur.is_empty() {
@@ -330,6 +368,47 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
 }
 
 impl<T: Sym> TableStepper<'_, '_, T> {
+    /// The stepper sharing a step of a big word among `threads` threads.
+    pub(super) fn on(self, threads: usize) -> Self {
+        TableStepper { threads, ..self }
+    }
+
+    /// The stepper cutting steps as `split` says (the tests cut small
+    /// words into many pieces).
+    #[cfg(test)]
+    pub(super) fn split(self, split: Split) -> Self {
+        TableStepper { split, ..self }
+    }
+
+    /// How many pieces a step of a word of `len` symbols is cut into: 1
+    /// (the one-thread path) for one thread, a short word, or stochastic
+    /// productions, whose draws must come in word order from one
+    /// generator.
+    fn pieces(&self, len: usize) -> usize {
+        if self.threads <= 1 || len < self.split.from || self.stochastic() {
+            return 1;
+        }
+        self.threads.min(len / self.split.piece.max(1)).max(1)
+    }
+
+    fn stochastic(&self) -> bool {
+        self.spans.iter().any(|&(_, len)| len == STOCHASTIC)
+    }
+
+    /// Room for the rewriting of `len` symbols when the last step grew the
+    /// word by `growth`: that growth and a little more (up to `max`), and
+    /// what one chunk of [`Self::rewrite`] may write past it.
+    fn room(&self, len: usize, growth: f64, max: usize) -> usize {
+        let slack = self.chunk_len() * self.longest.max(COPY) + COPY;
+        let guess = (len as f64 * growth * 1.02) as usize;
+        guess.min(max).saturating_add(slack)
+    }
+
+    /// The left-context state at the start of the word.
+    fn left(&self) -> Left<T> {
+        Left::new(self.none)
+    }
+
     /// Moves the right-context state (`next`: the nearest visible symbol
     /// so far, `stack`: its value outside each branch entered) leftwards
     /// past symbol `s`.
@@ -386,9 +465,12 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         (RESERVE / self.longest.max(COPY)).clamp(1, CHUNK)
     }
 
-    /// Rewrites `cur` onto the end of `out`. `PACKED`: each symbol of
-    /// `cur` holds its right neighbour in its high bits
-    /// ([`Self::pack_right_neighbours`]); else `right` holds them.
+    /// Rewrites `cur` onto the end of `out`, from the left-context state
+    /// `state` (left as it is after `cur`). `PACKED`: each symbol of `cur` holds its right neighbour in
+    /// its high bits ([`Self::pack_right_neighbours`]); else `right[i]`
+    /// holds that of `cur[i]`. `total`: the symbols every piece of a step
+    /// cut into pieces has written so far, kept under `max` as well.
+    #[allow(clippy::too_many_arguments)]
     fn rewrite<const PACKED: bool>(
         &self,
         cur: &[T],
@@ -396,10 +478,13 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         out: &mut Vec<T>,
         rng: &mut Rng,
         max: usize,
+        state: &mut Left<T>,
+        total: Option<&AtomicUsize>,
     ) -> Result<(), ()> {
         let t = self.table;
         let none = self.none;
-        let mut left = Left::new(none);
+        // A local the loop keeps in registers, put back at the end.
+        let mut left = std::mem::replace(state, Left::new(none));
         let shift = self.packed_shift.unwrap_or(0);
         let low = (1 << shift) - 1;
         let longest = self.longest.max(COPY);
@@ -410,6 +495,8 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         // Written by index into `out` grown ahead a chunk at a time, so the
         // length stays in a register (pushing reloads it every symbol).
         let mut w = out.len();
+        // What of `out` is in `total` already.
+        let mut counted = w;
         let mut at = 0;
         let chunk_len = self.chunk_len();
         for chunk in cur.chunks(chunk_len) {
@@ -427,7 +514,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
                     let si = s.index() & low;
                     (T::from_index(si), si, s.index() >> shift)
                 } else {
-                    (s, s.index(), right[at + 1].index())
+                    (s, s.index(), right[at].index())
                 };
                 // Context-free symbols have one cell: the mask is zero.
                 let (base, mask) = entry[si];
@@ -451,14 +538,21 @@ impl<T: Sym> TableStepper<'_, '_, T> {
                     w += succ.len();
                 }
             }
-            if w > max {
+            if w > max || total.is_some_and(|t| over(t, w - counted, max)) {
                 out.truncate(w);
                 return Err(());
             }
+            counted = w;
         }
         out.truncate(w);
+        *state = left;
         Ok(())
     }
+}
+
+/// Adds `grown` symbols to `total`; whether that passes `max`.
+fn over(total: &AtomicUsize, grown: usize, max: usize) -> bool {
+    total.fetch_add(grown, Ordering::Relaxed) + grown > max
 }
 
 #[cfg(test)]

@@ -1,0 +1,683 @@
+//! One step of a big word on several threads: the word is cut into pieces,
+//! one a thread. The first piece is rewritten straight into the new word;
+//! each other piece into blocks that its thread sends to the first piece's,
+//! which copies them after its own in word order (while the later ones are
+//! still being rewritten) and frees them.
+//!
+//! What a position rewrites to depends on context that may lie in other
+//! pieces: its left-context state (the nearest visible symbol on its left
+//! and the stack of those before each open branch) and its right-context
+//! state (the mirror image, met scanning leftwards). Each is a prefix (or
+//! suffix) computation over the word, so it is done in three stages:
+//!
+//! 1. every piece, on its own thread, runs the leftwards pass that finds
+//!    right neighbours as if the state right of it were unknown: values
+//!    that come from outside the piece are kept as references to it
+//!    ([`Val`]), and the few positions whose right neighbour is such a
+//!    reference are listed. The same pass sums up the piece's effect on
+//!    either state ([`Summary`]): the brackets it leaves unmatched and the
+//!    values it pushes, the nearest visible symbol it leaves;
+//! 2. one short scan of the summaries, rightwards for the left context and
+//!    leftwards for the right context, finds the exact state at each
+//!    piece's borders (its cost is the number of unmatched brackets, not
+//!    the word's length);
+//! 3. every piece, on its own thread, fills in the listed right neighbours
+//!    from the state at its right border and rewrites itself from the state
+//!    at its left border, exactly as the one-thread pass would.
+//!
+//! So the word is the one-thread word whatever the number of pieces. The
+//! symbol limit is kept over all pieces together (a shared count checked
+//! as often as the one-thread pass checks its own), so a step fails
+//! exactly when its whole output is longer than the limit, and the pieces
+//! together hold no more than it. A step holds about what the one-thread
+//! step holds, its input and its output: the new word grows as the blocks
+//! copied into it are freed.
+
+use super::{Left, Neighbours, TableStepper, CLOSE, OPEN, VISIBLE};
+use crate::eval::{Rng, Stream, Sym};
+use std::sync::atomic::AtomicUsize;
+use std::sync::mpsc;
+
+/// A value of the context state while a piece is scanned on its own: a
+/// symbol index below `side` (`side - 1` being "none"), or from `side` on a
+/// value from outside the piece: `side` the nearest visible symbol the
+/// state held at the piece's border, `side + j` the `j`-th value popped
+/// from its stack there (the top first; "none" where it held fewer).
+type Val = usize;
+
+/// The most listed positions whose right neighbour lies outside their
+/// piece; a piece with more (a long run without a visible symbol, say) is
+/// scanned again once its right border is known.
+const FIXES: usize = 1 << 12;
+
+/// A piece's effect on the context states, from its leftwards pass.
+struct Summary {
+    /// `[`s with no `]` after them in the piece: each pops a value of the
+    /// right-context stack from outside it.
+    opens: usize,
+    /// The nearest visible symbol at or after the piece's start.
+    next: Val,
+    /// The values the right-context pass pushes at the `]`s with no `[`
+    /// before them in the piece, the rightmost first (so the last is the
+    /// top of the stack at the piece's start).
+    rights: Vec<Val>,
+    /// The left-context state's nearest visible symbol at the piece's end,
+    /// then its value at each `[` with no `]` after it, the innermost
+    /// (rightmost) first.
+    lefts: Vec<Val>,
+    /// The positions whose right neighbour is a value from outside, with
+    /// that value; `None` when there were more than [`FIXES`].
+    fixes: Option<Vec<(usize, Val)>>,
+}
+
+/// What a piece's leftwards scan notes on the few occasions it meets a
+/// value from outside the piece.
+struct Rare {
+    side: usize,
+    /// The `[`s met so far with no `]` after them.
+    opens: usize,
+    /// [`Summary::lefts`] so far, the last `waiting` of them not yet
+    /// known: each is the first visible symbol met leftwards outside every
+    /// branch (one symbol for all of them), or, if none is, a value from
+    /// outside.
+    lefts: Vec<Val>,
+    waiting: usize,
+    fixes: Option<Vec<(usize, Val)>>,
+}
+
+impl Rare {
+    /// Position `i` has the right neighbour `v` from outside; `visible`:
+    /// its symbol, when it is visible and outside every branch.
+    ///
+    /// Outside every branch, a left-context value is waiting exactly when
+    /// the right neighbour comes from outside (both start at the piece's
+    /// end and at each unmatched `[`, and both end at the first visible
+    /// symbol outside every branch), so the waiting values are settled
+    /// here too.
+    #[cold]
+    #[inline(never)]
+    fn outside(&mut self, i: usize, v: Val, visible: Option<usize>) {
+        self.fixes = self.fixes.take().filter(|f| f.len() < FIXES).map(|mut f| {
+            f.push((i, v));
+            f
+        });
+        if let Some(s) = visible {
+            let at = self.lefts.len() - self.waiting;
+            self.lefts[at..].fill(s);
+            self.waiting = 0;
+        }
+    }
+
+    /// A `[` whose branch goes on past the piece: it pops a value from
+    /// outside, and its left context is the one met further left.
+    #[cold]
+    #[inline(never)]
+    fn open(&mut self) -> Val {
+        self.opens += 1;
+        self.lefts.push(0);
+        self.waiting += 1;
+        self.side + self.opens
+    }
+}
+
+/// Symbols of a piece rewritten into one block: enough that a block's
+/// allocation and the room its rewriting wants ahead (a chunk's worth) cost
+/// little, few enough that blocks are copied while later ones are being
+/// rewritten. Measured on the whole of `derive std:hogeweg-hesper-a -n 60`
+/// on two threads: 2^19 to 2^21 as fast as each other, 2^16 10% slower,
+/// and blocks copied only once every piece was done 20% slower.
+const BLOCK: usize = 1 << 19;
+
+/// Where a piece is rewritten: the first straight into the word, the others
+/// into blocks of [`BLOCK`] symbols' rewriting, sent to be copied into the
+/// word and freed.
+enum Dest<'o, T> {
+    Word(&'o mut Vec<T>),
+    Blocks(mpsc::Sender<Vec<T>>),
+}
+
+/// The exact context states at a piece's borders.
+struct Borders<T> {
+    /// The left-context state at its start, with just the top of the stack
+    /// that the piece's unmatched `]`s pop.
+    left: Left<T>,
+    /// The values its [`Val`]s from outside stand for, at its end: the
+    /// nearest visible symbol, then the values popped from the stack.
+    outside: Vec<T>,
+}
+
+/// The symbol `v` stands for, given the state at the border it refers to:
+/// `near` its nearest visible symbol, `stack` its stack (top last).
+fn resolve<T: Sym>(v: Val, side: usize, near: T, stack: &[T]) -> T {
+    match v.checked_sub(side) {
+        None => T::from_index(v),
+        Some(0) => near,
+        Some(j) => match stack.len().checked_sub(j) {
+            Some(i) => stack[i],
+            None => T::from_index(side - 1),
+        },
+    }
+}
+
+impl<T: Sym> TableStepper<'_, '_, T> {
+    /// [`super::Stepper::step`] of a word cut into `pieces` pieces, one a
+    /// thread, for a system without stochastic productions.
+    pub(super) fn step_in_pieces(
+        &self,
+        cur: &mut [T],
+        nb: &mut Neighbours<T>,
+        out: &mut Vec<T>,
+        max: usize,
+        pieces: usize,
+    ) -> Result<(), ()> {
+        let n = cur.len();
+        let packed = self.packed_shift.is_some();
+        if !packed {
+            // Every piece writes all of its positions: only growth is
+            // filled here.
+            nb.right.resize(n, self.none);
+        }
+        let bounds: Vec<usize> = (0..=pieces).map(|k| k * n / pieces).collect();
+        let mut words = cut(cur, &bounds);
+        let mut rights: Vec<&mut [T]> = if packed {
+            (0..pieces).map(|_| &mut [][..]).collect()
+        } else {
+            cut(&mut nb.right[..n], &bounds)
+        };
+        let summaries: Vec<Summary> = on_threads(
+            words.iter_mut().zip(rights.iter_mut()),
+            |(w, r)| match packed {
+                true => self.scan::<true>(w, r),
+                false => self.scan::<false>(w, r),
+            },
+        );
+        let borders = self.borders(&summaries);
+        out.reserve_exact(self.room(bounds[1], nb.growth, max));
+        let total = AtomicUsize::new(0);
+        let growth = nb.growth;
+        let mut pieces =
+            (words.iter_mut().zip(rights.iter_mut())).zip(summaries.iter().zip(borders));
+        let ((w, r), (s, b)) = pieces.next().expect("one piece at least");
+        let done = std::thread::scope(|scope| {
+            // The first piece is rewritten straight into `out`, on this
+            // thread; each other piece, on a thread of its own, into blocks
+            // sent here as they are done, copied after it and freed.
+            let (streams, others): (Vec<_>, Vec<_>) = pieces
+                .map(|((w, r), (s, b))| {
+                    let (send, receive) = mpsc::channel();
+                    let total = &total;
+                    let dest = Dest::Blocks(send);
+                    let other =
+                        scope.spawn(move || self.finish(w, r, s, b, dest, growth, max, total));
+                    (receive, other)
+                })
+                .unzip();
+            let done = self.finish(w, r, s, b, Dest::Word(&mut *out), growth, max, &total);
+            // `out` grown a sixteenth at a time as the blocks copied into it
+            // are freed, so the step holds its input and its output and
+            // little more: all of `out` reserved beside whole pieces held
+            // 2.4 bytes a symbol of the word at peak, where one thread holds
+            // 1.8 (the scale test's bound is 2).
+            for block in streams.into_iter().flatten() {
+                if done.is_ok() {
+                    if out.capacity() - out.len() < block.len() {
+                        out.reserve_exact(block.len().max(out.len() / 16));
+                    }
+                    out.extend_from_slice(&block);
+                }
+            }
+            let others = others
+                .into_iter()
+                .map(|t| t.join().expect("a piece panicked"));
+            others.fold(done, Result::and)
+        });
+        if done.is_err() || out.len() > max {
+            return Err(());
+        }
+        if n > 0 {
+            nb.growth = out.len() as f64 / n as f64;
+        }
+        out.shrink_to_fit();
+        Ok(())
+    }
+
+    /// Stage 1 for one piece `w`: the leftwards pass of
+    /// [`Self::pack_right_neighbours`] (`PACKED`) or
+    /// [`Self::right_neighbours`] (into `right`, one a position), the state
+    /// right of the piece unknown, and the piece's [`Summary`].
+    fn scan<const PACKED: bool>(&self, w: &mut [T], right: &mut [T]) -> Summary {
+        let t = self.table;
+        let side = t.side;
+        let none = side - 1;
+        let shift = self.packed_shift.unwrap_or(0);
+        let (class, rclass) = (&t.class[..], &t.right[..]);
+        let mut next: Val = side;
+        let mut stack: Vec<Val> = Vec::new();
+        let mut rare = Rare {
+            side,
+            opens: 0,
+            lefts: vec![0],
+            waiting: 1,
+            fixes: Some(Vec::new()),
+        };
+        // As `pack_right_neighbours`, what happens rarely kept out of the
+        // loop (a value from outside is read only near the piece's ends
+        // and its unmatched `[`s), so that the loop's state stays in
+        // registers.
+        for (i, x) in w.iter_mut().enumerate().rev() {
+            let s = x.index();
+            let c = class[s];
+            let after = if next < side {
+                rclass[next] as usize
+            } else {
+                rare.outside(i, next, (c == VISIBLE && stack.is_empty()).then_some(s));
+                0
+            };
+            if PACKED {
+                *x = T::from_index(s | after << shift);
+            } else {
+                right[i] = T::from_index(after);
+            }
+            next = if c == VISIBLE { s } else { next };
+            if c >= OPEN {
+                if c == CLOSE {
+                    stack.push(next);
+                    next = none;
+                } else {
+                    next = stack.pop().unwrap_or_else(|| rare.open());
+                }
+            }
+        }
+        // Still unknown: the left context comes from outside, either the
+        // nearest visible symbol at the start or, when the piece pops the
+        // stack, the value its last unmatched `]` pops.
+        let at = rare.lefts.len() - rare.waiting;
+        rare.lefts[at..].fill(side + stack.len());
+        Summary {
+            opens: rare.opens,
+            next,
+            rights: stack,
+            lefts: rare.lefts,
+            fixes: rare.fixes,
+        }
+    }
+
+    /// Stage 2: the states at every piece's borders, from the summaries.
+    fn borders(&self, summaries: &[Summary]) -> Vec<Borders<T>> {
+        let side = self.table.side;
+        let mut outside = Vec::with_capacity(summaries.len());
+        // The right-context state, from the word's end leftwards.
+        let (mut next, mut stack) = (self.none, Vec::<T>::new());
+        for s in summaries.iter().rev() {
+            outside.push(
+                (0..=s.opens)
+                    .map(|j| resolve(side + j, side, next, &stack))
+                    .collect::<Vec<T>>(),
+            );
+            let pushed: Vec<T> = s
+                .rights
+                .iter()
+                .map(|&v| resolve(v, side, next, &stack))
+                .collect();
+            next = resolve(s.next, side, next, &stack);
+            stack.truncate(stack.len().saturating_sub(s.opens));
+            stack.extend(pushed);
+        }
+        outside.reverse();
+        // The left-context state, from the word's start rightwards.
+        let mut left = self.left();
+        let mut borders = Vec::with_capacity(summaries.len());
+        for (s, outside) in summaries.iter().zip(outside) {
+            let keep = left.stack.len().saturating_sub(s.rights.len());
+            let at = |v: Val| resolve(v, side, left.last, &left.stack);
+            let last = at(s.lefts[0]);
+            let pushed: Vec<T> = s.lefts[1..].iter().rev().map(|&v| at(v)).collect();
+            borders.push(Borders {
+                left: Left {
+                    last: left.last,
+                    stack: left.stack[keep..].to_vec(),
+                },
+                outside,
+            });
+            left.last = last;
+            left.stack.truncate(keep);
+            left.stack.extend(pushed);
+        }
+        borders
+    }
+
+    /// Stage 3 for one piece: its right neighbours from outside filled in,
+    /// then its rewriting into `dest` (blocks sized from `growth`, the
+    /// last step's).
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        &self,
+        w: &mut [T],
+        right: &mut [T],
+        summary: &Summary,
+        borders: Borders<T>,
+        dest: Dest<'_, T>,
+        growth: f64,
+        max: usize,
+        total: &AtomicUsize,
+    ) -> Result<(), ()> {
+        let rclass = &self.table.right;
+        let shift = self.packed_shift.unwrap_or(0);
+        let side = self.table.side;
+        let packed = self.packed_shift.is_some();
+        match &summary.fixes {
+            Some(fixes) => {
+                for &(i, v) in fixes {
+                    let after = rclass[borders.outside[v - side].index()] as usize;
+                    if packed {
+                        w[i] = T::from_index(w[i].index() | after << shift);
+                    } else {
+                        right[i] = T::from_index(after);
+                    }
+                }
+            }
+            None => self.rescan(w, right, &borders.outside),
+        }
+        // Never drawn from: a step is cut only without stochastic
+        // productions.
+        let rng = &mut Rng::new(0, Stream::Derivation);
+        let mut left = borders.left;
+        let total = Some(total);
+        let mut rewrite = |piece: &[T], right: &[T], out: &mut Vec<T>| match packed {
+            true => self.rewrite::<true>(piece, right, out, rng, max, &mut left, total),
+            false => self.rewrite::<false>(piece, right, out, rng, max, &mut left, total),
+        };
+        let done = match dest {
+            Dest::Word(out) => rewrite(w, right, out),
+            Dest::Blocks(send) => (w.chunks(BLOCK).enumerate()).try_for_each(|(k, piece)| {
+                let right = match packed {
+                    true => &[][..],
+                    false => &right[k * BLOCK..][..piece.len()],
+                };
+                let mut block = Vec::with_capacity(self.room(piece.len(), growth, max));
+                let done = rewrite(piece, right, &mut block);
+                block.shrink_to_fit();
+                // The receiver stays until every block is sent.
+                let _ = send.send(block);
+                done
+            }),
+        };
+        if packed {
+            let low = (1 << shift) - 1;
+            for s in w.iter_mut() {
+                *s = T::from_index(s.index() & low);
+            }
+        }
+        done
+    }
+
+    /// The leftwards pass over piece `w` again, from the exact state at its
+    /// end (`outside`: the nearest visible symbol, then the values its
+    /// unmatched `[`s pop), for a piece with too many positions to list.
+    fn rescan(&self, w: &mut [T], right: &mut [T], outside: &[T]) {
+        let rclass = &self.table.right;
+        let shift = self.packed_shift.unwrap_or(0);
+        let low = (1 << shift) - 1;
+        let packed = self.packed_shift.is_some();
+        let mut next = outside[0];
+        let mut stack: Vec<T> = outside[1..].iter().rev().copied().collect();
+        for i in (0..w.len()).rev() {
+            let s = if packed {
+                T::from_index(w[i].index() & low)
+            } else {
+                w[i]
+            };
+            let after = rclass[next.index()] as usize;
+            if packed {
+                w[i] = T::from_index(s.index() | after << shift);
+            } else {
+                right[i] = T::from_index(after);
+            }
+            self.pass_leftwards(s, &mut next, &mut stack);
+        }
+    }
+}
+
+/// `w` cut at `bounds` (its first 0, its last `w.len()`).
+fn cut<'w, T>(mut w: &'w mut [T], bounds: &[usize]) -> Vec<&'w mut [T]> {
+    let mut pieces = Vec::with_capacity(bounds.len() - 1);
+    for pair in bounds.windows(2) {
+        let (piece, rest) = std::mem::take(&mut w).split_at_mut(pair[1] - pair[0]);
+        pieces.push(piece);
+        w = rest;
+    }
+    pieces
+}
+
+/// `work` on each item, the first on this thread and each other on a
+/// thread of its own; the results in order.
+fn on_threads<I, R>(items: I, work: impl Fn(I::Item) -> R + Sync) -> Vec<R>
+where
+    I: Iterator,
+    I::Item: Send,
+    R: Send,
+{
+    std::thread::scope(|scope| {
+        let mut items = items;
+        let first = items.next();
+        let others: Vec<_> = items
+            .map(|item| {
+                let work = &work;
+                scope.spawn(move || work(item))
+            })
+            .collect();
+        first
+            .map(&work)
+            .into_iter()
+            .chain(
+                others
+                    .into_iter()
+                    .map(|h| h.join().expect("a piece panicked")),
+            )
+            .collect()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Split;
+    use crate::diagnostics::Diagnostic;
+    use crate::eval::{DeriveOptions, Deriver};
+    use crate::front::pfg::read_ok as sys;
+    use crate::ir::{SymbolId, System, Word};
+
+    /// Splits every word of at least `from` symbols into pieces of at
+    /// least `piece`.
+    fn split(from: usize, piece: usize) -> Split {
+        Split { from, piece }
+    }
+
+    /// The words of `s` in bytes on `threads` threads, with right
+    /// neighbours `packed` in the symbols or not.
+    fn bytes(
+        s: &System,
+        opts: &DeriveOptions,
+        threads: usize,
+        split: Split,
+        packed: bool,
+    ) -> Result<Vec<u8>, Diagnostic> {
+        let d = Deriver::new(s);
+        let t = d.table.as_ref().expect("a table system");
+        let mut stepper = t.stepper::<u8>().on(threads);
+        stepper.split = split;
+        if !packed {
+            stepper.packed_shift = None;
+        }
+        d.steps(&stepper, opts, |_, _| {}).map(|(w, _)| w)
+    }
+
+    fn general(s: &System, opts: &DeriveOptions) -> Vec<u8> {
+        let d = Deriver {
+            table: None,
+            ..Deriver::new(s)
+        };
+        let w = d.derive_stepwise(opts, |_, _| {}).unwrap();
+        w.0.iter().map(|s| s.0 as u8).collect()
+    }
+
+    #[test]
+    fn pieces_give_the_one_thread_words_of_the_stdlib() {
+        for (name, n) in [("a", 45), ("b", 40), ("c", 42), ("d", 38), ("e", 43)] {
+            let s = sys(crate::stdlib::get(&format!("hogeweg-hesper-{name}"))
+                .unwrap()
+                .text);
+            let opts = DeriveOptions::new(n);
+            let one = bytes(&s, &opts, 1, Split::default(), true).unwrap();
+            assert!(one.len() > 200_000, "{name}: {}", one.len());
+            assert_eq!(one, general(&s, &opts), "{name}");
+            for threads in [2, 3, 7] {
+                for packed in [true, false] {
+                    let many = bytes(&s, &opts, threads, split(1 << 12, 1 << 8), packed);
+                    assert!(many.unwrap() == one, "{name}, {threads} threads, {packed}");
+                }
+            }
+        }
+        // Past the threshold as it is: the last steps cut in two.
+        let s = sys(crate::stdlib::get("hogeweg-hesper-a").unwrap().text);
+        let opts = DeriveOptions::new(50);
+        let two = bytes(&s, &opts, 2, Split::default(), true).unwrap();
+        assert!(two.len() > 2 * Split::default().from, "{}", two.len());
+        assert!(two == bytes(&s, &opts, 1, Split::default(), true).unwrap());
+        // Symbols four bytes wide, cut into pieces as well.
+        let d = Deriver::new(&s);
+        let wide = d.table.as_ref().unwrap().stepper::<SymbolId>().on(3);
+        let wide = wide.split(split(1 << 12, 1 << 8));
+        let wide = d
+            .steps(&wide, &DeriveOptions::new(45), |_, _| {})
+            .unwrap()
+            .0;
+        let want = bytes(&s, &DeriveOptions::new(45), 1, Split::default(), true).unwrap();
+        assert!(wide.iter().map(|s| s.0 as u8).eq(want));
+    }
+
+    #[test]
+    fn the_symbol_limit_fails_the_same_step_on_any_threads() {
+        let s = sys(crate::stdlib::get("hogeweg-hesper-c").unwrap().text);
+        let lens: Vec<usize> = (30..36)
+            .map(|n| {
+                let opts = DeriveOptions::new(n);
+                bytes(&s, &opts, 1, Split::default(), true).unwrap().len()
+            })
+            .collect();
+        let at = |threads, max: usize| {
+            let opts = DeriveOptions::new(40).max_symbols(max);
+            let e = bytes(&s, &opts, threads, split(1, 1), true).unwrap_err();
+            (e.message, e.notes)
+        };
+        for (k, &len) in lens.iter().enumerate() {
+            let step = 30 + k as u64;
+            // A word of exactly the limit is allowed; one more symbol is
+            // not.
+            let ok = DeriveOptions::new(step).max_symbols(len);
+            let over = DeriveOptions::new(step).max_symbols(len - 1);
+            for threads in [2, 3, 7] {
+                assert_eq!(
+                    bytes(&s, &ok, threads, split(1, 1), true).unwrap().len(),
+                    len
+                );
+                let e = bytes(&s, &over, threads, split(1, 1), false).unwrap_err();
+                assert_eq!(e.code, crate::diagnostics::codes::TOO_MANY_SYMBOLS);
+                assert_eq!(at(threads, len - 1), at(1, len - 1), "{threads} threads");
+            }
+        }
+    }
+
+    /// A little generator of test cases (xorshift), so that the loop below
+    /// needs no crate.
+    struct Xorshift(u64);
+
+    impl Xorshift {
+        fn below(&mut self, n: usize) -> usize {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 % n as u64) as usize
+        }
+    }
+
+    /// Random systems with one-symbol contexts, brackets and an ignored
+    /// symbol, from random words with unmatched brackets too, cut into
+    /// pieces of one symbol and more: the words of one thread.
+    #[test]
+    fn random_bracketed_words_in_many_pieces_give_the_one_thread_words() {
+        let mut rng = Xorshift(0x9e37_79b9_7f4a_7c15);
+        let pick = |rng: &mut Xorshift, from: &str| {
+            let b = from.as_bytes();
+            b[rng.below(b.len())] as char
+        };
+        for case in 0..300 {
+            let mut src = String::from("axiom: a\nignore: +\n");
+            for _ in 0..1 + rng.below(5) {
+                let succ: String = ["a[", "b]", "+", "a", "[b]", "[+a]"][..]
+                    .iter()
+                    .filter(|_| rng.below(2) == 0)
+                    .copied()
+                    .collect();
+                let (l, p, r) = (
+                    pick(&mut rng, "ab+*"),
+                    pick(&mut rng, "ab+"),
+                    pick(&mut rng, "ab+*"),
+                );
+                let succ = if succ.is_empty() {
+                    "*".into()
+                } else {
+                    crate::eval::tests::balanced(&succ)
+                };
+                src.push_str(&format!("{l} < {p} > {r} --> {succ}\n"));
+            }
+            let mut d = crate::diagnostics::Diagnostics::default();
+            let mut s = crate::front::pfg::read(&src, &mut d).system;
+            assert!(!d.has_errors(), "{src}");
+            let a = s.symbols.get("a").unwrap();
+            let ids: Vec<SymbolId> = ["a", "b", "+"]
+                .iter()
+                .map(|c| s.symbols.get(c).unwrap_or(a))
+                .chain([SymbolId::OPEN, SymbolId::CLOSE])
+                .collect();
+            let axiom: Vec<SymbolId> = (0..1 + rng.below(40)).map(|_| ids[rng.below(5)]).collect();
+            s.axiom = Word::from(axiom);
+            let opts = DeriveOptions::new(1 + rng.below(5) as u64).max_symbols(20_000);
+            let one = bytes(&s, &opts, 1, Split::default(), true);
+            for threads in [2, 3, 7] {
+                for packed in [true, false] {
+                    let piece = 1 + rng.below(4);
+                    let many = bytes(&s, &opts, threads, split(1, piece), packed);
+                    assert!(
+                        many.as_ref().ok() == one.as_ref().ok(),
+                        "case {case}: {src}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// A piece with more positions whose right neighbour lies past it than
+    /// are listed is scanned again: the same words.
+    #[test]
+    fn long_runs_without_a_visible_symbol_are_scanned_again() {
+        let plus = "+".repeat(3 * super::FIXES);
+        // The second: a piece ending in the run inside two branches, whose
+        // `a`s see past the inner branch (`b`) and past the outer (`a`).
+        for (axiom, steps) in [
+            (format!("a{plus}b[{plus}a{plus}]{plus}"), 6),
+            (format!("a[a[{plus}]b]a"), 2),
+        ] {
+            let src = format!("axiom: {axiom}\nignore: +\na > b --> ab\nb < a --> b\n");
+            let s = sys(&src);
+            let opts = DeriveOptions::new(steps);
+            let one = bytes(&s, &opts, 1, Split::default(), true).unwrap();
+            for threads in [2, 3, 7] {
+                for packed in [true, false] {
+                    let many = bytes(&s, &opts, threads, split(1, 1), packed).unwrap();
+                    assert!(many == one, "{threads} threads, {packed}");
+                }
+            }
+            assert!(one == general(&s, &opts));
+        }
+    }
+}
