@@ -11,6 +11,11 @@
 
 use super::sub_lsystems::Lsystems;
 use super::DeriveOptions;
+use std::ops::Range;
+
+mod cut;
+mod pieces;
+
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::look::{Contour, ContourRole};
 use crate::ir::program::{truth, BinOp, Builtin, Expr, Place, Program, Stmt, Var};
@@ -19,6 +24,8 @@ use crate::ir::{
     Alternative, ContextFilter, Formals, Production, RulePolicy, SymbolId, System, Word,
 };
 use crate::random::{Lcg48, Rng, Stream};
+use cut::cut;
+pub use cut::cut_mask;
 
 /// Why evaluation stopped early.
 #[derive(Debug)]
@@ -451,6 +458,7 @@ struct Pattern<'p> {
 }
 
 /// Which productions to try for a symbol, and how context is matched.
+#[derive(Clone)]
 struct Matcher {
     ignored: Vec<bool>,
     /// What a right context reads past: `ignored`, and the brackets when
@@ -840,26 +848,28 @@ impl Engine<'_> {
         Ok(())
     }
 
-    /// One parallel rewriting of `word`, each module by the productions
-    /// of the L-system it belongs to (`groups`, [`Lsystems`]' order).
+    /// One parallel rewriting of the modules `range` of `word` onto `out`,
+    /// each module by the productions of the L-system it belongs to
+    /// (`groups`, [`Lsystems`]' order). Contexts are matched in the whole
+    /// of `word`.
     fn step(
         &mut self,
-        lsystems: &Lsystems,
-        groups: &[Group<'_>],
+        (lsystems, groups): (&Lsystems, &[Group<'_>]),
         word: &Word,
+        range: Range<usize>,
         choice: RulePolicy,
-    ) -> Result<Word, Halt> {
-        let mut out = Word::new();
-        let mut i = 0;
+        out: &mut Word,
+    ) -> Result<(), Halt> {
+        let mut i = range.start;
         let draw_each = choice == RulePolicy::Weighted;
         let mut calls = lsystems.calls();
-        while i < word.len() {
+        while i < range.end {
             if let (Some(lcg), true) = (&mut self.m.choice, draw_each) {
                 self.m.drawn = Some(lcg.next_f64());
             }
             self.current = calls.current();
             let group = &groups[self.current];
-            let applied = self.apply(group, (word, i), (word, i), choice, &mut out)?;
+            let applied = self.apply(group, (word, i), (word, i), choice, out)?;
             self.m.drawn = None;
             let consumed = match applied {
                 Some(n) => n.max(1),
@@ -874,27 +884,27 @@ impl Engine<'_> {
                 return Err(Halt::Work);
             }
         }
-        Ok(out)
+        Ok(())
     }
 
-    /// Rewrites each module of `word` recursively (decomposition,
-    /// homomorphism) with the productions of the L-system it belongs to,
-    /// up to that phase's depth (`phases`, [`Lsystems`]' order). Contexts
-    /// are matched in `word`. `origins`, when given, receives for each
-    /// output module the index of the module of `word` it came from.
+    /// Rewrites each module of `range` of `word` recursively
+    /// (decomposition, homomorphism) onto `out` with the productions of the
+    /// L-system it belongs to, up to that phase's depth (`phases`,
+    /// [`Lsystems`]' order). Contexts are matched in the whole of `word`.
+    /// `origins`, when given, receives for each output module the index of
+    /// the module of `word` it came from.
     fn recursive(
         &mut self,
-        lsystems: &Lsystems,
-        phases: &[(Group<'_>, u32)],
+        (lsystems, phases): (&Lsystems, &[(Group<'_>, u32)]),
         word: &Word,
+        range: Range<usize>,
         choice: RulePolicy,
-        mut origins: Option<&mut Vec<u32>>,
-    ) -> Result<Word, Halt> {
-        let mut out = Word::new();
-        let mut i = 0;
+        (out, mut origins): (&mut Word, Option<&mut Vec<u32>>),
+    ) -> Result<(), Halt> {
+        let mut i = range.start;
         let mut scratch = Word::new();
         let mut calls = lsystems.calls();
-        while i < word.len() {
+        while i < range.end {
             scratch.clear();
             self.current = calls.current();
             let (group, depth) = (&phases[self.current].0, phases[self.current].1);
@@ -922,7 +932,7 @@ impl Engine<'_> {
                 return Err(Halt::Work);
             }
         }
-        Ok(out)
+        Ok(())
     }
 
     /// Applies `group` again to the modules `sub` produced from module
@@ -977,44 +987,6 @@ impl Engine<'_> {
         }
         Ok(out)
     }
-}
-
-/// Removes each `%` and the rest of its branch.
-fn cut(word: &mut Word, cut: SymbolId) {
-    if !word.0.contains(&cut) {
-        return;
-    }
-    let mask = cut_mask(&word.0, cut);
-    let mut out = Word::new();
-    for (i, _) in mask.iter().enumerate().filter(|(_, &c)| !c) {
-        out.push(word.0[i], word.args(i));
-    }
-    *word = out;
-}
-
-/// Per symbol of `word`, whether a `%` (`cut`) removes it: the `%` itself
-/// and the rest of its branch, up to the `]` that closes it.
-pub fn cut_mask(word: &[SymbolId], cut: SymbolId) -> Vec<bool> {
-    let mut mask = vec![false; word.len()];
-    let mut i = 0;
-    while i < word.len() {
-        if word[i] != cut {
-            i += 1;
-            continue;
-        }
-        let mut depth = 0usize;
-        while i < word.len() {
-            match word[i] {
-                SymbolId::OPEN => depth += 1,
-                SymbolId::CLOSE if depth == 0 => break,
-                SymbolId::CLOSE => depth -= 1,
-                _ => {}
-            }
-            mask[i] = true;
-            i += 1;
-        }
-    }
-    mask
 }
 
 fn halt_error(h: Halt, opts: &DeriveOptions, len: usize) -> Diagnostic {
@@ -1099,6 +1071,11 @@ pub fn derive(
         locals: Vec::new(),
     };
     e.m.steps = opts.steps;
+    let phases = [&sys.productions, &sys.decomposition.productions];
+    let threads = match pieces::module_by_module(sys, phases.map(Vec::as_slice)) {
+        true => crate::parallel::threads(opts.threads),
+        false => 1,
+    };
     let cut_symbol = sys.cut;
     let has_query = sys
         .symbols
@@ -1123,9 +1100,15 @@ pub fn derive(
             if let Some(c) = cut_symbol {
                 cut(&mut word, c);
             }
-            let mut next = e.step(&lsystems, &productions, &word, choice)?;
+            let rewrite = |e: &mut Engine, range, (out, _): pieces::Onto<'_>| {
+                e.step((&lsystems, &productions), &word, range, choice, out)
+            };
+            let (mut next, _) = e.in_pieces(&word, threads, false, rewrite)?;
             if decomposes {
-                next = e.recursive(&lsystems, &decomposition, &next, choice, None)?;
+                let decompose = |e: &mut Engine, range, into: pieces::Onto<'_>| {
+                    e.recursive((&lsystems, &decomposition), &next, range, choice, into)
+                };
+                next = e.in_pieces(&next, threads, false, decompose)?.0;
             }
             word = next;
             len = word.len();
@@ -1185,15 +1168,14 @@ pub fn homomorphism(
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
     };
-    let mut origins = Vec::new();
-    let out = e
-        .recursive(
-            &Lsystems::of(sys),
-            &phases,
-            word,
-            sys.policy,
-            Some(&mut origins),
-        )
-        .map_err(|h| halt_error(h, opts, word.len()))?;
-    Ok((out, origins))
+    let threads = match pieces::module_by_module(sys, [phase.productions.as_slice()]) {
+        true => crate::parallel::threads(opts.threads),
+        false => 1,
+    };
+    let lsystems = Lsystems::of(sys);
+    let rewrite = |e: &mut Engine, range, into: pieces::Onto<'_>| {
+        e.recursive((&lsystems, &phases), word, range, sys.policy, into)
+    };
+    e.in_pieces(word, threads, true, rewrite)
+        .map_err(|h| halt_error(h, opts, word.len()))
 }

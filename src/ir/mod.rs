@@ -433,6 +433,22 @@ impl Word {
             self.push(other.0[i], other.args(i));
         }
     }
+    /// Appends every module of `other`, its parameters copied in bulk.
+    pub fn append(&mut self, other: &Word) {
+        if other.has_params() {
+            if !self.has_params() {
+                self.1.starts = vec![0; self.0.len() + 1];
+            }
+            let base = self.1.values.len() as u32;
+            self.1.values.extend_from_slice(&other.1.values);
+            let starts = other.1.starts[1..].iter().map(|&s| s + base);
+            self.1.starts.extend(starts);
+        } else if let Some(&end) = self.1.starts.last() {
+            let none = std::iter::repeat_n(end, other.0.len());
+            self.1.starts.extend(none);
+        }
+        self.0.extend_from_slice(&other.0);
+    }
     /// Empties the word, keeping its buffers (rewriting reuses words as
     /// scratch space).
     pub fn clear(&mut self) {

@@ -259,7 +259,39 @@ impl Builtin {
     }
 }
 
+impl Builtin {
+    /// Whether calling the function changes what comes after it: it draws
+    /// from the random stream (or reseeds it), or acts on the derivation
+    /// (`stop`, `SetDerivationLength`). Reading a table or the derivation
+    /// length changes nothing; I/O is 0 in graftal.
+    pub fn acts(self) -> bool {
+        matches!(
+            self,
+            Builtin::Srand
+                | Builtin::Ran
+                | Builtin::Nran
+                | Builtin::Bran
+                | Builtin::Biran
+                | Builtin::Stop
+                | Builtin::SetDerivationLength
+        )
+    }
+}
+
 impl Expr {
+    /// Whether evaluating the expression changes nothing but its own value
+    /// (it calls no function that [`Builtin::acts`]), so that it gives the
+    /// same value wherever and in whatever order it is evaluated.
+    pub fn is_quiet(&self) -> bool {
+        match self {
+            Expr::Num(_) | Expr::Str(_) | Expr::Var(_) => true,
+            Expr::Element(_, subs) => subs.iter().all(Expr::is_quiet),
+            Expr::Unary(_, a) => a.is_quiet(),
+            Expr::Binary(_, x, y) => x.is_quiet() && y.is_quiet(),
+            Expr::Cond(c, x, y) => c.is_quiet() && x.is_quiet() && y.is_quiet(),
+            Expr::Call(f, args) => !f.acts() && args.iter().all(Expr::is_quiet),
+        }
+    }
     /// The value of an expression that reads no variable, array or table
     /// and draws no random number, or `None`. Functions that act on the
     /// derivation (`stop`, `srand`, I/O …) are 0 here, as they evaluate to
@@ -308,6 +340,20 @@ pub enum Stmt {
     If(Expr, Vec<Stmt>, Vec<Stmt>),
     While(Expr, Vec<Stmt>),
     Do(Vec<Stmt>, Expr),
+}
+
+impl Stmt {
+    /// Whether running the statements changes nothing outside the
+    /// production that runs them: they assign only its local variables and
+    /// evaluate only [`Expr::is_quiet`] expressions.
+    pub fn are_quiet(stmts: &[Stmt]) -> bool {
+        stmts.iter().all(|s| match s {
+            Stmt::Assign(Place::Var(Var::Local(_)), e) | Stmt::Eval(e) => e.is_quiet(),
+            Stmt::Assign(..) => false,
+            Stmt::If(c, t, e) => c.is_quiet() && Stmt::are_quiet(t) && Stmt::are_quiet(e),
+            Stmt::While(c, body) | Stmt::Do(body, c) => c.is_quiet() && Stmt::are_quiet(body),
+        })
+    }
 }
 
 /// A `define: { array … }` array.
