@@ -674,6 +674,8 @@ struct Engine<'a> {
     current: usize,
     max_symbols: usize,
     locals: Vec<f64>,
+    /// The parameters of the successor module being emitted.
+    args: Vec<f64>,
 }
 
 impl Engine<'_> {
@@ -836,7 +838,9 @@ impl Engine<'_> {
         out: &mut Word,
     ) -> Result<(), Halt> {
         self.m.run(&p.after, locals)?;
-        let mut args: Vec<f64> = Vec::new();
+        // A buffer kept from module to module: most successors have
+        // parameters, and a fresh one each time was a tenth of a step.
+        let mut args = std::mem::take(&mut self.args);
         for (k, &symbol) in alt.successor.0.iter().enumerate() {
             args.clear();
             for a in alt.args.get(k).map_or(&[][..], |v| v.as_slice()) {
@@ -844,6 +848,7 @@ impl Engine<'_> {
             }
             out.push(symbol, &args);
         }
+        self.args = args;
         self.m.charge(alt.successor.len() as u64)?;
         Ok(())
     }
@@ -1069,6 +1074,7 @@ pub fn derive(
         current: 0,
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
+        args: Vec::new(),
     };
     e.m.steps = opts.steps;
     let phases = [&sys.productions, &sys.decomposition.productions];
@@ -1167,6 +1173,7 @@ pub fn homomorphism(
         current: 0,
         max_symbols: opts.max_symbols,
         locals: Vec::new(),
+        args: Vec::new(),
     };
     let threads = match pieces::module_by_module(sys, [phase.productions.as_slice()]) {
         true => crate::parallel::threads(opts.threads),

@@ -99,11 +99,14 @@ impl<'a> Engine<'a> {
             true => threads.min(n / PIECES_FROM).max(1),
             false => 1,
         };
-        let bounds: Vec<usize> = (0..=pieces).map(|k| k * n / pieces).collect();
         let run = |e: &mut Engine<'a>, range: Range<usize>| {
             let (mut out, mut from) = (Word::new(), Vec::new());
             rewrite(e, range, (&mut out, origins.then_some(&mut from))).map(|()| (out, from))
         };
+        if pieces == 1 {
+            return run(self, 0..n);
+        }
+        let bounds: Vec<usize> = (0..=pieces).map(|k| k * n / pieces).collect();
         let mut forks: Vec<Engine<'a>> = (1..pieces).map(|_| self.fork()).collect();
         let (first, others) = std::thread::scope(|scope| {
             let others: Vec<_> = (forks.iter_mut().zip(bounds.windows(2).skip(1)))
@@ -140,6 +143,7 @@ impl<'a> Engine<'a> {
             current: 0,
             max_symbols: self.max_symbols,
             locals: Vec::new(),
+            args: Vec::new(),
         }
     }
 }
