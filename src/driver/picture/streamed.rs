@@ -68,7 +68,7 @@ pub(super) fn draw(
     else {
         return Err(too_large(&ropts));
     };
-    painter.draw(&pieces, threads);
+    painter.draw(&pieces);
     if painter.overflow || painter.spread_width() < NEARLY_NOTHING {
         drop(pieces);
         return Ok(unstreamed(word));

@@ -340,6 +340,18 @@ impl Coverage {
         }
     }
 
+    /// Each of `rows` (a pixel row of the picture held here, and room for
+    /// it) in RGBA ([`Self::rgba_row`]).
+    fn rgba_rows(&self, rows: Vec<(u32, &mut [u8])>) {
+        let mut one = Vec::with_capacity(self.width as usize * 4);
+        for (y, pixels) in rows {
+            one.clear();
+            self.rgba_row(y, &mut one);
+            let n = one.len().min(pixels.len());
+            pixels[..n].copy_from_slice(&one[..n]);
+        }
+    }
+
     /// The picture, RGBA, row by row.
     pub fn rgba(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(self.width as usize * self.height as usize * 4);
@@ -356,7 +368,9 @@ impl Coverage {
 }
 
 /// The picture whose shares are `shares` (every share of it, in order) as
-/// PNG bytes, encoded a band of rows at a time.
+/// PNG bytes, encoded a band of rows at a time: each share turns its rows
+/// of a band into RGBA on a thread of its own, then the band is
+/// compressed.
 fn png_of_shares(shares: &[Coverage]) -> Option<Vec<u8>> {
     let first = shares.first()?;
     let (w, h, stripe) = (first.width, first.height, first.stripe);
@@ -367,13 +381,30 @@ fn png_of_shares(shares: &[Coverage]) -> Option<Vec<u8>> {
     encoder.set_compression(::png::Compression::Fast);
     let mut writer = encoder.write_header().ok()?;
     let mut stream = writer.stream_writer().ok()?;
-    let mut rows = Vec::with_capacity(w as usize * 64 * 4);
-    for y in 0..h {
-        shares[(y / stripe) as usize % shares.len()].rgba_row(y, &mut rows);
-        if rows.len() >= w as usize * 64 * 4 || y + 1 == h {
-            std::io::Write::write_all(&mut stream, &rows).ok()?;
-            rows.clear();
+    let row = w as usize * 4;
+    // Four stripes a share: few bands, each held briefly.
+    let band_rows = (stripe as usize * shares.len() * 4).min(h as usize);
+    let mut band = vec![0u8; row * band_rows];
+    for top in (0..h as usize).step_by(band_rows.max(1)) {
+        let rows = band_rows.min(h as usize - top);
+        let band = &mut band[..row * rows];
+        // Each row of the band goes to the share holding its stripe.
+        let mut held: Vec<Vec<(u32, &mut [u8])>> = shares.iter().map(|_| Vec::new()).collect();
+        for (i, pixels) in band.chunks_mut(row).enumerate() {
+            let y = (top + i) as u32;
+            held[(y / stripe) as usize % shares.len()].push((y, pixels));
         }
+        std::thread::scope(|scope| {
+            let mut work = shares.iter().zip(held);
+            let mine = work.next();
+            for (share, rows) in work {
+                scope.spawn(move || share.rgba_rows(rows));
+            }
+            if let Some((share, rows)) = mine {
+                share.rgba_rows(rows);
+            }
+        });
+        std::io::Write::write_all(&mut stream, band).ok()?;
     }
     stream.finish().ok()?;
     drop(writer);

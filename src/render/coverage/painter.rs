@@ -1,10 +1,10 @@
-//! The second pass over a flat line drawing, on every thread: the word's
-//! pieces are interpreted a round at a time, each piece on a thread into
-//! its segments projected to the picture and dealt to the stripes they
-//! reach ([`Lines`]); then every thread draws the round's lines that reach
-//! its own stripes of the picture, in order ([`Coverage`] shares). Each sample sees the lines it sees when one
-//! thread draws the whole word, in the same order, so the picture is the
-//! same on any number of threads.
+//! The second pass over a flat line drawing, on every thread: each of the
+//! word's pieces is interpreted once, by whichever thread is free, into its
+//! segments projected to the picture and dealt to the stripes they reach
+//! ([`Lines`]); every thread draws the lines of every piece that reach its
+//! own stripes of the picture, piece after piece ([`Coverage`] shares).
+//! Each sample sees the lines it sees when one thread draws the whole word,
+//! in the same order, so the picture is the same on any number of threads.
 
 use super::{png_of_shares, Coverage, Survey};
 use crate::ir::Rgb;
@@ -153,40 +153,47 @@ impl<'p> Painter<'p> {
         })
     }
 
-    /// Draws every piece of `word`, a round of pieces at a time, on
-    /// `threads` threads.
-    pub fn draw(&mut self, word: &dyn Pieced, threads: usize) {
-        let threads = crate::parallel::threads(threads);
-        let round = 2 * threads;
-        let pieces = word.count();
+    /// Draws every piece of `word`: each thread draws its share of the
+    /// picture, piece after piece, and interprets the next piece nobody
+    /// has while it waits for its own next one
+    /// ([`crate::parallel::feed_in_order`]).
+    pub fn draw(&mut self, word: &dyn Pieced) {
         let shares = self.shares.len();
-        for first in (0..pieces).step_by(round) {
-            let lines = crate::parallel::map_in_order(
-                round.min(pieces - first),
-                threads,
-                |k| {
-                    let mut lines = Lines {
-                        proj: self.proj,
-                        fit: &self.fit,
-                        world_widths: self.world_widths,
-                        mono: self.mono,
-                        across: self.across,
-                        range: (f64::INFINITY, f64::NEG_INFINITY),
-                        shares: vec![Vec::new(); shares],
-                        made: 0,
-                    };
-                    word.run(first + k, &mut lines);
-                    lines
-                },
-                |_| {},
-            );
-            self.overflow |= paint(&mut self.shares, &lines);
-            for p in &lines {
-                self.range = (self.range.0.min(p.range.0), self.range.1.max(p.range.1));
-                self.drawn += p.made;
-            }
-            (self.progress)(self.drawn.min(self.total), self.total);
-        }
+        let make = |k: usize| {
+            let mut lines = Lines {
+                proj: self.proj,
+                fit: &self.fit,
+                world_widths: self.world_widths,
+                mono: self.mono,
+                across: self.across,
+                range: (f64::INFINITY, f64::NEG_INFINITY),
+                shares: vec![Vec::new(); shares],
+                made: 0,
+            };
+            word.run(k, &mut lines);
+            lines
+        };
+        // Each share, its index, and whether a colour of it went past the
+        // picture's 255.
+        let mut eaters: Vec<_> = (self.shares.iter_mut().enumerate())
+            .map(|(k, share)| (k, share, false))
+            .collect();
+        let (progress, total) = (&mut *self.progress, self.total);
+        let (mut drawn, mut range) = (self.drawn, self.range);
+        crate::parallel::feed_in_order(
+            word.count(),
+            2 * shares,
+            &mut eaters,
+            make,
+            |(k, share, overflow), lines| *overflow |= paint(share, &lines.shares[*k]),
+            |_, lines| {
+                range = (range.0.min(lines.range.0), range.1.max(lines.range.1));
+                drawn += lines.made;
+                progress(drawn.min(total), total);
+            },
+        );
+        self.overflow |= eaters.iter().any(|e| e.2);
+        (self.drawn, self.range) = (drawn, range);
     }
 
     /// How wide the drawing is across the direction it spreads most, in
@@ -201,30 +208,17 @@ impl<'p> Painter<'p> {
     }
 }
 
-/// Each share draws its lines of `pieces`, in order, on a thread of its
-/// own (the first on this one); whether a colour was past the picture's
-/// 255.
-fn paint(shares: &mut [Coverage], pieces: &[Lines<'_>]) -> bool {
-    let draw = |(k, share): (usize, &mut Coverage)| {
-        let mut overflow = false;
-        for line in pieces.iter().flat_map(|p| &p.shares[k]) {
-            match share.paint(line.colour) {
-                Some(paint) => share.line(line.a, line.b, line.width, paint),
-                None => overflow = true,
-            }
+/// Draws `lines` into `share`, in order; whether a colour was past the
+/// picture's 255.
+fn paint(share: &mut Coverage, lines: &[Line]) -> bool {
+    let mut overflow = false;
+    for line in lines {
+        match share.paint(line.colour) {
+            Some(paint) => share.line(line.a, line.b, line.width, paint),
+            None => overflow = true,
         }
-        overflow
-    };
-    std::thread::scope(|scope| {
-        let mut shares = shares.iter_mut().enumerate();
-        let first = shares.next();
-        let others: Vec<_> = shares.map(|s| scope.spawn(move || draw(s))).collect();
-        let mut overflow = first.is_some_and(draw);
-        for t in others {
-            overflow |= t.join().unwrap_or(true);
-        }
-        overflow
-    })
+    }
+    overflow
 }
 
 #[cfg(test)]
@@ -259,7 +253,7 @@ mod tests {
         let draw = |threads: usize, most: usize| {
             let mut quiet = |_, _| {};
             let mut painter = Painter::new(&survey, &opts, true, threads, &mut quiet).unwrap();
-            painter.draw(&g.in_parts(most), threads);
+            painter.draw(&g.in_parts(most));
             assert!(!painter.overflow);
             painter.png().unwrap()
         };
