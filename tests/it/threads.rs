@@ -179,3 +179,33 @@ fn a_word_derived_on_several_threads_is_the_same() {
         assert_eq!(format!("{}\n", word.display(&sys.symbols)), one);
     }
 }
+
+/// Words whose steps are cut into pieces: the cpfg Lychnis at 520 steps
+/// (24 K modules; a parametric step is cut from 4 Ki) and Fig. 3.11a at 46
+/// steps (0.32 M symbols; a step of a context-sensitive table system is
+/// cut from 64 Ki). The same word written on 1, 2 and 3 threads.
+#[test]
+fn words_rewritten_in_pieces_are_the_same_on_every_count() {
+    let lychnis = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/corpus/cpfg/10-GettingStarted-01-Lychnis/plant.l"
+    );
+    for (spec, steps, least) in [
+        (lychnis, "520", 50_000),
+        ("std:hogeweg-hesper-a", "46", 300_000),
+    ] {
+        let derived = |threads: &str| {
+            let out = graftal(&["derive", spec, "-n", steps, "--threads", threads]);
+            assert_eq!(out.status, 0, "{}", out.stderr);
+            out.stdout
+        };
+        let one = derived("1");
+        assert!(one.len() > least, "{spec}: {} bytes", one.len());
+        for threads in ["2", "3"] {
+            assert!(
+                derived(threads) == one,
+                "{spec}: {threads} threads write another word"
+            );
+        }
+    }
+}
