@@ -2,9 +2,11 @@
 //! as the IR module documents (first match in file order, bracket-aware
 //! contexts modulo the ignore set, weighted alternatives, guarded symbols).
 //!
-//! Randomness comes from one [`Rng`] (ChaCha8, a portable generator): the same
-//! system, steps and seed give the same word on every machine. It is drawn
-//! only where a choice is made, in word order.
+//! Randomness is keyed: each choice is drawn from the seed, the step and the
+//! place in the word of the symbol it is made for ([`Draws`]), so the same
+//! system, steps and seed give the same word on every machine and on any
+//! number of threads. (Parametric systems draw in word order from the
+//! machine's stream, as cpfg does: [`parametric`].)
 //!
 //! Growth is bounded: a step that would make the word longer than
 //! [`DeriveOptions::max_symbols`] stops with [`codes::TOO_MANY_SYMBOLS`], and
@@ -22,7 +24,7 @@ mod sub_lsystems;
 mod table;
 pub mod tree;
 
-use crate::random::{Rng, Stream};
+use crate::random::Stream;
 
 use crate::diagnostics::{codes, Diagnostic};
 use crate::ir::{Guard, SymbolId, System, Word};
@@ -296,7 +298,7 @@ impl<'a> Deriver<'a> {
         mut progress: impl FnMut(u64, usize),
     ) -> Result<(Vec<S::Sym>, S::Scratch), Diagnostic> {
         let mut run = Run {
-            rng: Rng::new(opts.seed, Stream::Derivation),
+            seed: opts.seed,
             cur: self
                 .sys
                 .axiom
@@ -358,7 +360,7 @@ impl<'a> Deriver<'a> {
         cur: &[SymbolId],
         index: &ContextIndex,
         out: &mut Vec<SymbolId>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
         notes: &mut impl Notes,
     ) -> Result<(), ()> {
@@ -367,7 +369,7 @@ impl<'a> Deriver<'a> {
         while i < cur.len() {
             let mut sym = cur[i];
             if let Some(g) = self.guards[sym.index()] {
-                if rng.next_f64() >= g.probability {
+                if draws.at(i, 0) >= g.probability {
                     out.push(sym);
                     notes.kept(i);
                     i += 1;
@@ -381,7 +383,7 @@ impl<'a> Deriver<'a> {
                     let a = if p.alternatives.len() == 1 {
                         0
                     } else {
-                        choose(p.alternatives.iter().map(|a| a.weight), rng)
+                        choose(p.alternatives.iter().map(|a| a.weight), draws.at(i, 1))
                     };
                     let alt = &p.alternatives[a];
                     if out.len() + alt.successor.len() > max {
@@ -549,6 +551,44 @@ impl Symbols {
     }
 }
 
+/// Where a step's random choices come from: each is drawn from the run's
+/// seed, the step, and the place in the word of the symbol it is drawn for
+/// ([`crate::random::keyed`]), never from a running stream. So a word
+/// rewritten in pieces on any number of threads makes the same choices.
+#[derive(Clone, Copy, Debug)]
+struct Draws {
+    seed: u64,
+    step: u64,
+    /// Where the piece of the word being rewritten starts in it.
+    offset: usize,
+}
+
+impl Draws {
+    fn new(seed: u64, step: u64) -> Self {
+        Draws {
+            seed,
+            step,
+            offset: 0,
+        }
+    }
+
+    /// The draws of the piece of the word from `offset` (its places counted
+    /// from there).
+    fn from(self, offset: usize) -> Self {
+        Draws {
+            offset: self.offset + offset,
+            ..self
+        }
+    }
+
+    /// Draw `k` for the symbol at place `i` of the piece: 0 is a guard's,
+    /// 1 a choice among a production's alternatives.
+    fn at(self, i: usize, k: u64) -> f64 {
+        let place = (self.offset + i) as u64;
+        crate::random::keyed(self.seed, Stream::Derivation, place, 2 * self.step + k)
+    }
+}
+
 /// One parallel rewriting step over words of `Sym`.
 trait Stepper {
     type Sym: Sym;
@@ -562,7 +602,7 @@ trait Stepper {
         cur: &mut [Self::Sym],
         scratch: &mut Self::Scratch,
         out: &mut Vec<Self::Sym>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
     ) -> Result<(), ()>;
 }
@@ -579,13 +619,13 @@ impl Stepper for General<'_, '_> {
         cur: &mut [SymbolId],
         index: &mut ContextIndex,
         out: &mut Vec<SymbolId>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
     ) -> Result<(), ()> {
         if self.0.contexts {
             index.build(cur, &self.0.ignored);
         }
-        self.0.step(cur, index, out, rng, max, &mut ())
+        self.0.step(cur, index, out, draws, max, &mut ())
     }
 }
 
@@ -617,7 +657,7 @@ fn advance<S: Stepper>(
             &mut run.cur,
             &mut run.scratch,
             &mut run.next,
-            &mut run.rng,
+            Draws::new(run.seed, step),
             opts.max_symbols,
         )
         .map_err(|_| too_many(step, opts))?;
@@ -635,7 +675,7 @@ fn confirm_cycle<S: Stepper>(
     period: u64,
 ) -> Result<bool, Diagnostic> {
     let mut probe = Run {
-        rng: run.rng.clone(),
+        seed: run.seed,
         cur: run.cur.clone(),
         next: Vec::new(),
         scratch: S::Scratch::default(),
@@ -653,10 +693,10 @@ fn confirm_cycle<S: Stepper>(
 /// cumulative weights (the last one when rounding leaves the draw past them
 /// all). Weights are relative (`: 3` and `: 1` is three to one), as the IR
 /// says; a sum of exactly 1 leaves the draw untouched.
-fn choose(weights: impl ExactSizeIterator<Item = f64> + Clone, rng: &mut Rng) -> usize {
+fn choose(weights: impl ExactSizeIterator<Item = f64> + Clone, u: f64) -> usize {
     let n = weights.len();
     let total: f64 = weights.clone().sum();
-    let r = rng.next_f64() * total;
+    let r = u * total;
     let mut acc = 0.0;
     for (i, w) in weights.enumerate() {
         acc += w;
@@ -705,7 +745,8 @@ const CYCLE_TABLE_LIMIT: usize = 1 << 16;
 
 /// The state of a derivation in progress.
 struct Run<S: Stepper> {
-    rng: Rng,
+    /// The run's seed, from which each step's [`Draws`] come.
+    seed: u64,
     cur: Vec<S::Sym>,
     next: Vec<S::Sym>,
     scratch: S::Scratch,

@@ -7,7 +7,7 @@
 //! as [`Deriver::derive`], so the traced word is the word every other path
 //! gives for the same seed.
 
-use super::{ContextIndex, DeriveOptions, Deriver, Rng, Stepper};
+use super::{ContextIndex, DeriveOptions, Deriver, Draws, Stepper};
 use crate::diagnostics::Diagnostic;
 use crate::ir::{SymbolId, System, Word};
 
@@ -135,7 +135,7 @@ impl Stepper for TracedStepper<'_, '_> {
         cur: &mut [SymbolId],
         t: &mut Traced,
         out: &mut Vec<SymbolId>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
     ) -> Result<(), ()> {
         let d = self.deriver;
@@ -151,7 +151,7 @@ impl Stepper for TracedStepper<'_, '_> {
             cur: &t.origins,
             next: &mut t.next,
         };
-        d.step(cur, &t.index, out, rng, max, &mut notes)?;
+        d.step(cur, &t.index, out, draws, max, &mut notes)?;
         std::mem::swap(&mut t.origins, &mut t.next);
         Ok(())
     }

@@ -22,14 +22,14 @@
 //! million symbols) took 226 ms (median 228) on one thread and 130 ms
 //! (134) on two, 1.7 times faster; what stays on one thread whatever the
 //! count (writing the word out, about 15 ms, starting up and the steps
-//! below the threshold, about 8) keeps it from 2. Shorter words, one
-//! thread, and systems with stochastic productions (whose draws come in
-//! word order from one generator) take the one-thread path unchanged.
+//! below the threshold, about 8) keeps it from 2. Shorter words and one
+//! thread take the one-thread path. Stochastic productions are cut too:
+//! their choices are keyed by place in the word ([`super::Draws`]).
 //!
 //! Words are exactly those of the general matcher ([`super::Deriver`]); the
 //! tests compare them.
 
-use super::{Rng, Stepper, Sym};
+use super::{Draws, Stepper, Sym};
 use crate::ir::{SymbolId, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -331,13 +331,13 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
         cur: &mut [T],
         nb: &mut Neighbours<T>,
         out: &mut Vec<T>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
     ) -> Result<(), ()> {
         out.clear();
         let pieces = self.pieces(cur.len());
         if pieces > 1 {
-            return self.step_in_pieces(cur, nb, out, max, pieces);
+            return self.step_in_pieces(cur, nb, out, (draws, max), pieces);
         }
         // One allocation of about the output's size (growing by a sixteenth
         // when the guess falls short), not a doubling Vec: the output is
@@ -346,7 +346,7 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
         let done = match self.packed_shift {
             Some(shift) => {
                 self.pack_right_neighbours(cur, shift);
-                let done = self.rewrite::<true>(cur, &[], out, rng, max, &mut self.left(), None);
+                let done = self.rewrite::<true>(cur, &[], out, draws, max, &mut self.left(), None);
                 let low = (1 << shift) - 1;
                 for s in cur.iter_mut() {
                     *s = T::from_index(s.index() & low);
@@ -356,7 +356,7 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
             None => {
                 self.right_neighbours(cur, &mut nb.right);
                 let (left, right) = (&mut self.left(), &nb.right[1..]);
-                self.rewrite::<false>(cur, right, out, rng, max, left, None)
+                self.rewrite::<false>(cur, right, out, draws, max, left, None)
             }
         };
         if !cur.is_empty() {
@@ -381,18 +381,12 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     }
 
     /// How many pieces a step of a word of `len` symbols is cut into: 1
-    /// (the one-thread path) for one thread, a short word, or stochastic
-    /// productions, whose draws must come in word order from one
-    /// generator.
+    /// (the one-thread path) for one thread or a short word.
     fn pieces(&self, len: usize) -> usize {
-        if self.threads <= 1 || len < self.split.from || self.stochastic() {
+        if self.threads <= 1 || len < self.split.from {
             return 1;
         }
         self.threads.min(len / self.split.piece.max(1)).max(1)
-    }
-
-    fn stochastic(&self) -> bool {
-        self.spans.iter().any(|&(_, len)| len == STOCHASTIC)
     }
 
     /// Room for the rewriting of `len` symbols when the last step grew the
@@ -476,7 +470,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         cur: &[T],
         right: &[T],
         out: &mut Vec<T>,
-        rng: &mut Rng,
+        draws: Draws,
         max: usize,
         state: &mut Left<T>,
         total: Option<&AtomicUsize>,
@@ -532,7 +526,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
                         &arena[start..start + len]
                     } else {
                         let alts = &self.alternatives[rule];
-                        &alts[super::choose(alts.iter().map(|a| a.0), rng)].1
+                        &alts[super::choose(alts.iter().map(|a| a.0), draws.at(at - 1, 1))].1
                     };
                     dst[w..w + succ.len()].copy_from_slice(succ);
                     w += succ.len();

@@ -34,7 +34,7 @@
 //! copied into it are freed.
 
 use super::{Left, Neighbours, TableStepper, CLOSE, OPEN, VISIBLE};
-use crate::eval::{Rng, Stream, Sym};
+use crate::eval::{Draws, Sym};
 use std::sync::atomic::AtomicUsize;
 use std::sync::mpsc;
 
@@ -167,7 +167,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         cur: &mut [T],
         nb: &mut Neighbours<T>,
         out: &mut Vec<T>,
-        max: usize,
+        (draws, max): (Draws, usize),
         pieces: usize,
     ) -> Result<(), ()> {
         let n = cur.len();
@@ -195,24 +195,28 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         out.reserve_exact(self.room(bounds[1], nb.growth, max));
         let total = AtomicUsize::new(0);
         let growth = nb.growth;
-        let mut pieces =
-            (words.iter_mut().zip(rights.iter_mut())).zip(summaries.iter().zip(borders));
-        let ((w, r), (s, b)) = pieces.next().expect("one piece at least");
+        // Each piece draws its random choices by their places in the word.
+        let starts = bounds.iter().map(|&start| draws.from(start));
+        let mut pieces = (words.iter_mut().zip(rights.iter_mut()))
+            .zip(summaries.iter().zip(borders))
+            .zip(starts);
+        let (((w, r), (s, b)), d) = pieces.next().expect("one piece at least");
         let done = std::thread::scope(|scope| {
             // The first piece is rewritten straight into `out`, on this
             // thread; each other piece, on a thread of its own, into blocks
             // sent here as they are done, copied after it and freed.
             let (streams, others): (Vec<_>, Vec<_>) = pieces
-                .map(|((w, r), (s, b))| {
+                .map(|(((w, r), (s, b)), d)| {
                     let (send, receive) = mpsc::channel();
                     let total = &total;
                     let dest = Dest::Blocks(send);
-                    let other =
-                        scope.spawn(move || self.finish(w, r, s, b, dest, growth, max, total));
+                    let (growth, limit) = ((d, growth), (max, total));
+                    let other = scope.spawn(move || self.finish(w, r, s, b, dest, growth, limit));
                     (receive, other)
                 })
                 .unzip();
-            let done = self.finish(w, r, s, b, Dest::Word(&mut *out), growth, max, &total);
+            let dest = Dest::Word(&mut *out);
+            let done = self.finish(w, r, s, b, dest, (d, growth), (max, &total));
             // `out` grown a sixteenth at a time as the blocks copied into it
             // are freed, so the step holds its input and its output and
             // little more: all of `out` reserved beside whole pieces held
@@ -357,9 +361,8 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         summary: &Summary,
         borders: Borders<T>,
         dest: Dest<'_, T>,
-        growth: f64,
-        max: usize,
-        total: &AtomicUsize,
+        (draws, growth): (Draws, f64),
+        (max, total): (usize, &AtomicUsize),
     ) -> Result<(), ()> {
         let rclass = &self.table.right;
         let shift = self.packed_shift.unwrap_or(0);
@@ -378,24 +381,21 @@ impl<T: Sym> TableStepper<'_, '_, T> {
             }
             None => self.rescan(w, right, &borders.outside),
         }
-        // Never drawn from: a step is cut only without stochastic
-        // productions.
-        let rng = &mut Rng::new(0, Stream::Derivation);
         let mut left = borders.left;
         let total = Some(total);
-        let mut rewrite = |piece: &[T], right: &[T], out: &mut Vec<T>| match packed {
-            true => self.rewrite::<true>(piece, right, out, rng, max, &mut left, total),
-            false => self.rewrite::<false>(piece, right, out, rng, max, &mut left, total),
+        let mut rewrite = |piece: &[T], right: &[T], out: &mut Vec<T>, d: Draws| match packed {
+            true => self.rewrite::<true>(piece, right, out, d, max, &mut left, total),
+            false => self.rewrite::<false>(piece, right, out, d, max, &mut left, total),
         };
         let done = match dest {
-            Dest::Word(out) => rewrite(w, right, out),
+            Dest::Word(out) => rewrite(w, right, out, draws),
             Dest::Blocks(send) => (w.chunks(BLOCK).enumerate()).try_for_each(|(k, piece)| {
                 let right = match packed {
                     true => &[][..],
                     false => &right[k * BLOCK..][..piece.len()],
                 };
                 let mut block = Vec::with_capacity(self.room(piece.len(), growth, max));
-                let done = rewrite(piece, right, &mut block);
+                let done = rewrite(piece, right, &mut block, draws.from(k * BLOCK));
                 block.shrink_to_fit();
                 // The receiver stays until every block is sent.
                 let _ = send.send(block);
@@ -584,6 +584,37 @@ mod tests {
                 assert_eq!(e.code, crate::diagnostics::codes::TOO_MANY_SYMBOLS);
                 assert_eq!(at(threads, len - 1), at(1, len - 1), "{threads} threads");
             }
+        }
+    }
+
+    /// Stochastic productions, one with a context: their choices are keyed
+    /// by place in the word, so pieces of any size choose as one thread
+    /// does and as the general matcher does, and each seed gives its own
+    /// word.
+    #[test]
+    fn stochastic_choices_in_pieces_are_those_of_one_thread() {
+        let bush = crate::stdlib::get("stochastic-bush").unwrap().text;
+        let with_context = "axiom: F\nignore: +-\nF < F --> F[+F]F : 0.5\nF < F --> F[-F] : 0.5\n\
+                            F --> FF[+F] : 0.6\nF --> F[-F]F : 0.4\n";
+        for src in [bush, with_context] {
+            let s = sys(src);
+            let words: Vec<Vec<u8>> = (0..3)
+                .map(|seed| {
+                    let opts = DeriveOptions::new(6).seed(seed);
+                    let one = bytes(&s, &opts, 1, Split::default(), true).unwrap();
+                    assert!(one.len() > 500, "{}", one.len());
+                    assert_eq!(one, general(&s, &opts), "{src}");
+                    for threads in [2, 3, 7] {
+                        for packed in [true, false] {
+                            let many =
+                                bytes(&s, &opts, threads, split(1, 1 + seed as usize), packed);
+                            assert!(many.unwrap() == one, "{src}: {threads} threads, {packed}");
+                        }
+                    }
+                    one
+                })
+                .collect();
+            assert!(words[0] != words[1] && words[1] != words[2], "{src}");
         }
     }
 
