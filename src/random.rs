@@ -1,7 +1,12 @@
-//! The one random generator graftal uses: ChaCha8 (rand_chacha), seeded from
-//! a `u64`. ChaCha's output is specified bit for bit, so a seed gives the same
-//! numbers on every platform; floats are made from the top 53 bits of a
-//! `u64`, which is exact and portable too.
+//! graftal's random numbers, two kinds of them. A running stream is ChaCha8
+//! (rand_chacha), seeded from a `u64`: parametric systems draw from it in
+//! word order. A keyed draw ([`keyed`]) depends on its key alone: a
+//! stochastic production's choice is keyed by seed, step and place in the
+//! word, and an interval angle by seed and place, so a word rewritten or
+//! drawn in pieces on any number of threads draws the same numbers. Both
+//! are specified bit for bit, so a seed gives the same numbers on every
+//! platform; floats are made from the top 53 bits of a `u64`, which is
+//! exact and portable too.
 //!
 //! Every generator is made here, for a named [`Stream`]: one seed gives
 //! independent streams for the derivation, the turtle and the homomorphism,
@@ -19,8 +24,8 @@ use rand_core::{Rng as _, SeedableRng};
 /// one would change every stochastic picture).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stream {
-    /// Rewriting: stochastic choices, guards (`p?s`), cpfg's `ran()` in
-    /// productions and blocks (and what `srand()` restarts).
+    /// Rewriting: stochastic choices and guards (`p?s`), keyed; `ran()` in
+    /// productions and blocks (and what `srand()` restarts), a stream.
     Derivation = 0,
     /// The turtle: interval angles drawn while drawing.
     Turtle = 1,
@@ -141,8 +146,8 @@ mod tests {
         // Streams differ.
         let turtle = Rng::new(42, Stream::Turtle).next_f64();
         assert_ne!(turtle, Rng::new(42, Stream::Derivation).next_f64());
-        // The derivation's stream is ChaCha's default stream: stochastic
-        // words stay what they were before streams were named.
+        // The derivation's stream is ChaCha's default stream: `ran()`
+        // draws what it drew before streams were named.
         let plain = ChaCha8Rng::seed_from_u64(42).next_u64();
         let ours = (plain >> 11) as f64 / (1u64 << 53) as f64;
         assert_eq!(Rng::new(42, Stream::Derivation).next_f64(), ours);
