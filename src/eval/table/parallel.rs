@@ -124,9 +124,11 @@ impl Rare {
 /// allocation and the room its rewriting wants ahead (a chunk's worth) cost
 /// little, few enough that blocks are copied while later ones are being
 /// rewritten. Measured on the whole of `derive std:hogeweg-hesper-a -n 60`
-/// on two threads: 2^19 to 2^21 as fast as each other, 2^16 10% slower,
-/// and blocks copied only once every piece was done 20% slower.
-const BLOCK: usize = 1 << 19;
+/// on two threads: 2^17 to 2^21 as fast as each other, 2^16 10% slower,
+/// and blocks copied only once every piece was done 20% slower. The
+/// smallest of the fast ones: the blocks not yet copied are part of what a
+/// step holds (the scale test's bound).
+const BLOCK: usize = 1 << 17;
 
 /// Where a piece is rewritten: the first straight into the word, the others
 /// into blocks of [`BLOCK`] symbols' rewriting, sent to be copied into the
@@ -217,15 +219,16 @@ impl<T: Sym> TableStepper<'_, '_, T> {
                 .unzip();
             let dest = Dest::Word(&mut *out);
             let done = self.finish(w, r, s, b, dest, (d, growth), (max, &total));
-            // `out` grown a sixteenth at a time as the blocks copied into it
-            // are freed, so the step holds its input and its output and
-            // little more: all of `out` reserved beside whole pieces held
-            // 2.4 bytes a symbol of the word at peak, where one thread holds
-            // 1.8 (the scale test's bound is 2).
+            // `out` grown a thirty-second at a time as the blocks copied
+            // into it are freed, so the step holds its input and its output
+            // and little more: all of `out` reserved beside whole pieces
+            // held 2.4 bytes a symbol of the word at peak, and blocks of 2^19
+            // symbols grown by sixteenths 2.01, where one thread holds 1.8
+            // (the scale test's bound is 2).
             for block in streams.into_iter().flatten() {
                 if done.is_ok() {
                     if out.capacity() - out.len() < block.len() {
-                        out.reserve_exact(block.len().max(out.len() / 16));
+                        out.reserve_exact(block.len().max(out.len() / 32));
                     }
                     out.extend_from_slice(&block);
                 }
