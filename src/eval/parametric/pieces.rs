@@ -108,22 +108,12 @@ impl<'a> Engine<'a> {
         }
         let bounds: Vec<usize> = (0..=pieces).map(|k| k * n / pieces).collect();
         let mut forks: Vec<Engine<'a>> = (1..pieces).map(|_| self.fork()).collect();
-        let (first, others) = std::thread::scope(|scope| {
-            let others: Vec<_> = (forks.iter_mut().zip(bounds.windows(2).skip(1)))
-                .map(|(e, b)| {
-                    let run = &run;
-                    scope.spawn(move || run(e, b[0]..b[1]))
-                })
-                .collect();
-            let first = run(self, bounds[0]..bounds[1]);
-            let others: Vec<_> = others
-                .into_iter()
-                .map(|h| h.join().expect("a piece panicked"))
-                .collect();
-            (first, others)
-        });
-        let (mut out, mut from) = first?;
-        for (fork, piece) in forks.iter().zip(others) {
+        let engines = std::iter::once(&mut *self).chain(forks.iter_mut());
+        let ranges = bounds.windows(2).map(|b| b[0]..b[1]);
+        let mut done =
+            crate::parallel::on_own_threads(engines.zip(ranges), |(e, r)| run(e, r)).into_iter();
+        let (mut out, mut from) = done.next().expect("one piece at least")?;
+        for (fork, piece) in forks.iter().zip(done) {
             self.m.charge(fork.m.work)?;
             let (w, f) = piece?;
             out.append(&w);

@@ -186,13 +186,13 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         } else {
             cut(&mut nb.right[..n], &bounds)
         };
-        let summaries: Vec<Summary> = on_threads(
-            words.iter_mut().zip(rights.iter_mut()),
-            |(w, r)| match packed {
-                true => self.scan::<true>(w, r),
-                false => self.scan::<false>(w, r),
-            },
-        );
+        let summaries: Vec<Summary> =
+            crate::parallel::on_own_threads(words.iter_mut().zip(rights.iter_mut()), |(w, r)| {
+                match packed {
+                    true => self.scan::<true>(w, r),
+                    false => self.scan::<false>(w, r),
+                }
+            });
         let borders = self.borders(&summaries);
         out.reserve_exact(self.room(bounds[1], nb.growth, max));
         let total = AtomicUsize::new(0);
@@ -450,35 +450,6 @@ fn cut<'w, T>(mut w: &'w mut [T], bounds: &[usize]) -> Vec<&'w mut [T]> {
         w = rest;
     }
     pieces
-}
-
-/// `work` on each item, the first on this thread and each other on a
-/// thread of its own; the results in order.
-fn on_threads<I, R>(items: I, work: impl Fn(I::Item) -> R + Sync) -> Vec<R>
-where
-    I: Iterator,
-    I::Item: Send,
-    R: Send,
-{
-    std::thread::scope(|scope| {
-        let mut items = items;
-        let first = items.next();
-        let others: Vec<_> = items
-            .map(|item| {
-                let work = &work;
-                scope.spawn(move || work(item))
-            })
-            .collect();
-        first
-            .map(&work)
-            .into_iter()
-            .chain(
-                others
-                    .into_iter()
-                    .map(|h| h.join().expect("a piece panicked")),
-            )
-            .collect()
-    })
 }
 
 #[cfg(test)]

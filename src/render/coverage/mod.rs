@@ -394,15 +394,8 @@ fn png_of_shares(shares: &[Coverage]) -> Option<Vec<u8>> {
             let y = (top + i) as u32;
             held[(y / stripe) as usize % shares.len()].push((y, pixels));
         }
-        std::thread::scope(|scope| {
-            let mut work = shares.iter().zip(held);
-            let mine = work.next();
-            for (share, rows) in work {
-                scope.spawn(move || share.rgba_rows(rows));
-            }
-            if let Some((share, rows)) = mine {
-                share.rgba_rows(rows);
-            }
+        crate::parallel::on_own_threads(shares.iter().zip(held), |(share, rows)| {
+            share.rgba_rows(rows)
         });
         std::io::Write::write_all(&mut stream, band).ok()?;
     }
