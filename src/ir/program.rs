@@ -257,9 +257,7 @@ impl Builtin {
                 | Builtin::CurveGal
         )
     }
-}
 
-impl Builtin {
     /// Whether calling the function changes what comes after it: it draws
     /// from the random stream (or reseeds it), or acts on the derivation
     /// (`stop`, `SetDerivationLength`). Reading a table or the derivation
