@@ -75,7 +75,7 @@ pub(super) fn png_in_bands(
                 .collect::<Option<Vec<_>>>()
         })?;
         let target = merged(scene, &drawn, painted)?;
-        let mut pixels = downsample(&target, w, ss);
+        let mut pixels = downsample(&target, w, ss, threads);
         // Labels over everything, as cpfg writes its bitmaps.
         for l in &labels {
             crate::render::text::write(&mut pixels, w, row, l);
@@ -97,10 +97,10 @@ fn merged(
 ) -> Option<Target> {
     let mut painted = painted.into_iter();
     let (mut target, mut translucent) = painted.next()?;
-    for (later, more) in painted {
-        target.merge(&later);
-        translucent.extend(more);
-    }
+    let (later, more): (Vec<Target>, Vec<Vec<Polygon>>) = painted.unzip();
+    target.merge(&later);
+    drop(later);
+    translucent.extend(more.into_iter().flatten());
     Some(Painter::new(scene, target, drawn, 0).blend(translucent))
 }
 
@@ -135,31 +135,44 @@ impl Bands {
     }
 }
 
-/// The pixels of the rows `t` holds, RGBA, each the mean of its samples.
-fn downsample(t: &Target, w: u32, ss: u32) -> Vec<u8> {
+/// The pixels of the rows `t` holds, RGBA, each the mean of its samples:
+/// the rows shared among `threads` threads.
+fn downsample(t: &Target, w: u32, ss: u32, threads: usize) -> Vec<u8> {
     let (w, ss) = (w as usize, ss as usize);
     let rows = t.colour.len() / (t.width.max(1) as usize * ss);
-    let n = (ss * ss) as u32;
-    let mut out = Vec::with_capacity(w * rows * 4);
-    for y in 0..rows {
-        for x in 0..w {
-            // Colours weighed by their opacity, so that a transparent
-            // background's colour does not tint the edges.
-            let mut sum = [0u32; 4];
-            for sy in 0..ss {
-                let base = (y * ss + sy) * t.width as usize + x * ss;
-                for c in &t.colour[base..base + ss] {
-                    let a = c >> 24;
-                    sum[0] += ((c >> 16) & 255) * a;
-                    sum[1] += ((c >> 8) & 255) * a;
-                    sum[2] += (c & 255) * a;
-                    sum[3] += a;
-                }
-            }
-            let a = sum[3].max(1);
-            out.extend(sum[..3].iter().map(|s| ((s + a / 2) / a) as u8));
-            out.push(((sum[3] + n / 2) / n) as u8);
+    let mut out = vec![0u8; w * rows * 4];
+    let share = rows.div_ceil(threads.max(1)).max(1) * w * 4;
+    let shares = out.chunks_mut(share).enumerate();
+    crate::parallel::on_own_threads(shares, |(k, pixels)| {
+        let first = k * share / (w * 4);
+        for (i, row) in pixels.chunks_mut(w * 4).enumerate() {
+            downsample_row(t, first + i, ss, row);
         }
-    }
+    });
     out
+}
+
+/// Pixel row `y` of `t` into `row`.
+fn downsample_row(t: &Target, y: usize, ss: usize, row: &mut [u8]) {
+    let n = (ss * ss) as u32;
+    for (x, pixel) in row.chunks_mut(4).enumerate() {
+        // Colours weighed by their opacity, so that a transparent
+        // background's colour does not tint the edges.
+        let mut sum = [0u32; 4];
+        for sy in 0..ss {
+            let base = (y * ss + sy) * t.width as usize + x * ss;
+            for c in &t.colour[base..base + ss] {
+                let a = c >> 24;
+                sum[0] += ((c >> 16) & 255) * a;
+                sum[1] += ((c >> 8) & 255) * a;
+                sum[2] += (c & 255) * a;
+                sum[3] += a;
+            }
+        }
+        let a = sum[3].max(1);
+        for (p, s) in pixel.iter_mut().zip(&sum[..3]) {
+            *p = ((s + a / 2) / a) as u8;
+        }
+        pixel[3] = ((sum[3] + n / 2) / n) as u8;
+    }
 }

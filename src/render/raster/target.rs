@@ -74,17 +74,33 @@ impl Target {
         }
     }
 
-    /// Lays `later` (the same band, with what was drawn after what this
-    /// holds) over this one: each sample the nearer of the two, this one's
-    /// on a tie, as if everything had been drawn into one band in order.
-    pub(super) fn merge(&mut self, later: &Target) {
-        let samples = self.depth.iter_mut().zip(&mut self.colour);
-        for ((d, c), (&ld, &lc)) in samples.zip(later.depth.iter().zip(&later.colour)) {
-            if ld < *d {
-                *d = ld;
-                *c = lc;
-            }
+    /// Lays each of `later` (the same band, each with what was drawn after
+    /// what the one before holds) over this one in turn: each sample the
+    /// nearest, the earliest on a tie, as if everything had been drawn
+    /// into one band in order. Each sample's result depends on that sample
+    /// alone, so the band is cut into a share of samples a thread (as many
+    /// as drew it), each laid over by every later band.
+    pub(super) fn merge(&mut self, later: &[Target]) {
+        if later.is_empty() {
+            return;
         }
+        let share = self.depth.len().div_ceil(later.len() + 1).max(1);
+        let shares = (self.depth.chunks_mut(share))
+            .zip(self.colour.chunks_mut(share))
+            .enumerate();
+        crate::parallel::on_own_threads(shares, |(k, (depth, colour))| {
+            let at = k * share..k * share + depth.len();
+            for l in later {
+                let samples = depth.iter_mut().zip(colour.iter_mut());
+                let theirs = l.depth[at.clone()].iter().zip(&l.colour[at.clone()]);
+                for ((d, c), (&ld, &lc)) in samples.zip(theirs) {
+                    if ld < *d {
+                        *d = ld;
+                        *c = lc;
+                    }
+                }
+            }
+        });
     }
 
     /// Whether sample rows `lo..=hi` meet the band.
