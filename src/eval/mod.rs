@@ -462,6 +462,12 @@ pub(crate) trait Sym: Copy + Eq + Send + Sync {
     fn index(self) -> usize;
     /// The value `i` (which must fit in [`Sym::BITS`]).
     fn from_index(i: usize) -> Self;
+    /// `len` zeros. Of integers, in memory asked of the system zeroed, so
+    /// that nothing writes it before its users do: threads that each fill
+    /// a part of it touch their own pages first, at the same time.
+    fn zeroed(len: usize) -> Vec<Self> {
+        vec![Self::from_index(0); len]
+    }
 }
 
 impl Sym for SymbolId {
@@ -479,6 +485,9 @@ impl Sym for SymbolId {
 
 impl Sym for u8 {
     const BITS: u32 = 8;
+    fn zeroed(len: usize) -> Vec<Self> {
+        vec![0; len]
+    }
     fn from_index(i: usize) -> Self {
         i as u8
     }
@@ -492,6 +501,9 @@ impl Sym for u8 {
 
 impl Sym for u16 {
     const BITS: u32 = 16;
+    fn zeroed(len: usize) -> Vec<Self> {
+        vec![0; len]
+    }
     fn from_index(i: usize) -> Self {
         i as u16
     }
@@ -1079,7 +1091,7 @@ mod tests {
             // Every step cut into pieces of one symbol and more, one a
             // thread.
             let d = Deriver::new(&s);
-            let split = table::Split { from: 1, piece: 1 + seed as usize };
+            let split = table::Split { from: 1, piece: 1 + seed as usize, place: None };
             let stepper = d.table.as_ref().unwrap().stepper::<u8>().on(threads).split(split);
             let pieces = d.steps(&stepper, &opts, |_, _| {}).map(|(w, _)| w);
             let bytes = fast.as_ref().map(|w| w.0.iter().map(|s| s.0 as u8).collect::<Vec<_>>());

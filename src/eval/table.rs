@@ -89,18 +89,26 @@ impl<T> Default for Neighbours<T> {
 /// When a step is cut into pieces for several threads: from a word of
 /// `from` symbols, into pieces of at least `piece` symbols (fewer pieces
 /// than threads when the word is short). The tests lower both to cut small
-/// words into many pieces.
+/// words into many pieces, and set `place` to give every piece that many
+/// symbols of the new word to be rewritten into (instead of the room the
+/// last step's growth says it needs), so that pieces outgrow their places.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Split {
     pub(super) from: usize,
     pub(super) piece: usize,
+    pub(super) place: Option<usize>,
 }
 
 impl Default for Split {
+    /// Measured on two cores (Fig. 3.11a's steps, medians of 6 runs): a
+    /// word of 76 K symbols took 0.42 ms on one thread and 0.61 ms in two
+    /// pieces (starting the second thread is most of a step that short),
+    /// 96 K 0.56 and 0.51 ms, 122 K 0.73 and 0.53 ms.
     fn default() -> Self {
         Split {
-            from: 1 << 16,
+            from: 1 << 17,
             piece: 1 << 15,
+            place: None,
         }
     }
 }
@@ -346,7 +354,8 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
         let done = match self.packed_shift {
             Some(shift) => {
                 self.pack_right_neighbours(cur, shift);
-                let done = self.rewrite::<true>(cur, &[], out, draws, max, &mut self.left(), None);
+                let dst = (&mut [][..], &mut *out);
+                let done = self.rewrite::<true>(cur, &[], dst, draws, max, &mut self.left(), None);
                 let low = (1 << shift) - 1;
                 for s in cur.iter_mut() {
                     *s = T::from_index(s.index() & low);
@@ -356,14 +365,15 @@ impl<T: Sym> Stepper for TableStepper<'_, '_, T> {
             None => {
                 self.right_neighbours(cur, &mut nb.right);
                 let (left, right) = (&mut self.left(), &nb.right[1..]);
-                self.rewrite::<false>(cur, right, out, draws, max, left, None)
+                let dst = (&mut [][..], &mut *out);
+                self.rewrite::<false>(cur, right, dst, draws, max, left, None)
             }
         };
         if !cur.is_empty() {
             nb.growth = out.len() as f64 / cur.len() as f64;
         }
         out.shrink_to_fit();
-        done
+        done.map(|_| ())
     }
 }
 
@@ -405,17 +415,19 @@ impl<T: Sym> TableStepper<'_, '_, T> {
 
     /// Moves the right-context state (`next`: the nearest visible symbol
     /// so far, `stack`: its value outside each branch entered) leftwards
-    /// past symbol `s`.
+    /// past symbol `s`, of class `class[s]`. The table's slices are passed
+    /// in so that a loop can hold them as locals: writes into a word could
+    /// otherwise alias their lengths and force a reload every symbol.
     #[inline]
-    fn pass_leftwards(&self, s: T, next: &mut T, stack: &mut Vec<T>) {
-        let class = self.table.class[s.index()];
+    fn pass_leftwards(class: &[u8], none: T, s: T, next: &mut T, stack: &mut Vec<T>) {
+        let class = class[s.index()];
         *next = if class == VISIBLE { s } else { *next };
         if class >= OPEN {
             if class == CLOSE {
                 stack.push(*next);
-                *next = self.none;
+                *next = none;
             } else {
-                *next = stack.pop().unwrap_or(self.none);
+                *next = stack.pop().unwrap_or(none);
             }
         }
     }
@@ -424,29 +436,27 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     /// at or after `i`, a whole branch skipped, `]` ending the search (the
     /// listing's `rcondiff`).
     fn right_neighbours(&self, w: &[T], right: &mut Vec<T>) {
-        let class = &self.table.right;
+        let (class, rclass, none) = (&self.table.class[..], &self.table.right[..], self.none);
         right.clear();
-        right.resize(
-            w.len() + 1,
-            T::from_index(class[self.none.index()] as usize),
-        );
-        let mut next = self.none;
+        right.resize(w.len() + 1, T::from_index(rclass[none.index()] as usize));
+        let mut next = none;
         let mut stack: Vec<T> = Vec::new();
         for (r, &s) in right.iter_mut().zip(w).rev() {
-            self.pass_leftwards(s, &mut next, &mut stack);
-            *r = T::from_index(class[next.index()] as usize);
+            Self::pass_leftwards(class, none, s, &mut next, &mut stack);
+            *r = T::from_index(rclass[next.index()] as usize);
         }
     }
 
     /// [`Self::right_neighbours`] of `i + 1` put in the high bits of
     /// `w[i]`, shifted by `shift`.
     fn pack_right_neighbours(&self, w: &mut [T], shift: u32) {
-        let mut next = self.none;
+        let (class, rclass, none) = (&self.table.class[..], &self.table.right[..], self.none);
+        let mut next = none;
         let mut stack: Vec<T> = Vec::new();
         for x in w.iter_mut().rev() {
             let s = *x;
-            let after = self.table.right[next.index()] as usize;
-            self.pass_leftwards(s, &mut next, &mut stack);
+            let after = rclass[next.index()] as usize;
+            Self::pass_leftwards(class, none, s, &mut next, &mut stack);
             *x = T::from_index(s.index() | after << shift);
         }
     }
@@ -459,9 +469,11 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         (RESERVE / self.longest.max(COPY)).clamp(1, CHUNK)
     }
 
-    /// Rewrites `cur` onto the end of `out`, from the left-context state
-    /// `state` (left as it is after `cur`). `PACKED`: each symbol of `cur` holds its right neighbour in
-    /// its high bits ([`Self::pack_right_neighbours`]); else `right[i]`
+    /// Rewrites `cur` into `region` and, from the first chunk that might
+    /// not fit there, onto the end of `out`, from the left-context state
+    /// `state` (left as it is after `cur`); how many symbols went into
+    /// `region`. `PACKED`: each symbol of `cur` holds its right neighbour
+    /// in its high bits ([`Self::pack_right_neighbours`]); else `right[i]`
     /// holds that of `cur[i]`. `total`: the symbols every piece of a step
     /// cut into pieces has written so far, kept under `max` as well.
     #[allow(clippy::too_many_arguments)]
@@ -469,78 +481,113 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         &self,
         cur: &[T],
         right: &[T],
-        out: &mut Vec<T>,
+        (region, out): (&mut [T], &mut Vec<T>),
         draws: Draws,
         max: usize,
         state: &mut Left<T>,
         total: Option<&AtomicUsize>,
-    ) -> Result<(), ()> {
+    ) -> Result<usize, ()> {
+        let longest = self.longest.max(COPY);
+        let spilled_from = out.len();
+        // Written by index into `region`, or into `out` grown ahead a chunk
+        // at a time, so the length stays in a register (pushing reloads it
+        // every symbol).
+        let (mut w, mut in_region, mut used) = (0, true, 0);
+        // What is in `total` already.
+        let mut counted = 0;
+        let mut at = 0;
+        for chunk in cur.chunks(self.chunk_len()) {
+            let room = chunk.len() * longest + COPY;
+            if in_region && w + room > region.len() {
+                (in_region, used, w) = (false, w, spilled_from);
+            }
+            let dst = if in_region {
+                &mut region[..]
+            } else {
+                if out.len() < w + room {
+                    if out.capacity() < w + room {
+                        let more = (w + room).max(out.capacity() + out.capacity() / 16);
+                        out.reserve_exact(more - out.len());
+                    }
+                    out.resize(w + room, self.none);
+                }
+                &mut out[..]
+            };
+            w = self.rewrite_chunk::<PACKED>(chunk, right, at, dst, w, state, draws);
+            at += chunk.len();
+            let written = match in_region {
+                true => w,
+                false => used + w - spilled_from,
+            };
+            if written > max || total.is_some_and(|t| over(t, written - counted, max)) {
+                out.truncate(if in_region { spilled_from } else { w });
+                return Err(());
+            }
+            counted = written;
+        }
+        match in_region {
+            true => used = w,
+            false => out.truncate(w),
+        }
+        Ok(used)
+    }
+
+    /// The loop of [`Self::rewrite`] over one chunk of `cur`, starting at
+    /// `at`, written into `dst` from `w` (with room for the chunk's longest
+    /// rewriting and [`COPY`] more); where its rewriting ends.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn rewrite_chunk<const PACKED: bool>(
+        &self,
+        chunk: &[T],
+        right: &[T],
+        mut at: usize,
+        dst: &mut [T],
+        mut w: usize,
+        state: &mut Left<T>,
+        draws: Draws,
+    ) -> usize {
         let t = self.table;
         let none = self.none;
         // A local the loop keeps in registers, put back at the end.
         let mut left = std::mem::replace(state, Left::new(none));
         let shift = self.packed_shift.unwrap_or(0);
         let low = (1 << shift) - 1;
-        let longest = self.longest.max(COPY);
         // Everything the loop reads, as local slices: the output's writes
         // could otherwise alias their lengths and force reloads.
         let (entry, class, cells, rights) = (&t.entry[..], &t.class[..], &t.cells[..], t.rights);
         let (arena, spans) = (&self.arena[..], &self.spans[..]);
-        // Written by index into `out` grown ahead a chunk at a time, so the
-        // length stays in a register (pushing reloads it every symbol).
-        let mut w = out.len();
-        // What of `out` is in `total` already.
-        let mut counted = w;
-        let mut at = 0;
-        let chunk_len = self.chunk_len();
-        for chunk in cur.chunks(chunk_len) {
-            let need = w + chunk.len() * longest + COPY;
-            if out.len() < need {
-                if out.capacity() < need {
-                    let more = need.max(out.capacity() + out.capacity() / 16);
-                    out.reserve_exact(more - out.len());
-                }
-                out.resize(need, none);
-            }
-            let dst = &mut out[..];
-            for &s in chunk {
-                let (s, si, r) = if PACKED {
-                    let si = s.index() & low;
-                    (T::from_index(si), si, s.index() >> shift)
+        for &s in chunk {
+            let (s, si, r) = if PACKED {
+                let si = s.index() & low;
+                (T::from_index(si), si, s.index() >> shift)
+            } else {
+                (s, s.index(), right[at].index())
+            };
+            // Context-free symbols have one cell: the mask is zero.
+            let (base, mask) = entry[si];
+            let cell = (left.last.index() * rights + r) & mask;
+            let rule = cells[base as usize + cell] as usize;
+            at += 1;
+            left.pass(s, class[si], none);
+            let (start, len) = spans[rule];
+            let (start, len) = (start as usize, len as usize);
+            if len <= COPY {
+                dst[w..w + COPY].copy_from_slice(&arena[start..start + COPY]);
+                w += len;
+            } else {
+                let succ = if len as u32 != STOCHASTIC {
+                    &arena[start..start + len]
                 } else {
-                    (s, s.index(), right[at].index())
+                    let alts = &self.alternatives[rule];
+                    &alts[super::choose(alts.iter().map(|a| a.0), draws.at(at - 1, 1))].1
                 };
-                // Context-free symbols have one cell: the mask is zero.
-                let (base, mask) = entry[si];
-                let cell = (left.last.index() * rights + r) & mask;
-                let rule = cells[base as usize + cell] as usize;
-                at += 1;
-                left.pass(s, class[si], none);
-                let (start, len) = spans[rule];
-                let (start, len) = (start as usize, len as usize);
-                if len <= COPY {
-                    dst[w..w + COPY].copy_from_slice(&arena[start..start + COPY]);
-                    w += len;
-                } else {
-                    let succ = if len as u32 != STOCHASTIC {
-                        &arena[start..start + len]
-                    } else {
-                        let alts = &self.alternatives[rule];
-                        &alts[super::choose(alts.iter().map(|a| a.0), draws.at(at - 1, 1))].1
-                    };
-                    dst[w..w + succ.len()].copy_from_slice(succ);
-                    w += succ.len();
-                }
+                dst[w..w + succ.len()].copy_from_slice(succ);
+                w += succ.len();
             }
-            if w > max || total.is_some_and(|t| over(t, w - counted, max)) {
-                out.truncate(w);
-                return Err(());
-            }
-            counted = w;
         }
-        out.truncate(w);
         *state = left;
-        Ok(())
+        w
     }
 }
 

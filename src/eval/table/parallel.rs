@@ -1,8 +1,11 @@
 //! One step of a big word on several threads: the word is cut into pieces,
-//! one a thread. The first piece is rewritten straight into the new word;
-//! each other piece into blocks that its thread sends to the first piece's,
-//! which copies them after its own in word order (while the later ones are
-//! still being rewritten) and frees them.
+//! one a thread, and each piece is rewritten straight into a place of its
+//! own in the new word, as long as the last step's growth says its
+//! rewriting will be. The pieces' rewritings are then moved up against
+//! each other (a piece that outgrows its place goes on in a word of its
+//! own, copied in after it). So each thread writes its share of the new
+//! word once, in memory that the step's own thread neither fills nor
+//! copies, and the new word is one allocation as on one thread.
 //!
 //! What a position rewrites to depends on context that may lie in other
 //! pieces: its left-context state (the nearest visible symbol on its left
@@ -28,15 +31,13 @@
 //! So the word is the one-thread word whatever the number of pieces. The
 //! symbol limit is kept over all pieces together (a shared count checked
 //! as often as the one-thread pass checks its own), so a step fails
-//! exactly when its whole output is longer than the limit, and the pieces
-//! together hold no more than it. A step holds about what the one-thread
-//! step holds, its input and its output: the new word grows as the blocks
-//! copied into it are freed.
+//! exactly when its whole output is longer than the limit, and the pieces'
+//! places together are no larger than it (and a chunk's room a piece). A
+//! step holds what the one-thread step holds, its input and its output.
 
 use super::{Left, Neighbours, TableStepper, CLOSE, OPEN, VISIBLE};
 use crate::eval::{Draws, Sym};
 use std::sync::atomic::AtomicUsize;
-use std::sync::mpsc;
 
 /// A value of the context state while a piece is scanned on its own: a
 /// symbol index below `side` (`side - 1` being "none"), or from `side` on a
@@ -120,24 +121,6 @@ impl Rare {
     }
 }
 
-/// Symbols of a piece rewritten into one block: enough that a block's
-/// allocation and the room its rewriting wants ahead (a chunk's worth) cost
-/// little, few enough that blocks are copied while later ones are being
-/// rewritten. Measured on the whole of `derive std:hogeweg-hesper-a -n 60`
-/// on two threads: 2^17 to 2^21 as fast as each other, 2^16 10% slower,
-/// and blocks copied only once every piece was done 20% slower. The
-/// smallest of the fast ones: the blocks not yet copied are part of what a
-/// step holds (the scale test's bound).
-const BLOCK: usize = 1 << 17;
-
-/// Where a piece is rewritten: the first straight into the word, the others
-/// into blocks of [`BLOCK`] symbols' rewriting, sent to be copied into the
-/// word and freed.
-enum Dest<'o, T> {
-    Word(&'o mut Vec<T>),
-    Blocks(mpsc::Sender<Vec<T>>),
-}
-
 /// The exact context states at a piece's borders.
 struct Borders<T> {
     /// The left-context state at its start, with just the top of the stack
@@ -194,51 +177,26 @@ impl<T: Sym> TableStepper<'_, '_, T> {
                 }
             });
         let borders = self.borders(&summaries);
-        out.reserve_exact(self.room(bounds[1], nb.growth, max));
+        let places = self.places(&bounds, nb.growth, max);
+        // The old buffer freed first, so that the step holds its input and
+        // its output only (the scale test's bound).
+        *out = Vec::new();
+        *out = T::zeroed(places[pieces]);
+        let regions = cut(&mut out[..], &places);
         let total = AtomicUsize::new(0);
-        let growth = nb.growth;
         // Each piece draws its random choices by their places in the word.
         let starts = bounds.iter().map(|&start| draws.from(start));
-        let mut pieces = (words.iter_mut().zip(rights.iter_mut()))
+        let pieces = (words.iter_mut().zip(rights.iter_mut()))
             .zip(summaries.iter().zip(borders))
-            .zip(starts);
-        let (((w, r), (s, b)), d) = pieces.next().expect("one piece at least");
-        let done = std::thread::scope(|scope| {
-            // The first piece is rewritten straight into `out`, on this
-            // thread; each other piece, on a thread of its own, into blocks
-            // sent here as they are done, copied after it and freed.
-            let (streams, others): (Vec<_>, Vec<_>) = pieces
-                .map(|(((w, r), (s, b)), d)| {
-                    let (send, receive) = mpsc::channel();
-                    let total = &total;
-                    let dest = Dest::Blocks(send);
-                    let (growth, limit) = ((d, growth), (max, total));
-                    let other = scope.spawn(move || self.finish(w, r, s, b, dest, growth, limit));
-                    (receive, other)
-                })
-                .unzip();
-            let dest = Dest::Word(&mut *out);
-            let done = self.finish(w, r, s, b, dest, (d, growth), (max, &total));
-            // `out` grown a thirty-second at a time as the blocks copied
-            // into it are freed, so the step holds its input and its output
-            // and little more: all of `out` reserved beside whole pieces
-            // held 2.4 bytes a symbol of the word at peak, and blocks of 2^19
-            // symbols grown by sixteenths 2.01, where one thread holds 1.8
-            // (the scale test's bound is 2).
-            for block in streams.into_iter().flatten() {
-                if done.is_ok() {
-                    if out.capacity() - out.len() < block.len() {
-                        out.reserve_exact(block.len().max(out.len() / 32));
-                    }
-                    out.extend_from_slice(&block);
-                }
-            }
-            let others = others
-                .into_iter()
-                .map(|t| t.join().expect("a piece panicked"));
-            others.fold(done, Result::and)
+            .zip(regions.into_iter().zip(starts));
+        let done = crate::parallel::on_own_threads(pieces, |(((w, r), (s, b)), (region, d))| {
+            let mut spill = Vec::new();
+            let used = self.finish(w, r, s, b, (region, &mut spill), d, (max, &total));
+            used.map(|used| (used, spill))
         });
-        if done.is_err() || out.len() > max {
+        let parts = done.into_iter().collect::<Result<Vec<_>, ()>>()?;
+        lay_out(out, &places, &parts);
+        if out.len() > max {
             return Err(());
         }
         if n > 0 {
@@ -246,6 +204,21 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         }
         out.shrink_to_fit();
         Ok(())
+    }
+
+    /// Where in the new word each piece (the word cut at `bounds`) is
+    /// rewritten: room for its rewriting at the last step's `growth`, the
+    /// guesses together kept to `max` (each with a chunk's slack).
+    fn places(&self, bounds: &[usize], growth: f64, max: usize) -> Vec<usize> {
+        let mut places = vec![0];
+        let mut guessed = 0;
+        for pair in bounds.windows(2) {
+            let room = (self.split.place)
+                .unwrap_or_else(|| self.room(pair[1] - pair[0], growth, max - guessed));
+            guessed = (guessed + room).min(max);
+            places.push(places[places.len() - 1] + room);
+        }
+        places
     }
 
     /// Stage 1 for one piece `w`: the leftwards pass of
@@ -354,8 +327,8 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     }
 
     /// Stage 3 for one piece: its right neighbours from outside filled in,
-    /// then its rewriting into `dest` (blocks sized from `growth`, the
-    /// last step's).
+    /// then its rewriting into `region` and, past it, `spill`; how many
+    /// symbols went into `region`.
     #[allow(clippy::too_many_arguments)]
     fn finish(
         &self,
@@ -363,10 +336,10 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         right: &mut [T],
         summary: &Summary,
         borders: Borders<T>,
-        dest: Dest<'_, T>,
-        (draws, growth): (Draws, f64),
+        dest: (&mut [T], &mut Vec<T>),
+        draws: Draws,
         (max, total): (usize, &AtomicUsize),
-    ) -> Result<(), ()> {
+    ) -> Result<usize, ()> {
         let rclass = &self.table.right;
         let shift = self.packed_shift.unwrap_or(0);
         let side = self.table.side;
@@ -384,26 +357,10 @@ impl<T: Sym> TableStepper<'_, '_, T> {
             }
             None => self.rescan(w, right, &borders.outside),
         }
-        let mut left = borders.left;
-        let total = Some(total);
-        let mut rewrite = |piece: &[T], right: &[T], out: &mut Vec<T>, d: Draws| match packed {
-            true => self.rewrite::<true>(piece, right, out, d, max, &mut left, total),
-            false => self.rewrite::<false>(piece, right, out, d, max, &mut left, total),
-        };
-        let done = match dest {
-            Dest::Word(out) => rewrite(w, right, out, draws),
-            Dest::Blocks(send) => (w.chunks(BLOCK).enumerate()).try_for_each(|(k, piece)| {
-                let right = match packed {
-                    true => &[][..],
-                    false => &right[k * BLOCK..][..piece.len()],
-                };
-                let mut block = Vec::with_capacity(self.room(piece.len(), growth, max));
-                let done = rewrite(piece, right, &mut block, draws.from(k * BLOCK));
-                block.shrink_to_fit();
-                // The receiver stays until every block is sent.
-                let _ = send.send(block);
-                done
-            }),
+        let (left, total) = (&mut { borders.left }, Some(total));
+        let done = match packed {
+            true => self.rewrite::<true>(w, right, dest, draws, max, left, total),
+            false => self.rewrite::<false>(w, right, dest, draws, max, left, total),
         };
         if packed {
             let low = (1 << shift) - 1;
@@ -418,7 +375,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     /// end (`outside`: the nearest visible symbol, then the values its
     /// unmatched `[`s pop), for a piece with too many positions to list.
     fn rescan(&self, w: &mut [T], right: &mut [T], outside: &[T]) {
-        let rclass = &self.table.right;
+        let (class, rclass, none) = (&self.table.class[..], &self.table.right[..], self.none);
         let shift = self.packed_shift.unwrap_or(0);
         let low = (1 << shift) - 1;
         let packed = self.packed_shift.is_some();
@@ -436,9 +393,44 @@ impl<T: Sym> TableStepper<'_, '_, T> {
             } else {
                 right[i] = T::from_index(after);
             }
-            self.pass_leftwards(s, &mut next, &mut stack);
+            Self::pass_leftwards(class, none, s, &mut next, &mut stack);
         }
     }
+}
+
+/// Moves each piece's rewriting up against the one before it: piece `k`'s
+/// `parts[k].0` symbols at `places[k]` in `out`, then its spill
+/// `parts[k].1`; `out` cut to them all.
+///
+/// A piece moves left (towards the word's start) unless earlier pieces
+/// spilled. The pieces moving left are moved first, from the word's start
+/// on, and those moving right then, from its end back, each a `memmove`:
+/// no piece is written over before it is moved, as its place starts past
+/// the end of every earlier piece's new place and its new place lies past
+/// the end of every earlier piece's place. The spills go last, into what
+/// is left between the pieces.
+fn lay_out<T: Copy>(out: &mut Vec<T>, places: &[usize], parts: &[(usize, Vec<T>)]) {
+    let mut len = 0;
+    let starts: Vec<usize> = (parts.iter())
+        .map(|(used, spill)| {
+            len += used + spill.len();
+            len - used - spill.len()
+        })
+        .collect();
+    if let Some(&fill) = parts.iter().find_map(|(_, spill)| spill.first()) {
+        out.resize(out.len().max(len), fill);
+    }
+    let moves = || (0..parts.len()).map(|k| (places[k], parts[k].0, starts[k]));
+    for (from, used, to) in moves().filter(|&(from, _, to)| to <= from) {
+        out.copy_within(from..from + used, to);
+    }
+    for (from, used, to) in moves().rev().filter(|&(from, _, to)| to > from) {
+        out.copy_within(from..from + used, to);
+    }
+    for ((used, spill), to) in parts.iter().zip(&starts) {
+        out[to + used..][..spill.len()].copy_from_slice(spill);
+    }
+    out.truncate(len);
 }
 
 /// `w` cut at `bounds` (its first 0, its last `w.len()`).
@@ -463,7 +455,11 @@ mod tests {
     /// Splits every word of at least `from` symbols into pieces of at
     /// least `piece`.
     fn split(from: usize, piece: usize) -> Split {
-        Split { from, piece }
+        Split {
+            from,
+            piece,
+            place: None,
+        }
     }
 
     /// The words of `s` in bytes on `threads` threads, with right
@@ -650,8 +646,15 @@ mod tests {
             let one = bytes(&s, &opts, 1, Split::default(), true);
             for threads in [2, 3, 7] {
                 for packed in [true, false] {
+                    // Places that hold some pieces' rewritings and not
+                    // others' (which then spill), every other case.
+                    let place = (case % 2 == 1).then(|| rng.below(200));
                     let piece = 1 + rng.below(4);
-                    let many = bytes(&s, &opts, threads, split(1, piece), packed);
+                    let cut = Split {
+                        place,
+                        ..split(1, piece)
+                    };
+                    let many = bytes(&s, &opts, threads, cut, packed);
                     assert!(
                         many.as_ref().ok() == one.as_ref().ok(),
                         "case {case}: {src}"
@@ -684,5 +687,41 @@ mod tests {
             }
             assert!(one == general(&s, &opts));
         }
+    }
+
+    /// Pieces laid out from places of any size, some moving left and some
+    /// right, some spilling: their rewritings one after another.
+    #[test]
+    fn pieces_laid_out_follow_each_other_whichever_way_they_move() {
+        let mut rng = Xorshift(0x2545_f491_4f6c_dd1d);
+        let (mut lefts, mut rights) = (0, 0);
+        for _ in 0..2000 {
+            let pieces = 1 + rng.below(6);
+            let mut places = vec![0];
+            let mut out = Vec::new();
+            let mut parts = Vec::new();
+            let mut want = Vec::new();
+            for k in 0..pieces {
+                let size = rng.below(12);
+                let used = rng.below(size + 1);
+                let spill: Vec<u32> = (0..[0, 0, rng.below(9)][rng.below(3)])
+                    .map(|i| (k * 1000 + 500 + i) as u32)
+                    .collect();
+                let region: Vec<u32> = (0..size).map(|i| (k * 1000 + i) as u32).collect();
+                want.extend_from_slice(&region[..used]);
+                want.extend_from_slice(&spill);
+                out.extend_from_slice(&region);
+                places.push(out.len());
+                let to = want.len() - used - spill.len();
+                (lefts, rights) = match to <= places[k] {
+                    true => (lefts + 1, rights),
+                    false => (lefts, rights + 1),
+                };
+                parts.push((used, spill));
+            }
+            super::lay_out(&mut out, &places, &parts);
+            assert_eq!(out, want, "{places:?}");
+        }
+        assert!(lefts > 1000 && rights > 1000, "{lefts} {rights}");
     }
 }
