@@ -48,31 +48,45 @@ struct Lines<'f> {
 impl Lines<'_> {
     /// Gives `line` to each share holding a pixel row it can reach.
     fn deal(&mut self, line: Line) {
-        let n = self.shares.len() as i64;
+        let n = self.shares.len();
+        if n == 1 {
+            self.shares[0].push(line);
+            return;
+        }
         let reach = if line.width >= 1.0 {
             line.width / 2.0
         } else {
             0.0
         } + 1.0;
-        let (lo, hi) = (
-            line.a[1].min(line.b[1]) - reach,
-            line.a[1].max(line.b[1]) + reach,
-        );
-        let stripe = f64::from(STRIPE);
-        let (first, last) = ((lo / stripe).floor(), (hi / stripe).floor());
-        // Spanning a stripe of every share, or not a number: every share
-        // draws it (and the drawing decides).
-        let few = (last - first).partial_cmp(&(n as f64)) == Some(std::cmp::Ordering::Less);
-        if n == 1 || !few {
+        let per_stripe = 1.0 / f64::from(STRIPE);
+        let lo = (line.a[1].min(line.b[1]) - reach) * per_stripe;
+        let hi = (line.a[1].max(line.b[1]) + reach) * per_stripe;
+        // Spanning a stripe of every share, or not a number, or far off
+        // the picture: every share draws it (and the drawing decides).
+        if !(hi - lo < (n - 1) as f64 && lo > -LIMIT && hi < LIMIT) {
             for share in &mut self.shares {
                 share.push(line);
             }
             return;
         }
-        for s in first as i64..=last as i64 {
-            self.shares[s.rem_euclid(n) as usize].push(line);
+        let (first, last) = (floor(lo), floor(hi));
+        let mut share = first.rem_euclid(n as i64) as usize;
+        for _ in first..=last {
+            self.shares[share].push(line);
+            share = if share + 1 == n { 0 } else { share + 1 };
         }
     }
+}
+
+/// Stripes as far off the picture as a line is dealt by: past them (2^52,
+/// where an `f64` still holds every integer) every share draws it.
+const LIMIT: f64 = 4_503_599_627_370_496.0;
+
+/// `x` rounded down, for `x` within [`LIMIT`]: `f64::floor` is a call into
+/// the maths library on the x86-64 baseline, and this is every line's.
+fn floor(x: f64) -> i64 {
+    let t = x as i64;
+    t - i64::from(x < t as f64)
 }
 
 impl Sink for Lines<'_> {
@@ -225,6 +239,22 @@ fn paint(share: &mut Coverage, lines: &[Line]) -> bool {
 mod tests {
     use super::*;
     use crate::turtle::Geometry;
+
+    #[test]
+    fn floor_rounds_down_on_both_sides_of_zero() {
+        for (x, want) in [
+            (2.7, 2),
+            (2.0, 2),
+            (0.0, 0),
+            (-0.0, 0),
+            (-0.5, -1),
+            (-1.0, -1),
+            (-7.25, -8),
+        ] {
+            assert_eq!(floor(x), want, "{x}");
+            assert_eq!(floor(x), x.floor() as i64, "{x}");
+        }
+    }
 
     #[test]
     fn shares_of_the_picture_on_any_threads_draw_what_one_draws_whole() {
