@@ -11,6 +11,12 @@
 //!   the derived word written out as `graftal derive … | …` writes it (into
 //!   a sink here).
 //!
+//! Each group also times `copies-of-1/N`: N one-thread copies of the work
+//! at once, one a core (N the most threads timed). One copy's time over
+//! it, times N, is what the machine allows N threads at most on this work
+//! (memory, caches and cores shared as the threads share them), the
+//! ceiling the N-thread speedup is read against.
+//!
 //! Each picture and word is checked to be the same bytes on every thread
 //! count before it is timed. Peak memory (a counting allocator) is printed
 //! as `peak memory: …` lines, for one thread and for the most.
@@ -91,7 +97,7 @@ fn derived(sys: &System, front: &dyn graftal::front::Front, steps: u64, threads:
 /// Times `work` on each thread count, after checking that every count
 /// gives what one thread gives and printing the peak memory of one thread
 /// and of the most.
-fn bench_counts(c: &mut Criterion, name: &str, work: impl Fn(usize) -> Vec<u8>) {
+fn bench_counts(c: &mut Criterion, name: &str, work: impl Fn(usize) -> Vec<u8> + Sync) {
     let counts = counts();
     start_counting();
     let (one, one_peak) = peak_during(|| work(1));
@@ -111,6 +117,20 @@ fn bench_counts(c: &mut Criterion, name: &str, work: impl Fn(usize) -> Vec<u8>) 
     for n in counts {
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
             b.iter(|| black_box(work(n)))
+        });
+    }
+    if most > 1 {
+        let copies = BenchmarkId::new("copies-of-1", most);
+        group.bench_with_input(copies, &most, |b, &most| {
+            b.iter(|| {
+                std::thread::scope(|s| {
+                    let others: Vec<_> = (1..most).map(|_| s.spawn(|| work(1))).collect();
+                    black_box(work(1));
+                    for t in others {
+                        black_box(t.join().expect("a copy panicked"));
+                    }
+                })
+            })
         });
     }
     group.finish();
