@@ -38,6 +38,7 @@
 use super::{Left, Neighbours, TableStepper, CLOSE, OPEN, VISIBLE};
 use crate::eval::{Draws, Sym};
 use std::sync::atomic::AtomicUsize;
+use std::sync::mpsc;
 
 /// A value of the context state while a piece is scanned on its own: a
 /// symbol index below `side` (`side - 1` being "none"), or from `side` on a
@@ -169,31 +170,16 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         } else {
             cut(&mut nb.right[..n], &bounds)
         };
-        let summaries: Vec<Summary> =
-            crate::parallel::on_own_threads(words.iter_mut().zip(rights.iter_mut()), |(w, r)| {
-                match packed {
-                    true => self.scan::<true>(w, r),
-                    false => self.scan::<false>(w, r),
-                }
-            });
-        let borders = self.borders(&summaries);
         let places = self.places(&bounds, nb.growth, max);
         // The old buffer freed first, so that the step holds its input and
         // its output only (the scale test's bound).
         *out = Vec::new();
         *out = T::zeroed(places[pieces]);
         let regions = cut(&mut out[..], &places);
-        let total = AtomicUsize::new(0);
         // Each piece draws its random choices by their places in the word.
         let starts = bounds.iter().map(|&start| draws.from(start));
-        let pieces = (words.iter_mut().zip(rights.iter_mut()))
-            .zip(summaries.iter().zip(borders))
-            .zip(regions.into_iter().zip(starts));
-        let done = crate::parallel::on_own_threads(pieces, |(((w, r), (s, b)), (region, d))| {
-            let mut spill = Vec::new();
-            let used = self.finish(w, r, s, b, (region, &mut spill), d, (max, &total));
-            used.map(|used| (used, spill))
-        });
+        let pieces = (words.iter_mut().zip(rights.iter_mut())).zip(regions.into_iter().zip(starts));
+        let done = self.on_threads(pieces.collect(), max);
         let parts = done.into_iter().collect::<Result<Vec<_>, ()>>()?;
         lay_out(out, &places, &parts);
         if out.len() > max {
@@ -204,6 +190,80 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         }
         out.shrink_to_fit();
         Ok(())
+    }
+
+    /// Stages 1 to 3 of each piece (its part of the word, of the right
+    /// neighbours, of the new word, and its draws), one a thread, the first
+    /// on this thread: each thread scans its piece and sends its summary
+    /// here; this thread finds the borders from them all and sends each
+    /// piece its own; each thread then rewrites its piece. One thread a
+    /// piece for the whole step, not a round of threads for each stage.
+    /// Each piece's symbols in its place and its spill, or `Err` when the
+    /// limit was passed.
+    #[allow(clippy::type_complexity)]
+    fn on_threads(
+        &self,
+        pieces: Vec<((&mut &mut [T], &mut &mut [T]), (&mut [T], Draws))>,
+        max: usize,
+    ) -> Vec<Result<(usize, Vec<T>), ()>> {
+        let total = &AtomicUsize::new(0);
+        let scan = |w: &mut [T], r: &mut [T]| match self.packed_shift.is_some() {
+            true => self.scan::<true>(w, r),
+            false => self.scan::<false>(w, r),
+        };
+        let finish = |(w, r): (&mut [T], &mut [T]), s: &Summary, b, region, d| {
+            let mut spill = Vec::new();
+            let used = self.finish(w, r, s, b, (region, &mut spill), d, (max, total));
+            used.map(|used| (used, spill))
+        };
+        let count = pieces.len();
+        std::thread::scope(|scope| {
+            let mut pieces = pieces.into_iter();
+            let ((w, r), (region, d)) = pieces.next().expect("one piece at least");
+            let (summaries, scanned) = mpsc::channel();
+            let (handles, others): (Vec<_>, Vec<_>) = (pieces.enumerate())
+                .map(|(k, ((w, r), (region, d)))| {
+                    let (send, bordered) = mpsc::channel::<(Summary, Borders<T>)>();
+                    let summaries = summaries.clone();
+                    let (scan, finish) = (&scan, &finish);
+                    let other = scope.spawn(move || {
+                        // A closed channel: a thread panicked, and this
+                        // one stops so that the panic is not waited on.
+                        summaries.send((k + 1, scan(w, r))).map_err(drop)?;
+                        drop(summaries);
+                        let (s, b) = bordered.recv().map_err(drop)?;
+                        finish((w, r), &s, b, region, d)
+                    });
+                    (send, other)
+                })
+                .unzip();
+            drop(summaries);
+            let mut all: Vec<Option<Summary>> = (0..count).map(|_| None).collect();
+            all[0] = Some(scan(w, r));
+            for (k, s) in scanned {
+                all[k] = Some(s);
+            }
+            let mine = match all.into_iter().collect::<Option<Vec<Summary>>>() {
+                Some(all) => {
+                    let borders = self.borders(&all);
+                    let mut each = all.into_iter().zip(borders);
+                    let (s, b) = each.next().expect("one piece at least");
+                    for (send, sb) in handles.iter().zip(each) {
+                        let _ = send.send(sb);
+                    }
+                    drop(handles);
+                    finish((w, r), &s, b, region, d)
+                }
+                // A thread panicked before its summary: the others are
+                // let go, and the join below passes the panic on.
+                None => {
+                    drop(handles);
+                    Err(())
+                }
+            };
+            let others = (others.into_iter()).map(|t| t.join().expect("a piece panicked"));
+            std::iter::once(mine).chain(others).collect()
+        })
     }
 
     /// Where in the new word each piece (the word cut at `bounds`) is
