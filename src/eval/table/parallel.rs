@@ -4,8 +4,9 @@
 //! rewriting will be. The pieces' rewritings are then moved up against
 //! each other (a piece that outgrows its place goes on in a word of its
 //! own, copied in after it). So each thread writes its share of the new
-//! word once, in memory that the step's own thread neither fills nor
-//! copies, and the new word is one allocation as on one thread.
+//! word once, into pages asked of the system zeroed that no other thread
+//! touched first, and the new word is one allocation as on one thread;
+//! moving the later pieces up is a `memmove` on the calling thread.
 //!
 //! What a position rewrites to depends on context that may lie in other
 //! pieces: its left-context state (the nearest visible symbol on its left
@@ -24,9 +25,10 @@
 //!    leftwards for the right context, finds the exact state at each
 //!    piece's borders (its cost is the number of unmatched brackets, not
 //!    the word's length);
-//! 3. every piece, on its own thread, fills in the listed right neighbours
-//!    from the state at its right border and rewrites itself from the state
-//!    at its left border, exactly as the one-thread pass would.
+//! 3. every piece, on the thread that scanned it, fills in the listed
+//!    right neighbours from the state at its right border and rewrites
+//!    itself from the state at its left border, exactly as the one-thread
+//!    pass would.
 //!
 //! So the word is the one-thread word whatever the number of pieces. The
 //! symbol limit is kept over all pieces together (a shared count checked
