@@ -124,6 +124,11 @@ impl Rare {
     }
 }
 
+/// A piece of a step as [`TableStepper::on_threads`] takes it: its part of
+/// the word and of the right neighbours, its place in the new word, and
+/// its draws.
+type Piece<'w, T> = ((&'w mut [T], &'w mut [T]), (&'w mut [T], Draws));
+
 /// The exact context states at a piece's borders.
 struct Borders<T> {
     /// The left-context state at its start, with just the top of the stack
@@ -166,8 +171,8 @@ impl<T: Sym> TableStepper<'_, '_, T> {
             nb.right.resize(n, self.none);
         }
         let bounds: Vec<usize> = (0..=pieces).map(|k| k * n / pieces).collect();
-        let mut words = cut(cur, &bounds);
-        let mut rights: Vec<&mut [T]> = if packed {
+        let words = cut(cur, &bounds);
+        let rights: Vec<&mut [T]> = if packed {
             (0..pieces).map(|_| &mut [][..]).collect()
         } else {
             cut(&mut nb.right[..n], &bounds)
@@ -180,7 +185,7 @@ impl<T: Sym> TableStepper<'_, '_, T> {
         let regions = cut(&mut out[..], &places);
         // Each piece draws its random choices by their places in the word.
         let starts = bounds.iter().map(|&start| draws.from(start));
-        let pieces = (words.iter_mut().zip(rights.iter_mut())).zip(regions.into_iter().zip(starts));
+        let pieces = (words.into_iter().zip(rights)).zip(regions.into_iter().zip(starts));
         let done = self.on_threads(pieces.collect(), max);
         let parts = done.into_iter().collect::<Result<Vec<_>, ()>>()?;
         lay_out(out, &places, &parts);
@@ -202,10 +207,9 @@ impl<T: Sym> TableStepper<'_, '_, T> {
     /// piece for the whole step, not a round of threads for each stage.
     /// Each piece's symbols in its place and its spill, or `Err` when the
     /// limit was passed.
-    #[allow(clippy::type_complexity)]
     fn on_threads(
         &self,
-        pieces: Vec<((&mut &mut [T], &mut &mut [T]), (&mut [T], Draws))>,
+        pieces: Vec<Piece<'_, T>>,
         max: usize,
     ) -> Vec<Result<(usize, Vec<T>), ()>> {
         let total = &AtomicUsize::new(0);
